@@ -1,0 +1,259 @@
+"""Rod node - rigid cylinder contact: smooth penalty normal force, elasto-plastic friction.
+
+Private module: arrays in, results written in place.
+
+Normal force: the squared-softplus penalty of the implicit contact model (Choi, Tong & Jawed,
+J. Appl. Mech. 88 (2021) 051010; coated-rod paper eq. 10 inside the square) on the signed gap
+g = |P_a (x - p)| - (R + r) of each node, weighted by the node's Voronoi length w:
+
+.. math:: E_i = K w_i \\left[\\log(1 + e^{-k g_i})/k\\right]^2 .
+
+Friction: an elasto-plastic anchor spring (Wriggers, "Computational Contact Mechanics", 2nd
+ed., sect. 5.2.2, return mapping of Coulomb's law with a tangential penalty): trial force
+F_t = -k_t w P_n (x - x_anchor); if |F_t| <= mu N it sticks, otherwise it slips with
+|F_t| = mu N along the trial direction, mu = mu_s when the contact stuck at the previous step
+and mu_k when it slipped. The friction acts on the contact surface, at r_c = -r n from the
+centreline (n the outward normal of the cylinder): its couple C = r_c x F_t on the
+cross-section is applied as nodal force pairs +-(C x e)/|e|^2 on the adjacent edges (half to
+each) and its twisting part C.t on the edges' twist angles.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+from numba import njit
+
+from knotmech.rod._kernels.contact_rodrod import penalty_derivs
+
+ENTRIES_PER_CONTACT = 144
+
+
+@njit(cache=True)
+def _cross(a, b):
+    return np.array(
+        [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]]
+    )
+
+
+@njit(cache=True)
+def _skew(a):
+    s = np.zeros((3, 3))
+    s[0, 1] = -a[2]
+    s[0, 2] = a[1]
+    s[1, 0] = a[2]
+    s[1, 2] = -a[0]
+    s[2, 0] = -a[1]
+    s[2, 1] = a[0]
+    return s
+
+
+@njit(cache=True)
+def cylinder_assemble(
+    pos,
+    pos_old,
+    node_dofs,
+    node_weight,
+    node_radius,
+    node_edges,
+    edge_nodes,
+    edge_theta_dof,
+    cyl_point,
+    cyl_axis,
+    cyl_radius,
+    cyl_half_length,
+    sharpness,
+    stiffness,
+    mu_s,
+    mu_k,
+    k_t,
+    surface,
+    anchor,
+    anchor_valid,
+    slipping,
+    mode,
+    force,
+    rows,
+    cols,
+    vals,
+    out_normal,
+    out_friction,
+    out_slip,
+):
+    """Forces and Jacobian (``mode`` = 0) or state commit (``mode`` = 1) of all node-cylinder
+    contacts.
+
+    Shapes: ``pos``, ``pos_old`` (n_nodes, 3) [m]; ``node_edges`` (n_nodes, 2) previous/next
+    edge (-1 if none); cylinders (n_cyl, 3), (n_cyl, 3) unit axes, (n_cyl,) radii and half
+    lengths (inf for an infinite cylinder); ``anchor`` (n_nodes, n_cyl, 3),
+    ``anchor_valid``/``slipping`` (n_nodes, n_cyl) booleans (the committed state).
+
+    mode 0 adds the forces into ``force`` (n_dof,) and writes ENTRIES_PER_CONTACT Jacobian
+    triplets (dF/dq) per node-cylinder pair (zeros where unused). Lagged in the Jacobian:
+    the normal direction's dependence on x in the friction terms and in the couple's lever
+    arm (the edge vectors of the couple are differentiated). mode 1 updates ``anchor``,
+    ``anchor_valid``, ``slipping``; mode 2 only sums the energy.
+    Returns the penalty energy.
+    """
+    nn = pos.shape[0]
+    nc = cyl_point.shape[0]
+    energy = 0.0
+    for i in range(nn):
+        for c in range(nc):
+            base = (i * nc + c) * ENTRIES_PER_CONTACT
+            if mode == 0:
+                for a in range(ENTRIES_PER_CONTACT):
+                    rows[base + a] = node_dofs[i, 0]
+                    cols[base + a] = node_dofs[i, 0]
+                    vals[base + a] = 0.0
+                out_normal[i, c] = 0.0
+                out_slip[i, c] = False
+                for m in range(3):
+                    out_friction[i, c, m] = 0.0
+            ax = cyl_axis[c]
+            rel = pos[i] - cyl_point[c]
+            xi = rel @ ax
+            radial = rel - xi * ax
+            rho = np.sqrt(radial @ radial)
+            gap = rho - cyl_radius[c] - node_radius[i]
+            far = sharpness * gap > 40.0 or abs(xi) > cyl_half_length[c] or rho == 0.0
+            if far:
+                if mode == 1:
+                    anchor_valid[i, c] = False
+                    slipping[i, c] = False
+                continue
+            n = radial / rho
+            e, de, d2e = penalty_derivs(-gap, sharpness, stiffness * node_weight[i])
+            # with gap_arg = -g, de = dE/dg and d2e = d2E/dg2
+            energy += e
+            normal = -de  # >= 0 [N]
+            dnormal_dg = -d2e
+            dofs = node_dofs[i]
+            if mode == 0:
+                Paxis = np.eye(3) - np.outer(ax, ax)
+                Pn = np.eye(3) - np.outer(n, n)
+                for m in range(3):
+                    force[dofs[m]] += normal * n[m]
+                # dF/dx = -(d2E n n^T + dE (P_a - n n^T)/rho)
+                K = -(d2e * np.outer(n, n) + de * (Paxis - np.outer(n, n)) / rho)
+                for a in range(3):
+                    for b in range(3):
+                        k = base + 3 * a + b
+                        rows[k] = dofs[a]
+                        cols[k] = dofs[b]
+                        vals[k] = K[a, b]
+                out_normal[i, c] = normal
+            if mode == 2 or (mu_s <= 0.0 and mu_k <= 0.0):
+                continue
+            # --- elasto-plastic friction (return mapping) ---
+            if anchor_valid[i, c]:
+                anc = anchor[i, c]
+            else:
+                anc = pos_old[i]
+            d = pos[i] - anc
+            u = d - (d @ n) * n
+            unorm = np.sqrt(u @ u)
+            kw = k_t * node_weight[i]
+            mu = mu_k if slipping[i, c] else mu_s
+            limit = mu * normal
+            slip = kw * unorm > limit
+            if mode == 1:
+                if slip:
+                    anchor[i, c] = pos[i] - (limit / kw) * (u / unorm)
+                else:
+                    anchor[i, c] = anc
+                anchor_valid[i, c] = True
+                slipping[i, c] = slip
+                continue
+            Pn = np.eye(3) - np.outer(n, n)
+            if slip:
+                uh = u / unorm
+                ft = -limit * uh
+                J = -(limit / unorm) * ((np.eye(3) - np.outer(uh, uh)) @ Pn)
+                J -= mu * dnormal_dg * np.outer(uh, n)
+            else:
+                ft = -kw * u
+                J = -kw * Pn
+            out_slip[i, c] = slip
+            for m in range(3):
+                force[dofs[m]] += ft[m]
+                out_friction[i, c, m] = ft[m]
+            for a in range(3):
+                for b in range(3):
+                    k = base + 9 + 3 * a + b
+                    rows[k] = dofs[a]
+                    cols[k] = dofs[b]
+                    vals[k] = J[a, b]
+            if not surface:
+                continue
+            # --- couple of the surface friction on the cross-section ---
+            rc = -node_radius[i] * n
+            C = _cross(rc, ft)
+            dC = _skew(rc) @ J  # dC/dx_i (3, 3), lever arm lagged
+            nadj = 0
+            for s in range(2):
+                if node_edges[i, s] >= 0:
+                    nadj += 1
+            share = 1.0 / nadj
+            slot = base + 18
+            for s in range(2):
+                ed = node_edges[i, s]
+                if ed < 0:
+                    continue
+                na = edge_nodes[ed, 0]
+                nb = edge_nodes[ed, 1]
+                ev = pos[nb] - pos[na]
+                l2 = ev @ ev
+                t = ev / np.sqrt(l2)
+                Ce = share * C
+                fb = _cross(Ce, ev) / l2
+                tw = Ce @ t
+                for m in range(3):
+                    force[node_dofs[nb, m]] += fb[m]
+                    force[node_dofs[na, m]] -= fb[m]
+                force[edge_theta_dof[ed]] += tw
+                # d fb/dx_i = -[e]x dCe/dx_i / |e|^2 ; d tw/dx_i = t^T dCe/dx_i
+                dfb = -(_skew(ev) @ (share * dC)) / l2
+                dtw = t @ (share * dC)
+                for a in range(3):
+                    for b in range(3):
+                        rows[slot] = node_dofs[nb, a]
+                        cols[slot] = dofs[b]
+                        vals[slot] = dfb[a, b]
+                        slot += 1
+                        rows[slot] = node_dofs[na, a]
+                        cols[slot] = dofs[b]
+                        vals[slot] = -dfb[a, b]
+                        slot += 1
+                for b in range(3):
+                    rows[slot] = edge_theta_dof[ed]
+                    cols[slot] = dofs[b]
+                    vals[slot] = dtw[b]
+                    slot += 1
+                # through the edge vector: d fb/d e = [Ce]x/|e|^2 - 2 (Ce x e) e^T/|e|^4,
+                # d tw/d e = Ce^T (I - t t^T)/|e|; e = x_b - x_a
+                dfe = _skew(Ce) / l2 - 2.0 * np.outer(fb, ev) / l2
+                dte = (Ce - (Ce @ t) * t) / np.sqrt(l2)
+                for a in range(3):
+                    for b in range(3):
+                        rows[slot] = node_dofs[nb, a]
+                        cols[slot] = node_dofs[nb, b]
+                        vals[slot] = dfe[a, b]
+                        rows[slot + 1] = node_dofs[nb, a]
+                        cols[slot + 1] = node_dofs[na, b]
+                        vals[slot + 1] = -dfe[a, b]
+                        rows[slot + 2] = node_dofs[na, a]
+                        cols[slot + 2] = node_dofs[nb, b]
+                        vals[slot + 2] = -dfe[a, b]
+                        rows[slot + 3] = node_dofs[na, a]
+                        cols[slot + 3] = node_dofs[na, b]
+                        vals[slot + 3] = dfe[a, b]
+                        slot += 4
+                for b in range(3):
+                    rows[slot] = edge_theta_dof[ed]
+                    cols[slot] = node_dofs[nb, b]
+                    vals[slot] = dte[b]
+                    rows[slot + 1] = edge_theta_dof[ed]
+                    cols[slot + 1] = node_dofs[na, b]
+                    vals[slot + 1] = -dte[b]
+                    slot += 2
+    return energy

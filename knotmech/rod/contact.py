@@ -1,0 +1,407 @@
+"""Frictional contact interactions for the DER solver (rod-rod and rod-rigid cylinder).
+
+Both classes implement the solver's interaction protocol (``begin_step``, ``assemble``,
+``end_step``, ``energy``; see ``notes/der_contract.md`` and :mod:`knotmech.rod`): they add a
+generalised force F(q) and its derivative dF/dq (as sparse triplets) to the implicit-Euler
+Newton system. They only use the system's global index arrays (``node_dofs``,
+``edge_nodes``, ``edge_theta_dof``, ``edge_rod``, ``rod_radius_edge``, ``n_dof``), so any
+number of rods, self-contact and any number of cylinders are handled alike.
+
+- :class:`RodContact`: the implicit contact model (Choi, Tong & Jawed, J. Appl. Mech. 88
+  (2021) 051010) on the edge-edge distance, with the regularised friction of the coated-rod
+  paper (eqs. 10-12), and a sort-and-sweep broad phase.
+- :class:`CylinderContact`: rigid cylinders (posts, capstans, pinching rollers), smooth
+  penalty normal force and elasto-plastic friction that truly sticks, applied at the contact
+  surface so that thick rods show mu_eff (see :func:`knotmech.analytic.capstan.mu_eff`).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from knotmech.errors import InputError, check_finite, check_nonnegative, check_positive
+from knotmech.rod._kernels.contact_cylinder import ENTRIES_PER_CONTACT, cylinder_assemble
+from knotmech.rod._kernels.contact_rodrod import rodrod_assemble, rodrod_energy
+from knotmech.rod.broadphase import candidate_edge_pairs
+from knotmech.rod.friction import AnchorFriction, SmoothFriction
+
+__all__ = ["Cylinder", "CylinderContact", "RodContact"]
+
+
+def _emit(rows, cols, vals, r, c, v):
+    """Append triplets to the solver's buffer (``Triplets.add``) or to three lists."""
+    if hasattr(rows, "add"):
+        rows.add(r, c, v)
+    else:
+        rows.extend(np.asarray(r).tolist())
+        cols.extend(np.asarray(c).tolist())
+        vals.extend(np.asarray(v).tolist())
+
+
+def _positions(system, q):
+    return np.ascontiguousarray(np.asarray(q, dtype=float)[system.node_dofs])
+
+
+@dataclass(frozen=True)
+class Cylinder:
+    """A rigid, fixed cylinder.
+
+    Parameters
+    ----------
+    point : (3,) array [m]
+        A point of the axis (the centre for a finite cylinder).
+    axis : (3,) array
+        Axis direction (normalised here).
+    radius : float [m]
+        Radius (> 0).
+    length : float [m]
+        Length along the axis (inf: infinite). Nodes beyond the ends feel no contact (no caps).
+    """
+
+    point: np.ndarray
+    axis: np.ndarray
+    radius: float
+    length: float = float("inf")
+
+    def __post_init__(self):
+        p = check_finite("point", self.point).reshape(-1)
+        a = check_finite("axis", self.axis).reshape(-1)
+        if p.shape != (3,) or a.shape != (3,):
+            raise InputError("point and axis must be 3-vectors")
+        na = float(np.linalg.norm(a))
+        if na == 0.0:
+            raise InputError("axis must be a non-zero vector")
+        object.__setattr__(self, "point", p)
+        object.__setattr__(self, "axis", a / na)
+        object.__setattr__(self, "radius", float(check_positive("radius", self.radius)))
+        if not (self.length > 0):
+            raise InputError(f"length must be > 0 (or inf), got {self.length}")
+        object.__setattr__(self, "length", float(self.length))
+
+
+@dataclass
+class RodContact:
+    r"""Rod-rod contact (self-contact included) of the implicit contact model, with friction.
+
+    Penalty energy per candidate edge pair (i, j), :math:`\Delta_{ij}` the edge-edge
+    minimum distance (point-point, point-edge and edge-edge cases, Lumelsky 1985):
+
+    .. math:: E_{ij} = K_c\left[\frac{\log\left(1 + e^{k(r_i + r_j - \Delta_{ij})}\right)}{k}
+              \right]^2
+
+    (the softplus of the coated-rod paper's eq. (10), squared as in Choi, Tong & Jawed 2021,
+    so that the force grows like :math:`2K_c\,\delta` with the overlap
+    :math:`\delta = r_i + r_j - \Delta`). Its exact gradient and Hessian enter the Newton
+    system. Friction: coated-rod paper eqs. (11)-(12) (:class:`~knotmech.rod.friction.
+    SmoothFriction`), with dF/dq through the velocity only (contact normal and |F_n| lagged).
+
+    Parameters
+    ----------
+    stiffness : float [N/m]
+        K_c; the force at an overlap delta (>> 1/k) is about 2 K_c delta.
+    sharpness : float [1/m]
+        k; the penalty acts from a gap of a few 1/k. A good choice is 10/(0.01 d) ... 1/(0.01 d).
+    friction : SmoothFriction or None
+    margin : float or None [m]
+        Broad-phase margin; None -> 30/k + 2 r (covers the penalty range and motion).
+    exclusion : int or None
+        Neighbouring edges of the same rod never paired; None -> ``system.contact_exclusion``
+        (default 2).
+    """
+
+    stiffness: float
+    sharpness: float
+    friction: SmoothFriction | None = None
+    margin: float | None = None
+    exclusion: int | None = None
+    pairs: np.ndarray = field(default=None, init=False, repr=False)
+    last_normal_force: np.ndarray = field(default=None, init=False, repr=False)
+
+    def __post_init__(self):
+        self.stiffness = float(check_positive("stiffness", self.stiffness))
+        self.sharpness = float(check_positive("sharpness", self.sharpness))
+        if self.margin is not None:
+            self.margin = float(check_nonnegative("margin", self.margin))
+        if self.friction is not None and not isinstance(self.friction, SmoothFriction):
+            raise InputError("friction must be a SmoothFriction or None")
+
+    def _exclusion(self, system):
+        if self.exclusion is not None:
+            return int(self.exclusion)
+        return int(getattr(system, "contact_exclusion", 2))
+
+    def begin_step(self, system, q_old, v_old, dt):
+        """Broad phase at the start of the step (pairs kept fixed during Newton)."""
+        pos = _positions(system, q_old)
+        rad = np.asarray(system.rod_radius_edge, dtype=float)
+        margin = self.margin
+        if margin is None:
+            vmax = 0.0
+            if v_old is not None:
+                v = np.asarray(v_old, dtype=float)[system.node_dofs]
+                vmax = float(np.max(np.linalg.norm(v, axis=1))) if v.size else 0.0
+            margin = 30.0 / self.sharpness + 2.0 * float(np.max(rad)) + 2.0 * vmax * dt
+        self.pairs = candidate_edge_pairs(
+            pos,
+            system.edge_nodes,
+            edge_radius=rad,
+            margin=margin,
+            edge_rod=system.edge_rod,
+            exclusion=self._exclusion(system),
+        )
+
+    def _ensure_pairs(self, system, q):
+        if self.pairs is None:
+            self.begin_step(system, q, None, 0.0)
+
+    def assemble(self, system, q, q_old, dt, force, rows, cols, vals):
+        """Add the contact + friction force and its dF/dq triplets."""
+        self._ensure_pairs(system, q)
+        pairs = self.pairs
+        npair = pairs.shape[0]
+        if npair == 0:
+            self.last_normal_force = np.zeros(0)
+            return
+        rad = np.ascontiguousarray(system.rod_radius_edge, dtype=float)
+        if self.friction is not None:
+            mu, fk, fc = self.friction.parameters(float(np.min(rad)))
+        else:
+            mu, fk, fc = 0.0, 1.0, 0.0
+        r = np.empty(npair * 288, dtype=np.int64)
+        c = np.empty(npair * 288, dtype=np.int64)
+        v = np.empty(npair * 288)
+        fn = np.empty(npair)
+        rodrod_assemble(
+            _positions(system, q),
+            _positions(system, q_old),
+            float(dt) if dt else 1.0,
+            pairs,
+            np.ascontiguousarray(system.edge_nodes, dtype=np.int64),
+            np.ascontiguousarray(system.node_dofs, dtype=np.int64),
+            rad,
+            self.sharpness,
+            self.stiffness,
+            mu,
+            fk,
+            fc,
+            1e-3 * fc if fc > 0 else 1e-12,
+            force,
+            r,
+            c,
+            v,
+            fn,
+        )
+        self.last_normal_force = fn
+        keep = v != 0.0
+        _emit(rows, cols, vals, r[keep], c[keep], v[keep])
+
+    def end_step(self, system, q_new, q_old, dt):
+        """Nothing to commit (the regularised friction is stateless)."""
+
+    def energy(self, system, q):
+        """Penalty energy [J] of the current candidate pairs."""
+        self._ensure_pairs(system, q)
+        if self.pairs.shape[0] == 0:
+            return 0.0
+        return float(
+            rodrod_energy(
+                _positions(system, q),
+                self.pairs,
+                np.ascontiguousarray(system.edge_nodes, dtype=np.int64),
+                np.ascontiguousarray(system.rod_radius_edge, dtype=float),
+                self.sharpness,
+                self.stiffness,
+            )
+        )
+
+
+@dataclass
+class CylinderContact:
+    r"""Contact of the rod nodes with rigid cylinders, with elasto-plastic friction.
+
+    Normal: a smooth penalty on each node's signed gap
+    :math:`g = |P_a(x - p)| - (R + r)`, per unit length (w the node's Voronoi length),
+
+    .. math:: E = K\,w\left[\log(1 + e^{-k g})/k\right]^2,\qquad N \simeq 2 K w\,(-g)
+              \text{ for } -g \gg 1/k.
+
+    Friction: :class:`~knotmech.rod.friction.AnchorFriction` (sticks below mu_s N, slides
+    at mu_k N). With ``surface_friction=True`` (default) the friction acts on the contact
+    surface, a rod radius from the centreline toward the cylinder; its couple on the
+    cross-section is applied as nodal force pairs on the adjacent edges (and its twisting part
+    on their twist angles). This is what gives the capstan ratio
+    :math:`e^{\mu_\mathrm{eff}\theta}` of a thick rod; ``surface_friction=False`` applies the
+    friction at the centreline and gives :math:`e^{\mu\theta}`.
+
+    Parameters
+    ----------
+    cylinders : sequence of Cylinder
+    stiffness : float [N/m^2]
+        K, per unit rod length.
+    sharpness : float [1/m]
+        k of the softplus (the force at zero gap is K w log(2)/k... ~ K w ln2^2 / k^2 * k).
+    friction : AnchorFriction or None
+    surface_friction : bool
+
+    Attributes (after each assemble)
+    --------------------------------
+    normal_force : (n_nodes, n_cyl) [N]; friction_force : (n_nodes, n_cyl, 3) [N];
+    sliding : (n_nodes, n_cyl) bool.
+    """
+
+    cylinders: tuple
+    stiffness: float
+    sharpness: float
+    friction: AnchorFriction | None = None
+    surface_friction: bool = True
+    normal_force: np.ndarray = field(default=None, init=False, repr=False)
+    friction_force: np.ndarray = field(default=None, init=False, repr=False)
+    sliding: np.ndarray = field(default=None, init=False, repr=False)
+
+    def __post_init__(self):
+        cyl = tuple(self.cylinders)
+        if len(cyl) == 0 or not all(isinstance(c, Cylinder) for c in cyl):
+            raise InputError("cylinders must be a non-empty sequence of Cylinder")
+        self.cylinders = cyl
+        self.stiffness = float(check_positive("stiffness", self.stiffness))
+        self.sharpness = float(check_positive("sharpness", self.sharpness))
+        if self.friction is not None and not isinstance(self.friction, AnchorFriction):
+            raise InputError("friction must be an AnchorFriction or None")
+        self._cp = np.array([c.point for c in cyl])
+        self._ca = np.array([c.axis for c in cyl])
+        self._cr = np.array([c.radius for c in cyl])
+        self._ch = np.array([0.5 * c.length for c in cyl])
+        self._topology = None
+        self._anchor = None
+
+    # --- geometry helpers -------------------------------------------------------------
+    def _setup(self, system):
+        if self._topology is not None and self._topology[0] is system:
+            return
+        en = np.ascontiguousarray(system.edge_nodes, dtype=np.int64)
+        nd = np.ascontiguousarray(system.node_dofs, dtype=np.int64)
+        n_nodes = nd.shape[0]
+        node_edges = -np.ones((n_nodes, 2), dtype=np.int64)
+        for e, (a, b) in enumerate(en):
+            node_edges[b, 0] = e  # edge ending at b is b's previous edge
+            node_edges[a, 1] = e
+        rad_e = np.asarray(system.rod_radius_edge, dtype=float)
+        node_radius = np.zeros(n_nodes)
+        cnt = np.zeros(n_nodes)
+        np.add.at(node_radius, en[:, 0], rad_e)
+        np.add.at(node_radius, en[:, 1], rad_e)
+        np.add.at(cnt, en[:, 0], 1.0)
+        np.add.at(cnt, en[:, 1], 1.0)
+        node_radius /= np.maximum(cnt, 1.0)
+        theta = np.ascontiguousarray(system.edge_theta_dof, dtype=np.int64)
+        self._topology = (system, en, nd, node_edges, node_radius, theta)
+        nc = len(self.cylinders)
+        self._anchor = np.zeros((n_nodes, nc, 3))
+        self._valid = np.zeros((n_nodes, nc), dtype=np.bool_)
+        self._slipping = np.zeros((n_nodes, nc), dtype=np.bool_)
+        self._weight = None
+
+    def _node_weight(self, pos):
+        _, en, nd, _, _, _ = self._topology
+        le = np.linalg.norm(pos[en[:, 1]] - pos[en[:, 0]], axis=1)
+        w = np.zeros(nd.shape[0])
+        np.add.at(w, en[:, 0], 0.5 * le)
+        np.add.at(w, en[:, 1], 0.5 * le)
+        return w
+
+    def _friction_params(self):
+        if self.friction is None:
+            return 0.0, 0.0, 1.0
+        kt = self.friction.tangential_stiffness
+        if kt is None:
+            kt = 2.0 * self.stiffness
+        return self.friction.mu_s, self.friction.mu_k, float(kt)
+
+    def _run(self, system, q, q_old, mode, force, r, c, v):
+        _, en, nd, node_edges, node_radius, theta = self._topology
+        pos = _positions(system, q)
+        pos_old = _positions(system, q_old)
+        if self._weight is None:
+            self._weight = self._node_weight(pos_old)
+        mus, muk, kt = self._friction_params()
+        n_nodes, nc = nd.shape[0], len(self.cylinders)
+        out_n = np.zeros((n_nodes, nc))
+        out_f = np.zeros((n_nodes, nc, 3))
+        out_s = np.zeros((n_nodes, nc), dtype=np.bool_)
+        e = cylinder_assemble(
+            pos,
+            pos_old,
+            nd,
+            self._weight,
+            node_radius,
+            node_edges,
+            en,
+            theta,
+            self._cp,
+            self._ca,
+            self._cr,
+            self._ch,
+            self.sharpness,
+            self.stiffness,
+            mus,
+            muk,
+            kt,
+            bool(self.surface_friction),
+            self._anchor,
+            self._valid,
+            self._slipping,
+            mode,
+            force,
+            r,
+            c,
+            v,
+            out_n,
+            out_f,
+            out_s,
+        )
+        if mode == 0:
+            self.normal_force, self.friction_force, self.sliding = out_n, out_f, out_s
+        return e
+
+    # --- interaction protocol ---------------------------------------------------------
+    def begin_step(self, system, q_old, v_old, dt):
+        """Fix the nodes' contact lengths for the step (idempotent)."""
+        self._setup(system)
+        self._weight = self._node_weight(_positions(system, q_old))
+
+    def assemble(self, system, q, q_old, dt, force, rows, cols, vals):
+        """Add the normal + friction (+ couple) forces and their dF/dq triplets."""
+        self._setup(system)
+        size = system.node_dofs.shape[0] * len(self.cylinders) * ENTRIES_PER_CONTACT
+        r = np.empty(size, dtype=np.int64)
+        c = np.empty(size, dtype=np.int64)
+        v = np.empty(size)
+        self._run(system, q, q_old, 0, force, r, c, v)
+        keep = v != 0.0
+        _emit(rows, cols, vals, r[keep], c[keep], v[keep])
+
+    def end_step(self, system, q_new, q_old, dt):
+        """Commit the stick anchors and slip flags at the accepted state."""
+        self._setup(system)
+        dummy_i = np.zeros(1, dtype=np.int64)
+        self._run(system, q_new, q_old, 1, np.zeros(1), dummy_i, dummy_i, np.zeros(1))
+
+    def energy(self, system, q):
+        """Normal penalty energy [J] (friction is not conservative and adds nothing)."""
+        self._setup(system)
+        dummy_i = np.zeros(1, dtype=np.int64)
+        if self._weight is None:
+            self._weight = self._node_weight(_positions(system, q))
+        mode_energy_only = 2
+        return float(
+            self._run(system, q, q, mode_energy_only, np.zeros(1), dummy_i, dummy_i, np.zeros(1))
+        )
+
+    def reset(self):
+        """Forget the friction state (anchors, slip flags)."""
+        if self._anchor is not None:
+            self._anchor[:] = 0.0
+            self._valid[:] = False
+            self._slipping[:] = False

@@ -1,0 +1,135 @@
+"""Friction laws for rod contact.
+
+Two laws, both used through the contact interactions of :mod:`knotmech.rod.contact`:
+
+- :class:`SmoothFriction`, the regularised Coulomb law of the coated-rod paper (eqs. 11-12)
+  for rod-rod contact: the sliding force is scaled by a smooth stick-slip weight
+  :func:`stick_slip_weight` of the tangential relative speed. It does not truly stick (a held
+  load creeps slowly), which is what that paper uses for knots.
+- :class:`AnchorFriction`, an elasto-plastic "anchor spring" (return mapping of Coulomb's law
+  with a tangential penalty) for contact with rigid cylinders: it truly sticks below
+  mu_s N and slides at mu_k N above, with mu_s >= mu_k.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from knotmech.errors import InputError, check_nonnegative, check_positive
+
+
+def stick_slip_weight(tangential_speed, *, sharpness, threshold):
+    r"""Smooth stick-slip weight of the coated-rod paper, eq. (12).
+
+    .. math:: \gamma = \frac{1}{1 + e^{-k(\|v_T\| - c)}}
+
+    Parameters
+    ----------
+    tangential_speed : array_like [m/s]
+        Magnitude of the tangential relative velocity.
+    sharpness : float [s/m]
+        k; the paper uses k = 50/r0 (r0 the rod radius, in the same length unit).
+    threshold : float [m/s]
+        c; the paper uses c = 0.15 r0 (per second).
+
+    Returns
+    -------
+    gamma : ndarray, in [0, 1]
+        0 (static) ... 1 (fully sliding friction mu |F_n|).
+
+    References
+    ----------
+    Coated-rod paper, J. Appl. Mech. (DOI 10.1115/1.4055544), eq. (12).
+    """
+    v = np.asarray(tangential_speed, dtype=float)
+    k = check_positive("sharpness", sharpness)
+    c = check_nonnegative("threshold", threshold)
+    return 0.5 * (1.0 + np.tanh(0.5 * k * (v - c)))
+
+
+def default_stick_slip_parameters(rod_radius):
+    """The coated-rod paper's choice k = 50/r0 [s/m], c = 0.15 r0 [m/s] (after eq. 12)."""
+    r0 = float(check_positive("rod_radius", rod_radius))
+    return 50.0 / r0, 0.15 * r0
+
+
+@dataclass(frozen=True)
+class SmoothFriction:
+    """Regularised Coulomb friction of the coated-rod paper (eqs. 11-12), for rod-rod contact.
+
+    Parameters
+    ----------
+    mu : float
+        Friction coefficient (>= 0).
+    sharpness : float or None [s/m]
+        k of the stick-slip weight; None -> 50/r0 with r0 the smallest rod radius.
+    threshold : float or None [m/s]
+        c of the stick-slip weight; None -> 0.15 r0.
+    """
+
+    mu: float
+    sharpness: float | None = None
+    threshold: float | None = None
+
+    def __post_init__(self):
+        check_nonnegative("mu", self.mu)
+        if self.sharpness is not None:
+            check_positive("sharpness", self.sharpness)
+        if self.threshold is not None:
+            check_nonnegative("threshold", self.threshold)
+
+    def parameters(self, rod_radius):
+        """(mu, k, c) with the defaults resolved for ``rod_radius`` [m]."""
+        k0, c0 = default_stick_slip_parameters(rod_radius)
+        k = k0 if self.sharpness is None else self.sharpness
+        c = c0 if self.threshold is None else self.threshold
+        return float(self.mu), float(k), float(c)
+
+
+@dataclass(frozen=True)
+class AnchorFriction:
+    r"""Elasto-plastic (anchor spring) Coulomb friction with static and kinetic coefficients.
+
+    Stick: :math:`F_t = -k_t w\,P_n(x - x_a)` (w the node's length, P_n the tangent-plane
+    projector); slip when :math:`|F_t| > \mu N`, then :math:`|F_t| = \mu N` and the anchor
+    :math:`x_a` follows. :math:`\mu = \mu_s` for a contact that stuck at the previous step,
+    :math:`\mu_k` for one that slid. State is committed once per accepted step.
+
+    Parameters
+    ----------
+    mu_static : float
+        Static coefficient mu_s (>= mu_kinetic).
+    mu_kinetic : float or None
+        Kinetic coefficient mu_k (>= 0); None -> equal to mu_static.
+    tangential_stiffness : float or None [N/m^2]
+        k_t, per unit rod length; None -> the contact's normal penalty stiffness scale.
+
+    References
+    ----------
+    P. Wriggers, Computational Contact Mechanics, 2nd ed. (Springer 2006), sect. 5.2.2.
+    """
+
+    mu_static: float
+    mu_kinetic: float | None = None
+    tangential_stiffness: float | None = None
+
+    def __post_init__(self):
+        check_nonnegative("mu_static", self.mu_static)
+        if self.mu_kinetic is not None:
+            check_nonnegative("mu_kinetic", self.mu_kinetic)
+            if self.mu_kinetic > self.mu_static:
+                raise InputError(
+                    f"mu_kinetic must be <= mu_static ({self.mu_static}), got {self.mu_kinetic}"
+                )
+        if self.tangential_stiffness is not None:
+            check_positive("tangential_stiffness", self.tangential_stiffness)
+
+    @property
+    def mu_k(self) -> float:
+        return float(self.mu_static if self.mu_kinetic is None else self.mu_kinetic)
+
+    @property
+    def mu_s(self) -> float:
+        return float(self.mu_static)
