@@ -10,8 +10,8 @@ a film whose thickness is set by matching the curvature of the dynamic meniscus
           \mathrm{Ca} = \frac{\eta U}{\gamma}, \qquad C_\mathrm{LL} = 0.6430\ldots
 
 :math:`C_\mathrm{LL}` is the limiting curvature of the solution of
-:math:`H''' = (H - 1)/H^3` that leaves the flat film (Landau & Levich 1942; computed in
-``derivations/lld.py``), so :math:`C_\mathrm{LL}\,3^{2/3} = 1.3375`.
+:math:`H''' = (H - 1)/H^3` that leaves the flat film (Landau & Levich 1942: 0.643; recomputed in
+``derivations/lld.py``), so :math:`C_\mathrm{LL}\,3^{2/3} = 1.3376`.
 
 * plate: :math:`\kappa_s = \sqrt 2 / \ell_c`, :math:`\ell_c = \sqrt{\gamma/(\rho g)}`, so
   :math:`h = 0.9458\,\ell_c\,\mathrm{Ca}^{2/3}` (quoted as 0.946 by de Gennes,
@@ -53,10 +53,10 @@ __all__ = [
 
 #: Limiting curvature of the Landau-Levich thin-film solution, H''(+inf) for
 #: H''' = (H - 1)/H^3 (Landau & Levich 1942; recomputed in derivations/lld.py).
-LANDAU_LEVICH_CURVATURE = 0.6430
+LANDAU_LEVICH_CURVATURE = 0.64304
 #: 1.34 = 0.643 * 3^(2/3) (Goucher-Ward fibre law, Quere 1999).
 LLD_FIBRE_COEFFICIENT = LANDAU_LEVICH_CURVATURE * 3.0 ** (2.0 / 3.0)
-#: 0.946 = 1.3375 / sqrt(2) (plate: static meniscus curvature sqrt(2)/l_c).
+#: 0.946 = 1.3376 / sqrt(2) (plate: static meniscus curvature sqrt(2)/l_c).
 LLD_PLATE_COEFFICIENT = LLD_FIBRE_COEFFICIENT / np.sqrt(2.0)
 #: Standard gravity [m/s^2].
 STANDARD_GRAVITY = 9.80665
@@ -133,7 +133,7 @@ def film_thickness_fibre(radius, viscosity, speed, surface_tension):
 
     .. math:: h = 1.34\,r\,\mathrm{Ca}^{2/3}, \qquad \mathrm{Ca} = \eta U/\gamma
 
-    (the coefficient is :data:`LLD_FIBRE_COEFFICIENT` = 1.3375).
+    (the coefficient is :data:`LLD_FIBRE_COEFFICIENT` = 1.3376).
 
     Parameters
     ----------

@@ -152,9 +152,10 @@ def _register_builtin() -> None:
         positive=("radius", "viscosity", "speed", "surface_tension"),
         limits=(
             Limit(
-                "h = 1.3375 r Ca^(2/3), Ca = 1e-3",
+                "h = 1.34 r Ca^(2/3), Ca = 1e-3 (Quere 1999, 3 digits)",
                 {"radius": 1.0, "viscosity": 1e-3, "speed": 1.0, "surface_tension": 1.0},
-                1.3374938982223743e-2,
+                1.34e-2,
+                2e-3,
             ),
         ),
         reference="Goucher & Ward 1922; Quere 1999",
