@@ -1,0 +1,74 @@
+"""Classroom notebooks (jupytext percent scripts) run top to bottom with quick parameters.
+
+Each notebook is executed as a script (runpy, Agg backend, KNOTMECH_QUICK=1) and a
+number it computes is checked against a value worked out by hand.
+"""
+
+import math
+import runpy
+from pathlib import Path
+
+import matplotlib
+import pytest
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402
+
+NOTEBOOKS = Path(__file__).resolve().parents[1] / "notebooks"
+
+
+def _check_capstan(ns):
+    # ln(1000/10) / 0.3 / (2 pi) = 4.60517 / 0.3 / 6.28319 = 2.4431 turns
+    assert ns["turns_ideal"] == pytest.approx(2.4431, abs=1e-4)
+    # mu_eff(0.3, D/d = 1) = 0.146769 (clove-hitch paper eq. 3) -> 4.9939 turns
+    assert ns["turns_thick"] == pytest.approx(4.9939, abs=1e-3)
+    # 0.2623 measured on D/d = 7.5: 0.2623 * 8.5 / (7.5 - 0.2623**2) = 0.30003
+    assert ns["mu_material"] == pytest.approx(0.3000, abs=5e-4)
+
+
+def _check_coating(ns):
+    # carrier viscosity 0.5886 mPa s * 1.5982 = 0.9407 mPa s; fibre film 2.828 um
+    assert ns["eta"] == pytest.approx(0.9407e-3, rel=1e-3)
+    assert ns["h_fibre"] == pytest.approx(2.8277e-6, rel=2e-3)
+    # mu = 0.4 lies between the paper's 0 % (0.2) and 1 % (0.5) points
+    assert 0.0 < ns["phi_needed"] < 0.01
+    # one turn, mu = 0.9 on D/d = 4: mu_eff = 7.2 / (5 + sqrt(37.96)) = 0.64509,
+    # exp(0.64509 * 2 pi) = 57.6
+    assert ns["ratio_13"] == pytest.approx(math.exp(0.645094 * 2 * math.pi), rel=1e-4)
+    assert ns["ratio_13"] == pytest.approx(57.6, abs=0.05)
+
+
+CHECKS = {
+    "capstan_and_thick_rods.py": _check_capstan,
+    "coating_and_friction.py": _check_coating,
+}
+
+ALL = sorted(p.name for p in NOTEBOOKS.glob("*.py"))
+
+
+def test_every_notebook_has_a_check():
+    assert ALL, "no notebooks found"
+    assert set(ALL) == set(CHECKS), f"notebooks without a numeric check: {set(ALL) - set(CHECKS)}"
+
+
+@pytest.mark.parametrize("name", ALL)
+def test_notebook_runs_top_to_bottom(name, monkeypatch, tmp_path):
+    monkeypatch.setenv("KNOTMECH_QUICK", "1")
+    monkeypatch.setenv("MPLBACKEND", "Agg")
+    monkeypatch.chdir(tmp_path)  # anything a notebook writes lands here
+    try:
+        namespace = runpy.run_path(str(NOTEBOOKS / name), run_name="__main__")
+    finally:
+        plt.close("all")
+    assert namespace["QUICK"] is True
+    CHECKS[name](namespace)
+
+
+@pytest.mark.parametrize("name", ALL)
+def test_notebook_is_jupytext_percent_with_markdown(name):
+    jupytext = pytest.importorskip("jupytext")
+    nb = jupytext.read(NOTEBOOKS / name)
+    kinds = [cell.cell_type for cell in nb.cells]
+    assert kinds[0] == "markdown" and kinds.count("markdown") >= 3 and "code" in kinds
+    text = "".join(cell.source for cell in nb.cells if cell.cell_type == "markdown")
+    assert "DOI" in text or "et al." in text  # the physics comes with references
