@@ -31,7 +31,7 @@ __all__ = ["Cylinder", "CylinderContact", "RodContact"]
 
 
 def _emit(rows, cols, vals, r, c, v):
-    """Append triplets to the solver's buffer (``Triplets.add``) or to three lists."""
+    """Append triplets to the solver's ``Triplets`` (passed as ``rows``) or to three lists."""
     if hasattr(rows, "add"):
         rows.add(r, c, v)
     else:
@@ -156,7 +156,7 @@ class RodContact:
         if self.pairs is None:
             self.begin_step(system, q, None, 0.0)
 
-    def assemble(self, system, q, q_old, dt, force, rows, cols, vals):
+    def assemble(self, system, q, q_old, dt, force, rows, cols=None, vals=None):
         """Add the contact + friction force and its dF/dq triplets."""
         self._ensure_pairs(system, q)
         pairs = self.pairs
@@ -244,6 +244,10 @@ class CylinderContact:
         k of the softplus (the force at zero gap is K w log(2)/k... ~ K w ln2^2 / k^2 * k).
     friction : AnchorFriction or None
     surface_friction : bool
+    rod_radius : float or None [m]
+        Contact radius of the rod (gap and friction lever arm); None -> the system's edge
+        radii. Setting it lets a rope-like rod have a bending stiffness below the solid
+        value pi E d^4/64 while keeping its contact diameter d.
 
     Attributes (after each assemble)
     --------------------------------
@@ -256,6 +260,7 @@ class CylinderContact:
     sharpness: float
     friction: AnchorFriction | None = None
     surface_friction: bool = True
+    rod_radius: float | None = None
     normal_force: np.ndarray = field(default=None, init=False, repr=False)
     friction_force: np.ndarray = field(default=None, init=False, repr=False)
     sliding: np.ndarray = field(default=None, init=False, repr=False)
@@ -269,6 +274,8 @@ class CylinderContact:
         self.sharpness = float(check_positive("sharpness", self.sharpness))
         if self.friction is not None and not isinstance(self.friction, AnchorFriction):
             raise InputError("friction must be an AnchorFriction or None")
+        if self.rod_radius is not None:
+            self.rod_radius = float(check_positive("rod_radius", self.rod_radius))
         self._cp = np.array([c.point for c in cyl])
         self._ca = np.array([c.axis for c in cyl])
         self._cr = np.array([c.radius for c in cyl])
@@ -295,6 +302,8 @@ class CylinderContact:
         np.add.at(cnt, en[:, 0], 1.0)
         np.add.at(cnt, en[:, 1], 1.0)
         node_radius /= np.maximum(cnt, 1.0)
+        if self.rod_radius is not None:
+            node_radius[:] = self.rod_radius
         theta = np.ascontiguousarray(system.edge_theta_dof, dtype=np.int64)
         self._topology = (system, en, nd, node_edges, node_radius, theta)
         nc = len(self.cylinders)
@@ -371,7 +380,7 @@ class CylinderContact:
         self._setup(system)
         self._weight = self._node_weight(_positions(system, q_old))
 
-    def assemble(self, system, q, q_old, dt, force, rows, cols, vals):
+    def assemble(self, system, q, q_old, dt, force, rows, cols=None, vals=None):
         """Add the normal + friction (+ couple) forces and their dF/dq triplets."""
         self._setup(system)
         size = system.node_dofs.shape[0] * len(self.cylinders) * ENTRIES_PER_CONTACT

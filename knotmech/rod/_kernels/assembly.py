@@ -1,0 +1,120 @@
+"""Scatter of local Hessians into LAPACK band storage or COO triplets.
+
+Band storage (LAPACK dgbsv layout, Fortran order): A[i, j] lives in
+``ab[kl + ku + i - j, j]`` with kl = ku = 10 for the DER dof ordering (a stencil spans 11
+contiguous dofs, so |i - j| <= 10). Edge-space Hessians H8 of the variables
+y = (e, theta^e, f, theta^f) map to the 11 stencil dofs z = (x_{i-1}, theta^e, x_i,
+theta^f, x_{i+1}) by H11 = P^T H8 P, e = x_i - x_{i-1}, f = x_{i+1} - x_i.
+"""
+
+import numpy as np
+from numba import njit
+
+BAND = 10  # half bandwidth kl = ku of a DER system matrix
+
+
+@njit(cache=True, inline="always")
+def _p_entries(a):
+    """Edge-space (index, sign) pairs of local stencil dof ``a`` (second pair unused if n == 1)."""
+    if a < 3:
+        return 1, a, -1.0, 0, 0.0
+    if a == 3:
+        return 1, 3, 1.0, 0, 0.0
+    if a < 7:
+        return 2, a - 4, 1.0, a, -1.0
+    if a == 7:
+        return 1, 7, 1.0, 0, 0.0
+    return 1, a - 4, 1.0, 0, 0.0
+
+
+@njit(cache=True)
+def stencil_local(h8, h11):
+    """Write H11 = P^T H8 P (11x11) for one stencil."""
+    for a in range(11):
+        na, ia, sa, ja, ta = _p_entries(a)
+        for b in range(11):
+            nb, ib, sb, jb, tb = _p_entries(b)
+            v = sa * sb * h8[ia, ib]
+            if nb == 2:
+                v += sa * tb * h8[ia, jb]
+            if na == 2:
+                v += ta * sb * h8[ja, ib]
+                if nb == 2:
+                    v += ta * tb * h8[ja, jb]
+            h11[a, b] = v
+
+
+@njit(cache=True)
+def band_add_hessians(edge_dof0, stencil_edge, hess_s, hess8, ab):
+    """Add the stretching (6x6 per edge) and bending+twisting (8x8 edge-space per stencil)
+    Hessians into the band matrix ``ab`` ((31, n_dof), dgbsv layout, kl = ku = 10)."""
+    off = 2 * BAND
+    for k in range(edge_dof0.shape[0]):
+        d = edge_dof0[k]
+        for a in range(6):
+            ga = d + a + (a >= 3)
+            for b in range(6):
+                gb = d + b + (b >= 3)
+                ab[off + ga - gb, gb] += hess_s[k, a, b]
+    h11 = np.empty((11, 11))
+    for s in range(stencil_edge.shape[0]):
+        d = edge_dof0[stencil_edge[s] - 1]
+        stencil_local(hess8[s], h11)
+        for b in range(11):
+            for a in range(11):
+                ab[off + a - b, d + b] += h11[a, b]
+
+
+@njit(cache=True)
+def coo_hessians(edge_dof0, stencil_edge, hess_s, hess8, rows, cols, vals):
+    """Write the same Hessians as COO triplets (36 per edge then 121 per stencil)."""
+    p = 0
+    for k in range(edge_dof0.shape[0]):
+        d = edge_dof0[k]
+        for a in range(6):
+            for b in range(6):
+                rows[p] = d + a + (a >= 3)
+                cols[p] = d + b + (b >= 3)
+                vals[p] = hess_s[k, a, b]
+                p += 1
+    h11 = np.empty((11, 11))
+    for s in range(stencil_edge.shape[0]):
+        d = edge_dof0[stencil_edge[s] - 1]
+        stencil_local(hess8[s], h11)
+        for a in range(11):
+            for b in range(11):
+                rows[p] = d + a
+                cols[p] = d + b
+                vals[p] = h11[a, b]
+                p += 1
+
+
+@njit(cache=True)
+def band_to_dense(ab, n):
+    """Dense copy of a band matrix (tests only)."""
+    off = 2 * BAND
+    out = np.zeros((n, n))
+    for j in range(n):
+        for i in range(max(0, j - BAND), min(n, j + BAND + 1)):
+            out[i, j] = ab[off + i - j, j]
+    return out
+
+
+@njit(cache=True)
+def band_add_diagonal(diag, ab):
+    """ab[diagonal] += diag."""
+    off = 2 * BAND
+    for j in range(diag.shape[0]):
+        ab[off, j] += diag[j]
+
+
+@njit(cache=True)
+def band_constrain(dofs, ab):
+    """Replace rows and columns of the constrained ``dofs`` by those of the identity."""
+    off = 2 * BAND
+    n = ab.shape[1]
+    for d in dofs:
+        for j in range(max(0, d - BAND), min(n, d + BAND + 1)):
+            ab[off + d - j, j] = 0.0  # row d
+            ab[off + j - d, d] = 0.0  # column d
+        ab[off, d] = 1.0

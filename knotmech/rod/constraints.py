@@ -1,0 +1,122 @@
+"""Kinematic constraints: clamped nodes and twist angles, nodes moved along prescribed paths.
+
+A constraint names dofs and gives their values at the end of each step; the solver
+eliminates those dofs from the Newton solve and reports the reaction forces on them.
+Values are computed from the previous step's values (``q_old``) so that a run resumed from
+a checkpoint reproduces the uninterrupted run bit for bit.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from ..errors import InputError, check_finite
+from .loads import _index_array
+
+__all__ = ["Clamp", "MovingNodes", "RotatingEdges", "clamp_end"]
+
+
+@dataclass(frozen=True)
+class Clamp:
+    """Hold nodes (positions) and edges (twist angles) where they are.
+
+    Parameters
+    ----------
+    nodes : sequence of int  global node indices (default none)
+    edges : sequence of int  global edge indices whose twist angle is held (default none)
+    """
+
+    nodes: object = ()
+    edges: object = ()
+
+    def node_indices(self, system) -> np.ndarray:
+        return _index_array("nodes", self.nodes, system.n_nodes)
+
+    def edge_indices(self, system) -> np.ndarray:
+        return _index_array("edges", self.edges, system.n_edges)
+
+    def dofs(self, system) -> np.ndarray:
+        return np.concatenate(
+            [
+                system.node_dofs[self.node_indices(system)].ravel(),
+                system.edge_theta_dof[self.edge_indices(system)],
+            ]
+        )
+
+    def values(self, system, t_new, dt, q_old) -> np.ndarray:
+        return q_old[self.dofs(system)]
+
+
+@dataclass(frozen=True)
+class MovingNodes:
+    """Move nodes along prescribed paths (e.g. pull an end at constant speed).
+
+    Parameters
+    ----------
+    nodes : sequence of int  global node indices
+    velocity : (3,) or (n, 3) array [m/s], optional  constant velocity: x += velocity dt
+    path : callable t -> (n, 3) array [m], optional  absolute positions at time t
+    Exactly one of ``velocity`` and ``path`` is given.
+    """
+
+    nodes: object
+    velocity: object = None
+    path: object = None
+
+    def __post_init__(self):
+        if (self.velocity is None) == (self.path is None):
+            raise InputError("MovingNodes needs exactly one of velocity and path")
+        if self.path is not None and not callable(self.path):
+            raise InputError("path must be a callable t -> (n, 3) positions")
+
+    def node_indices(self, system) -> np.ndarray:
+        return _index_array("nodes", self.nodes, system.n_nodes)
+
+    def edge_indices(self, system) -> np.ndarray:
+        return np.zeros(0, dtype=np.int64)
+
+    def dofs(self, system) -> np.ndarray:
+        return system.node_dofs[self.node_indices(system)].ravel()
+
+    def values(self, system, t_new, dt, q_old) -> np.ndarray:
+        n = self.node_indices(system).size
+        if self.path is not None:
+            x = check_finite("path(t)", self.path(t_new))
+            return np.broadcast_to(x, (n, 3)).ravel().copy()
+        v = np.broadcast_to(check_finite("velocity", self.velocity), (n, 3)).ravel()
+        return q_old[self.dofs(system)] + v * dt
+
+
+@dataclass(frozen=True)
+class RotatingEdges:
+    """Turn the twist angle of edges at a constant rate [rad/s] (theta += rate dt)."""
+
+    edges: object
+    rate: float
+
+    def node_indices(self, system) -> np.ndarray:
+        return np.zeros(0, dtype=np.int64)
+
+    def edge_indices(self, system) -> np.ndarray:
+        return _index_array("edges", self.edges, system.n_edges)
+
+    def dofs(self, system) -> np.ndarray:
+        return system.edge_theta_dof[self.edge_indices(system)]
+
+    def values(self, system, t_new, dt, q_old) -> np.ndarray:
+        return q_old[self.dofs(system)] + float(check_finite("rate", self.rate)) * dt
+
+
+def clamp_end(system, rod: int = 0, end: str = "start", twist: bool = True) -> Clamp:
+    """Clamp one end of a rod: its first (last) two nodes and, if ``twist``, its end edge angle."""
+    if end not in ("start", "end"):
+        raise InputError(f"end must be 'start' or 'end', got {end!r}")
+    if not 0 <= rod < system.n_rods:
+        raise InputError(f"rod must lie in [0, {system.n_rods - 1}], got {rod}")
+    nodes = system.rod_nodes(rod)
+    edges = system.rod_edges(rod)
+    if end == "start":
+        return Clamp(nodes=nodes[:2], edges=edges[:1] if twist else ())
+    return Clamp(nodes=nodes[-2:], edges=edges[-1:] if twist else ())

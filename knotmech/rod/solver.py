@@ -1,0 +1,445 @@
+"""Implicit Euler + Newton-Raphson time stepping of a rod system (the ``simulate`` entry point).
+
+Each step solves, for q = q_new (coated-rod paper eqs. (7)-(9); Bergou et al. 2010),
+
+    f(q) = M/dt^2 (q - q_old - dt v_old) + dE/dq - F_ext(q) - sum F_interaction(q) = 0,
+    J = M/dt^2 + d2E/dq2 - dF_ext/dq - sum dF_interaction/dq,
+
+with the reference frames carried from the step start by time-parallel transport. Newton
+iterations use a backtracking line search on |f|; constrained dofs are eliminated (their rows
+and columns replaced by the identity), and the residual left on them is the reaction. The
+Jacobian is solved in LAPACK band storage (half bandwidth 10: Cholesky dpbsv, falling back to
+LU dgbsv when J is not positive definite) unless interactions add triplets, then as a sparse
+CSC matrix with SuperLU. A failed step is retried with half the step (interactions'
+``begin_step`` is called again); below ``dt_min`` the run stops with status "failed" and
+the last good state.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass
+
+import numpy as np
+import scipy.sparse as sp
+from scipy.linalg import lapack
+from scipy.sparse.linalg import splu
+
+from ..errors import InputError, SolverError, check_positive
+from ._kernels import assembly as _asm
+from .elastic import ElasticWorkspace
+from .jacobian import Triplets
+from .results import Result
+from .system import RodSystem, State
+
+__all__ = ["SolverOptions", "simulate"]
+
+_B = _asm.BAND
+
+
+@dataclass(frozen=True)
+class SolverOptions:
+    """Options of :func:`simulate`.
+
+    Parameters
+    ----------
+    dt_min : float [s]  smallest step before the run is declared failed (default 1e-9)
+    max_newton : int  Newton iterations per attempt before the step is halved (default 25)
+    rtol : float  residual tolerance relative to the force scale of the step (default 1e-8)
+    xtol : float  step tolerance relative to the mean rest edge length (default 1e-12)
+    line_search : bool  backtracking on |f| (default True)
+    max_backtracks : int  halvings of the Newton step before the attempt fails (default 8)
+    grow_after : int  accepted steps before a reduced dt doubles back toward dt (default 4)
+    save_every : float or None [s]  frame interval (default: every nominal dt)
+    linear_solver : {"auto", "banded", "sparse"}  "auto": banded unless interactions add
+        Jacobian triplets
+    throw : bool  raise SolverError on failure (default True); else return status "failed"
+    """
+
+    dt_min: float = 1e-9
+    max_newton: int = 25
+    rtol: float = 1e-8
+    xtol: float = 1e-12
+    line_search: bool = True
+    max_backtracks: int = 8
+    grow_after: int = 4
+    save_every: float | None = None
+    linear_solver: str = "auto"
+    throw: bool = True
+
+    def __post_init__(self):
+        check_positive("dt_min", self.dt_min)
+        check_positive("rtol", self.rtol)
+        check_positive("xtol", self.xtol)
+        for name in ("max_newton", "max_backtracks", "grow_after"):
+            v = getattr(self, name)
+            if int(v) != v or v < 1:
+                raise InputError(f"{name} must be an integer >= 1, got {v!r}")
+        if self.save_every is not None:
+            check_positive("save_every", self.save_every)
+        if self.linear_solver not in ("auto", "banded", "sparse"):
+            raise InputError(
+                f"linear_solver must be 'auto', 'banded' or 'sparse', got {self.linear_solver!r}"
+            )
+
+
+class _StepFailed(Exception):
+    pass
+
+
+class Stepper:
+    """One implicit-Euler step with Newton iterations (internal; simulate and benchmarks)."""
+
+    def __init__(self, system, loads=(), constraints=(), interactions=(), options=SolverOptions()):
+        self.system = system
+        self.loads = tuple(loads)
+        self.constraints = tuple(constraints)
+        self.interactions = tuple(interactions)
+        self.opt = options
+        self.ws = ElasticWorkspace(system)
+        n = system.n_dof
+        cd = [c.dofs(system) for c in self.constraints]
+        self.cdofs = np.concatenate(cd).astype(np.int64) if cd else np.zeros(0, dtype=np.int64)
+        if np.unique(self.cdofs).size != self.cdofs.size:
+            raise InputError(
+                "constraints name the same dof twice (a node or edge constrained twice)"
+            )
+        self.free = np.ones(n, dtype=bool)
+        self.free[self.cdofs] = False
+        self.free_idx = np.flatnonzero(self.free)
+        th = system.is_theta
+        self.fx = self.free & ~th
+        self.ft = self.free & th
+        self.ab = np.zeros((3 * _B + 1, n), order="F")
+        self.trip = Triplets()
+        self.fext = np.zeros(n)
+        self.jdiag = np.zeros(n)
+        self.diag = np.zeros(n)
+        self.f = np.zeros(n)
+        self.length_scale = float(np.mean(system.rest_length))
+        self.radius_scale = float(np.mean(system.rod_radius_edge))
+        self.ea_max = float(np.max(system.ea))
+        self.n_evals = 0
+
+    # ------------------------------------------------------------ evaluation
+    def evaluate(self, q, st: State, dt: float, t_new: float, jacobian: bool = True) -> float:
+        """Residual f(q) into ``self.f`` (and the Jacobian, if asked); return the force scale."""
+        s, ws = self.system, self.ws
+        self.n_evals += 1
+        ws.frames(q, st.tangents, st.d1, st.ref_twist)
+        ws.grad_hess(q)
+        fext, jd = self.fext, self.jdiag
+        fext[:] = 0.0
+        jd[:] = 0.0
+        for load in self.loads:
+            load.apply(s, t_new, q, st.q, dt, fext, jd)
+        self.trip.clear()
+        for it in self.interactions:
+            it.assemble(s, q, st.q, dt, fext, self.trip)
+        m = s.mass / (dt * dt)
+        inertia = m * (q - st.q - dt * st.v)
+        np.add(inertia, ws.grad, out=self.f)
+        self.f -= fext
+        if jacobian:
+            np.subtract(m, jd, out=self.diag)
+            self._assemble()
+        ax = np.abs(inertia)
+        ag = np.abs(ws.grad)
+        af = np.abs(fext)
+        tens = self.ea_max * float(np.max(np.abs(ws.lengths / s.rest_length - 1.0)))
+        return ax, ag, af, tens
+
+    def _use_band(self) -> bool:
+        if self.opt.linear_solver == "banded":
+            if self.trip.size:
+                raise InputError("linear_solver='banded' cannot take interaction Jacobian triplets")
+            return True
+        return self.opt.linear_solver == "auto" and self.trip.size == 0
+
+    def _assemble(self) -> None:
+        if self._use_band():
+            ab = self.ab
+            ab[:] = 0.0
+            self.ws.band_add(ab)
+            _asm.band_add_diagonal(self.diag, ab)
+            _asm.band_constrain(self.cdofs, ab)
+            self._mode = "band"
+        else:
+            r, c, v = self.ws.coo()
+            n = self.system.n_dof
+            idx = np.arange(n)
+            rows = np.concatenate([r, idx, self.trip.rows])
+            cols = np.concatenate([c, idx, self.trip.cols])
+            vals = np.concatenate([v, self.diag, -self.trip.vals])
+            J = sp.csc_matrix((vals, (rows, cols)), shape=(n, n))
+            self._J = J[self.free_idx][:, self.free_idx].tocsc()
+            self._mode = "sparse"
+
+    def solve(self, rhs: np.ndarray) -> np.ndarray:
+        """Solve J x = rhs with x = 0 on constrained dofs."""
+        if self._mode == "band":
+            b = rhs.copy()
+            b[self.cdofs] = 0.0
+            _, x, info = lapack.dpbsv(self.ab[_B : 2 * _B + 1], b, lower=0, overwrite_b=0)
+            if info != 0:
+                _, _, x, info = lapack.dgbsv(_B, _B, self.ab, b, overwrite_ab=1, overwrite_b=0)
+                if info != 0:
+                    raise _StepFailed("singular Jacobian")
+            return x
+        x = np.zeros_like(rhs)
+        try:
+            x[self.free_idx] = splu(self._J).solve(rhs[self.free_idx])
+        except RuntimeError as exc:  # singular factor
+            raise _StepFailed(f"sparse solve failed: {exc}") from None
+        return x
+
+    def _converged(self, scales) -> tuple[bool, float]:
+        ax, ag, af, tens = scales
+        f = np.abs(self.f)
+        sx = max(float(np.max(np.maximum(np.maximum(ax, ag), af)[self.fx], initial=0.0)), tens)
+        st_ = float(np.max(np.maximum(np.maximum(ax, ag), af)[self.ft], initial=0.0))
+        st_ = max(st_, sx * self.radius_scale)
+        rx = float(np.max(f[self.fx], initial=0.0))
+        rt = float(np.max(f[self.ft], initial=0.0))
+        ok = rx <= self.opt.rtol * sx and rt <= self.opt.rtol * st_
+        return ok, max(rx / (sx or 1.0), rt / (st_ or 1.0))
+
+    # ------------------------------------------------------------ one step
+    def step(self, st: State, dt: float):
+        """Attempt one step; return (q_new, iterations) or raise _StepFailed."""
+        opt = self.opt
+        t_new = st.t + dt
+        q = st.q + dt * st.v
+        for c in self.constraints:
+            q[c.dofs(self.system)] = c.values(self.system, t_new, dt, st.q)
+        for it in self.interactions:
+            it.begin_step(self.system, st.q, st.v, dt)
+        scales = self.evaluate(q, st, dt, t_new)
+        for k in range(opt.max_newton + 1):
+            if not np.all(np.isfinite(self.f)):
+                raise _StepFailed("non-finite residual")
+            ok, rel = self._converged(scales)
+            if ok:
+                return q, k
+            if k == opt.max_newton:
+                break
+            dq = self.solve(-self.f)
+            if not np.all(np.isfinite(dq)):
+                raise _StepFailed("non-finite Newton step")
+            phi0 = float(np.linalg.norm(self.f[self.free]))
+            alpha = 1.0
+            for _ in range(opt.max_backtracks + 1):
+                q_try = q + alpha * dq
+                scales = self.evaluate(q_try, st, dt, t_new)
+                phi = float(np.linalg.norm(self.f[self.free]))
+                if np.isfinite(phi) and (not opt.line_search or phi <= (1.0 - 1e-4 * alpha) * phi0):
+                    break
+                alpha *= 0.5
+            else:
+                if not (np.isfinite(phi) and phi <= 10.0 * phi0 and rel < 1e3 * opt.rtol):
+                    raise _StepFailed("line search found no decrease of the residual")
+            q = q_try
+            stepx = float(np.max(np.abs(alpha * dq[self.fx]), initial=0.0))
+            stept = float(np.max(np.abs(alpha * dq[self.ft]), initial=0.0))
+            if (
+                stepx <= opt.xtol * self.length_scale
+                and stept <= opt.xtol
+                and np.all(np.isfinite(self.f))
+            ):
+                return q, k + 1
+        raise _StepFailed(
+            f"Newton did not converge in {opt.max_newton} iterations (residual {rel:.2e})"
+        )
+
+
+def _as_tuple(x, name):
+    if x is None:
+        return ()
+    if isinstance(x, (list, tuple)):
+        return tuple(x)
+    return (x,)
+
+
+def simulate(
+    system: RodSystem,
+    state0: State | None = None,
+    *,
+    t_end: float,
+    dt: float,
+    loads=(),
+    constraints=(),
+    interactions=(),
+    options: SolverOptions = SolverOptions(),
+    progress: bool = False,
+    callback=None,
+) -> Result:
+    """Integrate a rod system from ``state0`` to ``t_end`` with implicit Euler.
+
+    Parameters
+    ----------
+    system : RodSystem (or a single Rod)
+    state0 : State, optional  start state (default ``system.initial_state()``); pass a
+        previous ``Result.final_state`` (or ``State.load(path)``) to resume bit-identically
+    t_end : float [s]  end time (absolute, >= state0.t)
+    dt : float [s]  nominal step; halved on Newton failure, grown back after success
+    loads : Gravity, NodeForce, EdgeTorque, ViscousDamping (one or a sequence)
+    constraints : Clamp, MovingNodes, RotatingEdges (one or a sequence)
+    interactions : objects following :class:`knotmech.rod.Interaction`
+    options : SolverOptions
+    progress : bool  show a tqdm progress bar
+    callback : callable(state) -> bool or None, called after every accepted step; returning
+        True stops the run (status "success", message says so)
+
+    Returns
+    -------
+    Result  (raises SolverError on failure unless ``options.throw`` is False; the error's
+    ``state`` is the last good state and its ``result`` the partial Result)
+    """
+    from .system import Rod
+
+    if isinstance(system, Rod):
+        system = RodSystem((system,))
+    if not isinstance(system, RodSystem):
+        raise InputError("system must be a knotmech.rod.RodSystem or Rod")
+    st = system.initial_state() if state0 is None else state0
+    if not isinstance(st, State) or st.q.shape != (system.n_dof,):
+        raise InputError(f"state0 must be a State with q of shape ({system.n_dof},)")
+    dt = float(check_positive("dt", dt))
+    t_end = float(t_end)
+    if not np.isfinite(t_end) or t_end < st.t:
+        raise InputError(f"t_end must be finite and >= the start time {st.t:g}, got {t_end!r}")
+    opt = options
+    save_every = dt if opt.save_every is None else float(opt.save_every)
+    stepper = Stepper(system, _as_tuple(loads, "loads"), _as_tuple(constraints, "constraints"),
+                      _as_tuple(interactions, "interactions"), opt)  # fmt: skip
+
+    node_lists = [c.node_indices(system) for c in stepper.constraints]
+    edge_lists = [c.edge_indices(system) for c in stepper.constraints]
+    r_nodes = np.concatenate(node_lists) if node_lists else np.zeros(0, dtype=np.int64)
+    r_edges = np.concatenate(edge_lists) if edge_lists else np.zeros(0, dtype=np.int64)
+    frames = {k: [] for k in ("times", "positions", "thetas", "reactions", "reaction_torques",
+                              "tension", "bending_moment", "twisting_moment")}  # fmt: skip
+    energies = {k: [] for k in ("stretch", "bend", "twist", "kinetic", "external", "interaction")}
+
+    def record(state: State, residual: np.ndarray) -> None:
+        q = state.q
+        ws = stepper.ws
+        ws.frames(q, state.tangents, state.d1, state.ref_twist)
+        frames["times"].append(state.t)
+        frames["positions"].append(system.positions(q))
+        frames["thetas"].append(system.thetas(q))
+        frames["reactions"].append(residual[system.node_dofs[r_nodes]])
+        frames["reaction_torques"].append(residual[system.edge_theta_dof[r_edges]])
+        frames["tension"].append(ws.tension(q))
+        mb, mt = ws.moments(q)
+        frames["bending_moment"].append(mb)
+        frames["twisting_moment"].append(mt)
+        es, eb, et = ws.energies(q)
+        energies["stretch"].append(es)
+        energies["bend"].append(eb)
+        energies["twist"].append(et)
+        energies["kinetic"].append(0.5 * float(np.sum(system.mass * state.v**2)))
+        energies["external"].append(sum(ld.energy(system, q) for ld in stepper.loads))
+        energies["interaction"].append(sum(it.energy(system, q) for it in stepper.interactions))
+
+    # frame 0: static reaction (no inertia known yet)
+    stepper.evaluate(st.q, st, dt, st.t, jacobian=False)
+    f0 = stepper.ws.grad - stepper.fext  # interactions excluded: they have not begun
+    record(st, f0)
+
+    stats = {"steps": 0, "newton_iterations": 0, "rejected_steps": 0, "wall_s": 0.0}
+    wall0 = time.perf_counter()
+    dt_cur = dt if not np.isfinite(st.dt_next) else min(st.dt_next, dt)
+    n_good = st.n_good
+    k_save = int(np.floor(st.t / save_every + 1e-9)) + 1
+    status, message = "success", f"reached t_end = {t_end:g} s"
+    bar = None
+    if progress:
+        from tqdm.auto import tqdm
+
+        bar = tqdm(total=t_end - st.t, unit="s", unit_scale=True, desc="simulate")
+    try:
+        while st.t < t_end:
+            t_save = k_save * save_every
+            target = min(t_save, t_end)
+            gap = target - st.t
+            hit = gap <= dt_cur * (1.0 + 1e-6)
+            h = gap if hit else dt_cur
+            try:
+                q_new, iters = stepper.step(st, h)
+            except _StepFailed as exc:
+                stats["rejected_steps"] += 1
+                dt_cur = 0.5 * min(dt_cur, h)
+                n_good = 0
+                if dt_cur < opt.dt_min:
+                    status = "failed"
+                    message = (
+                        f"step failed at t = {st.t:.6g} s with dt = {2 * dt_cur:.3g} s < "
+                        f"2 dt_min ({exc}); last good state kept"
+                    )
+                    break
+                continue
+            stats["steps"] += 1
+            stats["newton_iterations"] += iters
+            t_new = target if hit else st.t + h
+            n_good += 1
+            if dt_cur < dt and n_good >= opt.grow_after:
+                dt_cur = min(2.0 * dt_cur, dt)
+                n_good = 0
+            ws = stepper.ws
+            for it in stepper.interactions:
+                it.end_step(system, q_new, st.q, h)
+            new = State(
+                t=t_new,
+                q=q_new,
+                v=(q_new - st.q) / h,
+                tangents=ws.tangents.copy(),
+                d1=ws.d1.copy(),
+                ref_twist=ws.ref_twist.copy(),
+                dt_next=dt_cur,
+                n_good=n_good,
+            )
+            residual = stepper.f.copy()
+            if bar is not None:
+                bar.update(t_new - st.t)
+            st = new
+            if hit:
+                record(st, residual)
+                if target == t_save:
+                    k_save += 1
+            if callback is not None and callback(st):
+                message = f"stopped by callback at t = {st.t:g} s"
+                if not hit:
+                    record(st, residual)
+                break
+    finally:
+        if bar is not None:
+            bar.close()
+    stats["wall_s"] = time.perf_counter() - wall0
+
+    def stack(name, shape):
+        v = frames[name]
+        return np.array(v) if v else np.zeros((0,) + shape)
+
+    res = Result(
+        status=status,
+        message=message,
+        stats=stats,
+        times=np.array(frames["times"]),
+        positions=stack("positions", (system.n_nodes, 3)),
+        thetas=stack("thetas", (system.n_edges,)),
+        reaction_nodes=r_nodes,
+        reactions=stack("reactions", (r_nodes.size, 3)),
+        reaction_edges=r_edges,
+        reaction_torques=stack("reaction_torques", (r_edges.size,)),
+        tension=stack("tension", (system.n_edges,)),
+        bending_moment=stack("bending_moment", (system.n_stencils, 2)),
+        twisting_moment=stack("twisting_moment", (system.n_stencils,)),
+        energies={k: np.array(v) for k, v in energies.items()},
+        final_state=st,
+    )
+    if status != "success" and opt.throw:
+        err = SolverError(message, state=st)
+        err.result = res
+        raise err
+    return res
