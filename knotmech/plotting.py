@@ -203,6 +203,7 @@ def phase_diagram_plot(
     ylabel: str = r"$T_\mathrm{high}/EA$",
     title: str | None = None,
     note: str | None = None,
+    boundary_label: str = "fitted boundary",
 ):
     """Hold / slip scatter with a fitted boundary and theory lines.
 
@@ -221,6 +222,8 @@ def phase_diagram_plot(
     ax, xlabel, ylabel, title : figure decoration
     note : str, optional
         A sentence written in the lower right corner (what moves the boundary).
+    boundary_label : str
+        Legend entry of ``boundary`` (e.g. "computed boundary" for a closed form).
 
     Returns
     -------
@@ -240,7 +243,7 @@ def phase_diagram_plot(
     ax.scatter(x[~holds], y[~holds], marker="x", color="C3", label="slips", zorder=3)
     if boundary is not None:
         bx, by = _as_curve("boundary", boundary)
-        ax.plot(bx, by, "-", color="k", lw=1.5, label="fitted boundary")
+        ax.plot(bx, by, "-", color="k", lw=1.5, label=boundary_label)
     for ls, (label, curve) in zip(["--", "-.", ":"] * 3, (theory or {}).items(), strict=False):
         tx, ty = np.asarray(curve[0], dtype=float), np.asarray(curve[1], dtype=float)
         if np.all(~np.isfinite(ty)):
@@ -263,6 +266,6 @@ def phase_diagram_plot(
             wrap=True,
             bbox={"fc": "white", "ec": "0.7", "alpha": 0.9},
         )
-    ax.legend(fontsize=7, loc="upper left")
+    ax.legend(fontsize=7, loc="best", framealpha=0.9)
     ax.grid(True, alpha=0.3)
     return ax

@@ -38,9 +38,23 @@ def _check_coating(ns):
     assert ns["ratio_13"] == pytest.approx(57.6, abs=0.05)
 
 
+def _check_hold(ns):
+    # ideal-rope clove hitch, two turns: exp(0.3 * 4 pi) = 43.376
+    assert ns["K_clove"] == pytest.approx(43.376, abs=1e-3)
+    assert ns["verdict"].holds is False  # free end: the ideal rope slips at any load
+    # thick-nip lock parameter at d, D = 4, 30 mm, mu = mu_rr = 0.3, by hand:
+    # n = 2 sqrt(1 - (34/42)^2) = 1.174174; mu_eff(0.3, 7.5) = 0.262278;
+    # (0.3 + 0.3) * 1.174174 * exp(0.262278 * 2 pi) = 0.704504 * 5.19615 = 3.6607
+    assert ns["lock"] == pytest.approx(3.6607, abs=2e-3)
+    # the boundary found by bisection agrees with hold_verdict's critical mu
+    critical = ns["verdict"].answers[1].critical_mu
+    assert ns["mu_lock_paper"] == pytest.approx(critical, abs=1e-6)
+
+
 CHECKS = {
     "capstan_and_thick_rods.py": _check_capstan,
     "coating_and_friction.py": _check_coating,
+    "will_this_knot_hold.py": _check_hold,
 }
 
 ALL = sorted(p.name for p in NOTEBOOKS.glob("*.py"))

@@ -1,0 +1,60 @@
+"""knotmech.plotting: the shared figures draw what they say, headless, and check inputs."""
+
+import numpy as np
+import pytest
+
+from knotmech.analytic.capstan import mu_eff
+from knotmech.errors import InputError
+from knotmech.plotting import capstan_ratio_plot, phase_diagram_plot, tension_decay_plot
+
+
+def test_tension_decay_curves_are_the_capstan_exponentials(tmp_path):
+    s = np.linspace(0, 10, 50)
+    prof = (s, np.exp(-0.25 * s))
+    ax = tension_decay_plot(s, mu=0.3, D_over_d=(2.0, 7.5), profiles={7.5: prof})
+    lines = ax.get_lines()
+    assert len(lines) == 4  # ideal, two mu_eff curves, one profile
+    np.testing.assert_allclose(lines[0].get_ydata(), np.exp(-0.3 * s))
+    np.testing.assert_allclose(lines[1].get_ydata(), np.exp(-float(mu_eff(0.3, 2.0)) * s))
+    assert ax.get_yscale() == "log"
+    ax.figure.savefig(tmp_path / "t.png")  # works without pyplot or a display
+    assert (tmp_path / "t.png").stat().st_size > 1000
+
+
+def test_capstan_ratio_axis_in_turns():
+    theta = np.linspace(0, 4 * np.pi, 20)
+    ax = capstan_ratio_plot(theta, mu=0.3, D_over_d=(1.0,), measured={"m": ([2 * np.pi], [5.0])})
+    ideal, thick, measured = ax.get_lines()
+    np.testing.assert_allclose(ideal.get_xdata(), theta / (2 * np.pi))
+    np.testing.assert_allclose(thick.get_ydata(), np.exp(0.14676884 * theta), rtol=1e-7)
+    assert measured.get_xdata()[0] == pytest.approx(1.0)
+
+
+def test_phase_diagram_splits_hold_and_slip():
+    x = np.array([0.1, 0.2, 0.3])
+    y = np.array([1.0, 2.0, 3.0])
+    ax = phase_diagram_plot(
+        x,
+        y,
+        np.array([True, False, True]),
+        boundary=([0, 1], [0, 1]),
+        theory={"ideal": ([0, 1], [np.inf, np.inf])},
+        note="why",
+    )
+    holds, slips = ax.collections
+    assert holds.get_offsets().shape == (2, 2) and slips.get_offsets().shape == (1, 2)
+    labels = [t.get_text() for t in ax.get_legend().get_texts()]
+    assert sorted(labels) == ["fitted boundary", "holds", "ideal", "slips"]
+
+
+def test_bad_inputs():
+    with pytest.raises(InputError, match="holds must be a boolean"):
+        phase_diagram_plot([1.0], [1.0], [1])
+    with pytest.raises(InputError, match="equal length"):
+        phase_diagram_plot([1.0, 2.0], [1.0], np.array([True]))
+    with pytest.raises(InputError, match="mu"):
+        tension_decay_plot(np.linspace(0, 1, 3), mu=-0.1)
+    with pytest.raises(InputError, match="D_over_d"):
+        tension_decay_plot(np.linspace(0, 1, 3), mu=0.3, D_over_d=(0.0,))
+    with pytest.raises(InputError, match="pair"):
+        tension_decay_plot(np.linspace(0, 1, 3), mu=0.3, profiles={2.0: [1, 2, 3]})
