@@ -51,10 +51,22 @@ def _check_hold(ns):
     assert ns["mu_lock_paper"] == pytest.approx(critical, abs=1e-6)
 
 
+def _check_der(ns):
+    assert ns["result"].status == "success"
+    # Euler-Bernoulli cantilever under its weight: q L^4 / (8 EI) with q = 1200 * pi * 1e-6 * 9.81
+    # = 0.036982 N/m, EI = 1e8 * pi * 1e-12 / 4 = 7.854e-5 N m^2, L = 0.1 m -> 5.886 mm
+    assert ns["w_tip_theory"] == pytest.approx(5.886e-3, rel=1e-3)
+    # the DER tip deflection converges to it at first order (fitted slope of log err vs log h)
+    assert 0.8 < ns["order"] < 1.2
+    assert ns["err"][-1] / ns["w_tip_theory"] < 0.06  # 41 nodes: within 6 %
+    assert ns["tip_extrapolated"] == pytest.approx(ns["w_tip_theory"], rel=0.01)
+
+
 CHECKS = {
     "capstan_and_thick_rods.py": _check_capstan,
     "coating_and_friction.py": _check_coating,
     "will_this_knot_hold.py": _check_hold,
+    "first_der_simulation.py": _check_der,
 }
 
 ALL = sorted(p.name for p in NOTEBOOKS.glob("*.py"))
