@@ -1,7 +1,7 @@
 """External loads: gravity, dead forces on nodes, axial torques on edges, viscous damping.
 
 Each load adds its generalized force F (shape (n_dof,)) and the diagonal of dF/dq to the
-solver's buffers, and reports its potential energy (0 for damping).
+solver's buffers, and reports its potential energy ``energy(system, q, t)`` (0 for damping).
 """
 
 from __future__ import annotations
@@ -13,6 +13,11 @@ import numpy as np
 from ..errors import InputError, check_finite, check_nonnegative
 
 __all__ = ["Gravity", "NodeForce", "EdgeTorque", "ViscousDamping"]
+
+
+def _ramp(t, ramp_time) -> float:
+    """Load factor min(1, t / ramp_time) (1 when ramp_time is 0)."""
+    return 1.0 if ramp_time <= 0.0 else min(1.0, max(0.0, t / ramp_time))
 
 
 def _index_array(name, values, upper) -> np.ndarray:
@@ -29,23 +34,27 @@ class Gravity:
     Parameters
     ----------
     acceleration : (3,) array [m/s^2], default (0, 0, -9.81)
+    ramp_time : float [s]  the load grows linearly from 0 at t = 0 to full at ramp_time
+        (default 0: applied at once); a ramp helps quasi-static solves with large dt
     """
 
     acceleration: tuple = (0.0, 0.0, -9.81)
+    ramp_time: float = 0.0
 
     def __post_init__(self):
         g = check_finite("acceleration", self.acceleration)
         if g.shape != (3,):
             raise InputError(f"acceleration must be a 3-vector, got shape {g.shape}")
         object.__setattr__(self, "acceleration", tuple(float(x) for x in g))
+        object.__setattr__(self, "ramp_time", float(check_nonnegative("ramp_time", self.ramp_time)))
 
     def apply(self, system, t, q, q_old, dt, force, jac_diag) -> None:
-        g = np.asarray(self.acceleration)
+        g = np.asarray(self.acceleration) * _ramp(t, self.ramp_time)
         nd = system.node_dofs
         force[nd] += system.mass[nd] * g[None, :]
 
-    def energy(self, system, q) -> float:
-        g = np.asarray(self.acceleration)
+    def energy(self, system, q, t=np.inf) -> float:
+        g = np.asarray(self.acceleration) * _ramp(t, self.ramp_time)
         nd = system.node_dofs
         return float(-np.sum(system.mass[nd] * q[nd] * g[None, :]))
 
@@ -58,19 +67,22 @@ class NodeForce:
     ----------
     nodes : int or sequence of int  global node indices (negative counts from the end)
     force : (3,) or (n, 3) array [N]
+    ramp_time : float [s]  linear ramp from 0 at t = 0 (default 0: applied at once)
     """
 
     nodes: object
     force: object
+    ramp_time: float = 0.0
 
     def apply(self, system, t, q, q_old, dt, force, jac_diag) -> None:
         nodes = _index_array("nodes", self.nodes, system.n_nodes)
-        f = check_finite("force", self.force)
+        f = check_finite("force", self.force) * _ramp(t, self.ramp_time)
         force[system.node_dofs[nodes]] += np.broadcast_to(f, (nodes.size, 3))
 
-    def energy(self, system, q) -> float:
+    def energy(self, system, q, t=np.inf) -> float:
         nodes = _index_array("nodes", self.nodes, system.n_nodes)
-        f = np.broadcast_to(check_finite("force", self.force), (nodes.size, 3))
+        f = check_finite("force", self.force) * _ramp(t, self.ramp_time)
+        f = np.broadcast_to(f, (nodes.size, 3))
         return float(-np.sum(q[system.node_dofs[nodes]] * f))
 
 
@@ -82,18 +94,22 @@ class EdgeTorque:
     ----------
     edges : int or sequence of int  global edge indices
     torque : float or (n,) array [N m]  about the edge tangent
+    ramp_time : float [s]  linear ramp from 0 at t = 0 (default 0: applied at once)
     """
 
     edges: object
     torque: object
+    ramp_time: float = 0.0
 
     def apply(self, system, t, q, q_old, dt, force, jac_diag) -> None:
         edges = _index_array("edges", self.edges, system.n_edges)
-        force[system.edge_theta_dof[edges]] += check_finite("torque", self.torque)
+        tau = check_finite("torque", self.torque) * _ramp(t, self.ramp_time)
+        force[system.edge_theta_dof[edges]] += tau
 
-    def energy(self, system, q) -> float:
+    def energy(self, system, q, t=np.inf) -> float:
         edges = _index_array("edges", self.edges, system.n_edges)
-        tau = np.broadcast_to(check_finite("torque", self.torque), edges.shape)
+        tau = check_finite("torque", self.torque) * _ramp(t, self.ramp_time)
+        tau = np.broadcast_to(tau, edges.shape)
         return float(-np.sum(q[system.edge_theta_dof[edges]] * tau))
 
 
@@ -134,5 +150,11 @@ class ViscousDamping:
         force -= w * (q - q_old) / dt
         jac_diag -= w / dt
 
-    def energy(self, system, q) -> float:
+    def energy(self, system, q, t=np.inf) -> float:
         return 0.0
+
+    def step_potential(self, system, q, q_old, dt) -> float:
+        """Rayleigh dissipation potential of the step, sum w (q - q_old)^2 / (2 dt) [J]:
+        its q-gradient is -F, so the implicit step stays a minimisation."""
+        w = self._weights(system)
+        return float(0.5 * np.sum(w * (q - q_old) ** 2) / dt)
