@@ -62,11 +62,22 @@ def _check_der(ns):
     assert ns["tip_extrapolated"] == pytest.approx(ns["w_tip_theory"], rel=0.01)
 
 
+def _check_diagnose(ns):
+    # thick post, D/d = 2: mu_eff(0.3, 2) = 1.2 / (3 + sqrt(9.72)) = 0.19615 (clove-hitch eq. 3)
+    assert ns["rate"] == pytest.approx(0.19615, abs=1e-5)
+    assert ns["report"].verdict == "finite_thickness"
+    assert ns["found"]["mu_eff"] == pytest.approx(0.19615, abs=0.005)
+    assert ns["found"]["mu"] == pytest.approx(0.30, abs=0.01)
+    assert ns["report_none"].verdict == "none"  # D/d = 200: nothing to find
+    assert Path("thick_post_profile.csv").is_file()  # written in the test's tmp folder
+
+
 CHECKS = {
     "capstan_and_thick_rods.py": _check_capstan,
     "coating_and_friction.py": _check_coating,
     "will_this_knot_hold.py": _check_hold,
     "first_der_simulation.py": _check_der,
+    "diagnosing_a_recording.py": _check_diagnose,
 }
 
 ALL = sorted(p.name for p in NOTEBOOKS.glob("*.py"))
