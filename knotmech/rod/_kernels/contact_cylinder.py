@@ -91,7 +91,8 @@ def cylinder_assemble(
     triplets (dF/dq) per node-cylinder pair (zeros where unused). Lagged in the Jacobian:
     the normal direction's dependence on x in the friction terms and in the couple's lever
     arm (the edge vectors of the couple are differentiated). mode 1 updates ``anchor``,
-    ``anchor_valid``, ``slipping``; mode 2 only sums the energy.
+    ``anchor_valid``, ``slipping``; mode 2 only sums the energy (penalty, plus the
+    tangential spring's energy of contacts with a committed anchor).
     Returns the penalty energy.
     """
     nn = pos.shape[0]
@@ -142,7 +143,9 @@ def cylinder_assemble(
                         cols[k] = dofs[b]
                         vals[k] = K[a, b]
                 out_normal[i, c] = normal
-            if mode == 2 or (mu_s <= 0.0 and mu_k <= 0.0):
+            if mu_s <= 0.0 and mu_k <= 0.0:
+                continue
+            if mode == 2 and not anchor_valid[i, c]:
                 continue
             # --- elasto-plastic friction (return mapping) ---
             if anchor_valid[i, c]:
@@ -156,6 +159,14 @@ def cylinder_assemble(
             mu = mu_k if slipping[i, c] else mu_s
             limit = mu * normal
             slip = kw * unorm > limit
+            if mode == 2:
+                # stored energy of the tangential spring (stick) or the plastic potential
+                # mu N |u| - (mu N)^2/(2 k_t w) (slip), continuous at the yield point
+                if slip:
+                    energy += limit * unorm - 0.5 * limit * limit / kw
+                else:
+                    energy += 0.5 * kw * unorm * unorm
+                continue
             if mode == 1:
                 if slip:
                     anchor[i, c] = pos[i] - (limit / kw) * (u / unorm)

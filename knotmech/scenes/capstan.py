@@ -1,0 +1,339 @@
+"""The capstan experiment in simulation: a rod wrapped around a fixed post.
+
+One end carries a dead load T_low, the other is pulled at a constant speed (``mode="pull"``:
+T_high(displacement) rises to the sliding plateau T_low exp(mu_eff theta)) or loaded by a
+dead load T_high (``mode="hold"``: below the limit the rod must not creep; above it slides).
+
+The post is a rigid cylinder (:class:`knotmech.rod.contact.CylinderContact`) with
+elasto-plastic friction acting on the rod's surface, so that a rod of finite thickness
+shows the effective coefficient of the clove-hitch paper (eq. 3 and refs. therein),
+
+.. math:: \\mu_\\mathrm{eff} = \\frac{-(1+\\tilde D) + \\sqrt{(1+\\tilde D)^2 +
+          4\\mu^2\\tilde D}}{2\\mu},\\qquad \\tilde D = D/d .
+
+Validity: the capstan law (with mu_eff) needs the bending boundary layers at the lift-off
+points to be short, eps^2 = EI/(T_low R^2) << 1 (R the centreline radius); the correction is
+about -(1+mu^2)/2 eps^2 (see :func:`knotmech.analytic.capstan.capstan_ratio_bending`). A
+rope-like rod (``bending_stiffness`` below the solid value) meets it at small strains.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from knotmech.analytic.capstan import mu_eff as _mu_eff
+from knotmech.errors import InputError, check_nonnegative, check_positive
+from knotmech.rod.constraints import Clamp, MovingNodes
+from knotmech.rod.contact import Cylinder, CylinderContact
+from knotmech.rod.friction import AnchorFriction
+from knotmech.rod.loads import NodeForce, ViscousDamping
+from knotmech.rod.solver import SolverOptions, simulate
+from knotmech.rod.system import Rod, RodSystem
+from knotmech.scenes._common import equivalent_section
+
+__all__ = ["CapstanResult", "capstan", "capstan_two_loops"]
+
+
+@dataclass
+class CapstanResult:
+    """Recorded curves of a capstan run.
+
+    Attributes
+    ----------
+    mode : "pull" or "hold"
+    times : (n,) [s]
+    displacement : (n,) [m]  displacement of the high-tension end along its pull direction
+    t_high : (n,) [N]  axial force at the high-tension end (first edge)
+    t_low : float [N]  the dead load
+    ratio : float  sliding ratio mean(T_high)/T_low over the last ``plateau`` part of the
+        pull (nan in hold mode)
+    creep : float [m]  hold mode: displacement change over the last half of the hold
+        (nan in pull mode)
+    s : (n_edges,) [m]  arc length of the edge midpoints from the high end (rest lengths)
+    tension : (n_edges,) [N]  tension profile T(s) at the end of the run
+    contact : (n_nodes,) bool  nodes pressed on the post at the end
+    contact_angle : float [rad]  angle swept by the contact nodes around the post
+    exp_mu_theta, exp_mu_eff_theta : float  the ideal and thick-rod capstan ratios
+    mu_eff : float
+    status, message : str ; stats : dict (from the solver)
+    positions : (n_frames, n_nodes, 3) [m]  trajectory (saved frames)
+    """
+
+    mode: str
+    wrap_angle: float
+    mu: float
+    rod_diameter: float
+    post_diameter: float
+    times: np.ndarray
+    displacement: np.ndarray
+    t_high: np.ndarray
+    t_low: float
+    ratio: float
+    creep: float
+    s: np.ndarray
+    tension: np.ndarray
+    contact: np.ndarray
+    contact_angle: float
+    mu_eff: float
+    exp_mu_theta: float
+    exp_mu_eff_theta: float
+    status: str
+    message: str
+    stats: dict
+    positions: np.ndarray = field(repr=False, default=None)
+
+    def summary(self) -> dict:
+        """Scalars as a JSON-ready dict."""
+        keys = ("mode", "wrap_angle", "mu", "rod_diameter", "post_diameter", "t_low", "ratio",
+                "creep", "contact_angle", "mu_eff", "exp_mu_theta", "exp_mu_eff_theta",
+                "status", "message")  # fmt: skip
+        out = {k: getattr(self, k) for k in keys}
+        out["stats"] = dict(self.stats)
+        return {k: (float(v) if isinstance(v, (np.floating, float)) else v) for k, v in out.items()}
+
+
+def _centreline(wrap_angle, radius, rise, lead_high, lead_low, h):
+    """Polyline: straight high lead (along +y at x = R), helical arc, straight low lead."""
+    arc_len = float(np.hypot(wrap_angle * radius, rise))
+    n1 = max(2, int(round(lead_high / h)))
+    n2 = max(4, int(round(arc_len / h)))
+    n3 = max(2, int(round(lead_low / h)))
+    y1 = np.linspace(-lead_high, 0.0, n1 + 1)[:-1]
+    p1 = np.stack([np.full_like(y1, radius), y1, np.zeros_like(y1)], 1)
+    phi = np.linspace(0.0, wrap_angle, n2 + 1)
+    p2 = np.stack([radius * np.cos(phi), radius * np.sin(phi), rise * phi / wrap_angle], 1)
+    t_end = np.array([-np.sin(wrap_angle), np.cos(wrap_angle), 0.0])
+    s3 = np.linspace(0.0, lead_low, n3 + 1)[1:]
+    p3 = p2[-1][None, :] + s3[:, None] * t_end[None, :]
+    return np.concatenate([p1, p2, p3]), t_end
+
+
+def capstan(
+    *,
+    wrap_angle,
+    mu,
+    rod_diameter,
+    post_diameter,
+    youngs_modulus,
+    t_low,
+    mode="pull",
+    t_high=None,
+    mu_kinetic=None,
+    density=1000.0,
+    bending_stiffness=None,
+    pull_speed=None,
+    pull_distance=None,
+    hold_time=None,
+    ramp_time=None,
+    n_elements=None,
+    lead_length=None,
+    surface_friction=True,
+    contact_stiffness=None,
+    dt=None,
+    plateau=0.3,
+    options=None,
+    progress=False,
+) -> CapstanResult:
+    """Simulate a rod wrapped ``wrap_angle`` around a fixed post.
+
+    Parameters
+    ----------
+    wrap_angle : float [rad]  contact angle theta (> 0; above pi the wrap is a helix with
+        1.5 d between turns and the leads at different heights)
+    mu : float  static friction coefficient rod-post (mu_s)
+    rod_diameter, post_diameter : float [m]  d and D
+    youngs_modulus : float [Pa]  E (EA = E pi d^2/4)
+    t_low : float [N]  dead load on the low-tension end
+    mode : {"pull", "hold"}
+    t_high : float [N]  hold mode: dead load on the high end (ramped up with T_low)
+    mu_kinetic : float or None  kinetic coefficient (default mu)
+    density : float [kg/m^3]
+    bending_stiffness : float or None [N m^2]  EI (default the solid pi E d^4/64; a lower
+        value models a rope; see :func:`knotmech.scenes._common.equivalent_section`)
+    pull_speed : float [m/s]  default 0.02 m/s
+    pull_distance : float [m]  default: enough to stretch the wrapped part and slide
+    hold_time : float [s]  hold mode: time under constant loads (default 2 s)
+    ramp_time : float [s]  loads ramped over this time (default 0.1 s)
+    n_elements : int  default: about 24 elements per radian of wrap plus the leads
+    lead_length : float [m]  straight length on each side (default 2 R)
+    surface_friction : bool  friction on the rod surface (mu_eff) or at the centreline (mu)
+    contact_stiffness : float [N/m^2]  penalty K (default 200 T_high_max / (R d))
+    dt : float [s]  nominal step (default: pull -> element length/(4 v); hold -> 5 ms)
+    plateau : float  fraction of the pull (at the end) averaged for the ratio
+    options : SolverOptions or None
+    progress : bool
+
+    Returns
+    -------
+    CapstanResult
+    """
+    theta = float(check_positive("wrap_angle", wrap_angle))
+    mu = float(check_nonnegative("mu", mu))
+    d = float(check_positive("rod_diameter", rod_diameter))
+    D = float(check_positive("post_diameter", post_diameter))
+    E = float(check_positive("youngs_modulus", youngs_modulus))
+    t_low = float(check_positive("t_low", t_low))
+    if mode not in ("pull", "hold"):
+        raise InputError(f"mode must be 'pull' or 'hold', got {mode!r}")
+    if mode == "hold":
+        if t_high is None:
+            raise InputError("t_high is required in hold mode")
+        t_high = float(check_positive("t_high", t_high))
+    plateau = float(check_positive("plateau", plateau))
+    me = float(_mu_eff(mu, D / d))
+    exp_mu = float(np.exp(mu * theta))
+    exp_mue = float(np.exp(me * theta))
+    t_max = t_low * exp_mu if mode == "pull" else max(t_high, t_low)
+
+    radius, e_rod, rho_rod = equivalent_section(
+        diameter=d, youngs_modulus=E, density=density, bending_stiffness=bending_stiffness
+    )
+    ea = E * np.pi * d**2 / 4
+    R = 0.5 * (D + d)
+    rise = 0.0 if theta <= np.pi + 1e-9 else max(1.5 * d * theta / (2 * np.pi), 1.5 * d)
+    lead = 2.0 * R if lead_length is None else float(check_positive("lead_length", lead_length))
+    arc = float(np.hypot(theta * R, rise))
+    v = 0.02 if pull_speed is None else float(check_positive("pull_speed", pull_speed))
+    if pull_distance is None:
+        stretch = t_max * (arc + 2 * lead) / ea
+        pull_distance = 3.0 * stretch + 0.3 * R
+    pull_distance = float(check_positive("pull_distance", pull_distance))
+    lead_low = lead + (pull_distance if mode == "pull" else 0.0)
+    if n_elements is None:
+        h = 1.0 / (24.0 / R)
+    else:
+        n_el = int(n_elements)
+        if n_el < 8:
+            raise InputError(f"n_elements must be >= 8, got {n_elements}")
+        h = (arc + lead + lead_low) / n_el
+    pts, t_end_dir = _centreline(theta, R, rise, lead, lead_low, h)
+    rod = Rod(
+        positions=pts,
+        radius=radius,
+        youngs_modulus=e_rod,
+        density=rho_rod,
+        natural="straight",
+    )
+    system = RodSystem((rod,))
+    h_mean = float(np.mean(system.rest_length))
+    K = 200.0 * t_max / (R * d) if contact_stiffness is None else float(contact_stiffness)
+    friction = AnchorFriction(mu_static=mu, mu_kinetic=mu_kinetic, tangential_stiffness=K)
+    post = Cylinder(point=(0.0, 0.0, 0.0), axis=(0.0, 0.0, 1.0), radius=0.5 * D)
+    contact = CylinderContact(
+        (post,),
+        stiffness=K,
+        sharpness=400.0 / d,
+        friction=friction,
+        surface_friction=surface_friction,
+        rod_radius=0.5 * d,
+    )
+    ramp = 0.1 if ramp_time is None else float(check_nonnegative("ramp_time", ramp_time))
+    low_load = NodeForce(nodes=-1, force=t_low * t_end_dir, ramp_time=ramp)
+    pull_dir = np.array([0.0, -1.0, 0.0])
+    x0 = pts[0].copy()
+    mass_per_length = rho_rod * np.pi * radius**2
+    total_len = float(np.sum(system.rest_length))
+    if mode == "pull":
+        t_start = ramp + 0.05
+        t_final = t_start + pull_distance / v
+
+        def path(t, x0=x0, v=v, t_start=t_start):
+            return x0 + pull_dir * v * max(0.0, t - t_start)
+
+        constraints = (MovingNodes(nodes=[0], path=path), Clamp(edges=[0]))
+        loads = [low_load]
+        damping = 1e-3 * t_low / (total_len * v)
+        step = h_mean / (4.0 * v) if dt is None else float(check_positive("dt", dt))
+    else:
+        hold = 2.0 if hold_time is None else float(check_positive("hold_time", hold_time))
+        t_final = ramp + hold
+        high_load = NodeForce(nodes=0, force=t_high * pull_dir, ramp_time=ramp)
+        constraints = (Clamp(edges=[0]),)
+        loads = [low_load, high_load]
+        # critical-ish damping of the slowest axial mode (time scale ~ the ramp)
+        damping = 2.0 * mass_per_length / max(ramp, 1e-3)
+        step = 5e-3 if dt is None else float(check_positive("dt", dt))
+    loads.append(ViscousDamping(coefficient=damping))
+    opts = options or SolverOptions(throw=False, save_every=max(step, (t_final) / 400.0))
+    callback = None
+    if mode == "hold":
+        # stop once the rod has clearly slipped off (0.5 lead lengths): the run has decided
+        def callback(state, x0=x0, lim=0.5 * lead):
+            return float((state.q[system.node_dofs[0]] - x0) @ pull_dir) > lim
+
+    res = simulate(
+        system,
+        t_end=t_final,
+        dt=step,
+        loads=tuple(loads),
+        constraints=constraints,
+        interactions=(contact,),
+        options=opts,
+        progress=progress,
+        callback=callback,
+    )
+    pos = res.positions
+    disp = (pos[:, 0, :] - x0) @ pull_dir
+    t_hi = res.tension[:, 0]
+    ratio = float("nan")
+    creep = float("nan")
+    if mode == "pull":
+        sel = disp >= (1.0 - plateau) * pull_distance
+        if np.any(sel) and res.status == "success":
+            ratio = float(np.mean(t_hi[sel]) / t_low)
+    else:
+        sel = res.times >= ramp + 0.5 * (t_final - ramp)
+        if np.any(sel):
+            creep = float(abs(disp[-1] - disp[sel][0]))
+    # final contact region and tension profile
+    last = pos[-1]
+    rad = np.hypot(last[:, 0], last[:, 1])
+    in_contact = rad < R + 0.02 * d
+    ang = np.unwrap(np.arctan2(last[in_contact, 1], last[in_contact, 0]))
+    contact_angle = float(ang.max() - ang.min()) if ang.size > 1 else 0.0
+    s_mid = np.cumsum(system.rest_length) - 0.5 * system.rest_length
+    return CapstanResult(
+        mode=mode,
+        wrap_angle=theta,
+        mu=mu,
+        rod_diameter=d,
+        post_diameter=D,
+        times=res.times,
+        displacement=disp,
+        t_high=t_hi,
+        t_low=t_low,
+        ratio=ratio,
+        creep=creep,
+        s=s_mid,
+        tension=res.tension[-1],
+        contact=in_contact,
+        contact_angle=contact_angle,
+        mu_eff=me,
+        exp_mu_theta=exp_mu,
+        exp_mu_eff_theta=exp_mue,
+        status=res.status,
+        message=res.message,
+        stats=dict(res.stats),
+        positions=pos,
+    )
+
+
+def capstan_two_loops(**overrides) -> CapstanResult:
+    """The two-loops configuration of the clove-hitch paper (sect. 3, Fig. 1d): theta = 4 pi,
+    d = 4 mm, D = 30 mm, E = 1.26 MPa (VPS32), mu = 0.32, T_low = 0.069 N, pulled.
+
+    Any argument of :func:`capstan` can be overridden.
+    """
+    kw = dict(
+        wrap_angle=4 * np.pi,
+        mu=0.32,
+        rod_diameter=4e-3,
+        post_diameter=30e-3,
+        youngs_modulus=1.26e6,
+        density=1160.0,
+        t_low=0.069,
+    )
+    kw.update(overrides)
+    return capstan(**kw)
