@@ -284,7 +284,7 @@ def _bootstrap_p(current, name, lr, data, starts, gs, rng, decide_at):
         return out
 
     del rec
-    return monte_carlo_pvalue(lr, draw, batches=(19, 40, 140), decide_at=decide_at)
+    return monte_carlo_pvalue(lr, draw, decide_at=decide_at)
 
 
 def _effect_regions(rec, base, final, names):

@@ -80,10 +80,10 @@ def _ls(model, data, p0, noise, starts):
         bounds=(model.lower, model.upper),
         method="trf",
         x_scale="jac",
-        ftol=1e-10,
-        xtol=1e-10,
-        gtol=1e-10,
-        max_nfev=200,
+        ftol=1e-8,
+        xtol=1e-8,
+        gtol=1e-8,
+        max_nfev=100,
     )
     return res.x, float(res.cost)
 

@@ -121,7 +121,7 @@ def flexible_mismatch(
             out[i] = _augment(r, mean, n0, starts, design, given_sigma)[0]
         return out
 
-    p, _ = monte_carlo_pvalue(stat, draw, batches=(39, 80, 80), decide_at=decide_at)
+    p, _ = monte_carlo_pvalue(stat, draw, batches=(19, 40, 80, 100), decide_at=decide_at)
     curve = design @ coef
     sd = nz.sd(mean)
     xw = _whiten_cols(nz, sd, starts, design)

@@ -123,7 +123,8 @@ def make_recording(
     -------
     rec : Recording
     truth : dict
-        ``effect``, ``size``, true parameters (report names where they exist).
+        ``effect``, ``size``, true parameters (report names where they exist), and
+        ``noise_sd`` (the true noise standard deviation per row, an array).
     """
     rng = np.random.default_rng(seed)
     rate = effect == "rate_dependent_friction"
@@ -225,6 +226,7 @@ def make_recording(
             i = int(np.argmin(np.abs(x - c)))
             mean = mean0 + size * sd[i] * np.exp(-0.5 * ((x - c) / w) ** 2)
     y = mean + nm.sample(mean, trial_starts(trial), rng)
+    truth["noise_sd"] = nm.sd(mean)
     metadata = dict(meta)
     metadata["experiment"] = experiment
     if use_prior:

@@ -1,0 +1,54 @@
+"""``knotmech diagnose``: where a recording and its baseline model differ, and why.
+
+Example::
+
+    knotmech diagnose pull.csv --json report.json --plot report.png
+
+Reads and validates the recording (``shared/spec/recordings.md``), runs
+:func:`knotmech.diagnose.diagnose`, writes the JSON report, prints the one-line
+verdict and a short summary. Exit status 0 once the report is written (whatever
+the verdict); 2 on a bad recording or bad options (one line, no traceback).
+"""
+
+from __future__ import annotations
+
+from knotmech.diagnose import diagnose, plot_report, read_recording
+
+__all__ = ["register", "run"]
+
+
+def register(subparsers) -> None:
+    p = subparsers.add_parser(
+        "diagnose",
+        help="find where a recording differs from its baseline model and name the missing physics",
+        description=(
+            "Fit the closed-form baseline of the recording's experiment, locate systematic "
+            "residuals, add catalogue effects one at a time while they are significant "
+            "(parametric bootstrap) and improve the held-out error, and report the verdict."
+        ),
+    )
+    p.add_argument("recording", metavar="REC.csv", help="recording file (CSV with # metadata)")
+    p.add_argument("--json", metavar="OUT.json", required=True, help="write the report here")
+    p.add_argument("--plot", metavar="FILE", default=None, help="also draw the fit (PNG, PDF...)")
+    p.add_argument(
+        "--baseline",
+        choices=("closed-form", "der"),
+        default="closed-form",
+        help="baseline model family (default closed-form)",
+    )
+    p.add_argument("--seed", type=int, default=0, help="seed of the bootstrap (default 0)")
+    p.add_argument(
+        "--alpha", type=float, default=0.01, help="family-wise significance level (default 0.01)"
+    )
+    p.set_defaults(func=run)
+
+
+def run(args) -> int:
+    rec = read_recording(args.recording)
+    report = diagnose(rec, baseline=args.baseline, seed=args.seed, alpha=args.alpha)
+    report.write_json(args.json)
+    if args.plot:
+        plot_report(report, args.plot)
+    print(report.summary)
+    print(f"  report: {args.json}" + (f", plot: {args.plot}" if args.plot else ""))
+    return 0
