@@ -1,0 +1,55 @@
+"""``knotmech tour``: prints real numbers, writes the figure, sections are extensible."""
+
+import re
+
+import pytest
+
+from knotmech.cli import tour
+from knotmech.cli.main import main
+
+
+def test_tour_prints_results_and_saves_figure(tmp_path, capsys):
+    out = tmp_path / "tour"
+    assert main(["tour", "--out", str(out)]) == 0
+    text = capsys.readouterr().out
+    # mu_eff table against the clove-hitch paper's values (mu = 0.3)
+    for Dt, value in ((1, "0.1468"), (2, "0.1962"), (5, "0.2470"), (10, "0.2707")):
+        assert re.search(rf"^\s+{Dt}\s+{value}\s", text, re.M), (Dt, value)
+    assert "6.586" in text  # e^(0.3 * 2 pi)
+    assert "SLIPS" in text and "HOLDS" in text
+    png = out / "capstan_tension_decay.png"
+    assert png.is_file() and png.stat().st_size > 10_000
+    assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_sections_can_be_added_and_failures_are_reported(tmp_path, capsys, monkeypatch):
+    monkeypatch.setattr(tour, "SECTIONS", list(tour.SECTIONS[:1]))
+
+    def extra(ctx):
+        return [f"extra section, out = {ctx.out.name}"]
+
+    def broken(ctx):
+        raise RuntimeError("boom")
+
+    tour.register_section(extra)
+    tour.register_section(broken, before=extra)
+    assert [s.__name__ for s in tour.SECTIONS][-2:] == ["broken", "extra"]
+    rc = main(["tour", "--out", str(tmp_path / "t")])
+    captured = capsys.readouterr()
+    assert rc == 1
+    assert "extra section, out = t" in captured.out
+    assert "broken failed: RuntimeError: boom" in captured.err
+
+
+def test_out_must_be_a_folder(tmp_path, capsys):
+    f = tmp_path / "file.txt"
+    f.write_text("x")
+    assert main(["tour", "--out", str(f)]) == 2
+    err = capsys.readouterr().err
+    assert "--out" in err and len(err.strip().splitlines()) == 1
+
+
+@pytest.mark.parametrize("section", tour.SECTIONS)
+def test_every_section_returns_lines(section, tmp_path):
+    lines = section(tour.TourContext(out=tmp_path))
+    assert lines and all(isinstance(s, str) for s in lines)
