@@ -19,6 +19,8 @@ Run as a script to print the results. Functions:
 
 from __future__ import annotations
 
+from functools import cache
+
 import sympy as sp
 
 a, k, z, T, B = sp.symbols("a k z T B", positive=True)
@@ -41,6 +43,7 @@ def _frenet_helix():
     return tangent, normal, binormal, kappa, tau, speed
 
 
+@cache
 def helix_contact_force():
     """(p_exact, p_leading): line force per unit length holding the helix in shape.
 
@@ -71,6 +74,7 @@ def braid_force():
     return sp.simplify(mu * p_leading.subs(a, h) * 2 * sp.pi * n / k)
 
 
+@cache
 def loop_closure():
     """(residual, loop_length, braid_length) of the elastica loop in units of R.
 
