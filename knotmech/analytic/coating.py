@@ -1,7 +1,7 @@
 r"""Friction of particle-coated rods versus particle volume fraction (coated-rod paper).
 
-Measured data of the coated-rod paper (Khalil et al., "Systematic Variation of
-Friction of Rods", J. Appl. Mech., DOI 10.1115/1.4055544): natural-rubber rods
+Measured data of the coated-rod paper ("Systematic Variation of Friction of Rods",
+J. Appl. Mech., DOI 10.1115/1.4055544): natural-rubber rods
 (d = 1.59 mm, E = 1.83 MPa) dip-coated in a PMMA/1,3-dioxolane carrier (binder volume
 fraction 5 %) loaded with iron particles (45-150 um) at particle volume fraction
 :math:`\phi_p`, withdrawn at 5 mm/s.

@@ -4,8 +4,8 @@ Notation (both papers): h rod radius, :math:`B = EI = E\pi h^4/4` bending stiffn
 F the pulling force on the tails, R the radius of curvature where the rod leaves the
 braid for the loop, and e the **end-to-end shortening**: the length of rod held in the
 knot, :math:`e = L - D`, with L the rod's (inextensible) length and D the distance
-between its two pulled ends (Jawed et al. 2015, Fig. 1; Audoly et al. 2007 call it
-:math:`\Delta`). e decreases as the knot is pulled tight.
+between its two pulled ends (the convention of Jawed et al. 2015; Audoly et al. 2007
+call it the end-shortening). e decreases as the knot is pulled tight.
 
 Long overhand knot with n braid turns (Jawed, Dieleman, Audoly & Reis, PRL 115, 118302,
 2015; unknotting number n, crossing number 2n + 1). The knot is a braid of two strands
@@ -30,7 +30,9 @@ number k, and a planar loop:
             g(x) = \frac{x^2}{x + \lambda/R}, \quad x = \ell/R.
 
 Derivations: ``derivations/jawed_braid.py`` (contact force of the helix, the force law
-and the elliptic-integral closure). Eq. (3) is taken from the paper, not re-derived.
+and the elliptic-integral closure). Eq. (3) is taken as quoted, not re-derived: the
+paper's full text was not at hand, so its equation numbers follow secondary sources,
+and Eqs. (4)-(5) are checked here by derivation rather than against the printed page.
 
 Loose trefoil (Audoly, Clauvelin & Neukirch, PRL 99, 164301, 2007), frictionless leading
 order in :math:`\epsilon = \sqrt{h/R} \to 0`: the knot is, at leading order, one circular
@@ -362,8 +364,8 @@ def overhand_pull_force(end_to_end_shortening, turns, mu, rod_radius, bending_st
     Assumptions: inextensible, naturally straight, isotropic rods; sliding (kinetic)
     Coulomb friction in the braid; quasi-static pulling; twist-free; friction dominating
     the loop's own pull :math:`B/(2R^2)` (:math:`\mu n \gg \sqrt{h/R}`).
-    Validity: long-braid regime (the braid holds many helical wavelengths, n of order
-    1-10 tested in the paper) and a slender loop, :math:`h \ll R`; the force grows as
+    Validity: long-braid regime (a braid of n >= 1 helical wavelengths, slender helix
+    :math:`hk \ll 1`) and a slender loop, :math:`h \ll R`; the force grows as
     :math:`e^{-3/2}` for loose knots and steeply as e approaches a few :math:`n^2 h`
     (tight knots, outside the theory: use :func:`overhand_knot` to see the flags).
     Linear in mu; increasing in n and decreasing in e.
