@@ -221,7 +221,8 @@ def ideal_hitch_ratio(knot, mu, mu_rr=None):
     g = _geometry(knot)
     mu = check_nonnegative("mu", mu)
     mrr = _mu_rr(mu, mu_rr)
-    return np.exp(mu * g.post_wrap + mrr * g.rope_wrap)
+    with np.errstate(over="ignore"):
+        return np.exp(mu * g.post_wrap + mrr * g.rope_wrap)
 
 
 def _thick_parts(g: HitchGeometry, mu, mrr, d, D):
@@ -295,7 +296,7 @@ def thick_hitch_ratio(knot, mu, mu_rr=None, *, rod_diameter, post_diameter):
     d = check_positive("rod_diameter", rod_diameter)
     D = check_positive("post_diameter", post_diameter)
     m_post, m_rope, n_post, n_rope, g_post, g_rope = _thick_parts(g, mu, mrr, d, D)
-    with np.errstate(divide="ignore", invalid="ignore"):
+    with np.errstate(divide="ignore", invalid="ignore", over="ignore"):
         if g.post_nips:
             e_in = np.exp(m_post * g.post_wrap_in)
             e_out = np.exp(m_post * g.post_wrap_out)
@@ -475,6 +476,16 @@ def _jsonable(v):
     return v
 
 
+def _exp(x: float) -> float:
+    """exp that saturates to inf instead of raising OverflowError."""
+    return math.exp(x) if x < 700.0 else math.inf
+
+
+def _capacity(ratio: float, free: float) -> float:
+    """Largest load held: ratio * free end tension, 0 for a free end even if ratio is inf."""
+    return 0.0 if free == 0 else ratio * free
+
+
 def _margin(capacity: float, load: float) -> float:
     return math.inf if math.isinf(capacity) else capacity / load - 1.0
 
@@ -504,9 +515,9 @@ _COMMON_ASSUMPTIONS = (
 def _capstan_answers(mu, theta, d, D, load, free):
     Dt = D / d
     me = float(mu_eff(mu, Dt))
-    cap_thick = math.exp(me * theta) * free
-    cap_ideal = math.exp(mu * theta) * free
-    crit_thick = _bisect_mu(lambda m: load <= math.exp(float(mu_eff(m, Dt)) * theta) * free)
+    cap_thick = _capacity(_exp(me * theta), free)
+    cap_ideal = _capacity(_exp(mu * theta), free)
+    crit_thick = _bisect_mu(lambda m: load <= _capacity(_exp(float(mu_eff(m, Dt)) * theta), free))
     crit_ideal = math.log(load / free) / theta if free > 0 and theta > 0 else math.inf
     if free > 0 and load <= free:
         crit_ideal = 0.0
@@ -547,7 +558,7 @@ def _capstan_answers(mu, theta, d, D, load, free):
 
 def _hitch_answers(g: HitchGeometry, mu, mrr, d, D, load, free):
     K = float(ideal_hitch_ratio(g.name, mu, mrr))
-    cap = K * free
+    cap = _capacity(K, free)
     crit = float(
         hitch_critical_mu(g.name, high_tension=load, low_tension=free, mu_rr=None)
         if mrr == mu
@@ -578,7 +589,7 @@ def _hitch_answers(g: HitchGeometry, mu, mrr, d, D, load, free):
     )
     Kt = float(thick_hitch_ratio(g.name, mu, mrr, rod_diameter=d, post_diameter=D))
     lock = float(thick_hitch_lock_parameter(g.name, mu, mrr, rod_diameter=d, post_diameter=D))
-    cap_t = math.inf if math.isinf(Kt) else Kt * free
+    cap_t = math.inf if math.isinf(Kt) else _capacity(Kt, free)
     tie = mrr == mu
 
     def holds_thick(m):

@@ -50,7 +50,12 @@ def register(subparsers) -> None:
         "--free-end-load", default="0N", help="tension on the other end (default 0N: free end)"
     )
     p.add_argument("--wrap-angle", default=None, help="capstan only: wrap angle, e.g. 360deg")
-    p.add_argument("--json", metavar="FILE", default=None, help="also write the verdict as JSON")
+    p.add_argument(
+        "--json",
+        metavar="FILE",
+        default=None,
+        help="also write the verdict as JSON to FILE ('-': print only the JSON)",
+    )
     p.set_defaults(func=run)
 
 
@@ -100,17 +105,17 @@ def run(args) -> int:
         mu_rr=mu_rr,
         wrap_angle=theta,
     )
+    text = json.dumps(verdict.to_dict(), indent=2) if args.json else ""
+    if args.json == "-":  # JSON only on stdout, for pipes
+        print(text)
+        return 0
     print(format_verdict(verdict))
     if args.json:
-        text = json.dumps(verdict.to_dict(), indent=2)
-        if args.json == "-":
-            print(text)
-        else:
-            try:
-                Path(args.json).write_text(text + "\n")
-            except OSError as exc:
-                raise InputError(f"--json: cannot write {args.json!r}: {exc.strerror}") from None
-            print(f"wrote {args.json}", file=sys.stderr)
+        try:
+            Path(args.json).write_text(text + "\n")
+        except OSError as exc:
+            raise InputError(f"--json: cannot write {args.json!r}: {exc.strerror}") from None
+        print(f"wrote {args.json}", file=sys.stderr)
     return 0
 
 

@@ -135,3 +135,15 @@ def test_subprocess_no_traceback():
         timeout=60,
     )
     assert ok.returncode == 0 and "verdict: SLIPS" in ok.stdout
+
+
+@pytest.mark.parametrize("knot", ["capstan", "clove-hitch"])
+@pytest.mark.parametrize("free", ["0N", "0.1N"])
+def test_huge_friction_does_not_overflow(knot, free, capsys):
+    args = ["hold", knot, "--rod-diameter", "4mm", "--post-diameter", "30mm", "--mu", "1000"]
+    args += ["--load", "1N", "--free-end-load", free, "--json", "-"]
+    if knot == "capstan":
+        args += ["--wrap-angle", "1turn"]
+    assert main(args) == 0
+    data = json.loads(capsys.readouterr().out)  # '--json -' prints only the JSON
+    assert data["holds"] is (free != "0N")
