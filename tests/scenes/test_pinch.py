@@ -1,0 +1,35 @@
+"""Pinch in simulation: F_t*/(2 mu F_n) = 1 (Amontons-Coulomb on both contact surfaces).
+
+Clove-hitch paper, sect. 9 / Fig. 5d: within 3 % of 1 for x = 4 F_n/(pi E d D) < 0.05
+(d = 4 mm rod of VPS32, E = 1.26 MPa, cylinders D = 8 mm).
+"""
+
+import numpy as np
+import pytest
+
+from knotmech.errors import InputError
+from knotmech.scenes.pinch import pinch, pinch_sweep
+
+
+def test_pinch_amontons_small_load():
+    r = pinch(normal_load=0.3, mu=0.5, n_elements=180)
+    assert r.status == "success", r.message
+    assert r.load_parameter == pytest.approx(4 * 0.3 / (np.pi * 1.26e6 * 4e-3 * 8e-3))
+    assert r.load_parameter < 0.05
+    assert abs(r.ratio - 1) < 0.03
+
+
+@pytest.mark.slow
+def test_pinch_sweep_linear_in_normal_load():
+    sw = pinch_sweep(normal_loads=[0.2, 0.6, 1.5], mu=0.32, n_elements=180)
+    assert np.all(sw.load_parameter < 0.05)
+    np.testing.assert_allclose(sw.ratio, 1.0, atol=0.03)
+    slope = np.polyfit(sw.normal_load, sw.sliding_force, 1)[0]
+    assert slope == pytest.approx(2 * 0.32, rel=0.03)
+
+
+def test_pinch_input_errors():
+    with pytest.raises(InputError):
+        pinch(normal_load=-1.0, mu=0.3)
+    with pytest.raises(InputError):
+        pinch(normal_load=1.0, mu=0.3, pull_distance=1.0)
