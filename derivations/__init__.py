@@ -8,6 +8,8 @@ implementation in :mod:`knotmech.analytic` (lambdify at random points).
   lift-off with bending rigidity.
 - ``mu_eff``: effective friction of a thick rod from force and moment balance.
 - ``hitches``: wrap / nip chain model of the clove hitch, half hitches and round turn.
+- the other scripts here (LLD film scaling, the Jawed braid law, the loose-knot law)
+  are described in their own docstrings.
 
 This folder is not part of the installed package (it lives in the source checkout).
 """
