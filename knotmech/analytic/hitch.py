@@ -6,9 +6,11 @@ Maddocks & Keller (SIAM J. Appl. Math. 47 (1987) 1185): a hitch is a chain of
 - *wraps*: the rope on the post (friction :math:`\mu`) or around its own standing
   part (rope-on-rope friction :math:`\mu_{rr}`) over an angle :math:`\theta`; at
   the onset of slip the tension grows by at most :math:`e^{\mu\theta}` (capstan);
-- *nips* (Bayman's wrap-overs): a strand pinched between the support and a
-  crossing *rider*; the rider of tension :math:`T_r` presses it with a normal
-  force :math:`N = n\,T_r` and the pinched strand can carry a tension jump of up to
+- *nips* (the wrap-overs of J. Walker's, Sci. Am. 1983, and L. Kauffman's, Knots
+  and Physics, expositions of Bayman, where the top strand squeezes the bottom one
+  against the rod): a strand pinched between the support and a crossing *rider*;
+  the rider of tension :math:`T_r` presses it with a normal force
+  :math:`N = n\,T_r` and the pinched strand can carry a tension jump of up to
   :math:`(\mu_\mathrm{below} + \mu_\mathrm{above})N` (both faces grip).
 
 Reading the chain from the free end (tension :math:`T_\mathrm{low}`) to the load
