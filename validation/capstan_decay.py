@@ -306,8 +306,19 @@ def run(quick=True, out_dir=".", progress=False, scheduler=None, der=None) -> di
         mu=MU,
         D_over_d=ratios,
         profiles=profiles or None,
-        title=f"capstan decay on a post, mu = {MU:g} (solid: {source})",
+        title=f"capstan decay, mu = {MU:g}: "
+        + ("DER (solid) vs closed forms" if sim else "closed forms"),
     )
+    if sim and sim["control"] is not None:
+        ax.plot(
+            sim["control"][0],
+            sim["control"][1],
+            "-",
+            color="0.3",
+            lw=1,
+            label=f"DER, friction at the centreline, D/d={ratios[0]:g} (control)",
+        )
+        ax.legend(fontsize=7, loc="lower left")
     figures.append(save_figure(ax.figure, out_dir, f"{NAME}_profiles"))
 
     dense = np.geomspace(0.5, 1000.0, 200)
