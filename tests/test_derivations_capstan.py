@@ -213,3 +213,18 @@ def test_derived_half_hitches_match_code(hitches_mod):
 def test_derived_clove_lock_condition(hitches_mod):
     m = hitches_mod
     assert sp.simplify(m.clove_hitch_lock_condition() - sp.exp(m.m_post * m.theta_out)) == 0
+
+
+def test_derived_round_turn_matches_code(hitches_mod):
+    m = hitches_mod
+    f = sp.lambdify((m.m_post, m.theta_p), m.round_turn_ratio(), "numpy")
+    mu = RNG.uniform(0, 1, N)
+    np.testing.assert_allclose(
+        f(mu, 2 * np.pi), hitch.ideal_hitch_ratio("round-turn", mu), rtol=1e-13
+    )
+    d, D = 2e-3, 3e-2
+    np.testing.assert_allclose(
+        f(capstan.mu_eff(mu, D / d), 2 * np.pi),
+        hitch.thick_hitch_ratio("round-turn", mu, rod_diameter=d, post_diameter=D),
+        rtol=1e-13,
+    )
