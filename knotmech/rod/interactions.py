@@ -39,14 +39,15 @@ class PointSpring:
     """Linear springs pulling nodes toward fixed points: F = -k (x - p).
 
     A minimal interaction (used in the tests to exercise the sparse path); with two
-    ``nodes`` and ``pair=True`` it couples them instead, F_a = -k (x_a - x_b) = -F_b,
-    a non-local Jacobian block.
+    ``nodes`` and ``pair=True`` it couples them instead, F_a = -k (x_a - x_b - offset) =
+    -F_b, a non-local Jacobian block (``offset`` [m] is the rest value of x_a - x_b).
     """
 
     nodes: object
     stiffness: float
     point: object = (0.0, 0.0, 0.0)
     pair: bool = False
+    offset: object = (0.0, 0.0, 0.0)
 
     def begin_step(self, system, q_old, v_old, dt) -> None:
         pass
@@ -63,7 +64,7 @@ class PointSpring:
         eye = np.arange(3)
         if self.pair:
             a, b = d[0], d[1]
-            f = -k * (q[a] - q[b])
+            f = -k * (q[a] - q[b] - check_finite("offset", self.offset))
             force[a] += f
             force[b] -= f
             for r, c, s in ((a, a, -k), (b, b, -k), (a, b, k), (b, a, k)):
@@ -77,6 +78,7 @@ class PointSpring:
         k = float(self.stiffness)
         d = self._idx(system)
         if self.pair:
-            return 0.5 * k * float(np.sum((q[d[0]] - q[d[1]]) ** 2))
+            off = np.asarray(self.offset, dtype=float)
+            return 0.5 * k * float(np.sum((q[d[0]] - q[d[1]] - off) ** 2))
         p = np.broadcast_to(np.asarray(self.point, dtype=float), d.shape)
         return 0.5 * k * float(np.sum((q[d] - p) ** 2))
