@@ -1,0 +1,406 @@
+r"""The clove hitch on a rigid post in simulation: tie, load, read T(s), contacts, Darboux.
+
+Tying (a pre-shaped curve relaxed with contact, instead of the seven-step protocol of the
+clove-hitch paper, sec. 4): :func:`knotmech.scenes.curves.clove_hitch_curve` puts two wraps
+on the post at centreline radius :math:`R = (D+d)/2` with the diagonal crossing over both
+ends; the naturally straight rod is then released with both ends under a small pre-tension
+:math:`T_\mathrm{pre}`, so it settles onto the post (rigid cylinder, elasto-plastic friction
+on the rod surface, :class:`knotmech.rod.contact.CylinderContact`) and onto itself (the
+implicit contact model, :class:`knotmech.rod.contact.RodContact`).
+
+Loading (the clove-hitch paper, sec. 5-8), dead loads along the two tails:
+
+- ``"symmetric"``: both ends pulled with T (:math:`T_\mathrm{high} = T_\mathrm{low}`);
+- ``"asymmetric"``: end 0 with :math:`T_\mathrm{high}`, the other end with :math:`T_\mathrm{low}`;
+- ``"free"``: :math:`T_\mathrm{low} = 0`, a hanging load :math:`T_\mathrm{high}` on end 0 and the
+  other end free; the run decides *hold* (the loaded end stops) or *slip*.
+
+Outputs: tension profile :math:`T(s)` (axial force of each edge), rod-post and rod-rod
+contact regions, the components of the Darboux vector :math:`\Omega_a(s)` in the material
+frame (curvatures :math:`\Omega_1, \Omega_2` and twist :math:`\Omega_3`, the clove-hitch
+paper eqs. 1-2), the knot's winding number about the post and its over/under code.
+
+Default parameters: the clove-hitch paper, sec. 7: (d, D, L) = (4, 30, 374) mm, VPS32
+(E = 1.26 MPa), :math:`\mu_{rc} = \mu_{rr} = 0.3`, :math:`T_\mathrm{high}` = 1.47 N.
+The rod-rod friction is the regularised law of the coated-rod paper, which does not stick
+exactly: a hitch held only by its nips creeps slowly; the hold/slip verdict compares the
+creep over the hold with ``slip_distance``.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from knotmech import rod
+from knotmech.analytic.capstan import mu_eff as _mu_eff
+from knotmech.errors import InputError, check_nonnegative, check_positive
+from knotmech.rod.contact import Cylinder, CylinderContact, RodContact
+from knotmech.rod.friction import AnchorFriction, SmoothFriction
+from knotmech.scenes.curves import _edge_distances, clove_hitch_curve
+from knotmech.scenes.topology import post_crossing_code, winding_number
+
+__all__ = ["CloveHitchResult", "clove_hitch", "darboux_profile"]
+
+
+@dataclass(frozen=True)
+class _RampedEndLoad:
+    """Dead force on one node, ramped linearly from 0 to ``force`` over [delay, delay + ramp].
+
+    A load for :func:`knotmech.rod.simulate` (same interface as ``knotmech.rod.NodeForce``).
+    """
+
+    node: int
+    force: np.ndarray
+    ramp_time: float
+    delay: float = 0.0
+
+    def _w(self, t) -> float:
+        return min(max((t - self.delay) / self.ramp_time, 0.0), 1.0)
+
+    def apply(self, system, t, q, q_old, dt, force, jac_diag) -> None:
+        force[system.node_dofs[self.node]] += self._w(t) * np.asarray(self.force)
+
+    def energy(self, system, q, t=np.inf) -> float:
+        return float(-self._w(t) * np.dot(q[system.node_dofs[self.node]], self.force))
+
+
+def darboux_profile(positions, m1):
+    r"""Darboux vector components of a discrete rod in its material frame.
+
+    With :math:`\hat d_3` the edge tangent, :math:`\hat d_1` = ``m1`` and
+    :math:`\hat d_2 = \hat d_3\times\hat d_1`, eq. (1) of the clove-hitch paper,
+    :math:`\hat d_a' = \Omega\times\hat d_a`, gives
+    :math:`\Omega_1 = \hat d_2'\cdot\hat d_3 = -\hat d_3'\cdot\hat d_2`,
+    :math:`\Omega_2 = \hat d_3'\cdot\hat d_1`, :math:`\Omega_3 = \hat d_1'\cdot\hat d_2`
+    (eq. 2, i.e. :math:`\Omega_a = \tfrac12\varepsilon_{abc}\hat d_b'\cdot\hat d_c`). At each
+    interior node the derivatives are differences between the two adjacent edges over the
+    Voronoi length :math:`\ell_i = (|e^{i-1}| + |e^i|)/2`; :math:`\Omega_3` is the angle from
+    :math:`\hat d_1^{i-1}`, parallel-transported onto edge i, to :math:`\hat d_1^i`.
+
+    Parameters
+    ----------
+    positions : (n_nodes, 3) array [m]
+    m1 : (n_nodes - 1, 3) array
+        First material director of each edge (unit, normal to the edge).
+
+    Returns
+    -------
+    s : (n_nodes - 2,) [m]  arc length of the interior nodes
+    omega : (n_nodes - 2, 3) [1/m]  :math:`(\Omega_1, \Omega_2, \Omega_3)`
+    """
+    x = np.asarray(positions, dtype=float)
+    d1 = np.asarray(m1, dtype=float)
+    e = np.diff(x, axis=0)
+    le = np.linalg.norm(e, axis=1)
+    t = e / le[:, None]
+    d1 = d1 - np.sum(d1 * t, axis=1)[:, None] * t
+    d1 /= np.linalg.norm(d1, axis=1)[:, None]
+    d2 = np.cross(t, d1)
+    li = 0.5 * (le[:-1] + le[1:])
+    dt3 = (t[1:] - t[:-1]) / li[:, None]
+    a1 = d1[:-1] + d1[1:]
+    a1 /= np.linalg.norm(a1, axis=1)[:, None]
+    a2 = d2[:-1] + d2[1:]
+    a2 /= np.linalg.norm(a2, axis=1)[:, None]
+    om1 = -np.sum(dt3 * a2, axis=1)
+    om2 = np.sum(dt3 * a1, axis=1)
+    # parallel transport of d1^{i-1} onto t^i (rotation about t^{i-1} x t^i)
+    ta, tb = t[:-1], t[1:]
+    b = np.cross(ta, tb)
+    sb = np.linalg.norm(b, axis=1)
+    cb = np.sum(ta * tb, axis=1)
+    with np.errstate(invalid="ignore", divide="ignore"):
+        u = np.where(sb[:, None] > 1e-14, b / sb[:, None], 0.0)
+    v = d1[:-1]
+    # Rodrigues: v cos + (u x v) sin + u (u.v)(1 - cos)
+    pt = (
+        v * cb[:, None]
+        + np.cross(u, v) * sb[:, None]
+        + u * np.sum(u * v, axis=1)[:, None] * (1 - cb[:, None])
+    )
+    ang = np.arctan2(np.sum(np.cross(pt, d1[1:]) * tb, axis=1), np.sum(pt * d1[1:], axis=1))
+    om3 = ang / li
+    s = np.cumsum(le)[:-1]
+    return s, np.column_stack([om1, om2, om3])
+
+
+@dataclass
+class CloveHitchResult:
+    """Recorded output of a clove-hitch run.
+
+    Attributes
+    ----------
+    loading : "symmetric", "asymmetric" or "free"
+    t_high, t_low : float [N]  final end loads (end 0 carries t_high)
+    times : (n,) [s]; end_displacement : (n,) [m]  displacement of end 0 along its load
+    s : (n_edges,) [m]  arc length of edge midpoints from end 0 (rest lengths)
+    tension : (n_edges,) [N]  T(s) at the end of the run
+    post_contact : (n_nodes,) bool  nodes pressed on the post
+    rod_contact : (n_edges,) bool  edges touching another part of the rod
+    s_nodes : (n_nodes - 2,) [m]; darboux : (n_nodes - 2, 3) [1/m]  Omega_1, Omega_2, Omega_3
+    wrap_radius : float [m]  R = (D + d)/2
+    mu_eff : float  thick-rod capstan coefficient for the rod-post friction
+    winding_start, winding_end : float  turns about the post axis
+    code_start, code_end : str  over/under code of self-crossings seen from the axis
+    verdict : "hold", "slip" or "" (only for the free-end loading)
+    creep : float [m]  displacement of end 0 during the last half of the hold
+    positions : (n, n_nodes, 3) [m]
+    status, message : str; stats : dict
+    """
+
+    loading: str
+    t_high: float
+    t_low: float
+    times: np.ndarray
+    end_displacement: np.ndarray
+    s: np.ndarray
+    tension: np.ndarray
+    post_contact: np.ndarray
+    rod_contact: np.ndarray
+    s_nodes: np.ndarray
+    darboux: np.ndarray
+    wrap_radius: float
+    mu_eff: float
+    winding_start: float
+    winding_end: float
+    code_start: str
+    code_end: str
+    verdict: str
+    creep: float
+    positions: np.ndarray
+    status: str
+    message: str
+    stats: dict = field(default_factory=dict)
+
+    @property
+    def topology_preserved(self) -> bool:
+        """Same over/under code and winding within a quarter turn at start and end."""
+        return (
+            self.code_start == self.code_end and abs(self.winding_end - self.winding_start) < 0.25
+        )
+
+    @property
+    def curvature(self) -> np.ndarray:
+        """Total curvature kappa = (Omega_1^2 + Omega_2^2)^(1/2) [1/m]."""
+        return np.hypot(self.darboux[:, 0], self.darboux[:, 1])
+
+    def to_dict(self) -> dict:
+        """Plain-JSON dictionary of the profiles and the verdict."""
+        return {
+            "scene": "clove_hitch",
+            "loading": self.loading,
+            "t_high": self.t_high,
+            "t_low": self.t_low,
+            "verdict": self.verdict,
+            "creep": self.creep,
+            "status": self.status,
+            "message": self.message,
+            "stats": {k: float(v) for k, v in self.stats.items()},
+            "winding": [self.winding_start, self.winding_end],
+            "code": [self.code_start, self.code_end],
+            "s": self.s.tolist(),
+            "tension": self.tension.tolist(),
+            "rod_contact": self.rod_contact.astype(int).tolist(),
+            "post_contact": self.post_contact.astype(int).tolist(),
+            "s_nodes": self.s_nodes.tolist(),
+            "darboux": self.darboux.tolist(),
+        }
+
+
+def clove_hitch(
+    *,
+    loading: str = "symmetric",
+    t_high: float = 1.47,
+    t_low: float | None = None,
+    rod_diameter: float = 4e-3,
+    post_diameter: float = 30e-3,
+    rod_length: float = 0.374,
+    youngs_modulus: float = 1.26e6,
+    density: float = 1150.0,
+    mu_rod_post: float = 0.3,
+    mu_rod_rod: float = 0.3,
+    pretension: float | None = None,
+    settle_time: float = 0.5,
+    load_time: float = 0.5,
+    hold_time: float = 1.0,
+    n_nodes: int = 150,
+    dt: float = 2e-3,
+    slip_distance: float | None = None,
+    n_frames: int = 100,
+    options: rod.SolverOptions | None = None,
+    progress: bool = False,
+) -> CloveHitchResult:
+    r"""Tie a clove hitch on a post and load it.
+
+    Parameters
+    ----------
+    loading : {"symmetric", "asymmetric", "free"}
+    t_high : float [N]
+        Load on end 0 (and on both ends when symmetric).
+    t_low : float [N], optional
+        Load on the other end: ``t_high`` (symmetric), required (asymmetric), 0 (free).
+    rod_diameter, post_diameter, rod_length : float [m]
+    youngs_modulus : float [Pa]; density : float [kg/m^3]
+    mu_rod_post, mu_rod_rod : float
+        Rod-cylinder and rod-rod friction coefficients.
+    pretension : float [N], optional
+        Load on both ends while the hitch settles (default ``0.1 * t_high``).
+    settle_time, load_time, hold_time : float [s]
+        Settling under the pre-tension, ramp to the final loads, hold at the final loads.
+    n_nodes : int
+    dt : float [s]
+    slip_distance : float [m], optional
+        Free-end loading: slip if end 0 moves more than this during the last half of the
+        hold (default one rod diameter); the run stops early once end 0 has moved 0.3 L.
+    n_frames : int
+    options : knotmech.rod.SolverOptions, optional
+    progress : bool
+
+    Returns
+    -------
+    CloveHitchResult
+    """
+    if loading not in ("symmetric", "asymmetric", "free"):
+        raise InputError(f"loading must be 'symmetric', 'asymmetric' or 'free', got {loading!r}")
+    d = float(check_positive("rod_diameter", rod_diameter))
+    D = float(check_positive("post_diameter", post_diameter))
+    L = float(check_positive("rod_length", rod_length))
+    E = float(check_positive("youngs_modulus", youngs_modulus))
+    rho = float(check_positive("density", density))
+    th = float(check_positive("t_high", t_high))
+    mrc = float(check_nonnegative("mu_rod_post", mu_rod_post))
+    mrr = float(check_nonnegative("mu_rod_rod", mu_rod_rod))
+    if loading == "symmetric":
+        tl = th if t_low is None else float(check_positive("t_low", t_low))
+    elif loading == "asymmetric":
+        if t_low is None:
+            raise InputError("t_low is required for the asymmetric loading")
+        tl = float(check_nonnegative("t_low", t_low))
+    else:
+        if t_low not in (None, 0, 0.0):
+            raise InputError("t_low must be 0 (or omitted) for the free-end loading")
+        tl = 0.0
+    pre = 0.1 * th if pretension is None else float(check_positive("pretension", pretension))
+    for name, val in (("settle_time", settle_time), ("load_time", load_time)):
+        check_positive(name, val)
+    check_nonnegative("hold_time", hold_time)
+    R = 0.5 * (D + d)
+    wraps = 4 * np.pi * R * 1.15
+    tail = 0.5 * (L - wraps)
+    if tail < 4 * d:
+        raise InputError(
+            f"rod_length must exceed about 4 pi R + 8 d = {wraps + 8 * d:.3g} m, got {L:g}"
+        )
+    curve = clove_hitch_curve(
+        post_diameter=D, rod_diameter=d, tail_length=tail, n_nodes=int(n_nodes)
+    )
+    x0 = curve.nodes
+    N = len(x0)
+    r = rod.Rod(positions=x0, radius=0.5 * d, youngs_modulus=E, density=rho, natural="straight")
+    system = rod.RodSystem([r])
+    dir0 = x0[0] - x0[1]
+    dir0 /= np.linalg.norm(dir0)
+    dir1 = x0[-1] - x0[-2]
+    dir1 /= np.linalg.norm(dir1)
+    t1 = float(settle_time)
+    t2 = t1 + float(load_time)
+    t_end = t2 + float(hold_time)
+    loads = [
+        _RampedEndLoad(0, pre * dir0, 0.3 * t1),
+        _RampedEndLoad(N - 1, pre * dir1, 0.3 * t1),
+        _RampedEndLoad(0, (th - pre) * dir0, t2 - t1, delay=t1),
+        _RampedEndLoad(N - 1, (tl - pre) * dir1, t2 - t1, delay=t1),
+    ]
+    mass_per_length = rho * np.pi * d * d / 4
+    loads.append(rod.ViscousDamping(coefficient=2.0 * mass_per_length / (0.1 * t1)))
+    t_max = max(th, tl, pre)
+    K = 200.0 * t_max / (R * d)
+    post = Cylinder(point=(0.0, 0.0, 0.0), axis=(0.0, 0.0, 1.0), radius=0.5 * D)
+    post_contact = CylinderContact(
+        (post,),
+        stiffness=K,
+        sharpness=400.0 / d,
+        friction=AnchorFriction(mu_static=mrc, tangential_stiffness=K),
+        rod_radius=0.5 * d,
+    )
+    rr_contact = RodContact(
+        stiffness=20.0 * t_max / d,
+        sharpness=15.0 / (0.05 * d),
+        friction=SmoothFriction(mrr) if mrr > 0 else None,
+    )
+    slip = d if slip_distance is None else float(check_positive("slip_distance", slip_distance))
+    callback = None
+    if loading == "free":
+        x_start = x0[0].copy()
+        lim = 0.3 * L
+
+        def callback(state):
+            return float((state.q[system.node_dofs[0]] - x_start) @ dir0) > lim
+
+    base = options if options is not None else rod.SolverOptions(throw=False, rtol=1e-6)
+    opts = type(base)(**{**base.__dict__, "save_every": t_end / (int(n_frames) - 1)})
+    res = rod.simulate(
+        system,
+        t_end=t_end,
+        dt=float(check_positive("dt", dt)),
+        loads=loads,
+        interactions=[post_contact, rr_contact],
+        options=opts,
+        progress=progress,
+        callback=callback,
+    )
+    pos = np.asarray(res.positions)
+    times = np.asarray(res.times)
+    disp = (pos[:, 0, :] - x0[0]) @ dir0
+    last = pos[-1]
+    rad = np.hypot(last[:, 0], last[:, 1])
+    on_post = rad < R + 0.05 * d
+    ed = _edge_distances(last)
+    idx = np.arange(N - 1)
+    ed[np.abs(idx[:, None] - idx[None, :]) < 3] = np.inf
+    on_rod = ed.min(axis=1) < 1.05 * d
+    st = res.final_state
+    q = st.q
+    thetas = system.thetas(q)
+    tang = st.tangents
+    ref1 = st.d1
+    ref2 = np.cross(tang, ref1)
+    m1 = np.cos(thetas)[:, None] * ref1 + np.sin(thetas)[:, None] * ref2
+    s_nodes, omega = darboux_profile(system.positions(q), m1)
+    verdict = ""
+    creep = float("nan")
+    sel = times >= t2 + 0.5 * (t_end - t2)
+    if np.any(sel):
+        creep = float(disp[-1] - disp[sel][0])
+    if loading == "free":
+        stopped_early = times[-1] < t_end - 1e-9 and res.status == "success"
+        verdict = "slip" if stopped_early or not (creep <= slip) else "hold"
+    le = system.rest_length
+    s_mid = np.cumsum(le) - 0.5 * le
+    return CloveHitchResult(
+        loading=loading,
+        t_high=th,
+        t_low=tl,
+        times=times,
+        end_displacement=disp,
+        s=s_mid,
+        tension=np.asarray(res.tension[-1]),
+        post_contact=on_post,
+        rod_contact=on_rod,
+        s_nodes=s_nodes,
+        darboux=omega,
+        wrap_radius=R,
+        mu_eff=float(_mu_eff(mrc, D / d)),
+        winding_start=winding_number(x0),
+        winding_end=winding_number(last),
+        code_start=post_crossing_code(x0),
+        code_end=post_crossing_code(last),
+        verdict=verdict,
+        creep=creep,
+        positions=pos,
+        status=res.status,
+        message=res.message,
+        stats=dict(res.stats),
+    )
