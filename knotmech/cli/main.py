@@ -9,6 +9,7 @@ from __future__ import annotations
 import argparse
 import importlib
 import os
+import re
 import sys
 
 from knotmech.errors import KnotmechError
@@ -45,8 +46,28 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
     return parser
 
 
+def _join_negative_values(argv: list[str]) -> list[str]:
+    """Turn ``--opt -4mm`` into ``--opt=-4mm``.
+
+    argparse takes ``-4mm`` for an option; joining it lets the physical check say
+    "must be > 0" instead of "expected one argument".
+    """
+    out: list[str] = []
+    for token in argv:
+        if (
+            out
+            and out[-1].startswith("--")
+            and "=" not in out[-1]
+            and re.match(r"^-(\d|\.\d|inf|nan)", token, flags=re.IGNORECASE)
+        ):
+            out[-1] = f"{out[-1]}={token}"
+        else:
+            out.append(token)
+    return out
+
+
 def main(argv=None) -> int:
-    argv = list(sys.argv[1:] if argv is None else argv)
+    argv = _join_negative_values(list(sys.argv[1:] if argv is None else argv))
     # Importing every subcommand costs seconds (numba, scipy); import only the one asked for.
     only = argv[0] if argv and argv[0] in SUBCOMMANDS else None
     parser = build_parser(only)
