@@ -24,6 +24,9 @@ def _check_capstan(ns):
     assert ns["turns_thick"] == pytest.approx(4.9939, abs=1e-3)
     # 0.2623 measured on D/d = 7.5: 0.2623 * 8.5 / (7.5 - 0.2623**2) = 0.30003
     assert ns["mu_material"] == pytest.approx(0.3000, abs=5e-4)
+    # DER capstan, D/d = 1: surface friction decays at mu_eff = 0.1468, centreline friction at mu
+    assert ns["rate_surface"] == pytest.approx(0.1468, rel=0.05)
+    assert ns["rate_centre"] == pytest.approx(0.3, rel=0.05)
 
 
 def _check_coating(ns):
