@@ -203,8 +203,9 @@ def build_model(rec: Recording, effects: tuple = (), fixed: dict | None = None) 
             lo += [0.0]
             hi += [float(np.max(rec.x)) if np.max(rec.x) > 0 else span]
         if "static_friction" in effects:
+            dx = np.diff(np.unique(rec.x))
             names += ["dmu_static", "decay_length_m"]
-            lo += [0.0, 1e-4 * span]
+            lo += [0.0, 0.5 * float(np.median(dx)) if dx.size else 1e-4 * span]
             hi += [3.0, span]
     if exp == "pinch":
         if "adhesion" in effects:

@@ -181,17 +181,20 @@ def diagnose(
         accepted.append((name, ev, lr_gain(current, alt)))
         current, held_cur = alt, held_alt
     final = current
-    fin_mis = flexible_mismatch(
-        rec.x,
-        rec.y - final.mean,
-        final.mean,
-        final.noise,
-        starts,
-        rec.trial,
-        given_sigma=gs,
-        rng=rng,
-        decide_at=alpha,
-    )
+    if final is base:
+        fin_mis = base_mis
+    else:
+        fin_mis = flexible_mismatch(
+            rec.x,
+            rec.y - final.mean,
+            final.mean,
+            final.noise,
+            starts,
+            rec.trial,
+            given_sigma=gs,
+            rng=rng,
+            decide_at=alpha,
+        )
     remaining = fin_mis.p_value < alpha and bool(fin_mis.regions)
     names = [a[0] for a in accepted]
     if remaining:

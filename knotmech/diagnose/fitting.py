@@ -346,14 +346,14 @@ def _fit_nip(current, data, starts, *, given_sigma=None):
 
 
 def heldout_rms(fit: Fit, data: Data, trial: np.ndarray, *, n_folds=5) -> float:
-    """Held-out RMS [units of y]: contiguous blocks, assigned to folds in turn.
+    """Held-out RMS [units of y]: contiguous blocks (n/50 rows), assigned to folds in turn.
 
     Each fold's rows are left out, the model is refitted on the rest (weighted by
     the fitted noise sd, warm start; nip positions stay fixed) and predicts them.
     """
     model = fit.model
     n = data.y.size
-    block = max(4, n // (4 * n_folds))
+    block = max(3, n // 50)
     fold = (np.arange(n) // block) % n_folds
     sd = fit.noise.sd(fit.mean)
     mu_idx = model.names.index("mu")
