@@ -23,6 +23,7 @@ __all__ = [
     "tension_decay_plot",
     "capstan_ratio_plot",
     "phase_diagram_plot",
+    "force_curve_plot",
 ]
 
 
@@ -64,6 +65,7 @@ def tension_decay_plot(
     ax=None,
     logy: bool = True,
     title: str | None = None,
+    regions: Sequence | None = None,
 ):
     r"""Tension along a rod on a post: capstan theory against profiles.
 
@@ -88,6 +90,9 @@ def tension_decay_plot(
     logy : bool
         Logarithmic tension axis (exponentials are straight lines).
     title : str, optional
+    regions : sequence of (start, end), optional
+        Intervals of s/R to shade, e.g. the non-exponential nip regions located
+        on a clove hitch's profile.
 
     Returns
     -------
@@ -118,6 +123,13 @@ def tension_decay_plot(
         if Dt in profiles:
             x, y = _as_curve(f"profiles[{Dt!r}]", profiles[Dt])
             ax.plot(x, y, "-", color=colour, lw=1.5, label=rf"profile, $D/d$={Dt:g}")
+    for i, region in enumerate(regions or ()):
+        try:
+            a, b = (float(v) for v in region)
+        except (TypeError, ValueError):
+            raise InputError(f"regions[{i}] must be a pair (start, end), got {region!r}") from None
+        label = "non-exponential region" if i == 0 else None
+        ax.axvspan(a, b, color="C1", alpha=0.2, lw=0, label=label)
     if logy:
         ax.set_yscale("log")
     ax.set_xlabel(r"$s/R$  ($R=(D+d)/2$)")
@@ -267,5 +279,56 @@ def phase_diagram_plot(
             bbox={"fc": "white", "ec": "0.7", "alpha": 0.9},
         )
     ax.legend(fontsize=7, loc="best", framealpha=0.9)
+    ax.grid(True, alpha=0.3)
+    return ax
+
+
+def force_curve_plot(
+    curves: Mapping,
+    *,
+    markers: Mapping | None = None,
+    ax=None,
+    xlabel: str = "end-to-end length [m]",
+    ylabel: str = r"$F r^2/EI$",
+    title: str | None = None,
+    logy: bool = False,
+):
+    """Force (or ratio) against displacement for several cases, with marked points.
+
+    For the overhand-knot pulls of the coated-rod paper (Fig. 10: regularised pull
+    force against end-to-end length, one curve per mu, inversion points marked) and
+    the clove hitch against the two-loops capstan (clove-hitch paper, Fig. 1d:
+    T_high/T_low against displacement).
+
+    Parameters
+    ----------
+    curves : mapping
+        ``{label: (x, y)}`` drawn as lines in order; a label containing "theory"
+        or "closed form" is dashed.
+    markers : mapping, optional
+        ``{label: (x_points, y_points)}`` drawn as open markers (e.g. inversion points).
+    ax, xlabel, ylabel, title, logy : figure decoration
+
+    Returns
+    -------
+    matplotlib Axes
+    """
+    if not isinstance(curves, Mapping) or not curves:
+        raise InputError("curves must be a non-empty mapping label -> (x, y)")
+    ax = new_axes(ax)
+    for colour, (label, curve) in zip(_colours(len(curves)), curves.items(), strict=False):
+        x, y = _as_curve(f"curves[{label!r}]", curve)
+        dashed = "theory" in str(label).lower() or "closed form" in str(label).lower()
+        ax.plot(x, y, "--" if dashed else "-", color=colour, label=str(label))
+    for marker, (label, pts) in zip("ovs^D<>", (markers or {}).items(), strict=False):
+        x, y = _as_curve(f"markers[{label!r}]", (np.atleast_1d(pts[0]), np.atleast_1d(pts[1])))
+        ax.plot(x, y, marker, ls="none", mfc="none", color="k", ms=7, label=str(label))
+    if logy:
+        ax.set_yscale("log")
+    ax.set_xlabel(xlabel)
+    ax.set_ylabel(ylabel)
+    if title:
+        ax.set_title(title)
+    ax.legend(fontsize=7, loc="best")
     ax.grid(True, alpha=0.3)
     return ax

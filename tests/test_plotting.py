@@ -5,7 +5,12 @@ import pytest
 
 from knotmech.analytic.capstan import mu_eff
 from knotmech.errors import InputError
-from knotmech.plotting import capstan_ratio_plot, phase_diagram_plot, tension_decay_plot
+from knotmech.plotting import (
+    capstan_ratio_plot,
+    force_curve_plot,
+    phase_diagram_plot,
+    tension_decay_plot,
+)
 
 
 def test_tension_decay_curves_are_the_capstan_exponentials(tmp_path):
@@ -58,3 +63,21 @@ def test_bad_inputs():
         tension_decay_plot(np.linspace(0, 1, 3), mu=0.3, D_over_d=(0.0,))
     with pytest.raises(InputError, match="pair"):
         tension_decay_plot(np.linspace(0, 1, 3), mu=0.3, profiles={2.0: [1, 2, 3]})
+
+
+def test_regions_are_shaded_and_force_curves_marked():
+    s = np.linspace(0, 10, 20)
+    ax = tension_decay_plot(s, mu=0.3, regions=[(0.5, 1.0), (6.0, 7.0)])
+    spans = [p for p in ax.patches]
+    assert len(spans) == 2
+    with pytest.raises(InputError, match="regions"):
+        tension_decay_plot(s, mu=0.3, regions=[(1.0,)])
+    x = np.linspace(0.2, 0.3, 10)
+    ax = force_curve_plot(
+        {"mu = 0.2": (x, x**2), "theory": (x, x)}, markers={"inversion": ([0.25], [0.0625])}
+    )
+    solid, dashed, mark = ax.get_lines()
+    assert solid.get_linestyle() == "-" and dashed.get_linestyle() == "--"
+    assert mark.get_xdata()[0] == 0.25
+    with pytest.raises(InputError, match="non-empty"):
+        force_curve_plot({})
