@@ -14,12 +14,13 @@ computes from them
 
 Reference values: unknot :math:`\Delta = 1` (det 1); trefoil :math:`1 - t + t^2` (det 3);
 figure-eight :math:`-1 + 3t - t^2` (det 5); the :math:`(2, m)` torus knot (m odd)
-:math:`\sum_{i=0}^{m-1} (-t)^i` (det m). An overhand knot with n braid turns closes
-to the :math:`(2, 2n+1)` torus knot: trefoil :math:`3_1`, cinquefoil :math:`5_1`,
-:math:`7_1`, :math:`9_1` (Jawed, Dieleman, Audoly & Reis, PRL 115, 118302 (2015),
-who label the knots of their experiments by these torus knots). The generators in
-:mod:`knotmech.scenes.curves` build the braid with :math:`2n+1` half-twists, and
-the tests check the polynomial of the closure.
+:math:`\sum_{i=0}^{m-1} (-t)^i` (det m). An overhand knot with n braid turns is a
+two-strand braid with :math:`2n+1` half-twists closed by the loop, so it closes to the
+:math:`(2, 2n+1)` torus knot: trefoil :math:`3_1`, cinquefoil :math:`5_1`, :math:`7_1`,
+:math:`9_1`, of crossing number :math:`2n+1` (the topological parameter of Jawed,
+Dieleman, Audoly & Reis, PRL 115, 118302 (2015)). This is checked in the tests on the
+generators of :mod:`knotmech.scenes.curves` and on the start shapes of the
+implicit-contact-model code (n1..n4 give 3_1, 5_1, 7_1, 9_1).
 
 For a hitch around a post (not a knot by itself) the module gives the winding number
 of the rod about the post axis and the over/under sequence of the rod's self-crossings
@@ -39,6 +40,7 @@ from knotmech.errors import InputError, check_finite, check_positive
 
 __all__ = [
     "KnotInvariant",
+    "Crossings",
     "close_curve",
     "projection_crossings",
     "alexander_polynomial",
@@ -122,14 +124,16 @@ def _random_rotation(rng: np.random.Generator) -> np.ndarray:
 
 
 @dataclass(frozen=True)
-class _Crossings:
+class Crossings:
+    """Crossings of a projected closed polygon (see :func:`projection_crossings`)."""
+
     over_pos: np.ndarray  # position along the closed polygon (segment index + fraction)
     under_pos: np.ndarray
     sign: np.ndarray  # +1 / -1
     degenerate: bool
 
 
-def projection_crossings(closed_points, direction=(0.0, 0.0, 1.0)) -> _Crossings:
+def projection_crossings(closed_points, direction=(0.0, 0.0, 1.0)) -> Crossings:
     r"""Crossings of a closed polygon projected along ``direction``.
 
     The polygon's segments are intersected pairwise in the plane perpendicular to
@@ -146,7 +150,7 @@ def projection_crossings(closed_points, direction=(0.0, 0.0, 1.0)) -> _Crossings
 
     Returns
     -------
-    _Crossings
+    Crossings
         ``over_pos``, ``under_pos`` (positions along the polygon, segment index plus
         fraction), ``sign``, and ``degenerate`` (True if a crossing fell within
         1e-9 of a vertex or two strands nearly meet in 3-D, so another direction
@@ -201,10 +205,10 @@ def projection_crossings(closed_points, direction=(0.0, 0.0, 1.0)) -> _Crossings
     t_over = np.where(i_over[:, None], t3[i], t3[j])
     t_under = np.where(i_over[:, None], t3[j], t3[i])
     sign = np.sign(t_over[:, 0] * t_under[:, 1] - t_over[:, 1] * t_under[:, 0]).astype(int)
-    return _Crossings(over_pos, under_pos, sign, degenerate)
+    return Crossings(over_pos, under_pos, sign, degenerate)
 
 
-def _alexander_matrix_rows(cr: _Crossings):
+def _alexander_matrix_rows(cr: Crossings):
     """Arc indices (over, incoming under, outgoing under) and signs of each crossing."""
     n = len(cr.under_pos)
     order = np.argsort(cr.under_pos)
@@ -218,7 +222,7 @@ def _alexander_matrix_rows(cr: _Crossings):
     return over, incoming, outgoing
 
 
-def _matrix(cr: _Crossings, t: complex) -> np.ndarray:
+def _matrix(cr: Crossings, t: complex) -> np.ndarray:
     """Alexander matrix at t: rows (1-t, t, -1) or (1-t, -1, t) at (over, in, out)."""
     n = len(cr.under_pos)
     over, inc, out = _alexander_matrix_rows(cr)
@@ -242,7 +246,7 @@ def _normalise(coeffs: np.ndarray) -> tuple[int, ...]:
     return tuple(int(v) for v in c)
 
 
-def _poly_from_crossings(cr: _Crossings) -> tuple[int, ...]:
+def _poly_from_crossings(cr: Crossings) -> tuple[int, ...]:
     n = len(cr.under_pos)
     if n <= 1:
         return (1,)
