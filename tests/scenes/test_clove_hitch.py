@@ -53,3 +53,48 @@ def test_bad_input():
         clove_hitch(loading="free", t_low=0.5)
     with pytest.raises(InputError):
         clove_hitch(rod_length=0.1)
+
+
+# ---------------------------------------------------------------------------
+# slow: tie and load (clove-hitch paper, (d, D) = (4, 30) mm, mu = 0.3, T = 1.47 N)
+# ---------------------------------------------------------------------------
+
+QUICK = dict(settle_time=0.2, load_time=0.2, hold_time=0.2, n_nodes=120, dt=2e-3, n_frames=11)
+
+
+@pytest.fixture(scope="module")
+def symmetric():
+    return clove_hitch(loading="symmetric", t_high=1.47, **QUICK)
+
+
+@pytest.mark.slow
+def test_symmetric_hitch_topology_and_loads(symmetric):
+    r = symmetric
+    assert r.status == "success"
+    assert r.code_start == r.code_end == "UOOU" and r.topology_preserved
+    # both end edges carry the applied load
+    assert r.tension[0] == pytest.approx(1.47, rel=0.02)
+    assert r.tension[-1] == pytest.approx(1.47, rel=0.02)
+    assert r.post_contact.any() and r.rod_contact.any()
+
+
+@pytest.mark.slow
+def test_capstan_decay_at_mu_eff(symmetric):
+    """Clove-hitch paper eq. (3): T(s) ~ exp(-mu_eff s/R) where the rod lies on the post."""
+    r = symmetric
+    on_post = r.post_contact[:-1] & r.post_contact[1:]
+    half = r.s < 0.5 * r.s[-1]
+    sel = on_post & ~r.rod_contact & half & (r.tension < 0.95 * 1.47) & (r.tension > 0.3)
+    assert sel.sum() >= 10
+    slope = np.polyfit(r.s[sel] / r.wrap_radius, np.log(r.tension[sel]), 1)[0]
+    assert -slope == pytest.approx(r.mu_eff, rel=0.10)
+
+
+@pytest.mark.slow
+def test_darboux_on_the_post(symmetric):
+    """Clove-hitch paper, Fig. 2d: kappa R ~ 1 on the post; the twist is much smaller."""
+    r = symmetric
+    node_on_post = r.post_contact[1:-1]
+    kr = r.curvature[node_on_post] * r.wrap_radius
+    assert np.median(kr) == pytest.approx(1.0, abs=0.05)
+    assert np.mean(np.abs(r.darboux[:, 2])) < 0.3 * np.mean(r.curvature)

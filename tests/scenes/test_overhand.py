@@ -68,3 +68,54 @@ def test_bad_input():
         overhand(1, 0.3, params="nope")
     with pytest.raises(InputError):
         overhand(1, 0.3, pull_speed=0.0)
+
+
+# ---------------------------------------------------------------------------
+# slow physics checks (about 1-2 CPU minutes per run)
+# ---------------------------------------------------------------------------
+
+QUICK_IMC = dict(n_nodes=151, pull_speed=0.03, dt=5e-3, wait_time=0.5, pull_time=8.0)
+
+
+@pytest.fixture(scope="module")
+def imc_n2_runs():
+    """IMC knot n = 2 pulled 0.48 m at 30 mm/s per end, mu = 0.1 and 0.5 (151 nodes)."""
+    return {mu: overhand(2, mu, n_frames=171, **QUICK_IMC) for mu in (0.1, 0.5)}
+
+
+def _binned(r, edges):
+    """Mean pull force in bins of the end-to-end shortening e = L - D."""
+    e = r.end_to_end_shortening
+    out = []
+    for lo, hi in zip(edges[:-1], edges[1:], strict=True):
+        sel = (e >= lo) & (e < hi)
+        out.append(np.mean(r.pull_force[sel]))
+    return np.array(out)
+
+
+@pytest.mark.slow
+def test_no_pass_through_when_pulled(imc_n2_runs):
+    for r in imc_n2_runs.values():
+        assert r.status == "success"
+        assert r.knot_start == r.knot_end == "5_1"
+
+
+@pytest.mark.slow
+def test_higher_mu_higher_force(imc_n2_runs):
+    """Coated-rod paper, sec. 4: the pull force grows with mu at every end-to-end length."""
+    edges = np.linspace(0.20, 0.50, 7)
+    f_low = _binned(imc_n2_runs[0.1], edges)
+    f_high = _binned(imc_n2_runs[0.5], edges)
+    assert np.all(f_high > 1.3 * f_low)
+
+
+@pytest.mark.slow
+def test_force_follows_jawed_law(imc_n2_runs):
+    """Long-braid regime: F(e) within 25 % of Jawed et al. 2015 (knotmech.analytic.knots)."""
+    knots = pytest.importorskip("knotmech.analytic.knots")
+    r = imc_n2_runs[0.1]
+    edges = np.linspace(0.20, 0.45, 6)
+    f_sim = _binned(r, edges)
+    e_mid = 0.5 * (edges[1:] + edges[:-1])
+    f_th = knots.overhand_pull_force(e_mid, 2, 0.1, r.setup.rod_radius, r.setup.bending_stiffness)
+    assert np.all(np.abs(f_sim / f_th - 1) < 0.25)
