@@ -48,26 +48,29 @@ class ElasticWorkspace:
         _fr.material_frames(q, s.edge_dof0, self.d1, self.d2, self.m1, self.m2)
 
     def grad_hess(self, q) -> None:
-        """Gradient of the elastic energy into ``grad``; local Hessians into hess_s, hess8.
-
-        Call :meth:`frames` first.
+        """Gradient of the elastic energy into ``grad``; local Hessians into hess_s, hess8;
+        the (stretch, bend, twist) energies into ``energy_parts``. Call :meth:`frames` first.
         """
         s = self.system
         self.grad[:] = 0.0
-        _st.stretch_grad_hess(q, s.edge_dof0, s.rest_length, s.ea, self.grad, self.hess_s)
-        _bend.bend_grad_hess(
+        e_s = _st.stretch_grad_hess(q, s.edge_dof0, s.rest_length, s.ea, self.grad, self.hess_s)
+        e_b = _bend.bend_grad_hess(
             q, s.edge_dof0, s.stencil_edge, self.m1, self.m2, s.kappa_bar, s.ei, s.voronoi,
             self.grad, self.hess8,
         )  # fmt: skip
-        _tw.twist_grad_hess(
+        e_t = _tw.twist_grad_hess(
             q, s.edge_dof0, s.stencil_edge, self.ref_twist, s.twist_bar, s.gj, s.voronoi,
             self.grad, self.hess8,
         )  # fmt: skip
+        self.energy_parts = (e_s, e_b, e_t)
 
-    def band_add(self, ab) -> None:
-        """Add the elastic Hessian into band storage ``ab`` (31, n_dof), dgbsv layout."""
+    def band_add(self, ab, full: bool = True) -> None:
+        """Add the elastic Hessian into band storage ``ab`` (31, n_dof), dgbsv layout
+        (only its upper triangle unless ``full``)."""
         s = self.system
         _asm.band_add_hessians(s.edge_dof0, s.stencil_edge, self.hess_s, self.hess8, ab)
+        if full:
+            _asm.band_mirror(ab)
 
     def coo(self):
         """The elastic Hessian as COO triplets (rows, cols, vals)."""

@@ -128,7 +128,8 @@ class Stepper:
 
     # ------------------------------------------------------------ evaluation
     def evaluate(self, q, st: State, dt: float, t_new: float, jacobian: bool = True) -> float:
-        """Residual f(q) into ``self.f`` (and the Jacobian, if asked); return the force scale."""
+        """Residual f(q) into ``self.f`` (and the Jacobian, if asked); return the scales
+        (force scale, torque scale, max |f| on free positions, on free angles)."""
         s, ws = self.system, self.ws
         self.n_evals += 1
         ws.frames(q, st.tangents, st.d1, st.ref_twist)
@@ -141,28 +142,23 @@ class Stepper:
         self.trip.clear()
         for it in self.interactions:
             it.assemble(s, q, st.q, dt, fext, self.trip)
-        m = s.mass / (dt * dt)
-        dev = q - st.q - dt * st.v
-        inertia = m * dev
-        np.add(inertia, ws.grad, out=self.f)
-        self.f -= fext
+        pot, sx, sth, rx, rt = _asm.residual_and_scales(
+            s.mass, dt, q, st.q, st.v, ws.grad, fext, s.is_theta, self.free, self.f
+        )
         # incremental potential (the merit of the line search): its gradient is f for
         # conservative loads and interactions
-        phi = 0.5 * float(np.dot(inertia, dev)) + ws.energy(q)
+        phi = pot + sum(ws.energy_parts)
         for load in self.loads:
-            pot = getattr(load, "step_potential", None)
-            phi += pot(s, q, st.q, dt) if pot is not None else load.energy(s, q, t_new)
+            pot_fn = getattr(load, "step_potential", None)
+            phi += pot_fn(s, q, st.q, dt) if pot_fn is not None else load.energy(s, q, t_new)
         for it in self.interactions:
             phi += it.energy(s, q)
         self.phi = phi
         if jacobian:
-            np.subtract(m, jd, out=self.diag)
+            np.subtract(s.mass / (dt * dt), jd, out=self.diag)
             self._assemble()
-        ax = np.abs(inertia)
-        ag = np.abs(ws.grad)
-        af = np.abs(fext)
         tens = self.ea_max * float(np.max(np.abs(ws.lengths / s.rest_length - 1.0)))
-        return ax, ag, af, tens
+        return max(sx, tens), sth, rx, rt
 
     def _use_band(self) -> bool:
         if self.opt.linear_solver == "banded":
@@ -175,7 +171,7 @@ class Stepper:
         if self._use_band():
             ab = self.ab
             ab[:] = 0.0
-            self.ws.band_add(ab)
+            self.ws.band_add(ab, full=False)  # upper triangle: enough for Cholesky
             _asm.band_add_diagonal(self.diag, ab)
             _asm.band_constrain(self.cdofs, ab)
             self._mode = "band"
@@ -196,8 +192,9 @@ class Stepper:
             b = rhs.copy()
             b[self.cdofs] = 0.0
             _, x, info = lapack.dpbsv(self.ab[_B : 2 * _B + 1], b, lower=0, overwrite_b=0)
-            if info != 0:
-                _, _, x, info = lapack.dgbsv(_B, _B, self.ab, b, overwrite_ab=1, overwrite_b=0)
+            if info != 0:  # not positive definite: LU with pivoting on the full matrix
+                _asm.band_mirror(self.ab)
+                _, _, x, info = lapack.dgbsv(_B, _B, self.ab, b, overwrite_ab=0, overwrite_b=1)
                 if info != 0:
                     raise _StepFailed("singular Jacobian")
             return x
@@ -209,13 +206,8 @@ class Stepper:
         return x
 
     def _converged(self, scales) -> tuple[bool, float]:
-        ax, ag, af, tens = scales
-        f = np.abs(self.f)
-        sx = max(float(np.max(np.maximum(np.maximum(ax, ag), af)[self.fx], initial=0.0)), tens)
-        st_ = float(np.max(np.maximum(np.maximum(ax, ag), af)[self.ft], initial=0.0))
+        sx, st_, rx, rt = scales
         st_ = max(st_, sx * self.radius_scale)
-        rx = float(np.max(f[self.fx], initial=0.0))
-        rt = float(np.max(f[self.ft], initial=0.0))
         tx = self.opt.rtol * sx + self.floor_x
         tt = self.opt.rtol * st_ + self.floor_t
         return rx <= tx and rt <= tt, max(rx / tx, rt / tt)

@@ -44,25 +44,56 @@ def stencil_local(h8, h11):
             h11[a, b] = v
 
 
-@njit(cache=True)
+# P as two (index, sign) pairs per stencil dof (sign 0: unused), for the fast product below
+_P_IDX1 = np.array([0, 1, 2, 3, 0, 1, 2, 7, 4, 5, 6], dtype=np.int64)
+_P_SGN1 = np.array([-1.0, -1.0, -1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0, 1.0])
+_P_IDX2 = np.array([0, 0, 0, 0, 4, 5, 6, 0, 0, 0, 0], dtype=np.int64)
+_P_SGN2 = np.array([0.0, 0.0, 0.0, 0.0, -1.0, -1.0, -1.0, 0.0, 0.0, 0.0, 0.0])
+
+
+@njit(cache=True, fastmath=True)
+def _stencil_upper(h8, t, h11, i1, s1, i2, s2):
+    """Upper triangle (a <= b) of H11 = P^T H8 P through T = H8 P (8 x 11), branch-free."""
+    for b in range(11):
+        for y in range(8):
+            t[y, b] = s1[b] * h8[y, i1[b]] + s2[b] * h8[y, i2[b]]
+    for b in range(11):
+        for a in range(b + 1):
+            h11[a, b] = s1[a] * t[i1[a], b] + s2[a] * t[i2[a], b]
+
+
+@njit(cache=True, fastmath=True)
 def band_add_hessians(edge_dof0, stencil_edge, hess_s, hess8, ab):
     """Add the stretching (6x6 per edge) and bending+twisting (8x8 edge-space per stencil)
-    Hessians into the band matrix ``ab`` ((31, n_dof), dgbsv layout, kl = ku = 10)."""
+    Hessians into the UPPER triangle of the band matrix ``ab`` ((31, n_dof), dgbsv layout,
+    kl = ku = 10); the matrix is symmetric, see :func:`band_mirror` for the lower part."""
     off = 2 * BAND
     for k in range(edge_dof0.shape[0]):
         d = edge_dof0[k]
-        for a in range(6):
-            ga = d + a + (a >= 3)
-            for b in range(6):
-                gb = d + b + (b >= 3)
+        for b in range(6):
+            gb = d + b + (b >= 3)
+            for a in range(b + 1):
+                ga = d + a + (a >= 3)
                 ab[off + ga - gb, gb] += hess_s[k, a, b]
     h11 = np.empty((11, 11))
+    t = np.empty((8, 11))
+    i1, s1, i2, s2 = _P_IDX1, _P_SGN1, _P_IDX2, _P_SGN2
     for s in range(stencil_edge.shape[0]):
         d = edge_dof0[stencil_edge[s] - 1]
-        stencil_local(hess8[s], h11)
+        _stencil_upper(hess8[s], t, h11, i1, s1, i2, s2)
         for b in range(11):
-            for a in range(11):
+            for a in range(b + 1):
                 ab[off + a - b, d + b] += h11[a, b]
+
+
+@njit(cache=True)
+def band_mirror(ab):
+    """Copy the upper triangle of a symmetric band matrix into its lower triangle."""
+    off = 2 * BAND
+    n = ab.shape[1]
+    for j in range(n):
+        for i in range(j + 1, min(n, j + BAND + 1)):
+            ab[off + i - j, j] = ab[off + j - i, i]
 
 
 @njit(cache=True)
@@ -91,7 +122,7 @@ def coo_hessians(edge_dof0, stencil_edge, hess_s, hess8, rows, cols, vals):
 
 @njit(cache=True)
 def band_to_dense(ab, n):
-    """Dense copy of a band matrix (tests only)."""
+    """Dense copy of a band matrix (tests only; call band_mirror first)."""
     off = 2 * BAND
     out = np.zeros((n, n))
     for j in range(n):
@@ -118,3 +149,32 @@ def band_constrain(dofs, ab):
             ab[off + d - j, j] = 0.0  # row d
             ab[off + j - d, d] = 0.0  # column d
         ab[off, d] = 1.0
+
+
+@njit(cache=True, fastmath=True)
+def residual_and_scales(mass, dt, q, q_old, v_old, grad, fext, is_theta, free, f):
+    """Implicit-Euler residual f = M/dt^2 (q - q_old - dt v_old) + grad - fext (coated-rod
+    paper eq. (7)) and its size: returns (inertial potential 1/2 |q - q_pred|_M^2 / dt^2,
+    force scale on free positions, torque scale on free angles, max |f| on free positions,
+    max |f| on free angles); scales are max(|inertia|, |grad|, |fext|)."""
+    c = 1.0 / (dt * dt)
+    pot = 0.0
+    sx = 0.0
+    st = 0.0
+    rx = 0.0
+    rt = 0.0
+    for i in range(q.shape[0]):
+        dev = q[i] - q_old[i] - dt * v_old[i]
+        inert = mass[i] * c * dev
+        pot += 0.5 * inert * dev
+        fi = inert + grad[i] - fext[i]
+        f[i] = fi
+        if free[i]:
+            sc = max(abs(inert), abs(grad[i]), abs(fext[i]))
+            if is_theta[i]:
+                st = max(st, sc)
+                rt = max(rt, abs(fi))
+            else:
+                sx = max(sx, sc)
+                rx = max(rx, abs(fi))
+    return pot, sx, st, rx, rt

@@ -18,19 +18,19 @@ import numpy as np
 from numba import njit
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, fastmath=True, inline="always")
 def _cross3(a, b, out):
     out[0] = a[1] * b[2] - a[2] * b[1]
     out[1] = a[2] * b[0] - a[0] * b[2]
     out[2] = a[0] * b[1] - a[1] * b[0]
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, fastmath=True, inline="always")
 def _dot3(a, b):
     return a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 
 
-@njit(cache=True)
+@njit(cache=True, fastmath=True)
 def edge_geometry(q, edge_dof0, e_idx, f_idx, ev, fv, te, tf, kb):
     """Fill edge vectors, tangents and curvature binormal of a stencil; return (|e|, |f|, chi).
 
@@ -53,9 +53,10 @@ def edge_geometry(q, edge_dof0, e_idx, f_idx, ev, fv, te, tf, kb):
     return ne, nf, chi
 
 
-@njit(cache=True)
+@njit(cache=True, fastmath=True)
 def bend_grad_hess(q, edge_dof0, stencil_edge, m1, m2, kappa_bar, ei, voronoi, grad, hess8):
-    """Add dE_b/dq to ``grad``; WRITE the 8x8 edge-space Hessian of each stencil in ``hess8``.
+    """Add dE_b/dq to ``grad``; WRITE the 8x8 edge-space Hessian of each stencil in ``hess8``;
+    return the bending energy E_b [J].
 
     ``ei`` (n_stencils,) bending stiffness EI [N m^2], ``voronoi`` (n_stencils,) l_i [m],
     ``kappa_bar`` (n_stencils, 2) rest material curvatures. E_b = EI/(2 l) |kappa - kbar|^2,
@@ -74,8 +75,13 @@ def bend_grad_hess(q, edge_dof0, stencil_edge, m1, m2, kappa_bar, ei, voronoi, g
     d1t = np.empty(3)
     d2t = np.empty(3)
     tmp = np.empty(3)
+    tfc_d2 = np.empty(3)
+    tec_d2 = np.empty(3)
+    tfc_d1 = np.empty(3)
+    tec_d1 = np.empty(3)
     g = np.empty((2, 8))
     h = np.empty((2, 8, 8))
+    energy = 0.0
     for s in range(stencil_edge.shape[0]):
         f = stencil_edge[s]
         e = f - 1
@@ -94,16 +100,14 @@ def bend_grad_hess(q, edge_dof0, stencil_edge, m1, m2, kappa_bar, ei, voronoi, g
         kb_m1f = _dot3(kb, m1f)
         kb_m2e = _dot3(kb, m2e)
         kb_m2f = _dot3(kb, m2f)
-        h[:, :, :] = 0.0
+        for a in range(2):
+            h[a, 3, 7] = 0.0
+            h[a, 7, 3] = 0.0
         # ---- kappa1: gradient
-        _cross3(tf, d2t, tmp)  # t^f x mt2
-        tfc_d2 = tmp.copy()
-        _cross3(te, d2t, tmp)  # t^e x mt2
-        tec_d2 = tmp.copy()
-        _cross3(tf, d1t, tmp)
-        tfc_d1 = tmp.copy()
-        _cross3(te, d1t, tmp)
-        tec_d1 = tmp.copy()
+        _cross3(tf, d2t, tfc_d2)  # t^f x mt2
+        _cross3(te, d2t, tec_d2)  # t^e x mt2
+        _cross3(tf, d1t, tfc_d1)
+        _cross3(te, d1t, tec_d1)
         for j in range(3):
             g[0, j] = (-kap1 * tt[j] + tfc_d2[j]) / ne
             g[0, 4 + j] = (-kap1 * tt[j] - tec_d2[j]) / nf
@@ -208,6 +212,7 @@ def bend_grad_hess(q, edge_dof0, stencil_edge, m1, m2, kappa_bar, ei, voronoi, g
         k = ei[s] / voronoi[s]
         r1 = kap1 - kappa_bar[s, 0]
         r2 = kap2 - kappa_bar[s, 1]
+        energy += 0.5 * k * (r1 * r1 + r2 * r2)
         for i in range(8):
             gi = k * (r1 * g[0, i] + r2 * g[1, i])
             for j in range(8):
@@ -215,9 +220,10 @@ def bend_grad_hess(q, edge_dof0, stencil_edge, m1, m2, kappa_bar, ei, voronoi, g
                     g[0, i] * g[0, j] + g[1, i] * g[1, j] + r1 * h[0, i, j] + r2 * h[1, i, j]
                 )
             _add_edge_grad(grad, edge_dof0[e], i, gi)
+    return energy
 
 
-@njit(cache=True, inline="always")
+@njit(cache=True, fastmath=True, inline="always")
 def _add_edge_grad(grad, d0, i, gi):
     """Scatter an edge-space gradient entry i of a stencil whose first dof is d0.
 

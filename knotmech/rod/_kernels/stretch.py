@@ -36,20 +36,23 @@ def stretch_tension(q, edge_dof0, rest_length, ea, tension):
 
 @njit(cache=True)
 def stretch_grad_hess(q, edge_dof0, rest_length, ea, grad, hess):
-    """Add dE_s/dq to ``grad`` (n_dof,); write the 6x6 Hessian of each edge in ``hess``.
+    """Add dE_s/dq to ``grad`` (n_dof,); write the 6x6 Hessian of each edge in ``hess``;
+    return the stretching energy E_s [J].
 
     ``hess[k]`` is ordered (x_a, x_b) for the edge's two nodes; d2E/dxa2 = d2E/dxb2 =
     -d2E/dxa dxb = d2E/de2.
     """
+    e = np.empty(3)
+    energy = 0.0
     for k in range(edge_dof0.shape[0]):
         d = edge_dof0[k]
-        e = np.empty(3)
         for j in range(3):
             e[j] = q[d + 4 + j] - q[d + j]
         n = np.sqrt(e[0] * e[0] + e[1] * e[1] + e[2] * e[2])
         lb = rest_length[k]
         eps = n / lb - 1.0
         a = ea[k]
+        energy += 0.5 * a * eps * eps * lb
         for j in range(3):
             g = a * eps * e[j] / n
             grad[d + j] -= g
@@ -67,3 +70,4 @@ def stretch_grad_hess(q, edge_dof0, rest_length, ea, grad, hess):
                 hess[k, i + 3, j + 3] = h
                 hess[k, i, j + 3] = -h
                 hess[k, i + 3, j] = -h
+    return energy

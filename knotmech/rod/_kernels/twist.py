@@ -16,9 +16,10 @@ from numba import njit
 from .bend import _add_edge_grad, edge_geometry
 
 
-@njit(cache=True)
+@njit(cache=True, fastmath=True)
 def twist_grad_hess(q, edge_dof0, stencil_edge, ref_twist, twist_bar, gj, voronoi, grad, hess8):
-    """Add dE_t/dq to ``grad`` and the 8x8 edge-space Hessian of each stencil to ``hess8``.
+    """Add dE_t/dq to ``grad`` and the 8x8 edge-space Hessian of each stencil to ``hess8``;
+    return the twisting energy E_t [J].
 
     ``gj`` (n_stencils,) twisting stiffness GJ [N m^2], ``twist_bar`` rest twist [rad].
     d2E/dy2 = GJ/l (g g^T + (m - mbar) H), g = dm/dy, H = d2m/dy2.
@@ -31,6 +32,7 @@ def twist_grad_hess(q, edge_dof0, stencil_edge, ref_twist, twist_bar, gj, vorono
     tt = np.empty(3)
     g = np.empty(8)
     h = np.zeros((8, 8))
+    energy = 0.0
     for s in range(stencil_edge.shape[0]):
         f = stencil_edge[s]
         e = f - 1
@@ -63,7 +65,9 @@ def twist_grad_hess(q, edge_dof0, stencil_edge, ref_twist, twist_bar, gj, vorono
                 h[4 + j, i] = h[i, 4 + j]
         k = gj[s] / voronoi[s]
         r = m - twist_bar[s]
+        energy += 0.5 * k * r * r
         for i in range(8):
             _add_edge_grad(grad, d0, i, k * r * g[i])
             for j in range(8):
                 hess8[s, i, j] += k * (g[i] * g[j] + r * h[i, j])
+    return energy
