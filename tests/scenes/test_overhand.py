@@ -106,16 +106,22 @@ def test_higher_mu_higher_force(imc_n2_runs):
     edges = np.linspace(0.20, 0.50, 7)
     f_low = _binned(imc_n2_runs[0.1], edges)
     f_high = _binned(imc_n2_runs[0.5], edges)
-    assert np.all(f_high > 1.3 * f_low)
+    # Jawed's law is linear in mu (ratio 5); measured 4.8-6.3
+    assert np.all(f_high > 3.0 * f_low)
 
 
 @pytest.mark.slow
-def test_force_follows_jawed_law(imc_n2_runs):
-    """Long-braid regime: F(e) within 25 % of Jawed et al. 2015 (knotmech.analytic.knots)."""
+@pytest.mark.parametrize("mu", [0.1, 0.5])
+def test_force_follows_jawed_law(imc_n2_runs, mu):
+    """Long-braid regime: F(e) within 25 % of Jawed et al. 2015 (knotmech.analytic.knots).
+
+    Measured (151 nodes, 30 mm/s): F_sim/F_Jawed = 0.80-0.92 (mu = 0.1), 0.86-1.04 (mu = 0.5)
+    for e = L - D in [0.20, 0.50] m.
+    """
     knots = pytest.importorskip("knotmech.analytic.knots")
-    r = imc_n2_runs[0.1]
-    edges = np.linspace(0.20, 0.45, 6)
+    r = imc_n2_runs[mu]
+    edges = np.linspace(0.20, 0.50, 7)
     f_sim = _binned(r, edges)
     e_mid = 0.5 * (edges[1:] + edges[:-1])
-    f_th = knots.overhand_pull_force(e_mid, 2, 0.1, r.setup.rod_radius, r.setup.bending_stiffness)
+    f_th = knots.overhand_pull_force(e_mid, 2, mu, r.setup.rod_radius, r.setup.bending_stiffness)
     assert np.all(np.abs(f_sim / f_th - 1) < 0.25)
