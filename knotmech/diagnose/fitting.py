@@ -16,7 +16,7 @@ from scipy.optimize import least_squares
 
 from knotmech.analytic.capstan import mu_from_mu_eff
 from knotmech.diagnose.baselines import Model, build_model, pinch_load_parameter
-from knotmech.diagnose.stats import NoiseModel, estimate_noise
+from knotmech.diagnose.stats import NoiseModel, estimate_noise, ls_solve
 
 __all__ = ["Data", "Fit", "fit_model", "fit_baseline", "fit_with_effect", "heldout_rms"]
 
@@ -266,7 +266,7 @@ def _flattening_starts(current, model, data, starts):
         if adh:
             cols.append(np.ones_like(rec.x))
         xw = _whiten_cols(current.noise, sd, starts, np.column_stack(cols))
-        coef, *_ = np.linalg.lstsq(xw, yw, rcond=None)
+        coef = ls_solve(xw, yw)
         ss = float(np.sum((yw - xw @ coef) ** 2))
         a, b = coef[0], coef[1]
         ratio = float(np.clip(1 - b / a, 0.0, 1.0)) if a > 0 else 1.0
@@ -295,7 +295,7 @@ def _fit_nip(current, data, starts, *, given_sigma=None):
         mids = mids[1:-1]
     taken = [fixed[f"nip_position_{i}"] for i in range(j)]
     if taken:
-        gap = 1.5 * float(np.median(np.diff(order)))
+        gap = max(1.5 * float(np.median(np.diff(order))), 0.01 * float(np.ptp(s)))
         keep = np.min(np.abs(mids[:, None] - np.array(taken)[None, :]), axis=1) > gap
         mids = mids[keep]
     if mids.size > 120:
@@ -342,7 +342,50 @@ def _fit_nip(current, data, starts, *, given_sigma=None):
         best = fit_model(
             model, data, [_vector(model, v, {})], current.noise, starts, given_sigma=given_sigma
         )
-    return best
+        return best
+    return _refine_nip(best, j, data, starts, given_sigma=given_sigma)
+
+
+def _refine_nip(fit, j, data, starts, *, given_sigma=None, window=60):
+    """Move nip ``j`` to the best sample gap near it (exact model, other values fixed).
+
+    The candidate grid of :func:`_fit_nip` is coarse for long recordings; here every
+    gap between consecutive arc lengths within ``window`` gaps of the current
+    position (and not beyond a neighbouring nip) is scored with the exact mean,
+    whitened; the model is refitted when the position moves.
+    """
+    rec = fit.model.rec
+    s = rec.x
+    p = fit.params
+    pos = p[f"nip_position_{j}"]
+    drop = p[f"nip_drop_{j}"]
+    if drop <= 0:
+        return fit
+    order = np.unique(s)
+    mids = 0.5 * (order[1:] + order[:-1])
+    others = [p[f"nip_position_{i}"] for i in range(j + 10) if f"nip_position_{i}" in p and i != j]
+    lo = max([o for o in others if o < pos], default=-np.inf)
+    hi = min([o for o in others if o > pos], default=np.inf)
+    k = int(np.searchsorted(mids, pos))
+    cand = mids[max(0, k - window) : k + window + 1]
+    cand = cand[(cand > lo) & (cand < hi)]
+    if cand.size < 2:
+        return fit
+    without = fit.mean / np.where(s > pos, 1.0 - drop, 1.0)
+    means = without[:, None] * np.where(s[:, None] > cand[None, :], 1.0 - drop, 1.0)
+    sd = fit.noise.sd(fit.mean)
+    ew = _whiten_cols(fit.noise, sd, starts, data.y[:, None] - means)
+    best = float(cand[int(np.argmin(np.sum(ew * ew, axis=0)))])
+    if best == pos:
+        return fit
+    fx = dict(fit.model.fixed)
+    fx[f"nip_position_{j}"] = best
+    model = build_model(rec, fit.model.effects, fx)
+    v = dict(p)
+    v.update(fx)
+    return fit_model(
+        model, data, [_vector(model, v, {})], fit.noise, starts, given_sigma=given_sigma
+    )
 
 
 def heldout_rms(fit: Fit, data: Data, trial: np.ndarray, *, n_folds=5) -> float:

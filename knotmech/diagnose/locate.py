@@ -17,7 +17,13 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from knotmech.diagnose.stats import NoiseModel, estimate_noise, hat_basis, monte_carlo_pvalue
+from knotmech.diagnose.stats import (
+    NoiseModel,
+    estimate_noise,
+    hat_basis,
+    ls_solve,
+    monte_carlo_pvalue,
+)
 
 __all__ = ["Mismatch", "flexible_mismatch", "regions_from_mask", "describe_shape"]
 
@@ -73,7 +79,7 @@ def _augment(resid, mean, noise: NoiseModel, starts, design, given_sigma):
     sd = nz.sd(mean)
     xw = _whiten_cols(nz, sd, starts, design)
     rw = nz.whiten(resid, sd, starts)
-    coef, *_ = np.linalg.lstsq(xw, rw, rcond=None)
+    coef = ls_solve(xw, rw)
     nz = estimate_noise(resid - design @ coef, mean, starts, given_sigma=given_sigma)
     ll1 = nz.loglik(resid - design @ coef, mean, starts)
     return 2.0 * (ll1 - ll0), coef, nz
