@@ -1,0 +1,227 @@
+"""Capstan: knotmech against PyElastica, in one process (speed and sliding ratio).
+
+The same capstan in both: a rod of 120 elements wrapped theta = pi around a fixed post,
+D/d = 4, mu = 0.5, rope-like section (EA of a 4 mm VPS32 rod, EI = 1e-4 EA R^2, same mass per
+length), T_low = 0.01 EA ramped over 0.1 s, the other end held and then pulled at 10 mm/s;
+1 s simulated. The sliding ratio is the mean of T_high/T_low over the last 30 % of the pull.
+
+knotmech: :func:`knotmech.scenes.capstan.capstan` (implicit Euler, dt = 50 ms; 20 ms gives the
+same ratio to 1e-4). PyElastica: dt = 10 us (20 us blows up here).
+PyElastica (optional ``pip install pyelastica``; its documented API): a CosseratRod on the same
+centreline, a fixed rigid ``Cylinder`` with ``RodCylinderContact`` (penalty k, nu, Coulomb
+friction regularised by a slip-velocity damping), ``EndpointForces`` with the same ramp, the
+pulled end moved by a ``ConstraintBase`` subclass, ``AnalyticalLinearDamper``, PositionVerlet.
+Its cylinder radius is D/2 + d/2 - r' (r' the rod's section radius) so that both centrelines
+lie on the same circle.
+
+Output (stdout, JSON): {"knotmech_s", "pyelastica_s", "knotmech_ratio", "pyelastica_ratio",
+"exp_mu_theta", "exp_mu_eff_theta", ...}; knotmech's time is the median of ``--repeat`` runs,
+PyElastica's of ``--pyelastica-repeat`` runs (default 1: a run takes about a minute), each
+after a warm-up run that compiles the numba kernels.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import statistics
+import time
+
+import numpy as np
+
+from knotmech.analytic.capstan import mu_eff
+from knotmech.scenes._common import equivalent_section
+from knotmech.scenes.capstan import _centreline, capstan
+
+D_ROD = 4e-3
+DD = 4.0
+MU = 0.5
+THETA = np.pi
+E = 1.26e6
+RHO = 1160.0
+N_EL = 120
+T_END = 1.0
+RAMP = 0.1
+T_START = RAMP + 0.05
+SPEED = 0.01
+EA = E * np.pi * D_ROD**2 / 4
+R_C = 0.5 * (DD * D_ROD + D_ROD)
+EI = 1e-4 * EA * R_C**2
+T_LOW = 0.01 * EA
+PULL = SPEED * (T_END - T_START)
+PLATEAU = 0.3
+
+
+def run_knotmech(dt=0.05):
+    r = capstan(
+        wrap_angle=THETA,
+        mu=MU,
+        rod_diameter=D_ROD,
+        post_diameter=DD * D_ROD,
+        youngs_modulus=E,
+        density=RHO,
+        t_low=T_LOW,
+        bending_stiffness=EI,
+        n_elements=N_EL,
+        pull_speed=SPEED,
+        pull_distance=PULL,
+        ramp_time=RAMP,
+        dt=dt,
+        plateau=PLATEAU,
+    )
+    if r.status != "success":
+        raise RuntimeError(r.message)
+    return r.ratio, r
+
+
+def _geometry():
+    lead = 2.0 * R_C
+    arc = THETA * R_C
+    h = (arc + lead + lead + PULL) / N_EL
+    pts, t_end = _centreline(THETA, R_C, 0.0, lead, lead + PULL, h)
+    return pts, t_end
+
+
+def run_pyelastica(dt=1e-5, t_end=T_END):
+    import elastica as ea
+
+    pts, t_end_dir = _geometry()
+    n_el = pts.shape[0] - 1
+    radius, e_rod, rho_rod = equivalent_section(
+        diameter=D_ROD, youngs_modulus=E, density=RHO, bending_stiffness=EI
+    )
+
+    class Sim(ea.BaseSystemCollection, ea.Constraints, ea.Forcing, ea.Damping, ea.Contact,
+              ea.CallBacks):  # fmt: skip
+        pass
+
+    sim = Sim()
+    length = float(np.sum(np.linalg.norm(np.diff(pts, axis=0), axis=1)))
+    rod = ea.CosseratRod.straight_rod(
+        n_el,
+        pts[0],
+        (pts[1] - pts[0]) / np.linalg.norm(pts[1] - pts[0]),
+        np.array([0.0, 0.0, 1.0]),
+        length,
+        radius,
+        rho_rod,
+        youngs_modulus=e_rod,
+        shear_modulus=e_rod / 3.0,
+        position=np.ascontiguousarray(pts.T),
+    )
+    sim.append(rod)
+    post_len = 0.05
+    cyl = ea.Cylinder(
+        start=np.array([0.0, 0.0, -0.5 * post_len]),
+        direction=np.array([0.0, 0.0, 1.0]),
+        normal=np.array([1.0, 0.0, 0.0]),
+        base_length=post_len,
+        base_radius=R_C - radius,
+        density=1000.0,
+    )
+    sim.append(cyl)
+    sim.constrain(cyl).using(
+        ea.FixedConstraint, constrained_position_idx=(0,), constrained_director_idx=(0,)
+    )
+    x0 = pts[0].copy()
+    pull_dir = np.array([0.0, -1.0, 0.0])
+
+    class PullEnd(ea.ConstraintBase):
+        def constrain_values(self, system, time):
+            system.position_collection[:, 0] = x0 + pull_dir * SPEED * max(0.0, time - T_START)
+
+        def constrain_rates(self, system, time):
+            system.velocity_collection[:, 0] = pull_dir * SPEED * (time > T_START)
+
+    sim.constrain(rod).using(PullEnd, constrained_position_idx=(0,))
+    sim.add_forcing_to(rod).using(
+        ea.EndpointForces,
+        start_force=np.zeros(3),
+        end_force=T_LOW * t_end_dir,
+        ramp_up_time=RAMP,
+    )
+    # contact: penetration ~ 1e-3 d under the largest line load T_high/R
+    seg = length / n_el
+    k = (T_LOW * np.exp(MU * THETA) / R_C * seg) / (1e-3 * D_ROD)
+    sim.detect_contact_between(rod, cyl).using(
+        ea.RodCylinderContact,
+        k=k,
+        nu=1e-3 * k,
+        velocity_damping_coefficient=1e4,
+        friction_coefficient=MU,
+    )
+    sim.dampen(rod).using(ea.AnalyticalLinearDamper, damping_constant=20.0, time_step=dt)
+
+    rec = {"t": [], "t_high": [], "disp": []}
+
+    class Record(ea.CallBackBaseClass):
+        def make_callback(self, system, time, current_step):
+            if current_step % 200 == 0:
+                e = system.position_collection[:, 1] - system.position_collection[:, 0]
+                rec["t"].append(time)
+                rec["t_high"].append(EA * (np.linalg.norm(e) / system.rest_lengths[0] - 1.0))
+                rec["disp"].append(float((system.position_collection[:, 0] - x0) @ pull_dir))
+
+    sim.collect_diagnostics(rod).using(Record)
+    sim.finalize()
+    n_steps = int(round(t_end / dt))
+    ea.integrate(ea.PositionVerlet(), sim, t_end, n_steps, progress_bar=False)
+    disp = np.array(rec["disp"])
+    th = np.array(rec["t_high"])
+    sel = disp >= (1 - PLATEAU) * PULL
+    return float(np.mean(th[sel]) / T_LOW) if np.any(sel) else float("nan")
+
+
+def main(argv=None):
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--repeat", type=int, default=3)
+    ap.add_argument("--pyelastica-dt", type=float, default=1e-5)
+    ap.add_argument("--pyelastica-repeat", type=int, default=1)
+    ap.add_argument("--knotmech-dt", type=float, default=0.05)
+    args = ap.parse_args(argv)
+    out = {
+        "exp_mu_theta": float(np.exp(MU * THETA)),
+        "exp_mu_eff_theta": float(np.exp(mu_eff(MU, DD) * THETA)),
+        "config": {
+            "n_elements": N_EL,
+            "theta": THETA,
+            "mu": MU,
+            "D_over_d": DD,
+            "t_end_s": T_END,
+            "pull_speed": SPEED,
+            "t_low_N": T_LOW,
+        },  # fmt: skip
+    }
+    run_knotmech(args.knotmech_dt)  # warm-up (numba cache)
+    times, ratio = [], None
+    for _ in range(args.repeat):
+        t0 = time.perf_counter()
+        ratio, _ = run_knotmech(args.knotmech_dt)
+        times.append(time.perf_counter() - t0)
+    out["knotmech_s"] = statistics.median(times)
+    out["knotmech_ratio"] = ratio
+    out["knotmech_error_vs_exp_mu_eff_theta"] = ratio / out["exp_mu_eff_theta"] - 1
+    try:
+        import elastica  # noqa: F401
+    except ImportError:
+        out["pyelastica_s"] = None
+        out["pyelastica_ratio"] = None
+        out["note"] = "pyelastica is not installed (pip install pyelastica): knotmech only"
+        print(json.dumps(out, indent=1))
+        return 0
+    run_pyelastica(args.pyelastica_dt, t_end=0.01)  # warm-up: compiles PyElastica's kernels
+    times = []
+    pr = None
+    for _ in range(args.pyelastica_repeat):
+        t0 = time.perf_counter()
+        pr = run_pyelastica(args.pyelastica_dt)
+        times.append(time.perf_counter() - t0)
+    out["pyelastica_s"] = statistics.median(times)
+    out["pyelastica_ratio"] = pr
+    out["speedup"] = out["pyelastica_s"] / out["knotmech_s"]
+    print(json.dumps(out, indent=1))
+    return 0
+
+
+if __name__ == "__main__":
+    raise SystemExit(main())
