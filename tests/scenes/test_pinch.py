@@ -33,3 +33,20 @@ def test_pinch_input_errors():
         pinch(normal_load=-1.0, mu=0.3)
     with pytest.raises(InputError):
         pinch(normal_load=1.0, mu=0.3, pull_distance=1.0)
+
+
+def test_cli_simulate_pinch(tmp_path):
+    """`knotmech simulate pinch ... --json --csv` writes the ratio and the pull curve."""
+    import json
+
+    from knotmech.cli.main import main
+
+    js, cs = tmp_path / "p.json", tmp_path / "p.csv"
+    code = main(["simulate", "pinch", "--normal-load", "0.3N", "--mu", "0.4", "--no-progress",
+                 "--json", str(js), "--csv", str(cs)])  # fmt: skip
+    assert code == 0
+    out = json.loads(js.read_text())
+    assert abs(out["ratio"] - 1) < 0.03
+    rows = cs.read_text().splitlines()
+    assert rows[0] == "time_s,displacement_m,pull_force_N" and len(rows) > 10
+    assert main(["simulate", "pinch", "--mu", "0.4"]) == 2  # missing --normal-load
