@@ -143,7 +143,8 @@ class CloveHitchResult:
     wrap_radius : float [m]  R = (D + d)/2
     mu_eff : float  thick-rod capstan coefficient for the rod-post friction
     winding_start, winding_end : float  turns about the post axis
-    code_start, code_end : str  over/under code of self-crossings seen from the axis
+    code_start, code_end : str  over/under code of the self-crossings seen from the axis,
+        among the segments within R + 1.5 d of the axis (the knot's core on the post)
     verdict : "hold", "slip" or "" (only for the free-end loading)
     creep : float [m]  displacement of end 0 during the last half of the hold
     positions : (n, n_nodes, 3) [m]
@@ -395,8 +396,8 @@ def clove_hitch(
         mu_eff=float(_mu_eff(mrc, D / d)),
         winding_start=winding_number(x0),
         winding_end=winding_number(last),
-        code_start=post_crossing_code(x0),
-        code_end=post_crossing_code(last),
+        code_start=post_crossing_code(x0, max_radius=R + 1.5 * d),
+        code_end=post_crossing_code(last, max_radius=R + 1.5 * d),
         verdict=verdict,
         creep=creep,
         positions=pos,

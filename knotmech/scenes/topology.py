@@ -409,7 +409,13 @@ def winding_number(points, *, axis_point=(0.0, 0.0, 0.0), axis_direction=(0.0, 0
     return float(dphi.sum() / (2 * np.pi))
 
 
-def post_crossing_code(points, *, axis_point=(0.0, 0.0, 0.0), axis_direction=(0.0, 0.0, 1.0)):
+def post_crossing_code(
+    points,
+    *,
+    axis_point=(0.0, 0.0, 0.0),
+    axis_direction=(0.0, 0.0, 1.0),
+    max_radius: float | None = None,
+):
     r"""Over/under sequence of a rod's self-crossings seen from a post's axis.
 
     The rod is mapped to the unrolled cylinder :math:`(\varphi R_0, z)` around the axis
@@ -421,7 +427,17 @@ def post_crossing_code(points, *, axis_point=(0.0, 0.0, 0.0), axis_direction=(0.
     For a clove hitch this is ``"UOOU"``-like (its two nips: the working end passes under
     the first wrap, the second wrap over it); the code, together with
     :func:`winding_number`, does not change unless a strand passes through another
-    or through the post.
+    or through the post. Free tails far from the post may legitimately swing over or
+    under other strands (Reidemeister moves add crossing pairs); ``max_radius`` keeps
+    only the segments within that distance of the axis (the knot's core on the post).
+
+    Parameters
+    ----------
+    points : (n_nodes, 3) array [m]
+    axis_point, axis_direction : (3,) arrays
+        The post axis.
+    max_radius : float, optional [m]
+        Only segments whose two nodes lie within this distance of the axis count.
 
     Returns
     -------
@@ -455,6 +471,9 @@ def post_crossing_code(points, *, axis_point=(0.0, 0.0, 0.0), axis_direction=(0.
         ii, jj = np.meshgrid(np.arange(n - 1), np.arange(n - 1), indexing="ij")
         ii, jj = ii.ravel(), jj.ravel()
         m = np.abs(ii - jj) > 1 if k == 0 else np.ones(ii.size, bool)
+        if max_radius is not None:
+            near = (rho[:-1] <= max_radius) & (rho[1:] <= max_radius)
+            m &= near[ii] & near[jj]
         ii, jj = ii[m], jj[m]
         da = a1[ii] - a0[ii]
         db = b1[jj] - b0[jj]
