@@ -60,7 +60,20 @@ def bend_grad_hess(q, edge_dof0, stencil_edge, m1, m2, kappa_bar, ei, voronoi, g
 
     ``ei`` (n_stencils,) bending stiffness EI [N m^2], ``voronoi`` (n_stencils,) l_i [m],
     ``kappa_bar`` (n_stencils, 2) rest material curvatures. E_b = EI/(2 l) |kappa - kbar|^2,
-    so d2E/dy2 = EI/l * sum_a (g_a g_a^T + (kappa_a - kbar_a) H_a).
+    so d2E/dy2 = EI/l * (g1 g1^T + g2 g2^T + r1 H1 + r2 H2), r_a = kappa_a - kbar_a.
+    r1 H1 + r2 H2 is formed directly: the Hessian blocks of kappa1 and kappa2 (Panetta's
+    notes; the DER primer) have the same structure, so the combination only needs
+    kr = kappa1 r1 + kappa2 r2 and the vectors D = r1 mt2 - r2 mt1,
+    M^j = r1 m2^j - r2 m1^j, N^j = r1 m1^j + r2 m2^j:
+      d2/de2   = [2 kr tt tt^T - (t^f x D) tt^T - tt (t^f x D)^T]/|e|^2
+                 - kr/(chi |e|^2) (I - t^e t^e^T) + (kb M^e^T + M^e kb^T)/(4 |e|^2),
+      d2/df2   = [2 kr tt tt^T + (t^e x D) tt^T + tt (t^e x D)^T]/|f|^2
+                 - kr/(chi |f|^2) (I - t^f t^f^T) + (kb M^f^T + M^f kb^T)/(4 |f|^2),
+      d2/dedf  = -kr/(chi |e||f|) (I + t^e t^f^T)
+                 + [2 kr tt tt^T - (t^f x D) tt^T + tt (t^e x D)^T - [D]_x]/(|e||f|),
+      d2/dtheta^j2 = -kb.M^j/2,
+      d2/de dtheta^j = (kb.N^j tt/2 - t^f x N^j/chi)/|e|,
+      d2/df dtheta^j = (kb.N^j tt/2 + t^e x N^j/chi)/|f|.
     """
     ev = np.empty(3)
     fv = np.empty(3)
@@ -74,13 +87,20 @@ def bend_grad_hess(q, edge_dof0, stencil_edge, m1, m2, kappa_bar, ei, voronoi, g
     m2f = np.empty(3)
     d1t = np.empty(3)
     d2t = np.empty(3)
-    tmp = np.empty(3)
+    dv = np.empty(3)
+    me = np.empty(3)
+    mf = np.empty(3)
+    nn_e = np.empty(3)
+    nn_f = np.empty(3)
     tfc_d2 = np.empty(3)
     tec_d2 = np.empty(3)
     tfc_d1 = np.empty(3)
     tec_d1 = np.empty(3)
+    tfc_d = np.empty(3)
+    tec_d = np.empty(3)
+    tmp = np.empty(3)
     g = np.empty((2, 8))
-    h = np.empty((2, 8, 8))
+    h = np.empty((8, 8))
     energy = 0.0
     for s in range(stencil_edge.shape[0]):
         f = stencil_edge[s]
@@ -96,16 +116,13 @@ def bend_grad_hess(q, edge_dof0, stencil_edge, m1, m2, kappa_bar, ei, voronoi, g
             d2t[j] = (m2e[j] + m2f[j]) / chi
         kap1 = 0.5 * (_dot3(kb, m2e) + _dot3(kb, m2f))
         kap2 = -0.5 * (_dot3(kb, m1e) + _dot3(kb, m1f))
-        kb_m1e = _dot3(kb, m1e)
-        kb_m1f = _dot3(kb, m1f)
-        kb_m2e = _dot3(kb, m2e)
-        kb_m2f = _dot3(kb, m2f)
-        for a in range(2):
-            h[a, 3, 7] = 0.0
-            h[a, 7, 3] = 0.0
-        # ---- kappa1: gradient
-        _cross3(tf, d2t, tfc_d2)  # t^f x mt2
-        _cross3(te, d2t, tec_d2)  # t^e x mt2
+        k = ei[s] / voronoi[s]
+        r1 = kap1 - kappa_bar[s, 0]
+        r2 = kap2 - kappa_bar[s, 1]
+        energy += 0.5 * k * (r1 * r1 + r2 * r2)
+        # ---- gradients of kappa1, kappa2 (edge space)
+        _cross3(tf, d2t, tfc_d2)
+        _cross3(te, d2t, tec_d2)
         _cross3(tf, d1t, tfc_d1)
         _cross3(te, d1t, tec_d1)
         for j in range(3):
@@ -113,113 +130,79 @@ def bend_grad_hess(q, edge_dof0, stencil_edge, m1, m2, kappa_bar, ei, voronoi, g
             g[0, 4 + j] = (-kap1 * tt[j] - tec_d2[j]) / nf
             g[1, j] = (-kap2 * tt[j] - tfc_d1[j]) / ne
             g[1, 4 + j] = (-kap2 * tt[j] + tec_d1[j]) / nf
-        g[0, 3] = -0.5 * kb_m1e
-        g[0, 7] = -0.5 * kb_m1f
-        g[1, 3] = -0.5 * kb_m2e
-        g[1, 7] = -0.5 * kb_m2f
-        # ---- position-position blocks
-        ne2 = ne * ne
-        nf2 = nf * nf
-        nef = ne * nf
+        g[0, 3] = -0.5 * _dot3(kb, m1e)
+        g[0, 7] = -0.5 * _dot3(kb, m1f)
+        g[1, 3] = -0.5 * _dot3(kb, m2e)
+        g[1, 7] = -0.5 * _dot3(kb, m2f)
+        # ---- combined r1 H1 + r2 H2
+        kr = kap1 * r1 + kap2 * r2
+        for j in range(3):
+            dv[j] = r1 * d2t[j] - r2 * d1t[j]
+            me[j] = r1 * m2e[j] - r2 * m1e[j]
+            mf[j] = r1 * m2f[j] - r2 * m1f[j]
+            nn_e[j] = r1 * m1e[j] + r2 * m2e[j]
+            nn_f[j] = r1 * m1f[j] + r2 * m2f[j]
+        _cross3(tf, dv, tfc_d)
+        _cross3(te, dv, tec_d)
+        ie2 = 1.0 / (ne * ne)
+        if2 = 1.0 / (nf * nf)
+        ief = 1.0 / (ne * nf)
+        ichi = 1.0 / chi
         for i in range(3):
             for j in range(3):
-                ttij = tt[i] * tt[j]
+                ttij = 2.0 * kr * tt[i] * tt[j]
                 idt = 1.0 if i == j else 0.0
-                # kappa1
-                h[0, i, j] = (
-                    (2.0 * kap1 * ttij - tfc_d2[i] * tt[j] - tt[i] * tfc_d2[j]) / ne2
-                    - kap1 / (chi * ne2) * (idt - te[i] * te[j])
-                    + (kb[i] * m2e[j] + m2e[i] * kb[j]) / (4.0 * ne2)
+                h[i, j] = ie2 * (
+                    ttij - tfc_d[i] * tt[j] - tt[i] * tfc_d[j]
+                    - kr * ichi * (idt - te[i] * te[j])
+                    + 0.25 * (kb[i] * me[j] + me[i] * kb[j])
+                )  # fmt: skip
+                h[4 + i, 4 + j] = if2 * (
+                    ttij + tec_d[i] * tt[j] + tt[i] * tec_d[j]
+                    - kr * ichi * (idt - tf[i] * tf[j])
+                    + 0.25 * (kb[i] * mf[j] + mf[i] * kb[j])
+                )  # fmt: skip
+                h[i, 4 + j] = ief * (
+                    -kr * ichi * (idt + te[i] * tf[j]) + ttij - tfc_d[i] * tt[j] + tt[i] * tec_d[j]
                 )
-                h[0, 4 + i, 4 + j] = (
-                    (2.0 * kap1 * ttij + tec_d2[i] * tt[j] + tt[i] * tec_d2[j]) / nf2
-                    - kap1 / (chi * nf2) * (idt - tf[i] * tf[j])
-                    + (kb[i] * m2f[j] + m2f[i] * kb[j]) / (4.0 * nf2)
-                )
-                h[0, i, 4 + j] = (
-                    -kap1 / (chi * nef) * (idt + te[i] * tf[j])
-                    + (2.0 * kap1 * ttij - tfc_d2[i] * tt[j] + tt[i] * tec_d2[j]) / nef
-                )
-                # kappa2
-                h[1, i, j] = (
-                    (2.0 * kap2 * ttij + tfc_d1[i] * tt[j] + tt[i] * tfc_d1[j]) / ne2
-                    - kap2 / (chi * ne2) * (idt - te[i] * te[j])
-                    - (kb[i] * m1e[j] + m1e[i] * kb[j]) / (4.0 * ne2)
-                )
-                h[1, 4 + i, 4 + j] = (
-                    (2.0 * kap2 * ttij - tec_d1[i] * tt[j] - tt[i] * tec_d1[j]) / nf2
-                    - kap2 / (chi * nf2) * (idt - tf[i] * tf[j])
-                    - (kb[i] * m1f[j] + m1f[i] * kb[j]) / (4.0 * nf2)
-                )
-                h[1, i, 4 + j] = (
-                    -kap2 / (chi * nef) * (idt + te[i] * tf[j])
-                    + (2.0 * kap2 * ttij + tfc_d1[i] * tt[j] - tt[i] * tec_d1[j]) / nef
-                )
-        # cross-product matrices [mt]_x (a x b = [a]_x b) in the e-f blocks
-        h[0, 0, 5] -= -d2t[2] / nef
-        h[0, 0, 6] -= d2t[1] / nef
-        h[0, 1, 4] -= d2t[2] / nef
-        h[0, 1, 6] -= -d2t[0] / nef
-        h[0, 2, 4] -= -d2t[1] / nef
-        h[0, 2, 5] -= d2t[0] / nef
-        h[1, 0, 5] += -d1t[2] / nef
-        h[1, 0, 6] += d1t[1] / nef
-        h[1, 1, 4] += d1t[2] / nef
-        h[1, 1, 6] += -d1t[0] / nef
-        h[1, 2, 4] += -d1t[1] / nef
-        h[1, 2, 5] += d1t[0] / nef
+        # - [D]_x / (|e||f|)
+        h[0, 5] += dv[2] * ief
+        h[0, 6] -= dv[1] * ief
+        h[1, 4] -= dv[2] * ief
+        h[1, 6] += dv[0] * ief
+        h[2, 4] += dv[1] * ief
+        h[2, 5] -= dv[0] * ief
+        h[3, 3] = -0.5 * _dot3(kb, me)
+        h[7, 7] = -0.5 * _dot3(kb, mf)
+        h[3, 7] = 0.0
+        h[7, 3] = 0.0
+        kbn_e = 0.5 * _dot3(kb, nn_e)
+        kbn_f = 0.5 * _dot3(kb, nn_f)
+        _cross3(tf, nn_e, tmp)
+        for j in range(3):
+            h[j, 3] = (kbn_e * tt[j] - tmp[j] * ichi) / ne
+        _cross3(tf, nn_f, tmp)
+        for j in range(3):
+            h[j, 7] = (kbn_f * tt[j] - tmp[j] * ichi) / ne
+        _cross3(te, nn_e, tmp)
+        for j in range(3):
+            h[4 + j, 3] = (kbn_e * tt[j] + tmp[j] * ichi) / nf
+        _cross3(te, nn_f, tmp)
+        for j in range(3):
+            h[4 + j, 7] = (kbn_f * tt[j] + tmp[j] * ichi) / nf
         for i in range(3):
+            h[3, i] = h[i, 3]
+            h[7, i] = h[i, 7]
+            h[3, 4 + i] = h[4 + i, 3]
+            h[7, 4 + i] = h[4 + i, 7]
             for j in range(3):
-                h[0, 4 + j, i] = h[0, i, 4 + j]
-                h[1, 4 + j, i] = h[1, i, 4 + j]
-        # ---- theta-theta
-        h[0, 3, 3] = -0.5 * kb_m2e
-        h[0, 7, 7] = -0.5 * kb_m2f
-        h[1, 3, 3] = 0.5 * kb_m1e
-        h[1, 7, 7] = 0.5 * kb_m1f
-        # ---- position-theta
-        _cross3(tf, m1e, tmp)
-        for j in range(3):
-            h[0, j, 3] = (0.5 * kb_m1e * tt[j] - tmp[j] / chi) / ne
-        _cross3(tf, m1f, tmp)
-        for j in range(3):
-            h[0, j, 7] = (0.5 * kb_m1f * tt[j] - tmp[j] / chi) / ne
-        _cross3(te, m1e, tmp)
-        for j in range(3):
-            h[0, 4 + j, 3] = (0.5 * kb_m1e * tt[j] + tmp[j] / chi) / nf
-        _cross3(te, m1f, tmp)
-        for j in range(3):
-            h[0, 4 + j, 7] = (0.5 * kb_m1f * tt[j] + tmp[j] / chi) / nf
-        _cross3(tf, m2e, tmp)
-        for j in range(3):
-            h[1, j, 3] = (0.5 * kb_m2e * tt[j] - tmp[j] / chi) / ne
-        _cross3(tf, m2f, tmp)
-        for j in range(3):
-            h[1, j, 7] = (0.5 * kb_m2f * tt[j] - tmp[j] / chi) / ne
-        _cross3(te, m2e, tmp)
-        for j in range(3):
-            h[1, 4 + j, 3] = (0.5 * kb_m2e * tt[j] + tmp[j] / chi) / nf
-        _cross3(te, m2f, tmp)
-        for j in range(3):
-            h[1, 4 + j, 7] = (0.5 * kb_m2f * tt[j] + tmp[j] / chi) / nf
-        for a in range(2):
-            for j in range(3):
-                h[a, 3, j] = h[a, j, 3]
-                h[a, 7, j] = h[a, j, 7]
-                h[a, 3, 4 + j] = h[a, 4 + j, 3]
-                h[a, 7, 4 + j] = h[a, 4 + j, 7]
+                h[4 + j, i] = h[i, 4 + j]
         # ---- energy derivatives
-        k = ei[s] / voronoi[s]
-        r1 = kap1 - kappa_bar[s, 0]
-        r2 = kap2 - kappa_bar[s, 1]
-        energy += 0.5 * k * (r1 * r1 + r2 * r2)
+        d0 = edge_dof0[e]
         for i in range(8):
-            gi = k * (r1 * g[0, i] + r2 * g[1, i])
+            _add_edge_grad(grad, d0, i, k * (r1 * g[0, i] + r2 * g[1, i]))
             for j in range(8):
-                hess8[s, i, j] = k * (
-                    g[0, i] * g[0, j] + g[1, i] * g[1, j] + r1 * h[0, i, j] + r2 * h[1, i, j]
-                )
-            _add_edge_grad(grad, edge_dof0[e], i, gi)
+                hess8[s, i, j] = k * (g[0, i] * g[0, j] + g[1, i] * g[1, j] + h[i, j])
     return energy
 
 
