@@ -63,6 +63,15 @@ def test_hold_below_the_limit_no_creep_and_slide_above():
     assert slid.displacement[-1] > 5e-3  # slid off by more than a diameter (stopped early)
 
 
+def test_static_peak_then_kinetic_plateau():
+    """mu_s = 0.6 > mu_k = 0.4: T_high overshoots at the onset of sliding, then slides at
+    exp(mu_eff(mu_k) theta) (measured: peak 2.83, plateau 2.681 vs 2.667)."""
+    r = run(4.0, 0.6, np.pi, mu_kinetic=0.4)
+    kinetic = np.exp(mu_eff(0.4, 4.0) * np.pi)
+    assert abs(r.ratio / kinetic - 1) < 0.02
+    assert r.t_high.max() / r.t_low > 1.03 * r.ratio
+
+
 @pytest.mark.slow
 @pytest.mark.parametrize(
     "D_over_d, mu, theta",
