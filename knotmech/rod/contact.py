@@ -102,7 +102,7 @@ class RodContact:
     stiffness : float [N/m]
         K_c; the force at an overlap delta (>> 1/k) is about 2 K_c delta.
     sharpness : float [1/m]
-        k; the penalty acts from a gap of a few 1/k. A good choice is 10/(0.01 d) ... 1/(0.01 d).
+        k; the penalty acts from a gap of a few 1/k (take 1/k ~ 1 % of the rod diameter).
     friction : SmoothFriction or None
     margin : float or None [m]
         Broad-phase margin; None -> 30/k + 2 r (covers the penalty range and motion).
@@ -241,7 +241,8 @@ class CylinderContact:
     stiffness : float [N/m^2]
         K, per unit rod length.
     sharpness : float [1/m]
-        k of the softplus (the force at zero gap is K w log(2)/k... ~ K w ln2^2 / k^2 * k).
+        k of the softplus; the force at zero gap is K w ln(2)/k, so 1/k sets the residual
+        stand-off (take 1/k well below the rod diameter, e.g. d/400 as the scenes do).
     friction : AnchorFriction or None
     surface_friction : bool
     rod_radius : float or None [m]
