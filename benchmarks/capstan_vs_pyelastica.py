@@ -140,14 +140,18 @@ def run_pyelastica(dt=1e-5, t_end=T_END):
         end_force=T_LOW * t_end_dir,
         ramp_up_time=RAMP,
     )
-    # contact: penetration ~ 1e-3 d under the largest line load T_high/R
+    # contact: penetration ~ 1e-3 d under the largest line load T_high/R; normal damping
+    # near critical; the slip-velocity damping that regularises Coulomb friction as stiff as
+    # the explicit step allows (c dt/m = 0.5; PyElastica's docstring suggests 1e4, which
+    # makes the friction chatter or blow up at any affordable dt)
     seg = length / n_el
+    m_el = rho_rod * np.pi * radius**2 * seg
     k = (T_LOW * np.exp(MU * THETA) / R_C * seg) / (1e-3 * D_ROD)
     sim.detect_contact_between(rod, cyl).using(
         ea.RodCylinderContact,
         k=k,
-        nu=1e-3 * k,
-        velocity_damping_coefficient=1e4,
+        nu=np.sqrt(k * m_el),
+        velocity_damping_coefficient=0.5 * m_el / dt,
         friction_coefficient=MU,
     )
     sim.dampen(rod).using(ea.AnalyticalLinearDamper, damping_constant=20.0, time_step=dt)
@@ -219,6 +223,12 @@ def main(argv=None):
     out["pyelastica_s"] = statistics.median(times)
     out["pyelastica_ratio"] = pr
     out["speedup"] = out["pyelastica_s"] / out["knotmech_s"]
+    if not (pr <= out["exp_mu_theta"] * 1.05):
+        out["pyelastica_note"] = (
+            "PyElastica's rod did not reach a sliding plateau in this configuration: T_high "
+            "kept growing with the pull (the same happens with friction_coefficient=0 and "
+            "with a solid section), so its ratio is not a friction ratio; not resolved here"
+        )
     print(json.dumps(out, indent=1))
     return 0
 
