@@ -43,7 +43,14 @@ from knotmech.scenes.curves import (
 )
 from knotmech.scenes.topology import knot_invariant
 
-__all__ = ["OverhandSetup", "OverhandResult", "imc_setup", "coated_setup", "overhand"]
+__all__ = [
+    "OverhandSetup",
+    "OverhandResult",
+    "imc_setup",
+    "coated_setup",
+    "overhand",
+    "inversion_points",
+]
 
 #: Friction coefficients fitted in the coated-rod paper for 0, 1, 4, 7, 13 % particles.
 COATED_MU = (0.2, 0.5, 0.6, 0.7, 0.9)
@@ -396,3 +403,67 @@ def overhand(
         message=res.message,
         stats=dict(res.stats),
     )
+
+
+def inversion_points(end_to_end, force, *, window: int = 9, drop: float = 0.2, span: float = 0.02):
+    r"""End-to-end lengths at which the pull force drops suddenly (the knot's inversion).
+
+    The force is smoothed by a centred moving average over ``window`` frames (this removes
+    the stick-slip ripple); an *inversion* is a local maximum of the smoothed force after
+    which it falls by more than ``drop`` (relative) within an end-to-end increase of
+    ``span`` :math:`\times` the total range pulled (coated-rod paper, sec. 4: "a sudden
+    drop in pull force can be observed at the inversion point").
+
+    Parameters
+    ----------
+    end_to_end : (n,) array [m]
+        Increasing end-to-end length.
+    force : (n,) array [N]
+    window : int
+        Frames of the moving average (odd, >= 1).
+    drop : float
+        Relative fall that counts as an inversion (0 to 1).
+    span : float
+        Largest end-to-end increase over which the fall must happen, as a fraction of
+        the range pulled (0 to 1).
+
+    Returns
+    -------
+    (k,) array [m]
+        End-to-end lengths at the force peaks before each drop (empty: no inversion).
+    """
+    e = np.asarray(end_to_end, dtype=float)
+    f = np.asarray(force, dtype=float)
+    if e.shape != f.shape or e.ndim != 1:
+        raise InputError("end_to_end and force must be 1-D arrays of the same length")
+    w = int(window)
+    if w < 1 or w % 2 == 0:
+        raise InputError(f"window must be an odd integer >= 1, got {window!r}")
+    if not (0 < drop < 1) or not (0 < span <= 1):
+        raise InputError("drop must lie in (0, 1) and span in (0, 1]")
+    if f.size < w + 2:
+        return np.zeros(0)
+    fs = np.convolve(f, np.ones(w) / w, mode="same")
+    h = w // 2
+    if h:
+        fs[:h] = np.nan
+        fs[-h:] = np.nan
+    de = span * (np.nanmax(e) - np.nanmin(e))
+    peaks = []
+    i = h
+    n = f.size
+    while i < n - h:
+        if not np.isfinite(fs[i]) or fs[i] <= 0:
+            i += 1
+            continue
+        ahead = np.nonzero((e > e[i]) & (e <= e[i] + de) & np.isfinite(fs))[0]
+        if (
+            ahead.size
+            and np.min(fs[ahead]) < (1 - drop) * fs[i]
+            and fs[i] >= np.nanmax(fs[max(h, i - w) : i + 1])
+        ):
+            peaks.append(e[i])
+            i = int(ahead[-1]) + 1
+        else:
+            i += 1
+    return np.array(peaks)

@@ -98,3 +98,22 @@ def test_darboux_on_the_post(symmetric):
     kr = r.curvature[node_on_post] * r.wrap_radius
     assert np.median(kr) == pytest.approx(1.0, abs=0.05)
     assert np.mean(np.abs(r.darboux[:, 2])) < 0.3 * np.mean(r.curvature)
+
+
+@pytest.mark.slow
+def test_free_end_frictionless_slips():
+    """Without friction nothing holds the hitch: the loaded end runs away."""
+    r = clove_hitch(loading="free", t_high=1.47, mu_rod_post=0.0, mu_rod_rod=0.0, **QUICK)
+    assert r.verdict == "slip"
+
+
+@pytest.mark.slow
+def test_free_end_holds_at_papers_parameters():
+    """Clove-hitch paper, sec. 7 (FEM, Fig. 3): mu = 0.3, T_high = 1.47 N, T_low = 0 holds,
+    and the tension decays from T_high to zero past the knot."""
+    kw = {**QUICK, "hold_time": 0.4, "n_frames": 21}
+    r = clove_hitch(loading="free", t_high=1.47, mu_rod_post=0.3, mu_rod_rod=0.3, **kw)
+    assert r.verdict == "hold"
+    assert r.code_start == r.code_end == "UOOU"
+    assert r.tension[0] == pytest.approx(1.47, rel=0.02)
+    assert abs(r.tension[-1]) < 0.02 * 1.47

@@ -10,7 +10,7 @@ import numpy as np
 import pytest
 
 from knotmech.errors import InputError
-from knotmech.scenes.overhand import coated_setup, imc_setup, overhand
+from knotmech.scenes.overhand import coated_setup, imc_setup, inversion_points, overhand
 
 
 def test_imc_setup_is_the_papers():
@@ -57,6 +57,19 @@ def test_short_pull_records_curves():
     assert r.loop_diameter[-1] < r.loop_diameter[0]
     d = r.to_dict()
     assert d["knot_preserved"] and len(d["pull_force"]) == 11
+
+
+def test_inversion_points_synthetic():
+    """A 40 % drop is found at its peak; a +-10 % stick-slip ripple is not an inversion."""
+    e = np.linspace(0.1, 0.3, 401)
+    rising = 0.01 * np.exp(10 * (e - 0.1))
+    ripple = rising * (1 + 0.1 * np.sign(np.sin(2 * np.pi * np.arange(e.size) / 4)))
+    assert inversion_points(e, ripple).size == 0
+    dropped = np.where(e < 0.2, rising, 0.6 * rising)
+    found = inversion_points(e, dropped)
+    assert found.size == 1 and found[0] == pytest.approx(0.2, abs=0.005)  # within the window
+    with pytest.raises(InputError):
+        inversion_points(e, rising, window=4)
 
 
 def test_bad_input():
