@@ -187,8 +187,8 @@ def estimate_noise(
     )
     i, j = np.unravel_index(int(np.argmax(ll)), ll.shape)
     g, r, s = float(grid[i]), float(rho[j]), float(np.sqrt(s_rho[i, j] / n))
-    if s <= 0:
-        s = 1e-12 * fref
+    # floor: noise-free data (exact numbers) would make the whitening singular
+    s = max(s, 1e-7 * fref)
     return NoiseModel(s, g, r, fref, None)
 
 
