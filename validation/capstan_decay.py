@@ -130,7 +130,9 @@ def _profile(result):
     return s, t, keep
 
 
-def der_profiles(ratios, *, quick=True, progress=False, scheduler=None, cache_dir=None):
+def der_profiles(
+    ratios, *, quick=True, progress=False, scheduler=None, cache_dir=None, processes=None
+):
     """Simulated profiles from the DER capstan scene (``knotmech.scenes.capstan``).
 
     One pulled capstan per D/d (wrap pi in quick mode, 2 pi in full), run through
@@ -152,10 +154,12 @@ def der_profiles(ratios, *, quick=True, progress=False, scheduler=None, cache_di
 
     wrap = np.pi if quick else 2 * np.pi
     runs = _der_runs(ratios, wrap_angle=wrap)
+    if processes is None:
+        processes = min(2, os.cpu_count() or 1)
     res = sweep(
         capstan,
         runs,
-        processes=min(2, os.cpu_count() or 1),
+        processes=processes,
         scheduler=scheduler,
         cache_dir=cache_dir,
         progress=progress,
@@ -183,11 +187,13 @@ def der_profiles(ratios, *, quick=True, progress=False, scheduler=None, cache_di
     return out
 
 
-def run(quick=True, out_dir=".", progress=False, scheduler=None, der=None) -> dict:
+def run(quick=True, out_dir=".", progress=False, scheduler=None, der=None, processes=None) -> dict:
     """Compute, plot and summarise case 1; see the module docstring.
 
     ``der``: None uses the DER scene when it is importable, False skips it (closed
-    forms only), True requires it. DER runs are cached in ``<out_dir>/cache/``.
+    forms only), True requires it. DER runs are cached in ``<out_dir>/cache/``;
+    ``processes`` local worker processes (default 2; 1 runs them here, which shares
+    numba's compiled kernels with the calling process).
     """
     ratios = D_OVER_D_QUICK if quick else D_OVER_D_FULL
     me = {Dt: float(mu_eff(MU, Dt)) for Dt in ratios}
@@ -205,6 +211,7 @@ def run(quick=True, out_dir=".", progress=False, scheduler=None, der=None) -> di
             progress=progress,
             scheduler=scheduler,
             cache_dir=Path(out_dir) / "cache" / NAME,
+            processes=processes,
         )
         if sim is None and der:
             raise InputError("der=True but knotmech.scenes.capstan is not available")

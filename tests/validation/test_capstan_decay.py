@@ -24,7 +24,8 @@ def closed(tmp_path_factory):
 @pytest.fixture(scope="module")
 def der(tmp_path_factory):
     pytest.importorskip("knotmech.scenes.capstan")
-    return case.run(quick=True, out_dir=tmp_path_factory.mktemp("cd_der"), der=True)
+    # in this process: the numba kernels compile once per session, shared with other tests
+    return case.run(quick=True, out_dir=tmp_path_factory.mktemp("cd_der"), der=True, processes=1)
 
 
 def test_closed_form_verdict_and_outputs(closed):
