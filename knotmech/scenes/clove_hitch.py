@@ -143,8 +143,11 @@ class CloveHitchResult:
     wrap_radius : float [m]  R = (D + d)/2
     mu_eff : float  thick-rod capstan coefficient for the rod-post friction
     winding_start, winding_end : float  turns about the post axis
-    code_start, code_end : str  over/under code of the self-crossings seen from the axis,
-        among the segments within R + 1.5 d of the axis (the knot's core on the post)
+    code_start, code_end : str  over/under code of the self-crossings seen from the axis
+        (informative: free tails may legitimately add or remove crossing pairs)
+    min_rod_distance : float [m]  smallest edge-edge distance between non-neighbouring
+        edges over all accepted steps (centrelines; 2h = d at contact)
+    min_post_gap : float [m]  smallest surface gap rod-post over all accepted steps
     verdict : "hold", "slip" or "" (only for the free-end loading)
     creep : float [m]  displacement of end 0 during the last half of the hold
     positions : (n, n_nodes, 3) [m]
@@ -170,16 +173,26 @@ class CloveHitchResult:
     code_end: str
     verdict: str
     creep: float
+    min_rod_distance: float
+    min_post_gap: float
     positions: np.ndarray
     status: str
     message: str
     stats: dict = field(default_factory=dict)
+    _rod_diameter: float = 0.0
 
     @property
     def topology_preserved(self) -> bool:
-        """Same over/under code and winding within a quarter turn at start and end."""
-        return (
-            self.code_start == self.code_end and abs(self.winding_end - self.winding_start) < 0.25
+        """No strand passed through another or through the post, checked at every step.
+
+        A passage needs two centrelines to meet (distance 0) or the rod to enter the post;
+        the contact keeps them at least ``d/2`` apart and the post gap above ``-d/4``, and
+        the winding number about the post changes by less than a quarter turn.
+        """
+        return bool(
+            self.min_rod_distance > 0.5 * self._rod_diameter
+            and self.min_post_gap > -0.25 * self._rod_diameter
+            and abs(self.winding_end - self.winding_start) < 0.25
         )
 
     @property
@@ -201,6 +214,9 @@ class CloveHitchResult:
             "stats": {k: float(v) for k, v in self.stats.items()},
             "winding": [self.winding_start, self.winding_end],
             "code": [self.code_start, self.code_end],
+            "min_rod_distance": self.min_rod_distance,
+            "min_post_gap": self.min_post_gap,
+            "topology_preserved": self.topology_preserved,
             "s": self.s.tolist(),
             "tension": self.tension.tolist(),
             "rod_contact": self.rod_contact.astype(int).tolist(),
@@ -332,13 +348,17 @@ def clove_hitch(
         friction=SmoothFriction(mrr) if mrr > 0 else None,
     )
     slip = d if slip_distance is None else float(check_positive("slip_distance", slip_distance))
-    callback = None
-    if loading == "free":
-        x_start = x0[0].copy()
-        lim = 0.3 * L
+    x_start = x0[0].copy()
+    lim = 0.3 * L if loading == "free" else np.inf
+    idx_e = np.arange(N - 1)
+    far = np.abs(idx_e[:, None] - idx_e[None, :]) >= 3
+    watch = {"rod": np.inf, "post": np.inf}
 
-        def callback(state):
-            return float((state.q[system.node_dofs[0]] - x_start) @ dir0) > lim
+    def callback(state):
+        x = system.positions(state.q)
+        watch["rod"] = min(watch["rod"], float(_edge_distances(x)[far].min()))
+        watch["post"] = min(watch["post"], float(np.min(np.hypot(x[:, 0], x[:, 1])) - R))
+        return float((x[0] - x_start) @ dir0) > lim
 
     base = options if options is not None else rod.SolverOptions(throw=False, rtol=1e-6)
     opts = type(base)(**{**base.__dict__, "save_every": t_end / (int(n_frames) - 1)})
@@ -396,12 +416,15 @@ def clove_hitch(
         mu_eff=float(_mu_eff(mrc, D / d)),
         winding_start=winding_number(x0),
         winding_end=winding_number(last),
-        code_start=post_crossing_code(x0, max_radius=R + 1.5 * d),
-        code_end=post_crossing_code(last, max_radius=R + 1.5 * d),
+        code_start=post_crossing_code(x0),
+        code_end=post_crossing_code(last),
         verdict=verdict,
         creep=creep,
+        min_rod_distance=watch["rod"],
+        min_post_gap=watch["post"],
         positions=pos,
         status=res.status,
         message=res.message,
         stats=dict(res.stats),
+        _rod_diameter=d,
     )
