@@ -27,6 +27,7 @@ validation.concealed_effects --full`` the full table.
 
 from __future__ import annotations
 
+import json
 import os
 import time
 from collections import Counter, defaultdict
@@ -39,7 +40,7 @@ from knotmech.diagnose.engine import diagnose
 from knotmech.diagnose.stats import wilson_interval
 from knotmech.diagnose.synth import SYNTH_EFFECTS, make_recording
 
-from ._common import finish, save_figure
+from ._common import finish, output_dir, save_figure, to_jsonable
 
 NAME = "concealed_effects"
 
@@ -66,13 +67,13 @@ SETTINGS = {
         "n": 200,
     },
     False: {  # full
-        "sizes": (0.5, 1.0, 1.5, 2.0, 3.0, 4.0, 6.0),
-        "reps": 16,
+        "sizes": (0.5, 1.0, 2.0, 3.0, 4.0, 6.0),
+        "reps": 12,
         "ar1_sizes": (3.0, 6.0, 10.0),
-        "ar1_reps": 8,
-        "null_reps": 60,
+        "ar1_reps": 6,
+        "null_reps": 40,
         "ooc_sizes": (4.0, 8.0),
-        "ooc_reps": 12,
+        "ooc_reps": 8,
         "n": 240,
     },
 }
@@ -215,16 +216,33 @@ def summarise(results: list) -> dict:
     confusion = defaultdict(Counter)
     for r in results:
         confusion[f"{r['experiment']}:{r['effect']}"][r["verdict"]] += 1
-    big = [row for row in recovery if row["size"] >= 3 and row["noise"] == "white"]
-    k_big = sum(row["recovered"] for row in big)
-    n_big = sum(row["n"] for row in big)
+
+    def pooled(rows):
+        k = sum(row["recovered"] for row in rows)
+        n = sum(row["n"] for row in rows)
+        return {
+            "n": n,
+            "recovered": k,
+            "rate": k / n if n else None,
+            "ci95": list(wilson_interval(k, n)),
+        }
+
+    big = [r for r in recovery if r["size"] >= 3 and r["noise"] == "white"]
+    per_pair = {}
+    for row in big:
+        per_pair.setdefault(f"{row['experiment']}:{row['effect']}", []).append(row)
     return {
         "recovery": recovery,
-        "recovery_at_3_sigma_or_more_white": {
-            "n": n_big,
-            "recovered": k_big,
-            "rate": k_big / n_big if n_big else None,
-            "ci95": list(wilson_interval(k_big, n_big)),
+        # the target applies to effects the data show; finite_thickness is sized by the
+        # prior pull (its recovery is limited by mu_nominal_sigma) and reported apart
+        "recovery_at_3_sigma_or_more_white": pooled(
+            [r for r in big if r["effect"] != "finite_thickness"]
+        ),
+        "recovery_at_3_sigma_or_more_white_finite_thickness": pooled(
+            [r for r in big if r["effect"] == "finite_thickness"]
+        ),
+        "recovery_at_3_sigma_or_more_white_per_pair": {
+            k: pooled(v)["rate"] for k, v in per_pair.items()
         },
         "nulls": nulls,
         "out_of_catalogue": ooc,
@@ -272,6 +290,8 @@ def run(quick=True, out_dir=".", workers=None, progress=False) -> dict:
     else:
         results = [run_one(c, s["n"]) for c in todo]
     wall = time.perf_counter() - t0
+    raw = output_dir(out_dir) / f"{NAME}_results.json"
+    raw.write_text(json.dumps(to_jsonable(results)) + "\n")
     summary = summarise(results)
     fig = plot_recovery(summary)
     png = save_figure(fig, out_dir, "concealed_effects_recovery")
