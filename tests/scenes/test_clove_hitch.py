@@ -118,3 +118,16 @@ def test_free_end_holds_at_papers_parameters():
     assert r.topology_preserved  # no passage at any step, winding kept
     assert r.tension[0] == pytest.approx(1.47, rel=0.02)
     assert abs(r.tension[-1]) < 0.02 * 1.47
+
+
+@pytest.mark.slow
+def test_asymmetric_loading_holds():
+    """T_high/T_low = 1.47/0.5: the hitch holds; the ends carry the loads and the tension
+    inside the knot falls below T_low (friction on post and nips carries the difference).
+    Measured: creep 0, min T = 0.15 N."""
+    r = clove_hitch(loading="asymmetric", t_high=1.47, t_low=0.5, **QUICK)
+    assert r.status == "success" and r.topology_preserved
+    assert abs(r.creep) < 0.1 * 4e-3
+    assert r.tension[0] == pytest.approx(1.47, rel=0.02)
+    assert r.tension[-1] == pytest.approx(0.5, rel=0.02)
+    assert r.tension.min() < 0.5 * 0.5
