@@ -65,11 +65,12 @@ class ElasticWorkspace:
         self.energy_parts = (e_s, e_b, e_t)
 
     def band_add(self, ab, full: bool = True) -> None:
-        """Add the elastic Hessian into band storage ``ab`` (31, n_dof), dgbsv layout
-        (only its upper triangle unless ``full``)."""
+        """Add the elastic Hessian into band storage: ``ab`` (31, n_dof) in the dgbsv layout
+        (both triangles unless ``full`` is False), or (11, n_dof) in the dpbsv upper layout."""
         s = self.system
-        _asm.band_add_hessians(s.edge_dof0, s.stencil_edge, self.hess_s, self.hess8, ab)
-        if full:
+        off = _asm.BAND if ab.shape[0] == _asm.BAND + 1 else 2 * _asm.BAND
+        _asm.band_add_hessians(s.edge_dof0, s.stencil_edge, self.hess_s, self.hess8, ab, off)
+        if full and ab.shape[0] == 3 * _asm.BAND + 1:
             _asm.band_mirror(ab)
 
     def coo(self):

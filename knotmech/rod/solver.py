@@ -110,7 +110,8 @@ class Stepper:
         th = system.is_theta
         self.fx = self.free & ~th
         self.ft = self.free & th
-        self.ab = np.zeros((3 * _B + 1, n), order="F")
+        self.pb = np.zeros((_B + 1, n), order="F")  # upper band (dpbsv layout)
+        self.gb = np.zeros((3 * _B + 1, n), order="F")  # full band for the LU fallback
         self.trip = Triplets()
         self.fext = np.zeros(n)
         self.jdiag = np.zeros(n)
@@ -169,11 +170,11 @@ class Stepper:
 
     def _assemble(self) -> None:
         if self._use_band():
-            ab = self.ab
-            ab[:] = 0.0
-            self.ws.band_add(ab, full=False)  # upper triangle: enough for Cholesky
-            _asm.band_add_diagonal(self.diag, ab)
-            _asm.band_constrain(self.cdofs, ab)
+            pb = self.pb
+            pb[:] = 0.0
+            self.ws.band_add(pb)  # upper triangle: enough for Cholesky
+            _asm.band_add_diagonal(self.diag, pb, _B)
+            _asm.band_constrain(self.cdofs, pb, _B)
             self._mode = "band"
         else:
             r, c, v = self.ws.coo()
@@ -191,10 +192,10 @@ class Stepper:
         if self._mode == "band":
             b = rhs.copy()
             b[self.cdofs] = 0.0
-            _, x, info = lapack.dpbsv(self.ab[_B : 2 * _B + 1], b, lower=0, overwrite_b=0)
+            _, x, info = lapack.dpbsv(self.pb, b, lower=0, overwrite_ab=0, overwrite_b=0)
             if info != 0:  # not positive definite: LU with pivoting on the full matrix
-                _asm.band_mirror(self.ab)
-                _, _, x, info = lapack.dgbsv(_B, _B, self.ab, b, overwrite_ab=0, overwrite_b=1)
+                _asm.upper_to_general(self.pb, self.gb)
+                _, _, x, info = lapack.dgbsv(_B, _B, self.gb, b, overwrite_ab=1, overwrite_b=1)
                 if info != 0:
                     raise _StepFailed("singular Jacobian")
             return x

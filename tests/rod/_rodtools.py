@@ -40,3 +40,25 @@ def clamped_rod(
     if both:
         cons.append(rod.clamp_end(system, end="end"))
     return system, cons, h
+
+
+def min_eig_constrained(system, q, state, cdofs):
+    """Smallest eigenvalue of the elastic Hessian at q with the ``cdofs`` rows and columns
+    replaced by the identity's (their eigenvalue 1 cannot cause a sign change), computed
+    from the band storage with scipy.linalg.eig_banded (fast for long rods)."""
+    from scipy.linalg import eig_banded
+
+    ws = rod.ElasticWorkspace(system)
+    ws.frames(q, state.tangents, state.d1, state.ref_twist)
+    ws.grad_hess(q)
+    gb = np.zeros((31, system.n_dof), order="F")
+    ws.band_add(gb)
+    low = np.ascontiguousarray(gb[20:31])  # A[i, j] at low[i - j, j], i >= j
+    n = system.n_dof
+    for d in cdofs:
+        for j in range(max(0, d - 10), d):
+            low[d - j, j] = 0.0
+        for i in range(d + 1, min(n, d + 11)):
+            low[i - d, d] = 0.0
+        low[0, d] = 1.0
+    return eig_banded(low, lower=True, eigvals_only=True, select="i", select_range=(0, 0))[0]

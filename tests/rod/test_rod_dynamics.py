@@ -20,16 +20,18 @@ def _free_rod(n=21, seed=0):
 
 
 def test_free_rod_conserves_linear_momentum_and_only_dissipates_energy():
-    """No external force, random initial velocities: sum m v is conserved to round-off
-    (internal forces are translation invariant) and implicit Euler may only dissipate:
-    kinetic + elastic energy never increases from frame to frame."""
+    """No external force, random initial velocities: sum m v is conserved up to the Newton
+    tolerance (internal forces are translation invariant, so the momentum changes only by
+    dt times the sum of the residual left) and implicit Euler may only dissipate: kinetic +
+    elastic energy never increases from frame to frame."""
     system = _free_rod()
-    res = rod.simulate(system, t_end=0.05, dt=1e-3, options=rod.SolverOptions(save_every=1e-3))
+    opts = rod.SolverOptions(save_every=1e-3, rtol=1e-12)
+    res = rod.simulate(system, t_end=0.05, dt=1e-3, options=opts)
     m = system.mass[system.node_dofs]
     v0 = system.initial_state().v[system.node_dofs]
     v1 = res.final_state.v[system.node_dofs]
     scale = np.abs(m * v0).sum()
-    assert np.allclose(np.sum(m * v1, axis=0), np.sum(m * v0, axis=0), rtol=0, atol=1e-12 * scale)
+    assert np.allclose(np.sum(m * v1, axis=0), np.sum(m * v0, axis=0), rtol=0, atol=1e-11 * scale)
     e = sum(res.energies[k] for k in ("kinetic", "stretch", "bend", "twist"))
     assert np.all(np.diff(e) <= 1e-12 * e[0])
     assert e[-1] < 0.99 * e[0]

@@ -63,11 +63,11 @@ def _stencil_upper(h8, t, h11, i1, s1, i2, s2):
 
 
 @njit(cache=True, fastmath=True)
-def band_add_hessians(edge_dof0, stencil_edge, hess_s, hess8, ab):
+def band_add_hessians(edge_dof0, stencil_edge, hess_s, hess8, ab, off):
     """Add the stretching (6x6 per edge) and bending+twisting (8x8 edge-space per stencil)
-    Hessians into the UPPER triangle of the band matrix ``ab`` ((31, n_dof), dgbsv layout,
-    kl = ku = 10); the matrix is symmetric, see :func:`band_mirror` for the lower part."""
-    off = 2 * BAND
+    Hessians into the UPPER triangle of a band matrix, A[i, j] at ab[off + i - j, j]:
+    off = 20 for the dgbsv layout (31, n), off = 10 for the dpbsv upper layout (11, n).
+    The matrix is symmetric; see :func:`band_mirror` for the lower part."""
     for k in range(edge_dof0.shape[0]):
         d = edge_dof0[k]
         for b in range(6):
@@ -132,23 +132,35 @@ def band_to_dense(ab, n):
 
 
 @njit(cache=True)
-def band_add_diagonal(diag, ab):
-    """ab[diagonal] += diag."""
-    off = 2 * BAND
+def band_add_diagonal(diag, ab, off):
+    """ab[diagonal] += diag (A[i, j] at ab[off + i - j, j])."""
     for j in range(diag.shape[0]):
         ab[off, j] += diag[j]
 
 
 @njit(cache=True)
-def band_constrain(dofs, ab):
-    """Replace rows and columns of the constrained ``dofs`` by those of the identity."""
-    off = 2 * BAND
+def band_constrain(dofs, ab, off):
+    """Replace row and column of each constrained dof by those of the identity, in the
+    upper triangle of a symmetric band matrix (A[i, j] at ab[off + i - j, j], i <= j)."""
     n = ab.shape[1]
     for d in dofs:
-        for j in range(max(0, d - BAND), min(n, d + BAND + 1)):
-            ab[off + d - j, j] = 0.0  # row d
-            ab[off + j - d, d] = 0.0  # column d
+        for j in range(d, min(n, d + BAND + 1)):
+            ab[off + d - j, j] = 0.0  # row d, right of the diagonal
+        for i in range(max(0, d - BAND), d):
+            ab[off + i - d, d] = 0.0  # column d, above the diagonal
         ab[off, d] = 1.0
+
+
+@njit(cache=True)
+def upper_to_general(pb, gb):
+    """Full dgbsv-layout matrix gb (31, n) from the upper band pb (11, n) of a symmetric one."""
+    n = pb.shape[1]
+    gb[:, :] = 0.0
+    for j in range(n):
+        for i in range(max(0, j - BAND), j + 1):
+            v = pb[BAND + i - j, j]
+            gb[2 * BAND + i - j, j] = v
+            gb[2 * BAND + j - i, i] = v
 
 
 @njit(cache=True, fastmath=True)
