@@ -168,3 +168,28 @@ def test_greenhill_twist_buckling_threshold_of_a_clamped_rod():
     # 8.2925, 8.7841, 8.9338 for N = 21, 41, 81 edges: second order with a large constant
     assert errs[-1] < 7e-3
     assert 1.7 < _order(hs, errs) < 2.3
+
+
+@pytest.mark.parametrize("factor", [0.9, 1.1])
+def test_dynamic_euler_buckling_of_a_clamped_free_column(factor):
+    """Time integration around the Euler load pi^2 EI / (4 L^2): a column perturbed by a
+    1e-4 L lateral bump stays straight under 0.9 P_c (the perturbation decays, implicit
+    Euler only dissipates) and buckles under 1.1 P_c (it grows more than a hundredfold)."""
+    L, r, E = 1.0, 1e-3, 1e9
+    system0, cons, h = clamped_rod(21, length=L, radius=r, youngs_modulus=E)
+    pos = system0.rods[0].positions.copy()
+    s = np.clip(pos[:, 0] - h / 2, 0.0, None)
+    pos[:, 2] = 1e-4 * (1 - np.cos(np.pi * s / (2 * L)))
+    bumped = rod.Rod(positions=pos, radius=r, youngs_modulus=E, density=1000.0, natural="straight")
+    system = rod.RodSystem([bumped])
+    ei = bumped.bending_stiffness
+    pc = np.pi**2 * ei / (4 * L**2)
+    res = rod.simulate(
+        system, t_end=15.0, dt=0.02, loads=[rod.NodeForce(-1, (-factor * pc, 0, 0))],
+        constraints=cons, options=rod.SolverOptions(save_every=0.5),
+    )  # fmt: skip
+    amp = np.abs(res.positions[:, -1, 2])
+    if factor < 1:
+        assert amp[-1] < 1.1e-4 and np.max(amp) < 1.5e-4
+    else:
+        assert np.max(amp) > 1e-2
