@@ -43,8 +43,7 @@ import matplotlib.pyplot as plt
 import numpy as np
 
 from knotmech.analytic.capstan import mu_eff
-from knotmech.diagnose.engine import diagnose
-from knotmech.diagnose.recording import read_recording
+from knotmech.diagnose import diagnose, read_recording
 
 QUICK = os.environ.get("KNOTMECH_QUICK", "0") == "1"
 
@@ -147,4 +146,4 @@ print(report_none.verdict_line)
 # **Things to try.** Lower the noise or remove `mu_nominal`: can the data alone
 # tell finite thickness from a smaller $\mu$? (They cannot: on one post both give
 # the same exponential. The prior is what makes the effect visible.) Try
-# `knotmech.diagnose.synth.make_recording("pinch", "contact_flattening")`.
+# `knotmech.diagnose.make_recording("pinch", "contact_flattening")`.
