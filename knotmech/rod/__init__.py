@@ -21,7 +21,9 @@ Interactions (contact, friction, springs: see ``Interaction`` and notes/der_cont
     end_step, energy), Triplets (add(rows, cols, vals) of dF/dq), PointSpring
 Solve
     simulate(system, state0=None, *, t_end, dt, loads=(), constraints=(), interactions=(),
-             options=SolverOptions(), progress=False, callback=None) -> Result
+             options=SolverOptions(), progress=False, callback=None, throw=None) -> Result
+        Raises knotmech.errors.SolverError (``.state`` last good State, ``.result`` the
+        partial Result) when a step fails below dt_min, unless throw=False
     SolverOptions(dt_min, max_newton, rtol, xtol, line_search, max_backtracks, grow_after,
                   save_every, linear_solver, throw)
     Result  status, message, stats, times, positions, thetas, reactions (+ reaction_nodes),

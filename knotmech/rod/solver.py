@@ -290,6 +290,7 @@ def simulate(
     options: SolverOptions = SolverOptions(),
     progress: bool = False,
     callback=None,
+    throw: bool | None = None,
 ) -> Result:
     """Integrate a rod system from ``state0`` to ``t_end`` with implicit Euler.
 
@@ -307,6 +308,7 @@ def simulate(
     progress : bool  show a tqdm progress bar
     callback : callable(state) -> bool or None, called after every accepted step; returning
         True stops the run (status "success", message says so)
+    throw : bool, optional  overrides ``options.throw``
 
     Returns
     -------
@@ -456,7 +458,7 @@ def simulate(
         energies={k: np.array(v) for k, v in energies.items()},
         final_state=st,
     )
-    if status != "success" and opt.throw:
+    if status != "success" and (opt.throw if throw is None else throw):
         err = SolverError(message, state=st)
         err.result = res
         raise err
