@@ -23,7 +23,9 @@ Augmentations (symbols as in :mod:`knotmech.diagnose.effects`):
 - ``finite_thickness``: :math:`\mu \to \mu_\mathrm{eff}(\mu, D/d)` (clove-hitch
   paper, eq. 3), ``mu`` is the material coefficient carrying the ``mu_nominal`` prior.
 - ``displacement_offset`` (capstan_pull): the slack :math:`\delta_0 \ge 0` is replaced
-  by a pre-stretch: :math:`u \to u + u_\mathrm{off}`, :math:`u_\mathrm{off} \ge 0`.
+  by a signed shift, :math:`u - \delta_0 \to u + u_\mathrm{off}`; a pre-stretch
+  (:math:`u_\mathrm{off} > 0`, tension above T_low at zero displacement) is what the
+  baseline cannot fit.
 - ``rate_dependent_friction``: :math:`\mu \to \mu + \beta \ln(v/v_\mathrm{ref})`,
   :math:`v_\mathrm{ref}` the geometric mean speed.
 - ``adhesion`` (pinch): :math:`F_t \to F_t + F_a`.
@@ -195,8 +197,9 @@ def build_model(rec: Recording, effects: tuple = (), fixed: dict | None = None) 
         lo += [1e-12]
         hi += [np.inf]
         if "displacement_offset" in effects:
+            # signed, so that the model nests the baseline (offset_m = -delta0_m <= 0)
             names += ["offset_m"]
-            lo += [0.0]
+            lo += [-(float(np.max(rec.x)) if np.max(rec.x) > 0 else span)]
             hi += [span]
         else:
             names += ["delta0_m"]

@@ -145,6 +145,7 @@ def diagnose(
     current = base
     accepted = []
     tested = []
+    steps = []
     for _ in range(max_effects):
         cands = []
         for name in ok:
@@ -158,6 +159,7 @@ def diagnose(
             k = _n_new(current, alt, name)
             cands.append((lr - k * np.log(n), name, alt, lr))
         cands.sort(key=lambda c: -c[0])
+        steps.append({c[1]: float(f"{c[0]:.4g}") for c in cands})
         step = None
         for dbic, name, alt, lr in cands[:2]:
             if dbic <= 0:
@@ -245,6 +247,10 @@ def diagnose(
             },
         },
         "candidates": tested,
+        # delta BIC of every applicable effect at each forward step (confusable ones
+        # show here next to the accepted one)
+        "selection_steps": steps,
+        "confusable_with": {nm: list(CATALOGUE[nm].confusable_with) for nm in names},
         "skipped_effects": skipped,
         "alpha": alpha,
         "seed": seed,

@@ -211,8 +211,9 @@ def fit_with_effect(current: Fit, effect: str, data: Data, starts, *, given_sigm
         model = build_model(rec, effects, fixed)
         b = baseline_start(rec, y)
         v = dict(values)
-        v["offset_m"] = b["offset_m"] if b["offset_m"] > 0 else 0.01 * span
+        v["offset_m"] = b["offset_m"] if b["offset_m"] > 0 else -values["delta0_m"]
         starts_p.append(_vector(model, v, {}))
+        starts_p.append(_vector(model, dict(v, offset_m=-values["delta0_m"]), {}))
     elif effect == "adhesion":
         model = build_model(rec, effects, fixed)
         slope, icpt = np.polyfit(rec.x, y, 1)
