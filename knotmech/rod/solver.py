@@ -13,6 +13,15 @@ LU dgbsv when J is not positive definite) unless interactions add triplets, then
 CSC matrix with SuperLU. A failed step is retried with half the step (interactions'
 ``begin_step`` is called again); below ``dt_min`` the run stops with status "failed" and
 the last good state.
+
+The elastic part of J is the symmetric Hessian of the DER energy with parallel-transported
+reference frames (verified against finite differences in tests/rod/test_rod_gradients.py).
+The exact derivative of the residual also holds a small antisymmetric "holonomy" term
+proportional to the unbalanced torques on the twist angles (zero at equilibrium), which is
+left out, as in Bergou et al. 2010: Newton stays symmetric and positive definite (Cholesky)
+at the price of slightly less than quadratic convergence while those torques are large.
+Static equilibria: use a step much longer than the rod's periods (inertia negligible),
+ramped loads (``ramp_time``) and, for dynamics that must settle, ViscousDamping.
 """
 
 from __future__ import annotations
