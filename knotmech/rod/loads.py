@@ -6,6 +6,7 @@ solver's buffers, and reports its potential energy ``energy(system, q, t)`` (0 f
 
 from __future__ import annotations
 
+import weakref
 from dataclasses import dataclass
 
 import numpy as np
@@ -13,6 +14,9 @@ import numpy as np
 from ..errors import InputError, check_finite, check_nonnegative
 
 __all__ = ["Gravity", "NodeForce", "EdgeTorque", "ViscousDamping"]
+
+
+_GRAVITY_CACHE: weakref.WeakKeyDictionary = weakref.WeakKeyDictionary()
 
 
 def _ramp(t, ramp_time) -> float:
@@ -48,15 +52,27 @@ class Gravity:
         object.__setattr__(self, "acceleration", tuple(float(x) for x in g))
         object.__setattr__(self, "ramp_time", float(check_nonnegative("ramp_time", self.ramp_time)))
 
+    def _weights(self, system) -> np.ndarray:
+        """Full-load generalized force m_i g on every dof (cached per system)."""
+        cache = _GRAVITY_CACHE.setdefault(system, {})
+        w = cache.get(self.acceleration)
+        if w is None:
+            w = np.zeros(system.n_dof)
+            nd = system.node_dofs
+            w[nd] = system.mass[nd] * np.asarray(self.acceleration)[None, :]
+            cache[self.acceleration] = w
+        return w
+
     def apply(self, system, t, q, q_old, dt, force, jac_diag) -> None:
-        g = np.asarray(self.acceleration) * _ramp(t, self.ramp_time)
-        nd = system.node_dofs
-        force[nd] += system.mass[nd] * g[None, :]
+        w = self._weights(system)
+        lam = _ramp(t, self.ramp_time)
+        if lam == 1.0:
+            force += w
+        else:
+            force += lam * w
 
     def energy(self, system, q, t=np.inf) -> float:
-        g = np.asarray(self.acceleration) * _ramp(t, self.ramp_time)
-        nd = system.node_dofs
-        return float(-np.sum(system.mass[nd] * q[nd] * g[None, :]))
+        return -_ramp(t, self.ramp_time) * float(np.dot(self._weights(system), q))
 
 
 @dataclass(frozen=True)

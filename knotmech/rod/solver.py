@@ -167,7 +167,7 @@ class Stepper:
         if jacobian:
             np.subtract(s.mass / (dt * dt), jd, out=self.diag)
             self._assemble()
-        tens = self.ea_max * float(np.max(np.abs(ws.lengths / s.rest_length - 1.0)))
+        tens = self.ea_max * _asm.max_abs_strain(ws.lengths, s.rest_length)
         return max(sx, tens), sth, rx, rt
 
     def _use_band(self) -> bool:

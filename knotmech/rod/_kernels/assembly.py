@@ -190,3 +190,12 @@ def residual_and_scales(mass, dt, q, q_old, v_old, grad, fext, is_theta, free, f
                 sx = max(sx, sc)
                 rx = max(rx, abs(fi))
     return pot, sx, st, rx, rt
+
+
+@njit(cache=True)
+def max_abs_strain(lengths, rest_length):
+    """max_k | |e^k| / |ebar^k| - 1 | (the stretching force scale over EA)."""
+    out = 0.0
+    for k in range(lengths.shape[0]):
+        out = max(out, abs(lengths[k] / rest_length[k] - 1.0))
+    return out
