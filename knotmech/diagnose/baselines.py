@@ -46,22 +46,11 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from knotmech.analytic.capstan import mu_eff
+from knotmech.analytic.pinch import pinch_load_parameter
 from knotmech.diagnose.recording import Recording
 from knotmech.errors import InputError
 
 __all__ = ["Model", "build_model", "get_baseline", "BASELINES", "pinch_load_parameter"]
-
-
-def pinch_load_parameter(normal_force, *, youngs_modulus, rod_diameter, pinch_diameter):
-    r"""Pinch load parameter :math:`x = 4F_n/(\pi E d D)` (clove-hitch paper, sec. 9).
-
-    Computed locally (:mod:`knotmech.analytic.pinch` provides the same when present).
-    """
-    return (
-        4.0
-        * np.asarray(normal_force, dtype=float)
-        / (np.pi * youngs_modulus * rod_diameter * pinch_diameter)
-    )
 
 
 @dataclass
