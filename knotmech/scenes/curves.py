@@ -18,7 +18,9 @@ axial length, the straight tails have length :math:`t = (E - b_x)/2` (E the end-
 distance) and the loop takes the rest, :math:`l = L - 2t - 2b`; it is a circular arc
 through the two ends of the braid, tangent-continuous to within the angle
 :math:`\arcsin(b_x/2R)`, and the junctions are rounded over a few rod radii.
-Non-adjacent nodes are at least :math:`2h(1+c)` apart (a clean contact start).
+Non-adjacent nodes are at least :math:`2h(1+c)` apart and non-adjacent edges at least
+:math:`2h` (the helix radius is enlarged on coarse meshes, whose chords cut inside the
+helix), so contact starts clean.
 
 Clove hitch (the clove-hitch paper, sec. 2 and Fig. 1): two wraps around a post at
 centreline radius :math:`R = (D+d)/2`, the diagonal between them crossing over both
@@ -343,6 +345,37 @@ def _overhand_dense(turns, L, h, E, b, a, loop_len, ds, extra):
     return p, s, s_junctions, {"tail": t, "bx": bx, "loop_radius": R}
 
 
+def _overhand_nodes(n, L, h, E, b, a, loop_len, edge, N):
+    """Equal-chord nodes of the overhand design for helix radius ``a``."""
+    ds = min(edge, a) / 8.0
+    width = 1.5 * a
+    # equal chords of length L/(N-1); the loop length is adjusted (secant) so that the
+    # last node lands on the end of tail 2 (the corner rounding shortens the curve a little)
+    design = loop_len
+    extra = 4 * edge
+    target = None
+    prev = None
+    for _ in range(12):
+        p, s, sj, geo = _overhand_dense(n, L, h, E, b, a, design, ds, extra)
+        p = _smooth_corners(p, s, sj, width)
+        if target is None:
+            target = geo["bx"] + geo["tail"]
+        nodes = _march_chords(p, edge, N)
+        err = float(target - nodes[-1, 0])
+        if abs(err) < 1e-9 * L:
+            break
+        if prev is None:
+            step = err
+        else:
+            slope = (err - prev[1]) / (design - prev[0])
+            step = -err / slope if slope != 0 else err
+        prev = (design, err)
+        design += step
+    else:
+        raise InputError("could not place the nodes at equal spacing; check the lengths")
+    return nodes, sj, geo, design
+
+
 def overhand_knot(
     turns: int,
     *,
@@ -428,32 +461,23 @@ def overhand_knot(
             f"n_nodes = {N} is too coarse: the edge {edge:.3g} m must not exceed a sixth of"
             f" the braid's helix pitch {pitch:.3g} m"
         )
-    ds = min(edge, a) / 8.0
-    width = 1.5 * a
-    # equal chords of length L/(N-1); the loop length is adjusted (secant) so that the
-    # last node lands on the end of tail 2 (the corner rounding shortens the curve a little)
-    design = loop_len
-    extra = 4 * edge
-    target = None
-    prev = None
-    for _ in range(12):
-        p, s, sj, geo = _overhand_dense(n, L, h, E, b, a, design, ds, extra)
-        p = _smooth_corners(p, s, sj, width)
-        if target is None:
-            target = np.array([geo["bx"] + geo["tail"], 0.0, -a])
-        nodes = _march_chords(p, edge, N)
-        err = float(target[0] - nodes[-1, 0])
-        if abs(err) < 1e-9 * L:
+    idx_e = np.arange(N - 1)
+    far = np.abs(idx_e[:, None] - idx_e[None, :]) >= 3
+    for _attempt in range(8):
+        nodes, sj, geo, design = _overhand_nodes(n, L, h, E, b, a, loop_len, edge, N)
+        # edge-edge clearance: chords of the helices cut inside it on coarse meshes
+        d_min = float(_edge_distances(nodes)[far].min())
+        if d_min >= 2.0 * h:
             break
-        if prev is None:
-            step = err
-        else:
-            slope = (err - prev[1]) / (design - prev[0])
-            step = -err / slope if slope != 0 else err
-        prev = (design, err)
-        design += step
+        a *= 1.02 * 2.0 * h / d_min
+        if b <= 1.05 * Phi * a:
+            raise InputError(
+                f"n_nodes = {N} is too coarse for braid_length {b:g} m: the strands would"
+                " have to be spread beyond the braid length to stay a diameter apart"
+            )
     else:
-        raise InputError("could not place the nodes at equal spacing; check the lengths")
+        raise InputError(f"n_nodes = {N}: could not keep the strands a rod diameter apart")
+    bx, t = geo["bx"], geo["tail"]
     # place the ends on the x axis, centred
     nodes = nodes - np.array([0.5 * (nodes[0, 0] + nodes[-1, 0]), 0.0, nodes[0, 2]])
     edge = L / (N - 1)

@@ -74,6 +74,20 @@ def test_against_imc_start_shapes(shared_reference, turns):
     assert m_ours["braid_length"] == pytest.approx(m_ref["braid_length"], rel=0.08)
 
 
+@pytest.mark.parametrize("turns, n_nodes", [(1, 101), (2, 101), (3, 151)])
+def test_coarse_mesh_edges_clear(turns, n_nodes):
+    """Chords of a coarse helix cut inside it: the generator widens the helix so that
+    non-adjacent edges stay a rod diameter apart (edge-edge distance)."""
+    from knotmech.scenes.curves import _edge_distances
+
+    c = overhand_coated(turns, n_nodes=n_nodes)
+    idx = np.arange(n_nodes - 1)
+    far = np.abs(idx[:, None] - idx[None, :]) >= 3
+    assert _edge_distances(c.nodes)[far].min() >= 2 * c.rod_radius
+    assert c.info["helix_radius"] > 1.05 * c.rod_radius
+    assert knot_invariant(c.nodes).name == TORUS_NAMES[turns]
+
+
 def test_overhand_node_count_and_clearance():
     c = overhand_knot(
         2,
