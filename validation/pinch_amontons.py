@@ -50,7 +50,9 @@ DEVIATION = 0.05  #: a ratio further than this from 1 counts as a deviation from
 
 def normal_load_for(x):
     """F_n [N] giving the load parameter x = 4 F_n/(pi E d D) for this case's rod."""
-    return np.asarray(x, dtype=float) * np.pi * YOUNGS_MODULUS * ROD_DIAMETER * CYLINDER_DIAMETER / 4
+    return (
+        np.asarray(x, dtype=float) * np.pi * YOUNGS_MODULUS * ROD_DIAMETER * CYLINDER_DIAMETER / 4
+    )
 
 
 def _pinch_task(**kw):
@@ -116,7 +118,9 @@ def run(
     large = xs > PINCH_AMONTONS_LIMIT
     err = np.abs(ratio - 1.0)
     max_err_small = float(np.max(err[small])) if small.any() else float("nan")
-    max_dev_large = float(np.nanmax(err[large])) if large.any() and np.isfinite(err[large]).any() else None
+    max_dev_large = (
+        float(np.nanmax(err[large])) if large.any() and np.isfinite(err[large]).any() else None
+    )
     deviates = max_dev_large is not None and max_dev_large > DEVIATION
     fit_ok = np.isfinite(ft) & small
     slope = float(np.polyfit(loads[fit_ok], ft[fit_ok], 1)[0]) if fit_ok.sum() >= 2 else None
