@@ -1,0 +1,328 @@
+r"""Clove hitch with a free end: DER hold/slip phase table, one point or a shipped grid.
+
+The clove-hitch paper (Extreme Mech. Lett., DOI 10.1016/j.eml.2022.101788, sec. 8 and
+Fig. 4) maps whether a clove hitch with a free end (:math:`T_\mathrm{low} = 0`) holds a
+dead load :math:`T_\mathrm{high}` as a function of the rescaled load
+:math:`T_\mathrm{high}/EA` (:math:`A = \pi d^2/4`) and the rescaled diameter
+:math:`d/2R`, with :math:`R = (D+d)/2` the radius of the rod centreline on the post.
+Ideal-rope theory (Maddocks & Keller 1987) predicts a slip at any load; the
+experiments find a load-dependent boundary with an upper bound near
+:math:`T_\mathrm{high}/EA \approx 0.3`.
+
+This module
+
+- simulates one point of that diagram with the DER scene
+  :func:`knotmech.scenes.clove_hitch.clove_hitch` (:func:`simulate_point`, a module-level
+  function for :func:`knotmech.sweep.sweep`),
+- loads the precomputed table shipped in ``knotmech/data/clove_phase_table.json``
+  (:func:`load_table`; regenerate with ``python -m validation.clove_phase_diagram
+  --write-table``),
+- answers a query from that table (:meth:`PhaseTable.lookup`): per d/2R column the
+  boundary lies between the largest load that held and the smallest that slipped; the
+  critical load is interpolated linearly in d/2R between columns. Outside the grid
+  (or at another friction coefficient) the table gives no answer and says so.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from dataclasses import dataclass, field
+from importlib import resources
+from pathlib import Path
+
+import numpy as np
+
+from knotmech.errors import InputError, check_positive
+
+__all__ = [
+    "PhasePoint",
+    "PhaseTable",
+    "PhaseAnswer",
+    "simulate_point",
+    "point_geometry",
+    "load_table",
+    "TABLE_RESOURCE",
+    "ROD_DIAMETER",
+    "YOUNGS_MODULUS",
+    "DENSITY",
+    "MU",
+]
+
+TABLE_RESOURCE = "clove_phase_table.json"
+ROD_DIAMETER = 4e-3  #: [m] the clove-hitch paper's rod (VPS32)
+YOUNGS_MODULUS = 1.26e6  #: [Pa] VPS32
+DENSITY = 1150.0  #: [kg/m^3]
+MU = 0.3  #: rod-post and rod-rod friction of the table (the paper's sec. 7 value)
+TAIL = 0.064  #: [m] straight tail at each end (the paper's L = 374 mm at D = 30 mm)
+EDGE = 0.374 / 119  #: [m] rest edge length (120 nodes on 374 mm)
+#: run protocol of a point (settle, ramp, hold [s]; time step [s])
+PROTOCOL = dict(settle_time=0.2, load_time=0.2, hold_time=0.4, dt=2e-3, n_frames=21)
+
+
+def point_geometry(d_over_2R: float, *, rod_diameter: float = ROD_DIAMETER) -> dict:
+    r"""Post diameter, rod length and node count of a phase point.
+
+    :math:`d/2R = d/(D+d)` gives :math:`D = d(1/(d/2R) - 1)`; the rod is two wraps
+    (:math:`4\pi R` plus 15 % slack for the crossing, as the scene requires) plus a
+    64 mm tail at each end (the paper's 374 mm rod at D = 30 mm), discretised with a
+    fixed edge length of about 3.1 mm.
+    """
+    x = float(d_over_2R)
+    if not 0.0 < x < 0.5:
+        raise InputError(f"d_over_2R must be in (0, 0.5), got {x:g}")
+    d = float(check_positive("rod_diameter", rod_diameter))
+    D = d * (1.0 / x - 1.0)
+    R = 0.5 * (D + d)
+    L = 4 * np.pi * R * 1.15 + 2 * TAIL
+    return {"post_diameter": D, "rod_length": L, "n_nodes": int(round(L / EDGE)) + 1}
+
+
+def simulate_point(
+    *,
+    d_over_2R: float,
+    t_over_EA: float,
+    mu: float = MU,
+    mu_rr: float | None = None,
+    rod_diameter: float = ROD_DIAMETER,
+    youngs_modulus: float = YOUNGS_MODULUS,
+    density: float = DENSITY,
+    progress: bool = False,
+) -> dict:
+    r"""One DER run of a clove hitch with a free end: does it hold :math:`T_\mathrm{high}`?
+
+    Ties the hitch on a post of diameter :math:`D = d(1/(d/2R) - 1)`, hangs
+    :math:`T_\mathrm{high} = (T_\mathrm{high}/EA)\,E\pi d^2/4` on end 0, leaves the other
+    end free, and returns the scene's verdict (hold: end 0 creeps less than one rod
+    diameter over the second half of a 0.4 s hold; protocol :data:`PROTOCOL`).
+
+    Returns
+    -------
+    dict
+        ``d_over_2R, t_over_EA, t_high [N], post_diameter [m], verdict ("hold"/"slip"),
+        holds (bool), creep [m], status, topology_preserved, wall_s``. A run whose solver
+        failed has ``holds = None``.
+    """
+    d = float(check_positive("rod_diameter", rod_diameter))
+    E = float(check_positive("youngs_modulus", youngs_modulus))
+    tea = float(check_positive("t_over_EA", t_over_EA))
+    from knotmech.scenes.clove_hitch import clove_hitch
+
+    geo = point_geometry(d_over_2R, rod_diameter=d)
+    t_high = tea * E * np.pi * d * d / 4
+    r = clove_hitch(
+        loading="free",
+        t_high=t_high,
+        rod_diameter=d,
+        post_diameter=geo["post_diameter"],
+        rod_length=geo["rod_length"],
+        n_nodes=geo["n_nodes"],
+        youngs_modulus=E,
+        density=float(density),
+        mu_rod_post=float(mu),
+        mu_rod_rod=float(mu if mu_rr is None else mu_rr),
+        progress=progress,
+        **PROTOCOL,
+    )
+    ok = r.status == "success" or r.verdict == "slip"
+    return {
+        "d_over_2R": float(d_over_2R),
+        "t_over_EA": tea,
+        "t_high": float(t_high),
+        "post_diameter": geo["post_diameter"],
+        "mu": float(mu),
+        "mu_rr": float(mu if mu_rr is None else mu_rr),
+        "verdict": r.verdict if ok else "",
+        "holds": (r.verdict == "hold") if ok else None,
+        "creep": float(r.creep),
+        "status": r.status,
+        "message": r.message,
+        "topology_preserved": bool(r.topology_preserved),
+        "wall_s": float(r.stats.get("wall_s", float("nan"))),
+    }
+
+
+simulate_point.__sweep_version__ = "1"
+
+
+@dataclass(frozen=True)
+class PhasePoint:
+    """One simulated point: rescaled diameter, rescaled load, held or not."""
+
+    d_over_2R: float
+    t_over_EA: float
+    holds: bool
+
+
+@dataclass(frozen=True)
+class PhaseAnswer:
+    """Answer of :meth:`PhaseTable.lookup`.
+
+    ``holds`` is None when the query lies outside the table (``inside`` False) or in a
+    column where the boundary is not bracketed by the simulated loads; ``critical`` is
+    the interpolated critical load :math:`T_\\mathrm{high}/EA` (midpoint of the bracket;
+    ``bracket`` its (largest held, smallest slipped) bounds, inf when nothing slipped).
+    """
+
+    holds: bool | None
+    inside: bool
+    critical: float
+    bracket: tuple
+    message: str
+
+    def to_dict(self) -> dict:
+        def num(v):
+            return v if math.isfinite(v) else str(v)
+
+        return {
+            "holds": self.holds,
+            "inside_table": self.inside,
+            "critical_t_over_EA": num(self.critical),
+            "bracket_t_over_EA": [num(float(v)) for v in self.bracket],
+            "message": self.message,
+        }
+
+
+@dataclass
+class PhaseTable:
+    """Hold/slip points of the DER clove hitch with a free end, on a (d/2R, T/EA) grid."""
+
+    points: list
+    mu: float = MU
+    mu_rr: float = MU
+    meta: dict = field(default_factory=dict)
+
+    @property
+    def d_over_2R(self) -> np.ndarray:
+        """Sorted distinct d/2R columns."""
+        return np.unique([p.d_over_2R for p in self.points])
+
+    @property
+    def t_over_EA(self) -> np.ndarray:
+        """Sorted distinct loads T_high/EA."""
+        return np.unique([p.t_over_EA for p in self.points])
+
+    def column_bracket(self, x: float) -> tuple:
+        """(largest load that held, smallest load that slipped) in the column d/2R = x.
+
+        0 when nothing held, inf when nothing slipped. A non-monotone column (a hold
+        above a slip) uses the smallest slip as the upper bound and the largest hold
+        below it as the lower bound.
+        """
+        col = [p for p in self.points if math.isclose(p.d_over_2R, x, rel_tol=1e-9)]
+        slips = [p.t_over_EA for p in col if not p.holds]
+        hi = min(slips) if slips else math.inf
+        held = [p.t_over_EA for p in col if p.holds and p.t_over_EA < hi]
+        lo = max(held) if held else 0.0
+        return lo, hi
+
+    def boundary(self):
+        """(d/2R columns, lower bounds, upper bounds, midpoints) of the hold/slip boundary.
+
+        The midpoint is inf where nothing slipped and 0 where nothing held.
+        """
+        xs = self.d_over_2R
+        lo = np.empty(xs.size)
+        hi = np.empty(xs.size)
+        for i, x in enumerate(xs):
+            lo[i], hi[i] = self.column_bracket(float(x))
+        mid = np.where(np.isfinite(hi), 0.5 * (lo + hi), np.inf)
+        return xs, lo, hi, mid
+
+    def lookup(self, d_over_2R: float, t_over_EA: float, *, mu=None, mu_rr=None) -> PhaseAnswer:
+        """Hold or slip at (d/2R, T_high/EA), interpolated from the table.
+
+        Linear interpolation of the bracket bounds in d/2R between the two nearest
+        columns; holds if the load is at or below the interpolated lower bound, slips
+        if at or above the upper bound, undecided (None) in between. Outside the
+        table's d/2R range or load range, or at a friction coefficient other than the
+        table's (tolerance 0.005), the answer is None with a message saying why.
+        """
+        x = float(d_over_2R)
+        y = float(t_over_EA)
+        if not (math.isfinite(x) and math.isfinite(y)) or y < 0:
+            raise InputError(f"d_over_2R and t_over_EA must be finite, >= 0; got {x}, {y}")
+        xs, lo, hi, _ = self.boundary()
+        ys = self.t_over_EA
+        nan = (float("nan"), float("nan"))
+        for name, val, ref in (("mu", mu, self.mu), ("mu_rr", mu_rr, self.mu_rr)):
+            if val is not None and abs(float(val) - ref) > 0.005:
+                return PhaseAnswer(
+                    None,
+                    False,
+                    float("nan"),
+                    nan,
+                    f"the DER table was computed at {name} = {ref:g} only, not {float(val):g}",
+                )
+        if not (xs[0] - 1e-12 <= x <= xs[-1] + 1e-12):
+            return PhaseAnswer(
+                None,
+                False,
+                float("nan"),
+                nan,
+                f"d/2R = {x:.4g} is outside the DER table ({xs[0]:.4g} to {xs[-1]:.4g})",
+            )
+        if y > ys[-1] * (1 + 1e-9):
+            return PhaseAnswer(
+                None,
+                False,
+                float("nan"),
+                nan,
+                f"T_high/EA = {y:.4g} is above the largest simulated load ({ys[-1]:.4g})",
+            )
+        big = 1e30
+        lo_i = float(np.interp(x, xs, lo))
+        hi_i = float(np.interp(x, xs, np.where(np.isfinite(hi), hi, big)))
+        if hi_i >= big / 2:
+            hi_i = math.inf
+        crit = 0.5 * (lo_i + hi_i) if math.isfinite(hi_i) else math.inf
+        where = f"d/2R = {x:.4g}, T_high/EA = {y:.4g}"
+        if y <= lo_i:
+            holds, msg = True, f"holds in the DER table at {where} (held up to {lo_i:.3g})"
+        elif y >= hi_i:
+            holds, msg = False, f"slips in the DER table at {where} (slipped from {hi_i:.3g})"
+        else:
+            holds = None
+            msg = (
+                f"{where} lies between the largest load that held ({lo_i:.3g}) and the "
+                f"smallest that slipped ({hi_i:.3g}): undecided by the table, use --simulate"
+            )
+        return PhaseAnswer(holds, True, crit, (lo_i, hi_i), msg)
+
+    def to_dict(self) -> dict:
+        return {
+            "mu": self.mu,
+            "mu_rr": self.mu_rr,
+            "meta": self.meta,
+            "points": [[p.d_over_2R, p.t_over_EA, bool(p.holds)] for p in self.points],
+        }
+
+    @classmethod
+    def from_dict(cls, data: dict) -> PhaseTable:
+        try:
+            pts = [PhasePoint(float(a), float(b), bool(c)) for a, b, c in data["points"]]
+            return cls(pts, float(data["mu"]), float(data["mu_rr"]), dict(data.get("meta", {})))
+        except (KeyError, TypeError, ValueError) as exc:
+            raise InputError(f"not a clove-hitch phase table: {exc}") from None
+
+    def write(self, path) -> None:
+        Path(path).write_text(json.dumps(self.to_dict(), indent=1) + "\n")
+
+
+def load_table(path=None) -> PhaseTable:
+    """The shipped table (``knotmech/data/clove_phase_table.json``) or one from ``path``."""
+    if path is None:
+        try:
+            text = resources.files("knotmech").joinpath("data", TABLE_RESOURCE).read_text()
+        except (FileNotFoundError, OSError) as exc:
+            raise InputError(f"the shipped phase table is missing: {exc}") from None
+    else:
+        try:
+            text = Path(path).read_text()
+        except OSError as exc:
+            raise InputError(f"cannot read phase table {str(path)!r}: {exc.strerror}") from None
+    try:
+        data = json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise InputError(f"phase table is not JSON: {exc}") from None
+    return PhaseTable.from_dict(data)
