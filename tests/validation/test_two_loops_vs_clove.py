@@ -1,0 +1,63 @@
+"""Validation case 4 (two loops vs clove hitch): numbers of its JSON summary.
+
+Closed form: the clove-hitch paper (Extreme Mech. Lett., DOI 10.1016/j.eml.2022.101788)
+eq. 3 with its two-loops values (theta = 4 pi, d = 4 mm, D = 30 mm, mu = 0.32). DER
+(slow): the sliding plateau of the two-loops capstan, the static-friction peak.
+"""
+
+import json
+from pathlib import Path
+
+import pytest
+
+from knotmech.cli.validate import load_case
+
+case = load_case("two_loops_vs_clove")
+
+
+@pytest.fixture(scope="module")
+def closed(tmp_path_factory):
+    return case.run(quick=True, out_dir=tmp_path_factory.mktemp("tl_closed"), der=False)
+
+
+def test_closed_form_two_loops(closed):
+    assert closed["verdict"] == "pass", closed["checks"]
+    n = closed["numbers"]
+    # eq. 3 by hand, D/d = 7.5, mu = 0.32: sqrt(8.5^2 + 4 * 0.1024 * 7.5) = sqrt(75.322)
+    # = 8.678825; (8.678825 - 8.5) / 0.64 = 0.279414
+    assert n["mu_eff"] == pytest.approx(0.279414, abs=2e-6)
+    # exp(0.279414 * 4 pi) = exp(3.51123) = 33.49
+    # (ideal rope: exp(0.32 * 4 pi) = exp(4.02124) = 55.77)
+    assert n["exp_mu_eff_4pi"] == pytest.approx(33.49, abs=0.01)
+    assert n["exp_mu_4pi_ideal_rope"] == pytest.approx(55.77, abs=0.01)
+    # the paper's solid rod: EI/(T_low R^2) = pi E d^4/64 / (0.069 * 0.017^2) = 0.794
+    assert n["eps2_solid_rod"] == pytest.approx(0.794, abs=1e-3)
+    # the clove hitch has no pull-at-speed loading: said in the summary and the figure
+    assert n["clove_hitch_curve"].startswith("not drawn")
+    assert not case.clove_hitch_pull_supported()
+    png = Path(closed["figures"][0])
+    assert png.read_bytes()[:4] == b"\x89PNG"
+    assert json.loads((png.parent / "two_loops_vs_clove.json").read_text())["numbers"] == n
+
+
+def test_peak_over_plateau():
+    assert case.peak_over_plateau([0.0, 1.0, 2.6, 2.0, 2.0], 2.0) == pytest.approx(1.3)
+
+
+@pytest.mark.slow
+def test_der_plateau_and_static_peak(tmp_path):
+    """Measured (120 elements, rope-like EI): see the report numbers in the JSON."""
+    r = case.run(quick=True, out_dir=tmp_path, processes=1)
+    assert r["verdict"] == "pass", r["checks"]
+    n = r["numbers"]
+    assert n["failed"] == []
+    # kinetic plateau against exp(mu_eff 4 pi) = 33.49 within 5 %
+    assert abs(n["plateau_rel_err_vs_exp_mu_eff_4pi"]) < 0.05
+    # kinetic friction only: monotone rise, no overshoot above 2 %
+    assert n["peak_over_plateau_kinetic"] < 1.02
+    # static friction (mu_s = 0.36 > mu_k = 0.32): a peak at the onset of sliding...
+    assert n["peak_over_plateau_static"] > 1.03
+    # ...which stays below the static capstan limit exp(mu_eff(0.36) 4 pi)
+    assert n["peak_static_run"] < n["exp_mu_eff_static_4pi"]
+    # and then it slides at the kinetic plateau
+    assert n["plateau_static_run"] == pytest.approx(n["plateau_kinetic"], rel=0.03)
