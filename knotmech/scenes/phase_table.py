@@ -254,7 +254,7 @@ class PhaseTable:
                     nan,
                     f"the DER table was computed at {name} = {ref:g} only, not {float(val):g}",
                 )
-        if not (xs[0] - 1e-12 <= x <= xs[-1] + 1e-12):
+        if not (xs[0] * (1 - 1e-6) <= x <= xs[-1] * (1 + 1e-6)):
             return PhaseAnswer(
                 None,
                 False,

@@ -1,0 +1,316 @@
+r"""Case 3: stability phase diagram of the clove hitch with a free end.
+
+With a free end (:math:`T_\mathrm{low} = 0`) ideal-rope theory (Maddocks & Keller 1987,
+quoted in the clove-hitch paper, Extreme Mech. Lett., DOI 10.1016/j.eml.2022.101788,
+sec. 8) predicts that the clove hitch slips at any load, whatever d and D: at slip
+:math:`T_\mathrm{high}` is proportional to :math:`T_\mathrm{low}`. The paper's experiments
+(Fig. 4) contradict it: the hitch holds below a critical load
+:math:`T_\mathrm{high}/EA` that depends on the rescaled diameter :math:`d/2R`, with an upper
+bound near :math:`T_\mathrm{high}/EA \approx 0.3`.
+
+This case maps hold/slip over :math:`(d/2R,\ T_\mathrm{high}/EA)` with the DER scene
+(:func:`knotmech.scenes.phase_table.simulate_point`, one free-end clove hitch per point,
+run through :func:`knotmech.sweep.sweep`), brackets the boundary per d/2R column
+(largest load held, smallest load slipped), fits a line through the bracket midpoints
+and draws it against the ideal-rope prediction (boundary at zero load) and the
+thick-nip closed form of :mod:`knotmech.analytic.hitch` (self-locking: holds at any load
+at mu = 0.3).
+
+``python -m validation.clove_phase_diagram --write-table`` runs the full grid and writes
+the table shipped in ``knotmech/data/clove_phase_table.json``, which ``knotmech hold``
+interpolates. ``run(der=False)`` draws the diagram from that shipped table without
+simulating.
+"""
+
+from __future__ import annotations
+
+import argparse
+import datetime
+import os
+import sys
+from pathlib import Path
+
+import numpy as np
+
+from knotmech.analytic.hitch import hold_verdict
+from knotmech.errors import InputError
+from knotmech.plotting import phase_diagram_plot
+from knotmech.scenes import phase_table as pt
+from knotmech.sweep import TaskFailure
+
+from ._common import finish, save_figure
+
+NAME = "clove_phase_diagram"
+PAPER_D_OVER_2R = 4.0 / 34.0  #: the paper's (d, D) = (4, 30) mm, R = (D + d)/2
+GRID_QUICK = {"d_over_2R": (0.06, 0.1176, 0.2), "t_over_EA": (0.03, 0.1, 0.3)}
+GRID_FULL = {"d_over_2R": (0.06, 0.1176, 0.2, 0.3), "t_over_EA": (0.03, 0.1, 0.2, 0.3)}
+TABLE_PATH = Path(__file__).resolve().parents[1] / "knotmech" / "data" / pt.TABLE_RESOURCE
+NOTE = (
+    "Ideal rope: no thickness, no bending stiffness -> slips at any load.\n"
+    "DER: finite thickness d (nips deflect the strands, friction acts at the\n"
+    "rod surface) and bending stiffness EI hold the free end below a\n"
+    "critical T_high/EA; d/2R sets both (thicker rod on a thinner post)."
+)
+
+
+def grid_points(grid) -> list[dict]:
+    """Parameter sets of :func:`knotmech.scenes.phase_table.simulate_point` for a grid."""
+    return [
+        {"d_over_2R": float(x), "t_over_EA": float(y)}
+        for x in grid["d_over_2R"]
+        for y in grid["t_over_EA"]
+    ]
+
+
+def simulate_grid(grid, *, progress=False, scheduler=None, cache_dir=None, processes=None):
+    """Run the DER points of ``grid``; return (list of point dicts, list of failures)."""
+    from knotmech.sweep import sweep
+
+    if processes is None:
+        processes = min(2, os.cpu_count() or 1)
+    res = sweep(
+        pt.simulate_point,
+        grid_points(grid),
+        processes=processes,
+        scheduler=scheduler,
+        cache_dir=cache_dir,
+        progress=progress,
+        on_error="return",
+        desc="clove hitch phase diagram",
+    )
+    points, failed = [], []
+    for params, r in zip(res.params, res, strict=True):
+        if isinstance(r, TaskFailure) or r.get("holds") is None:
+            failed.append(params)
+        else:
+            points.append(r)
+    return points, failed
+
+
+def fit_boundary(table: pt.PhaseTable):
+    """Line through the bracket midpoints of the columns where the boundary is bracketed.
+
+    Returns
+    -------
+    dict
+        ``columns, lower, upper, mid`` per d/2R column and ``slope, intercept`` of the
+        least-squares line (None with fewer than two bracketed columns).
+    """
+    xs, lo, hi, mid = table.boundary()
+    ok = np.isfinite(mid) & (lo > 0)
+    fit = {"slope": None, "intercept": None}
+    if ok.sum() >= 2:
+        slope, icpt = np.polyfit(xs[ok], mid[ok], 1)
+        fit = {"slope": float(slope), "intercept": float(icpt)}
+    return {"columns": xs, "lower": lo, "upper": hi, "mid": mid, "bracketed": ok, **fit}
+
+
+def _thick_nip_note():
+    v = hold_verdict(
+        "clove-hitch", rod_diameter=4e-3, post_diameter=30e-3, mu=pt.MU, load=1.47, free_end_load=0
+    )
+    nip = next(a for a in v.answers if a.model == "thick-nip")
+    return bool(nip.holds), float(nip.critical_mu)
+
+
+def run(
+    quick=True,
+    out_dir=".",
+    progress=False,
+    scheduler=None,
+    processes=None,
+    der=True,
+    grid=None,
+) -> dict:
+    """Simulate (or read the shipped table), fit, plot and summarise case 3.
+
+    ``der=False`` draws the diagram from the shipped table without simulating.
+    ``grid`` overrides the (d/2R, T_high/EA) grid (dict of two sequences). DER runs are
+    cached in ``<out_dir>/cache/``.
+    """
+    t0 = datetime.datetime.now()
+    failed = []
+    if der:
+        grid = grid or (GRID_QUICK if quick else GRID_FULL)
+        points, failed = simulate_grid(
+            grid,
+            progress=progress,
+            scheduler=scheduler,
+            cache_dir=Path(out_dir) / "cache" / NAME,
+            processes=processes,
+        )
+        table = pt.PhaseTable(
+            [pt.PhasePoint(p["d_over_2R"], p["t_over_EA"], bool(p["holds"])) for p in points]
+        )
+        source = "DER (knotmech.scenes.phase_table.simulate_point)"
+        wall = [p["wall_s"] for p in points]
+    else:
+        table = pt.load_table()
+        points = [
+            {"d_over_2R": p.d_over_2R, "t_over_EA": p.t_over_EA, "holds": p.holds}
+            for p in table.points
+        ]
+        source = "shipped DER table (knotmech/data/clove_phase_table.json)"
+        wall = []
+    if not table.points:
+        raise InputError("no phase point finished; nothing to draw")
+    fit = fit_boundary(table)
+    nip_holds, nip_mu = _thick_nip_note()
+    x = np.array([p.d_over_2R for p in table.points])
+    y = np.array([p.t_over_EA for p in table.points])
+    holds = np.array([p.holds for p in table.points], dtype=bool)
+
+    xs = fit["columns"]
+    n_held = int(holds.sum())
+    at_paper = [p for p in table.points if abs(p.d_over_2R - PAPER_D_OVER_2R) < 1e-3]
+    trend = None
+    if fit["slope"] is not None:
+        trend = "increases" if fit["slope"] > 0 else "decreases"
+    numbers = {
+        "source": source,
+        "mu_rc": pt.MU,
+        "mu_rr": pt.MU,
+        "EA_N": pt.YOUNGS_MODULUS * np.pi * pt.ROD_DIAMETER**2 / 4,
+        "points": [[p.d_over_2R, p.t_over_EA, bool(p.holds)] for p in table.points],
+        "n_points": len(table.points),
+        "n_hold": n_held,
+        "n_slip": len(table.points) - n_held,
+        "failed": failed,
+        "boundary_columns_d_over_2R": xs,
+        "boundary_lower_t_over_EA": fit["lower"],
+        "boundary_upper_t_over_EA": fit["upper"],
+        "boundary_mid_t_over_EA": fit["mid"],
+        "boundary_fit_slope": fit["slope"],
+        "boundary_fit_intercept": fit["intercept"],
+        "boundary_trend_with_d_over_2R": trend,
+        "ideal_rope_critical_t_over_EA": 0.0,
+        "thick_nip_holds_at_any_load": nip_holds,
+        "thick_nip_critical_mu": nip_mu,
+        "paper_fig4_upper_bound_t_over_EA": 0.3,
+        "wall_s_per_run": wall,
+        "wall_s_total": float(np.sum(wall)) if wall else 0.0,
+        "elapsed_s": (datetime.datetime.now() - t0).total_seconds(),
+    }
+    checks = {
+        "every DER run finished": not failed,
+        "some points hold with a free end (ideal rope: none)": n_held > 0,
+        "some points slip (a boundary exists in the grid)": n_held < len(table.points),
+        "the smallest load holds at the paper's d/2R": bool(at_paper)
+        and min(at_paper, key=lambda p: p.t_over_EA).holds,
+        "each column: no hold above a slip (one boundary)": all(
+            not any(
+                p.holds and p.t_over_EA > fit["upper"][i]
+                for p in table.points
+                if abs(p.d_over_2R - xs[i]) < 1e-12
+            )
+            for i in range(xs.size)
+        ),
+    }
+    notes = [
+        f"Source: {source}.",
+        "Each point: clove hitch with a free end, T_high hung on end 0 (0.2 s settle, 0.2 s "
+        "ramp, 0.4 s hold); hold = end 0 creeps less than one rod diameter over the last "
+        "0.2 s. d = 4 mm, E = 1.26 MPa, mu_rc = mu_rr = 0.3; d/2R varied by the post "
+        "diameter (R = (D+d)/2), 64 mm tails.",
+        "Boundary: per d/2R column between the largest load held and the smallest slipped; "
+        "the line is a least-squares fit through the bracket midpoints (grid resolution "
+        "limits it: each bracket is one grid step wide).",
+        "Ideal rope (Maddocks & Keller, clove-hitch paper sec. 8): slips at any load with a "
+        "free end. Thick-nip closed form (knotmech.analytic.hitch): self-locking at mu = 0.3 "
+        f"(critical mu {nip_mu:.3g}), i.e. holds at any load; neither has a critical load.",
+        "Paper's Fig. 4 (experiments): the critical load depends on d/2R, upper bound near "
+        "T_high/EA ~ 0.3.",
+    ]
+
+    ax = phase_diagram_plot(
+        x,
+        y,
+        holds,
+        boundary=(
+            (xs, fit["intercept"] + fit["slope"] * xs) if fit["slope"] is not None else None
+        ),
+        theory={
+            "ideal rope: slips at any load (boundary at 0)": (xs, np.zeros_like(xs)),
+            "paper Fig. 4: upper bound of the critical load ~0.3": (xs, np.full_like(xs, 0.3)),
+        },
+        title="clove hitch with a free end: DER hold / slip",
+        note=NOTE,
+        boundary_label="fitted DER boundary",
+    )
+    ok = np.isfinite(fit["upper"])
+    if np.any(ok):
+        ax.vlines(
+            xs[ok], fit["lower"][ok], fit["upper"][ok], color="k", lw=3, alpha=0.3,
+            label="bracket (held / slipped)",
+        )
+    ax.axvline(PAPER_D_OVER_2R, color="0.6", lw=0.8, ls=":")
+    ax.set_ylim(bottom=-0.02)
+    ax.legend(fontsize=7, loc="upper right", framealpha=0.9)
+    figures = [save_figure(ax.figure, out_dir, NAME)]
+    return finish(
+        NAME,
+        out_dir=out_dir,
+        checks=checks,
+        numbers=numbers,
+        figures=figures,
+        notes=notes,
+        quick=quick,
+    )
+
+
+def write_table(path=TABLE_PATH, *, progress=True, processes=None, scheduler=None, cache_dir=None):
+    """Run the full grid and write the phase table that ``knotmech hold`` interpolates."""
+    t0 = datetime.datetime.now()
+    points, failed = simulate_grid(
+        GRID_FULL, progress=progress, scheduler=scheduler, cache_dir=cache_dir, processes=processes
+    )
+    if failed:
+        raise InputError(f"{len(failed)} runs failed; not writing a table with holes: {failed}")
+    wall = [p["wall_s"] for p in points]
+    table = pt.PhaseTable(
+        [pt.PhasePoint(p["d_over_2R"], p["t_over_EA"], bool(p["holds"])) for p in points],
+        meta={
+            "what": "DER clove hitch with a free end: holds at (d/2R, T_high/EA)",
+            "generator": "python -m validation.clove_phase_diagram --write-table",
+            "grid": GRID_FULL,
+            "rod": {"d_m": pt.ROD_DIAMETER, "E_Pa": pt.YOUNGS_MODULUS, "rho": pt.DENSITY},
+            "protocol": pt.PROTOCOL,
+            "hold_criterion": "end 0 creeps < d over the last half of the hold",
+            "runs": len(points),
+            "cpu_s_total": round(float(np.sum(wall)), 1),
+            "cpu_s_per_run": [round(float(np.min(wall)), 1), round(float(np.max(wall)), 1)],
+            "creep_m": [[p["d_over_2R"], p["t_over_EA"], round(p["creep"], 5)] for p in points],
+            "written": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
+            "elapsed_s": round((datetime.datetime.now() - t0).total_seconds(), 1),
+        },
+    )
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    table.write(path)
+    return table
+
+
+def _main(argv=None) -> int:
+    parser = argparse.ArgumentParser(description=f"{NAME}: run case 3 or write the phase table")
+    parser.add_argument("--full", action="store_true", help="full grid (default quick)")
+    parser.add_argument("--out", default="validation-out", help="output folder")
+    parser.add_argument(
+        "--write-table",
+        nargs="?",
+        const=str(TABLE_PATH),
+        default=None,
+        metavar="PATH",
+        help=f"run the full grid and write the phase table (default {TABLE_PATH})",
+    )
+    parser.add_argument("--cache", default=None, help="sweep cache folder for --write-table")
+    args = parser.parse_args(argv)
+    if args.write_table:
+        table = write_table(args.write_table, cache_dir=args.cache)
+        print(f"wrote {args.write_table}: {len(table.points)} points")
+        return 0
+    from ._common import main
+
+    return main(run, ["--out", args.out] + (["--full"] if args.full else []))
+
+
+if __name__ == "__main__":
+    sys.exit(_main())
