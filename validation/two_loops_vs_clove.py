@@ -16,11 +16,12 @@ plateau; with kinetic friction only it rises monotonically to the plateau.
 
 Simulation: :func:`knotmech.scenes.capstan.capstan_two_loops` (DER, surface friction
 on the post) run through :func:`knotmech.sweep.sweep`, once with kinetic friction only
-(mu_s = mu_k = 0.32) and once with static friction (mu_s = 0.36 > mu_k = 0.32). The
+(mu_s = mu_k = 0.32) and once with static friction (mu_s = 0.5 > mu_k = 0.32), on the
+paper's rod and on a 10x axially stiffer one (see the notes on why the peak needs it). The
 capstan law needs short bending boundary layers, EI/(T_low R^2) << 1; the paper's
 solid rod has 0.8 (its plateau lies well below the law), so the comparison with eq. 3
 uses a rope-like bending stiffness EI = 0.01 T_low R^2 (the contact diameter stays d).
-Full mode adds the paper's solid rod for reference.
+Full mode uses 240 elements instead of 120.
 
 The clove hitch: :func:`knotmech.scenes.clove_hitch.clove_hitch` loads the hitch with
 dead loads (symmetric, asymmetric or free end); it has no pull-at-speed loading, so its
@@ -47,15 +48,17 @@ ROD_DIAMETER = 4e-3  #: [m] d
 POST_DIAMETER = 30e-3  #: [m] D
 YOUNGS_MODULUS = 1.26e6  #: [Pa]
 MU = 0.32  #: kinetic rod-post coefficient (clove-hitch paper)
-MU_STATIC = 0.36  #: static coefficient of the static-friction run (> MU)
+MU_STATIC = 0.5  #: static coefficient of the static-friction runs (> MU)
+STIFF_FACTOR = 10.0  #: Young's modulus factor of the axially stiff rod
 T_LOW = 0.069  #: [N]
 EPS2 = 0.01  #: EI / (T_low R^2) of the rope-like rod
 PULL_DISTANCE = 0.08  #: [m] (the plateau is reached after about 2 cm)
 N_ELEMENTS_QUICK = 120
 N_ELEMENTS_FULL = 240
 PLATEAU_TOL = 0.05  #: "within a few %" of exp(mu_eff 4 pi)
-PEAK_MIN = 1.03  #: static run: peak / plateau above this
-NO_PEAK_MAX = 1.02  #: kinetic run: peak / plateau below this
+PEAK_MIN = 1.01  #: static run, VPS rod: peak / kinetic plateau above this
+PEAK_MIN_STIFF = 1.10  #: static run, stiff rod: peak / plateau above this
+NO_PEAK_MAX = 1.015  #: kinetic runs: peak / plateau below this
 
 
 def peak_over_plateau(ratio_curve, plateau):
@@ -140,17 +143,21 @@ def run(quick=True, out_dir=".", progress=False, scheduler=None, processes=None,
             n_elements=n_el,
             pull_distance=PULL_DISTANCE,
             mu_kinetic=MU,
+            # the same contact penalty in every run (the scene's default grows with mu_s)
+            contact_stiffness=200.0 * T_LOW * ideal / (R * ROD_DIAMETER),
         )
-        params = [dict(base, mu=MU), dict(base, mu=MU_STATIC)]
-        labels = ["kinetic only", "static"]
-        if not quick:
-            params.append(dict(mu=MU, n_elements=n_el, pull_distance=PULL_DISTANCE))
-            labels.append("solid rod, kinetic only")
+        stiff = YOUNGS_MODULUS * STIFF_FACTOR
+        runs = {
+            "kinetic only": dict(base, mu=MU),
+            "static": dict(base, mu=MU_STATIC),
+            "stiff rod, kinetic only": dict(base, mu=MU, youngs_modulus=stiff),
+            "stiff rod, static": dict(base, mu=MU_STATIC, youngs_modulus=stiff),
+        }
         if processes is None:
             processes = min(2, os.cpu_count() or 1)
         res = sweep(
             _capstan_task,
-            params,
+            list(runs.values()),
             processes=processes,
             scheduler=scheduler,
             cache_dir=Path(out_dir) / "cache" / NAME,
@@ -159,56 +166,63 @@ def run(quick=True, out_dir=".", progress=False, scheduler=None, processes=None,
             desc="two loops DER",
         )
         out, failed = {}, []
-        for lab, r in zip(labels, res, strict=True):
+        for lab, r in zip(runs, res, strict=True):
             if isinstance(r, TaskFailure) or r["status"] != "success":
                 failed.append(lab)
             else:
                 out[lab] = r
-        kin, sta = out.get("kinetic only"), out.get("static")
         numbers["failed"] = failed
         numbers["n_elements"] = n_el
         numbers["pull_distance_m"] = PULL_DISTANCE
+        numbers["stiff_rod_E_Pa"] = stiff
+        numbers["exp_mu_eff_static_4pi"] = float(np.exp(mu_eff(MU_STATIC, Dt) * THETA))
+        for lab, r in out.items():
+            key = lab.replace(", ", "_").replace(" ", "_")
+            numbers[f"plateau_{key}"] = r["ratio"]
+            numbers[f"peak_{key}"] = float(np.max(r["ratio_curve"]))
+            numbers[f"peak_over_plateau_{key}"] = peak_over_plateau(r["ratio_curve"], r["ratio"])
+        kin = out.get("kinetic only")
         if kin:
-            numbers["plateau_kinetic"] = kin["ratio"]
             numbers["plateau_rel_err_vs_exp_mu_eff_4pi"] = kin["ratio"] / law - 1
-            numbers["peak_over_plateau_kinetic"] = peak_over_plateau(
-                kin["ratio_curve"], kin["ratio"]
-            )
-        if sta:
-            numbers["plateau_static_run"] = sta["ratio"]
-            numbers["peak_static_run"] = float(np.max(sta["ratio_curve"]))
-            numbers["peak_over_plateau_static"] = peak_over_plateau(
-                sta["ratio_curve"], sta["ratio"]
-            )
-            numbers["exp_mu_eff_static_4pi"] = float(np.exp(mu_eff(MU_STATIC, Dt) * THETA))
-        if "solid rod, kinetic only" in out:
-            numbers["plateau_solid_rod"] = out["solid rod, kinetic only"]["ratio"]
         numbers["wall_s"] = {lab: r["wall_s"] for lab, r in out.items()}
+        have = set(out) == set(runs)
+        n_ = numbers
         checks.update(
             {
                 "every DER pull slid": not failed,
                 f"two-loops plateau = exp(mu_eff 4 pi) within {PLATEAU_TOL:.0%}": bool(kin)
-                and abs(numbers["plateau_rel_err_vs_exp_mu_eff_4pi"]) < PLATEAU_TOL,
-                f"static friction: peak > {PEAK_MIN:g} x plateau": bool(sta)
-                and numbers["peak_over_plateau_static"] > PEAK_MIN,
-                f"kinetic only: no peak (max < {NO_PEAK_MAX:g} x plateau)": bool(kin)
-                and numbers["peak_over_plateau_kinetic"] < NO_PEAK_MAX,
-                "static run slides at the kinetic plateau (within 3 %)": bool(kin and sta)
-                and abs(sta["ratio"] / kin["ratio"] - 1) < 0.03,
+                and abs(n_["plateau_rel_err_vs_exp_mu_eff_4pi"]) < PLATEAU_TOL,
+                f"kinetic only: no peak (max < {NO_PEAK_MAX:g} x plateau), both rods": have
+                and n_["peak_over_plateau_kinetic_only"] < NO_PEAK_MAX
+                and n_["peak_over_plateau_stiff_rod_kinetic_only"] < NO_PEAK_MAX,
+                f"static friction: peak > {PEAK_MIN:g} x the kinetic plateau (VPS rod)": have
+                and n_["peak_static"] > PEAK_MIN * n_["plateau_kinetic_only"],
+                f"static friction, stiff rod: peak > {PEAK_MIN_STIFF:g} x plateau": have
+                and n_["peak_over_plateau_stiff_rod_static"] > PEAK_MIN_STIFF,
+                "static runs slide at the kinetic plateau (within 3 %)": have
+                and abs(n_["plateau_static"] / n_["plateau_kinetic_only"] - 1) < 0.03
+                and abs(n_["plateau_stiff_rod_static"] / n_["plateau_stiff_rod_kinetic_only"] - 1)
+                < 0.03,
             }
         )
         for lab, r in out.items():
-            curves[
-                f"two loops DER, {lab}" + (f" (mu_s={MU_STATIC:g})" if lab == "static" else "")
-            ] = (
-                r["displacement"] * 1e3,
-                r["ratio_curve"],
-            )
+            name = f"two loops DER, {lab}" + (f" (mu_s={MU_STATIC:g})" if "static" in lab else "")
+            curves[name] = (r["displacement"] * 1e3, r["ratio_curve"])
         notes.append(
             f"DER two loops: rope-like EI = {EPS2:g} T_low R^2 (the paper's solid rod has "
-            f"EI/(T_low R^2) = {numbers['eps2_solid_rod']:.2f}: bending lowers its plateau, "
-            f"see the full run), {n_el} elements, pulled {PULL_DISTANCE * 1e3:g} mm at 20 mm/s; "
-            "plateau = mean T_high/T_low over the last 30 % of the pull."
+            f"EI/(T_low R^2) = {numbers['eps2_solid_rod']:.2f}: bending lowers its plateau "
+            f"well below the law), {n_el} elements, pulled {PULL_DISTANCE * 1e3:g} mm at "
+            "20 mm/s; plateau = mean T_high/T_low over the last 30 % of the pull."
+        )
+        notes.append(
+            "Static friction (mu_s = "
+            f"{MU_STATIC:g} > mu_k = {MU:g}): on the extensible VPS rod (E = "
+            f"{YOUNGS_MODULUS / 1e6:g} MPa, 15 % strain at the plateau) the slip zone spreads "
+            "from the pulled end with kinetic friction behind its front, so the overshoot is "
+            "only the breaking of the last stuck contacts (a few %, shrinking with the element "
+            f"size); a {STIFF_FACTOR:g}x stiffer rod slides off at once and shows a clear peak "
+            "at the onset of sliding before the kinetic plateau (the inextensible limit peaks "
+            "at exp(mu_eff(mu_s) 4 pi))."
         )
     else:
         notes.append("No DER run (der=False): closed forms only.")
@@ -219,7 +233,7 @@ def run(quick=True, out_dir=".", progress=False, scheduler=None, processes=None,
         curves,
         xlabel="displacement of the pulled end [mm]",
         ylabel=r"$T_\mathrm{high}/T_\mathrm{low}$",
-        title="two loops (theta = 4 pi) on a post, d/D = 4/30 mm, mu = 0.32",
+        title="two loops (theta = 4 pi) on a post: d, D = 4, 30 mm, mu_k = 0.32",
     )
     ax.text(0.98, 0.04, "clove hitch not drawn: the scene has\nno pull-at-speed loading",
             transform=ax.transAxes, fontsize=7, ha="right", va="bottom")  # fmt: skip
