@@ -42,14 +42,15 @@ from ._common import finish, save_figure
 
 NAME = "clove_phase_diagram"
 PAPER_D_OVER_2R = 4.0 / 34.0  #: the paper's (d, D) = (4, 30) mm, R = (D + d)/2
-GRID_QUICK = {"d_over_2R": (0.06, 0.1176, 0.2), "t_over_EA": (0.03, 0.1, 0.3)}
+GRID_QUICK = {"d_over_2R": (0.06, 0.1176, 0.2), "t_over_EA": (0.1, 0.2, 0.3)}
 GRID_FULL = {"d_over_2R": (0.06, 0.1176, 0.2, 0.3), "t_over_EA": (0.03, 0.1, 0.2, 0.3)}
 TABLE_PATH = Path(__file__).resolve().parents[1] / "knotmech" / "data" / pt.TABLE_RESOURCE
 NOTE = (
     "Ideal rope: no thickness, no bending stiffness -> slips at any load.\n"
     "DER: finite thickness d (nips deflect the strands, friction acts at the\n"
     "rod surface) and bending stiffness EI hold the free end below a\n"
-    "critical T_high/EA; d/2R sets both (thicker rod on a thinner post)."
+    "critical T_high/EA; d/2R sets both (thicker rod on a thinner post).\n"
+    "Light loads on a thick rod/thin post may not pull the stiff rod tight (lower boundary)."
 )
 
 
@@ -88,21 +89,32 @@ def simulate_grid(grid, *, progress=False, scheduler=None, cache_dir=None, proce
 
 
 def fit_boundary(table: pt.PhaseTable):
-    """Line through the bracket midpoints of the columns where the boundary is bracketed.
+    """Upper hold/slip boundary: bracket midpoints per column and a quadratic fit.
+
+    Columns where nothing held use the smallest slipped load as their midpoint's upper
+    bound (midpoint = half of it). The quadratic least-squares fit of the midpoints
+    against d/2R (three or more columns) locates the d/2R of the largest critical load.
 
     Returns
     -------
     dict
-        ``columns, lower, upper, mid`` per d/2R column and ``slope, intercept`` of the
-        least-squares line (None with fewer than two bracketed columns).
+        ``columns, lower, upper, mid`` per d/2R column, ``coef`` (quadratic, highest
+        power first, or None), ``peak_d_over_2R`` and ``peak_t_over_EA`` (None unless the
+        fit has an interior maximum).
     """
     xs, lo, hi, mid = table.boundary()
-    ok = np.isfinite(mid) & (lo > 0)
-    fit = {"slope": None, "intercept": None}
-    if ok.sum() >= 2:
-        slope, icpt = np.polyfit(xs[ok], mid[ok], 1)
-        fit = {"slope": float(slope), "intercept": float(icpt)}
-    return {"columns": xs, "lower": lo, "upper": hi, "mid": mid, "bracketed": ok, **fit}
+    ok = np.isfinite(mid)
+    out = {"columns": xs, "lower": lo, "upper": hi, "mid": mid, "coef": None}
+    out.update(peak_d_over_2R=None, peak_t_over_EA=None)
+    if ok.sum() >= 3:
+        coef = np.polyfit(xs[ok], mid[ok], 2)
+        out["coef"] = coef
+        if coef[0] < 0:
+            xp = -coef[1] / (2 * coef[0])
+            if xs[ok].min() < xp < xs[ok].max():
+                out["peak_d_over_2R"] = float(xp)
+                out["peak_t_over_EA"] = float(np.polyval(coef, xp))
+    return out
 
 
 def _thick_nip_note():
@@ -163,9 +175,15 @@ def run(
     xs = fit["columns"]
     n_held = int(holds.sum())
     at_paper = [p for p in table.points if abs(p.d_over_2R - PAPER_D_OVER_2R) < 1e-3]
-    trend = None
-    if fit["slope"] is not None:
-        trend = "increases" if fit["slope"] > 0 else "decreases"
+    mids = fit["mid"]
+    i_paper = int(np.argmin(np.abs(xs - PAPER_D_OVER_2R)))
+    peaked = bool(
+        xs.size >= 3
+        and 0 < i_paper < xs.size - 1
+        and np.isfinite(mids[i_paper])
+        and mids[i_paper] > mids[0]
+        and mids[i_paper] > mids[-1]
+    )
     numbers = {
         "source": source,
         "mu_rc": pt.MU,
@@ -180,9 +198,11 @@ def run(
         "boundary_lower_t_over_EA": fit["lower"],
         "boundary_upper_t_over_EA": fit["upper"],
         "boundary_mid_t_over_EA": fit["mid"],
-        "boundary_fit_slope": fit["slope"],
-        "boundary_fit_intercept": fit["intercept"],
-        "boundary_trend_with_d_over_2R": trend,
+        "lower_boundary_slipped_t_over_EA": [table.low_slip(float(c)) for c in xs],
+        "boundary_quadratic_fit": fit["coef"],
+        "boundary_peak_d_over_2R": fit["peak_d_over_2R"],
+        "boundary_peak_t_over_EA": fit["peak_t_over_EA"],
+        "boundary_largest_at_papers_d_over_2R": peaked,
         "ideal_rope_critical_t_over_EA": 0.0,
         "thick_nip_holds_at_any_load": nip_holds,
         "thick_nip_critical_mu": nip_mu,
@@ -197,13 +217,12 @@ def run(
         "some points slip (a boundary exists in the grid)": n_held < len(table.points),
         "the smallest load holds at the paper's d/2R": bool(at_paper)
         and min(at_paper, key=lambda p: p.t_over_EA).holds,
-        "each column: no hold above a slip (one boundary)": all(
-            not any(
-                p.holds and p.t_over_EA > fit["upper"][i]
-                for p in table.points
-                if abs(p.d_over_2R - xs[i]) < 1e-12
-            )
-            for i in range(xs.size)
+        "paper's d/2R: the upper critical load is at most 0.3 EA (the paper's bound)": bool(
+            at_paper
+        )
+        and any(not p.holds and p.t_over_EA <= 0.3 + 1e-9 for p in at_paper),
+        "the critical load depends on d/2R (largest at the paper's d/2R, lower on both sides)": (
+            peaked
         ),
     }
     notes = [
@@ -212,9 +231,10 @@ def run(
         "ramp, 0.4 s hold); hold = end 0 creeps less than one rod diameter over the last "
         "0.2 s. d = 4 mm, E = 1.26 MPa, mu_rc = mu_rr = 0.3; d/2R varied by the post "
         "diameter (R = (D+d)/2), 64 mm tails.",
-        "Boundary: per d/2R column between the largest load held and the smallest slipped; "
-        "the line is a least-squares fit through the bracket midpoints (grid resolution "
-        "limits it: each bracket is one grid step wide).",
+        "Boundary: per d/2R column between the largest load held and the smallest slipped "
+        "above it; the line is a quadratic least-squares fit through the bracket midpoints "
+        "(grid resolution limits it: each bracket is one grid step wide). A column where "
+        "nothing held uses half its smallest slipped load.",
         "Ideal rope (Maddocks & Keller, clove-hitch paper sec. 8): slips at any load with a "
         "free end. Thick-nip closed form (knotmech.analytic.hitch): self-locking at mu = 0.3 "
         f"(critical mu {nip_mu:.3g}), i.e. holds at any load; neither has a critical load.",
@@ -222,30 +242,68 @@ def run(
         "T_high/EA ~ 0.3.",
     ]
 
-    ax = phase_diagram_plot(
+    from matplotlib.figure import Figure
+
+    xb = np.linspace(xs.min(), xs.max(), 100)
+
+    fig = Figure(figsize=(6.4, 5.8), layout="constrained")
+    ax, axn = fig.subplots(2, 1, height_ratios=[4, 1])
+    phase_diagram_plot(
         x,
         y,
         holds,
-        boundary=(
-            (xs, fit["intercept"] + fit["slope"] * xs) if fit["slope"] is not None else None
-        ),
+        boundary=(xb, np.polyval(fit["coef"], xb)) if fit["coef"] is not None else None,
         theory={
             "ideal rope: slips at any load (boundary at 0)": (xs, np.zeros_like(xs)),
             "paper Fig. 4: upper bound of the critical load ~0.3": (xs, np.full_like(xs, 0.3)),
         },
         title="clove hitch with a free end: DER hold / slip",
-        note=NOTE,
-        boundary_label="fitted DER boundary",
+        boundary_label="DER boundary (quadratic fit of the bracket midpoints)",
+        ax=ax,
+    )
+    axn.axis("off")
+    axn.text(
+        0.0,
+        0.5,
+        NOTE,
+        fontsize=7.5,
+        va="center",
+        ha="left",
+        transform=axn.transAxes,
+        bbox={"fc": "white", "ec": "0.7"},
     )
     ok = np.isfinite(fit["upper"])
     if np.any(ok):
         ax.vlines(
-            xs[ok], fit["lower"][ok], fit["upper"][ok], color="k", lw=3, alpha=0.3,
+            xs[ok],
+            fit["lower"][ok],
+            fit["upper"][ok],
+            color="k",
+            lw=3,
+            alpha=0.3,
             label="bracket (held / slipped)",
         )
+    low = np.array([table.low_slip(float(c)) for c in xs])
+    if np.any(low > 0):
+        first_hold = [
+            min(p.t_over_EA for p in table.points if p.holds and abs(p.d_over_2R - c) < 1e-12)
+            if lw > 0
+            else np.nan
+            for c, lw in zip(xs, low, strict=True)
+        ]
+        m = low > 0
+        ax.vlines(
+            xs[m],
+            low[m],
+            np.array(first_hold)[m],
+            color="C3",
+            lw=3,
+            alpha=0.3,
+            label="lower bracket: too light to tighten",
+        )
     ax.axvline(PAPER_D_OVER_2R, color="0.6", lw=0.8, ls=":")
-    ax.set_ylim(bottom=-0.02)
-    ax.legend(fontsize=7, loc="upper right", framealpha=0.9)
+    ax.set_ylim(-0.02, 1.5 * float(y.max()))
+    ax.legend(fontsize=6.5, loc="upper left", framealpha=0.9, ncol=2)
     figures = [save_figure(ax.figure, out_dir, NAME)]
     return finish(
         NAME,
@@ -279,7 +337,14 @@ def write_table(path=TABLE_PATH, *, progress=True, processes=None, scheduler=Non
             "runs": len(points),
             "cpu_s_total": round(float(np.sum(wall)), 1),
             "cpu_s_per_run": [round(float(np.min(wall)), 1), round(float(np.max(wall)), 1)],
-            "creep_m": [[p["d_over_2R"], p["t_over_EA"], round(p["creep"], 5)] for p in points],
+            "creep_m_of_holds": [
+                [p["d_over_2R"], p["t_over_EA"], round(p["creep"], 6)] for p in points if p["holds"]
+            ],
+            "slips_that_broke_topology": [
+                [p["d_over_2R"], p["t_over_EA"]]
+                for p in points
+                if not p["holds"] and not p["topology_preserved"]
+            ],
             "written": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
             "elapsed_s": round((datetime.datetime.now() - t0).total_seconds(), 1),
         },

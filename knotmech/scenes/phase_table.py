@@ -17,10 +17,12 @@ This module
 - loads the precomputed table shipped in ``knotmech/data/clove_phase_table.json``
   (:func:`load_table`; regenerate with ``python -m validation.clove_phase_diagram
   --write-table``),
-- answers a query from that table (:meth:`PhaseTable.lookup`): per d/2R column the
-  boundary lies between the largest load that held and the smallest that slipped; the
-  critical load is interpolated linearly in d/2R between columns. Outside the grid
-  (or at another friction coefficient) the table gives no answer and says so.
+- answers a query from that table (:meth:`PhaseTable.lookup`): the simulated points
+  around the query decide when they agree (all held or all slipped), otherwise the
+  query is near a boundary and the table does not decide; per d/2R column the upper
+  boundary lies between the largest load that held and the smallest that slipped
+  above it, interpolated linearly in d/2R. Outside the grid (or at another friction
+  coefficient) the table gives no answer and says so.
 """
 
 from __future__ import annotations
@@ -202,24 +204,41 @@ class PhaseTable:
         """Sorted distinct loads T_high/EA."""
         return np.unique([p.t_over_EA for p in self.points])
 
-    def column_bracket(self, x: float) -> tuple:
-        """(largest load that held, smallest load that slipped) in the column d/2R = x.
+    def _column(self, x: float) -> list:
+        return sorted(
+            (p for p in self.points if math.isclose(p.d_over_2R, x, rel_tol=1e-9)),
+            key=lambda p: p.t_over_EA,
+        )
 
-        0 when nothing held, inf when nothing slipped. A non-monotone column (a hold
-        above a slip) uses the smallest slip as the upper bound and the largest hold
-        below it as the lower bound.
+    def column_bracket(self, x: float) -> tuple:
+        """Upper boundary in the column d/2R = x: (largest load held, smallest slipped above it).
+
+        0 when nothing held (then the smallest load that slipped is the upper bound), inf
+        when nothing above the largest hold slipped.
         """
-        col = [p for p in self.points if math.isclose(p.d_over_2R, x, rel_tol=1e-9)]
-        slips = [p.t_over_EA for p in col if not p.holds]
-        hi = min(slips) if slips else math.inf
-        held = [p.t_over_EA for p in col if p.holds and p.t_over_EA < hi]
+        col = self._column(x)
+        held = [p.t_over_EA for p in col if p.holds]
         lo = max(held) if held else 0.0
-        return lo, hi
+        above = [p.t_over_EA for p in col if not p.holds and p.t_over_EA > lo]
+        return lo, (min(above) if above else math.inf)
+
+    def low_slip(self, x: float) -> float:
+        """Largest load that slipped *below* the smallest load held in the column (0 if none).
+
+        A light load may not tighten a stiff rod onto a thin post: such a column has a
+        lower boundary too.
+        """
+        col = self._column(x)
+        held = [p.t_over_EA for p in col if p.holds]
+        if not held:
+            return 0.0
+        below = [p.t_over_EA for p in col if not p.holds and p.t_over_EA < min(held)]
+        return max(below) if below else 0.0
 
     def boundary(self):
-        """(d/2R columns, lower bounds, upper bounds, midpoints) of the hold/slip boundary.
+        """(d/2R columns, lower bounds, upper bounds, midpoints) of the upper hold/slip boundary.
 
-        The midpoint is inf where nothing slipped and 0 where nothing held.
+        The midpoint is inf where nothing slipped above the holds.
         """
         xs = self.d_over_2R
         lo = np.empty(xs.size)
@@ -229,14 +248,38 @@ class PhaseTable:
         mid = np.where(np.isfinite(hi), 0.5 * (lo + hi), np.inf)
         return xs, lo, hi, mid
 
-    def lookup(self, d_over_2R: float, t_over_EA: float, *, mu=None, mu_rr=None) -> PhaseAnswer:
-        """Hold or slip at (d/2R, T_high/EA), interpolated from the table.
+    def _corners(self, x: float, y: float) -> list:
+        """Grid points around (x, y): the columns at or on each side of x, the loads at or
+        on each side of y in each column."""
+        xs = self.d_over_2R
+        i = int(np.searchsorted(xs, x))
+        if i < xs.size and math.isclose(xs[i], x, rel_tol=1e-6):
+            cols = [xs[i]]
+        elif i > 0 and math.isclose(xs[i - 1], x, rel_tol=1e-6):
+            cols = [xs[i - 1]]
+        else:
+            cols = [xs[max(i - 1, 0)], xs[min(i, xs.size - 1)]]
+        out = []
+        for c in cols:
+            col = self._column(float(c))
+            loads = np.array([p.t_over_EA for p in col])
+            j = int(np.searchsorted(loads, y))
+            if j < loads.size and math.isclose(loads[j], y, rel_tol=1e-9):
+                out.append(col[j])
+            else:
+                out += [col[k] for k in (j - 1, j) if 0 <= k < loads.size]
+        return out
 
-        Linear interpolation of the bracket bounds in d/2R between the two nearest
-        columns; holds if the load is at or below the interpolated lower bound, slips
-        if at or above the upper bound, undecided (None) in between. Outside the
-        table's d/2R range or load range, or at a friction coefficient other than the
-        table's (tolerance 0.005), the answer is None with a message saying why.
+    def lookup(self, d_over_2R: float, t_over_EA: float, *, mu=None, mu_rr=None) -> PhaseAnswer:
+        """Hold or slip at (d/2R, T_high/EA), from the grid points around the query.
+
+        The simulated points at or around the query (up to two columns in d/2R, two loads
+        in each) decide when they agree: all held -> holds, all slipped -> slips; a mix
+        means the query lies near a boundary and the table does not decide (None). The
+        reported critical load is the upper boundary (midpoint between the largest load
+        held and the smallest slipped), interpolated linearly in d/2R. Outside the table's
+        d/2R or load range, or at a friction coefficient other than the table's
+        (tolerance 0.005), the answer is None with a message saying why.
         """
         x = float(d_over_2R)
         y = float(t_over_EA)
@@ -245,30 +288,20 @@ class PhaseTable:
         xs, lo, hi, _ = self.boundary()
         ys = self.t_over_EA
         nan = (float("nan"), float("nan"))
+
+        def outside(msg):
+            return PhaseAnswer(None, False, float("nan"), nan, msg)
+
         for name, val, ref in (("mu", mu, self.mu), ("mu_rr", mu_rr, self.mu_rr)):
             if val is not None and abs(float(val) - ref) > 0.005:
-                return PhaseAnswer(
-                    None,
-                    False,
-                    float("nan"),
-                    nan,
-                    f"the DER table was computed at {name} = {ref:g} only, not {float(val):g}",
+                return outside(
+                    f"the DER table was computed at {name} = {ref:g} only, not {float(val):g}"
                 )
         if not (xs[0] * (1 - 1e-6) <= x <= xs[-1] * (1 + 1e-6)):
-            return PhaseAnswer(
-                None,
-                False,
-                float("nan"),
-                nan,
-                f"d/2R = {x:.4g} is outside the DER table ({xs[0]:.4g} to {xs[-1]:.4g})",
-            )
-        if y > ys[-1] * (1 + 1e-9):
-            return PhaseAnswer(
-                None,
-                False,
-                float("nan"),
-                nan,
-                f"T_high/EA = {y:.4g} is above the largest simulated load ({ys[-1]:.4g})",
+            return outside(f"d/2R = {x:.4g} is outside the DER table ({xs[0]:.4g} to {xs[-1]:.4g})")
+        if not (ys[0] * (1 - 1e-9) <= y <= ys[-1] * (1 + 1e-9)):
+            return outside(
+                f"T_high/EA = {y:.4g} is outside the simulated loads ({ys[0]:.4g} to {ys[-1]:.4g})"
             )
         big = 1e30
         lo_i = float(np.interp(x, xs, lo))
@@ -276,16 +309,22 @@ class PhaseTable:
         if hi_i >= big / 2:
             hi_i = math.inf
         crit = 0.5 * (lo_i + hi_i) if math.isfinite(hi_i) else math.inf
+        corners = self._corners(x, y)
+        votes = {p.holds for p in corners}
+        pts = ", ".join(
+            f"({p.d_over_2R:.3g}, {p.t_over_EA:.3g}) {'held' if p.holds else 'slipped'}"
+            for p in corners
+        )
         where = f"d/2R = {x:.4g}, T_high/EA = {y:.4g}"
-        if y <= lo_i:
-            holds, msg = True, f"holds in the DER table at {where} (held up to {lo_i:.3g})"
-        elif y >= hi_i:
-            holds, msg = False, f"slips in the DER table at {where} (slipped from {hi_i:.3g})"
+        if votes == {True}:
+            holds, msg = True, f"holds in the DER table at {where} (grid points: {pts})"
+        elif votes == {False}:
+            holds, msg = False, f"slips in the DER table at {where} (grid points: {pts})"
         else:
             holds = None
             msg = (
-                f"{where} lies between the largest load that held ({lo_i:.3g}) and the "
-                f"smallest that slipped ({hi_i:.3g}): undecided by the table, use --simulate"
+                f"{where} lies near a hold/slip boundary of the DER table (grid points: "
+                f"{pts}): undecided, use --simulate"
             )
         return PhaseAnswer(holds, True, crit, (lo_i, hi_i), msg)
 
@@ -306,7 +345,8 @@ class PhaseTable:
             raise InputError(f"not a clove-hitch phase table: {exc}") from None
 
     def write(self, path) -> None:
-        Path(path).write_text(json.dumps(self.to_dict(), indent=1) + "\n")
+        text = json.dumps(self.to_dict(), indent=None, allow_nan=False)
+        Path(path).write_text(text.replace("], [", "],\n [") + "\n")
 
 
 def load_table(path=None) -> PhaseTable:

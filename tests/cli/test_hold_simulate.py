@@ -41,20 +41,36 @@ def _hold(d, D, load, *extra, mu="0.3"):
     return args + ["--load", load, *extra]
 
 
-def test_lookup_interpolates_the_bracket_between_columns():
+def test_lookup_from_the_surrounding_grid_points():
     t = PhaseTable([PhasePoint(*p) for p in POINTS])
     assert t.column_bracket(0.1) == (0.2, 0.3)
     assert t.column_bracket(0.2) == (0.1, 0.2)
-    a = t.lookup(0.15, 0.14)  # bracket (0.15, 0.25) half-way
+    a = t.lookup(0.15, 0.1)  # both columns held 0.1
     assert a.inside and a.holds is True
-    assert a.bracket == pytest.approx((0.15, 0.25))
+    assert a.bracket == pytest.approx((0.15, 0.25))  # upper boundary, half-way
     assert a.critical == pytest.approx(0.2)
-    assert t.lookup(0.15, 0.26).holds is False
-    assert t.lookup(0.15, 0.2).holds is None  # inside the bracket: undecided
+    assert t.lookup(0.15, 0.3).holds is False  # both columns slipped 0.3
+    assert t.lookup(0.2, 0.25).holds is False
+    assert t.lookup(0.15, 0.2).holds is None  # 0.1 held, 0.2 slipped: near the boundary
+    assert t.lookup(0.15, 0.14).holds is None  # corner (0.2, 0.2) slipped
+    assert t.lookup(0.1, 0.15).holds is True  # on a column: its two loads held
     out = t.lookup(0.05, 0.1)
     assert not out.inside and out.holds is None and "outside" in out.message
     assert t.lookup(0.15, 0.5).holds is None  # above the largest load simulated
+    assert t.lookup(0.15, 0.05).holds is None  # below the smallest
     assert "mu = 0.3 only" in t.lookup(0.15, 0.1, mu=0.5).message
+
+
+def test_column_with_a_lower_boundary():
+    """A light load that slips below loads that hold (a stiff rod not pulled tight)."""
+    t = PhaseTable(
+        [PhasePoint(0.3, 0.03, False), PhasePoint(0.3, 0.1, True), PhasePoint(0.3, 0.3, False)]
+    )
+    assert t.low_slip(0.3) == 0.03
+    assert t.column_bracket(0.3) == (0.1, 0.3)
+    assert t.lookup(0.3, 0.03).holds is False
+    assert t.lookup(0.3, 0.1).holds is True
+    assert t.lookup(0.3, 0.05).holds is None
 
 
 def test_table_round_trip_and_bad_file(tmp_path, table_file):
@@ -78,9 +94,11 @@ def test_point_geometry():
 
 
 def test_cli_table_answer_disagrees_with_ideal_rope(table_file, capsys, tmp_path):
-    # d = 4 mm, D = 36 mm: d/2R = 4/40 = 0.1; 1.5 N / EA = 0.0948 <= 0.2: holds
+    # d = 4 mm, D = 36 mm: d/2R = 4/40 = 0.1; 0.15 EA = 2.37 N: 0.1 and 0.2 held
     out_json = tmp_path / "v.json"
-    args = _hold("4mm", "36mm", "1.5N", "--phase-table", str(table_file), "--json", str(out_json))
+    args = _hold(
+        "4mm", "36mm", f"{0.15 * EA!r}N", "--phase-table", str(table_file), "--json", str(out_json)
+    )
     assert main(args) == 0
     text = capsys.readouterr().out
     assert "verdict: SLIPS" in text  # the ideal rope still decides
@@ -91,7 +109,7 @@ def test_cli_table_answer_disagrees_with_ideal_rope(table_file, capsys, tmp_path
     der = data["der"]
     assert der["source"] == "table" and der["holds"] is True and der["inside_table"]
     assert der["d_over_2R"] == pytest.approx(0.1)
-    assert der["t_over_EA"] == pytest.approx(1.5 / EA)
+    assert der["t_over_EA"] == pytest.approx(0.15)
     assert der["agrees_with_ideal_rope"] is False
     ans = next(a for a in data["answers"] if a["model"] == "DER-table")
     assert ans["decides"] is False and ans["holds"] is True
