@@ -32,6 +32,7 @@ from dataclasses import dataclass
 import numpy as np
 import scipy.sparse as sp
 from scipy.linalg import lapack
+from scipy.sparse.csgraph import reverse_cuthill_mckee
 from scipy.sparse.linalg import splu
 
 from ..errors import InputError, SolverError, check_positive
@@ -44,6 +45,9 @@ from .system import RodSystem, State
 __all__ = ["SolverOptions", "simulate"]
 
 _B = _asm.BAND
+# widest half bandwidth of the reordered sparse Jacobian still solved as a band matrix
+# (beyond it, SuperLU with a minimum-degree ordering is faster)
+_KD_MAX = 64
 
 
 @dataclass(frozen=True)
@@ -135,6 +139,14 @@ class Stepper:
         self.floor_x = 64.0 * eps * self.ea_max
         self.floor_t = 64.0 * eps * float(np.max(system.gj / system.voronoi))
         self.n_evals = 0
+        self._jac_pending = False
+        self._mode = "band"
+        self._order_stale = True
+        nf = self.free_idx.size
+        self._fmap = -np.ones(n, dtype=np.int64)
+        self._fmap[self.free_idx] = np.arange(nf)
+        self._gmap = None  # dof -> row of the reordered free system (-1: constrained)
+        self._elastic_rc = None  # elastic COO pattern mapped through _gmap (fixed)
 
     # ------------------------------------------------------------ evaluation
     def evaluate(self, q, st: State, dt: float, t_new: float, jacobian: bool = True) -> float:
@@ -164,9 +176,9 @@ class Stepper:
         for it in self.interactions:
             phi += it.energy(s, q)
         self.phi = phi
-        if jacobian:
+        if jacobian:  # the matrix itself is built lazily, by solve()
             np.subtract(s.mass / (dt * dt), jd, out=self.diag)
-            self._assemble()
+            self._jac_pending = True
         tens = self.ea_max * _asm.max_abs_strain(ws.lengths, s.rest_length)
         return max(sx, tens), sth, rx, rt
 
@@ -178,6 +190,7 @@ class Stepper:
         return self.opt.linear_solver == "auto" and self.trip.size == 0
 
     def _assemble(self) -> None:
+        self._jac_pending = False
         if self._use_band():
             pb = self.pb
             pb[:] = 0.0
@@ -186,18 +199,63 @@ class Stepper:
             _asm.band_constrain(self.cdofs, pb, _B)
             self._mode = "band"
         else:
-            r, c, v = self.ws.coo()
-            n = self.system.n_dof
-            idx = np.arange(n)
-            rows = np.concatenate([r, idx, self.trip.rows])
-            cols = np.concatenate([c, idx, self.trip.cols])
-            vals = np.concatenate([v, self.diag, -self.trip.vals])
-            J = sp.csc_matrix((vals, (rows, cols)), shape=(n, n))
-            self._J = J[self.free_idx][:, self.free_idx].tocsc()
+            self._assemble_sparse()
+
+    def _reorder(self, er, ec) -> None:
+        """Reverse Cuthill-McKee ordering of the free dofs for the current contact pattern
+        (once per step): contacts couple nodes far apart along the rods, and RCM brings the
+        matrix back to a narrow band."""
+        fm = self._fmap
+        rows = fm[np.concatenate([er, self.trip.rows])]
+        cols = fm[np.concatenate([ec, self.trip.cols])]
+        keep = (rows >= 0) & (cols >= 0)
+        nf = self.free_idx.size
+        pat = sp.csr_matrix((np.ones(int(keep.sum())), (rows[keep], cols[keep])), shape=(nf, nf))
+        perm = reverse_cuthill_mckee(pat, symmetric_mode=False)
+        iperm = np.empty(nf, dtype=np.int64)
+        iperm[perm] = np.arange(nf)
+        gm = -np.ones(self.system.n_dof, dtype=np.int64)
+        gm[self.free_idx] = iperm
+        self._gmap = gm
+        self._elastic_rc = None
+        self._order_stale = False
+
+    def _assemble_sparse(self) -> None:
+        """Jacobian with interaction triplets, restricted to the free dofs and reordered
+        (RCM); stored as a LAPACK band matrix when the reordered half bandwidth is at most
+        _KD_MAX (exact LU with partial pivoting, dgbsv), else as CSC for SuperLU."""
+        er, ec, ev = self.ws.coo()
+        if self._order_stale or self._gmap is None:
+            self._reorder(er, ec)
+        gm = self._gmap
+        if self._elastic_rc is None:  # the elastic pattern never changes
+            r0, c0 = gm[er], gm[ec]
+            k0 = (r0 >= 0) & (c0 >= 0)
+            d0 = gm[self.free_idx]
+            self._elastic_rc = (np.concatenate([r0[k0], d0]), np.concatenate([c0[k0], d0]), k0)
+        r0, c0, k0 = self._elastic_rc
+        tr, tc = gm[self.trip.rows], gm[self.trip.cols]
+        kt = (tr >= 0) & (tc >= 0)
+        rows = np.concatenate([r0, tr[kt]])
+        cols = np.concatenate([c0, tc[kt]])
+        vals = np.concatenate([ev[k0], self.diag[self.free_idx], -self.trip.vals[kt]])
+        nf = self.free_idx.size
+        kd = int(np.max(np.abs(rows - cols), initial=0))
+        if kd <= _KD_MAX:
+            kd = max(kd, 1)
+            nb = 3 * kd + 1
+            ab = np.bincount((2 * kd + rows - cols) * nf + cols, weights=vals, minlength=nb * nf)
+            self._ab = np.asfortranarray(ab.reshape(nb, nf))
+            self._kd = kd
+            self._mode = "sparse-band"
+        else:
+            self._J = sp.csc_matrix((vals, (rows, cols)), shape=(nf, nf))
             self._mode = "sparse"
 
     def solve(self, rhs: np.ndarray) -> np.ndarray:
         """Solve J x = rhs with x = 0 on constrained dofs."""
+        if self._jac_pending:
+            self._assemble()
         if self._mode == "band":
             b = rhs.copy()
             b[self.cdofs] = 0.0
@@ -208,11 +266,23 @@ class Stepper:
                 if info != 0:
                     raise _StepFailed("singular Jacobian")
             return x
+        gm = self._gmap[self.free_idx]
+        b = np.empty(self.free_idx.size)
+        b[gm] = rhs[self.free_idx]
+        if self._mode == "sparse-band":
+            kd = self._kd
+            _, _, y, info = lapack.dgbsv(kd, kd, self._ab, b, overwrite_ab=1, overwrite_b=1)
+            if info != 0:
+                raise _StepFailed("singular Jacobian")
+        else:
+            try:
+                lu = splu(self._J, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.1,
+                          options={"SymmetricMode": True})  # fmt: skip
+                y = lu.solve(b)
+            except RuntimeError as exc:  # singular factor
+                raise _StepFailed(f"sparse solve failed: {exc}") from None
         x = np.zeros_like(rhs)
-        try:
-            x[self.free_idx] = splu(self._J).solve(rhs[self.free_idx])
-        except RuntimeError as exc:  # singular factor
-            raise _StepFailed(f"sparse solve failed: {exc}") from None
+        x[self.free_idx] = y[gm]
         return x
 
     def _converged(self, scales) -> tuple[bool, float]:
@@ -232,6 +302,7 @@ class Stepper:
             q[c.dofs(self.system)] = c.values(self.system, t_new, dt, st.q)
         for it in self.interactions:
             it.begin_step(self.system, st.q, st.v, dt)
+        self._order_stale = True  # new contact pairs: new ordering of the sparse Jacobian
         scales = self.evaluate(q, st, dt, t_new)
         for k in range(opt.max_newton + 1):
             if not np.all(np.isfinite(self.f)):
