@@ -302,8 +302,8 @@ def run(
             label="lower bracket: too light to tighten",
         )
     ax.axvline(PAPER_D_OVER_2R, color="0.6", lw=0.8, ls=":")
-    ax.set_ylim(-0.02, 1.5 * float(y.max()))
-    ax.legend(fontsize=6.5, loc="upper left", framealpha=0.9, ncol=2)
+    ax.set_ylim(-0.02, 1.6 * float(y.max()))
+    ax.legend(fontsize=6, loc="upper left", framealpha=0.9, ncol=2)
     figures = [save_figure(ax.figure, out_dir, NAME)]
     return finish(
         NAME,

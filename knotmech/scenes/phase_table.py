@@ -58,6 +58,7 @@ DENSITY = 1150.0  #: [kg/m^3]
 MU = 0.3  #: rod-post and rod-rod friction of the table (the paper's sec. 7 value)
 TAIL = 0.064  #: [m] straight tail at each end (the paper's L = 374 mm at D = 30 mm)
 EDGE = 0.374 / 119  #: [m] rest edge length (120 nodes on 374 mm)
+SNAP = 1e-3  #: relative distance in d/2R within which a query lies on a table column
 #: run protocol of a point (settle, ramp, hold [s]; time step [s])
 PROTOCOL = dict(settle_time=0.2, load_time=0.2, hold_time=0.4, dt=2e-3, n_frames=21)
 
@@ -253,9 +254,10 @@ class PhaseTable:
         on each side of y in each column."""
         xs = self.d_over_2R
         i = int(np.searchsorted(xs, x))
-        if i < xs.size and math.isclose(xs[i], x, rel_tol=1e-6):
+        # a query within 0.1 % of a column is on it (the grid's 0.1176 is the paper's 4/34)
+        if i < xs.size and math.isclose(xs[i], x, rel_tol=SNAP):
             cols = [xs[i]]
-        elif i > 0 and math.isclose(xs[i - 1], x, rel_tol=1e-6):
+        elif i > 0 and math.isclose(xs[i - 1], x, rel_tol=SNAP):
             cols = [xs[i - 1]]
         else:
             cols = [xs[max(i - 1, 0)], xs[min(i, xs.size - 1)]]
@@ -297,7 +299,7 @@ class PhaseTable:
                 return outside(
                     f"the DER table was computed at {name} = {ref:g} only, not {float(val):g}"
                 )
-        if not (xs[0] * (1 - 1e-6) <= x <= xs[-1] * (1 + 1e-6)):
+        if not (xs[0] * (1 - SNAP) <= x <= xs[-1] * (1 + SNAP)):
             return outside(f"d/2R = {x:.4g} is outside the DER table ({xs[0]:.4g} to {xs[-1]:.4g})")
         if not (ys[0] * (1 - 1e-9) <= y <= ys[-1] * (1 + 1e-9)):
             return outside(

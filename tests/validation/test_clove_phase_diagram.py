@@ -1,0 +1,75 @@
+"""Validation case 3 (clove hitch with a free end: hold/slip phase diagram).
+
+Reference: the clove-hitch paper (Extreme Mech. Lett., DOI 10.1016/j.eml.2022.101788),
+sec. 8 and Fig. 4: ideal-rope theory (Maddocks & Keller) says a clove hitch with a free
+end slips at any load; experiments hold it below a critical T_high/EA that depends on
+d/2R, with an upper bound near 0.3. The default test draws the diagram from the shipped
+DER table (no simulation); the slow test simulates the quick 3 x 3 grid.
+"""
+
+import json
+from pathlib import Path
+
+import numpy as np
+import pytest
+
+from knotmech.cli.validate import load_case
+from knotmech.scenes.phase_table import load_table
+
+case = load_case("clove_phase_diagram")
+
+
+@pytest.fixture(scope="module")
+def shipped(tmp_path_factory):
+    return case.run(quick=True, out_dir=tmp_path_factory.mktemp("cpd"), der=False)
+
+
+def test_shipped_table_diagram(shipped):
+    assert shipped["verdict"] == "pass", shipped["checks"]
+    n = shipped["numbers"]
+    assert n["source"].startswith("shipped DER table")
+    assert n["n_hold"] > 0  # ideal rope: none
+    assert n["EA_N"] == pytest.approx(1.26e6 * np.pi * 0.004**2 / 4)  # 15.83 N
+    cols = n["boundary_columns_d_over_2R"]
+    i = int(np.argmin(np.abs(np.array(cols) - 4 / 34)))
+    # measured (16 DER runs): at the paper's d/2R the hitch holds 0.2 EA and slips at 0.3 EA
+    assert n["boundary_lower_t_over_EA"][i] == pytest.approx(0.2)
+    assert n["boundary_upper_t_over_EA"][i] == pytest.approx(0.3)
+    # the boundary is largest at an interior d/2R, below the paper's bound 0.3
+    assert n["boundary_largest_at_papers_d_over_2R"] is True
+    assert cols[0] < n["boundary_peak_d_over_2R"] < cols[-1]
+    assert 0.1 < n["boundary_peak_t_over_EA"] < 0.3
+    png = Path(shipped["figures"][0])
+    assert png.read_bytes()[:4] == b"\x89PNG"
+    on_disk = json.loads((png.parent / "clove_phase_diagram.json").read_text())
+    assert on_disk["numbers"] == shipped["numbers"]
+
+
+def test_fit_boundary_peak_of_a_known_parabola():
+    """Midpoints on T = 0.3 - 10 (x - 0.15)^2 at three columns: the fit finds the peak."""
+    from knotmech.scenes.phase_table import PhasePoint, PhaseTable
+
+    pts = []
+    for x in (0.05, 0.15, 0.25):
+        m = 0.3 - 10 * (x - 0.15) ** 2
+        pts += [PhasePoint(x, m - 0.01, True), PhasePoint(x, m + 0.01, False)]
+    fit = case.fit_boundary(PhaseTable(pts))
+    assert fit["peak_d_over_2R"] == pytest.approx(0.15, abs=1e-9)
+    assert fit["peak_t_over_EA"] == pytest.approx(0.3, abs=1e-9)
+
+
+def test_shipped_table_grid():
+    t = load_table()
+    assert len(t.points) == 16 and t.mu == t.mu_rr == 0.3
+    assert tuple(t.d_over_2R) == case.GRID_FULL["d_over_2R"]
+    assert tuple(t.t_over_EA) == case.GRID_FULL["t_over_EA"]
+
+
+@pytest.mark.slow
+def test_quick_der_grid(tmp_path):
+    """9 DER runs (about 5-10 min on 2 cores): the simulated grid reproduces the table."""
+    res = case.run(quick=True, out_dir=tmp_path)
+    assert res["verdict"] == "pass", res["checks"]
+    table = load_table()
+    for x, y, holds in res["numbers"]["points"]:
+        assert table.lookup(x, y).holds is holds
