@@ -109,6 +109,15 @@ class RodContact:
     exclusion : int or None
         Neighbouring edges of the same rod never paired; None -> ``system.contact_exclusion``
         (default 2).
+    max_displacement : float or None
+        Tunnelling guard (fraction of the rod radius, default 0.5; None: off). A converged
+        step is rejected, and retried by the solver with half the step, when a node of an
+        edge in a candidate contact pair moved more than ``max_displacement`` times its
+        edge radius during the step (:meth:`check_step`). Two edges then approach each
+        other by at most one radius per step, so a crossing cannot jump from one side to
+        the other between two penalty evaluations (the role of ``colLimit`` in the IMC
+        code). It does not stop a penalty that is too soft for the load from being pushed
+        through quasi-statically: raise ``stiffness`` for that.
     """
 
     stiffness: float
@@ -116,6 +125,7 @@ class RodContact:
     friction: SmoothFriction | None = None
     margin: float | None = None
     exclusion: int | None = None
+    max_displacement: float | None = 0.5
     pairs: np.ndarray = field(default=None, init=False, repr=False)
     last_normal_force: np.ndarray = field(default=None, init=False, repr=False)
 
@@ -124,6 +134,8 @@ class RodContact:
         self.sharpness = float(check_positive("sharpness", self.sharpness))
         if self.margin is not None:
             self.margin = float(check_nonnegative("margin", self.margin))
+        if self.max_displacement is not None:
+            self.max_displacement = float(check_positive("max_displacement", self.max_displacement))
         if self.friction is not None and not isinstance(self.friction, SmoothFriction):
             raise InputError("friction must be a SmoothFriction or None")
 
@@ -196,6 +208,30 @@ class RodContact:
         self.last_normal_force = fn
         keep = v != 0.0
         _emit(rows, cols, vals, r[keep], c[keep], v[keep])
+
+    def check_step(self, system, q_new, q_old, dt):
+        """Tunnelling guard: None if the converged step is acceptable, else the reason.
+
+        Rejects the step when a node of an edge in a candidate pair moved more than
+        ``max_displacement`` edge radii (see the class docstring); the solver then halves
+        the step.
+        """
+        if self.max_displacement is None or self.pairs is None or self.pairs.shape[0] == 0:
+            return None
+        en = system.edge_nodes
+        edges = np.unique(self.pairs)
+        nodes = en[edges].ravel()
+        rad = np.repeat(np.asarray(system.rod_radius_edge, dtype=float)[edges], 2)
+        nd = system.node_dofs[nodes]
+        dx = np.asarray(q_new, dtype=float)[nd] - np.asarray(q_old, dtype=float)[nd]
+        ratio = np.sqrt(np.einsum("ij,ij->i", dx, dx)) / rad
+        worst = float(np.max(ratio))
+        if worst > self.max_displacement:
+            return (
+                f"tunnelling guard: a contact node moved {worst:.3g} radii in one step "
+                f"(max_displacement {self.max_displacement:g})"
+            )
+        return None
 
     def end_step(self, system, q_new, q_old, dt):
         """Nothing to commit (the regularised friction is stateless)."""

@@ -33,6 +33,11 @@ class Interaction(Protocol):
     def energy(self, system, q) -> float:
         """Potential energy [J] (0.0 for non-conservative terms)."""
 
+    # Optional (looked up with getattr, not part of the runtime check):
+    # ``check_step(system, q_new, q_old, dt) -> str | None`` is called on a converged
+    # step; a returned reason rejects it and the solver retries with half the step
+    # (RodContact's tunnelling guard).
+
 
 @dataclass(frozen=True)
 class PointSpring:

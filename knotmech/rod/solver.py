@@ -285,6 +285,16 @@ class Stepper:
         x[self.free_idx] = y[gm]
         return x
 
+    def _check(self, q, st: State, dt: float) -> None:
+        """Interactions' optional step checks (``check_step``, e.g. the contact tunnelling
+        guard): a reason returned rejects the converged step (it is retried with dt/2)."""
+        for it in self.interactions:
+            chk = getattr(it, "check_step", None)
+            if chk is not None:
+                why = chk(self.system, q, st.q, dt)
+                if why:
+                    raise _StepFailed(why)
+
     def _converged(self, scales) -> tuple[bool, float]:
         sx, st_, rx, rt = scales
         st_ = max(st_, sx * self.radius_scale)
@@ -309,6 +319,7 @@ class Stepper:
                 raise _StepFailed("non-finite residual")
             ok, rel = self._converged(scales)
             if ok:
+                self._check(q, st, dt)
                 return q, k
             if k == opt.max_newton:
                 break
@@ -344,6 +355,7 @@ class Stepper:
                 and stept <= opt.xtol
                 and np.all(np.isfinite(self.f))
             ):
+                self._check(q, st, dt)
                 return q, k + 1
         raise _StepFailed(
             f"Newton did not converge in {opt.max_newton} iterations (residual {rel:.2e})"

@@ -18,7 +18,7 @@ from knotmech.rod.system import Rod, RodSystem
 R = 1e-3
 
 
-def crossing(push, interactions):
+def crossing(push, interactions, t_end=0.5, dt=0.01):
     n = 41
     s = np.linspace(-0.05, 0.05, n)
     a = np.stack([s, 0 * s, 0 * s], 1)
@@ -29,13 +29,13 @@ def crossing(push, interactions):
     ends_b = [n, 2 * n - 1]
     cons = (
         Clamp(nodes=ends_a, edges=[0, n - 2]),
-        MovingNodes(nodes=ends_b, velocity=(0.0, 0.0, -push / 0.5)),
+        MovingNodes(nodes=ends_b, velocity=(0.0, 0.0, -push / t_end)),
         Clamp(edges=[n - 1, 2 * n - 3]),
     )
     res = simulate(
         system,
-        t_end=0.5,
-        dt=0.01,
+        t_end=t_end,
+        dt=dt,
         constraints=cons,
         interactions=interactions,
         options=SolverOptions(throw=False),
@@ -84,3 +84,49 @@ def test_self_contact_exclusion_default(exclusion):
     assert np.all(np.abs(c.pairs[:, 0] - c.pairs[:, 1]) > exclusion)
     assert system.contact_exclusion == exclusion
     assert c.energy(system, system.initial_state().q) < 1e-20
+
+
+def _hard_push(max_displacement):
+    # B's ends driven 40 r down in 2 steps of 10 ms (2 m/s): far more than the soft penalty
+    # (K_c = 20 N/m) can stop within one step
+    contact = RodContact(
+        stiffness=20.0,
+        sharpness=1.0 / (0.02 * R),
+        friction=SmoothFriction(0.3),
+        max_displacement=max_displacement,
+    )
+    return crossing(40 * R, (contact,), t_end=0.02, dt=0.01)
+
+
+def test_hard_push_tunnels_without_the_guard():
+    res, dmin, dz = _hard_push(None)
+    assert res.status == "success"
+    assert dz[-1] < -10 * R  # B ended up far below A: it went through
+
+
+def test_tunnelling_guard_keeps_the_crossing_order():
+    res, dmin, dz = _hard_push(0.5)
+    assert res.status == "success", res.message
+    assert res.stats["rejected_steps"] > 0  # the guard cut the step
+    assert np.all(dz > 0)  # B stays above A at the crossing
+    assert dmin.min() > 0.5 * R  # squeezed hard, but never through
+    assert res.positions[-1, 41, 2] < -30 * R  # the ends really went 40 r down
+
+
+def test_check_step_threshold():
+    rod_a = Rod(positions=[[0, 0, 0], [0.01, 0, 0], [0.02, 0, 0]], radius=R,
+                youngs_modulus=1e6, density=1000.0)  # fmt: skip
+    rod_b = Rod(positions=[[0.01, -0.01, 2 * R], [0.01, 0, 2 * R], [0.01, 0.01, 2 * R]],
+                radius=R, youngs_modulus=1e6, density=1000.0)  # fmt: skip
+    system = RodSystem((rod_a, rod_b))
+    q0 = system.initial_state().q
+    c = RodContact(stiffness=1.0, sharpness=1.0 / R, max_displacement=0.5)
+    c.begin_step(system, q0, np.zeros_like(q0), 0.01)
+    assert c.pairs.shape[0] > 0
+    for frac, rejected in ((0.4, False), (0.6, True)):
+        q1 = q0.copy()
+        q1[system.node_dofs[4, 2]] -= frac * R  # the middle node of B moves down
+        assert (c.check_step(system, q1, q0, 0.01) is not None) == rejected
+    c_off = RodContact(stiffness=1.0, sharpness=1.0 / R, max_displacement=None)
+    c_off.begin_step(system, q0, np.zeros_like(q0), 0.01)
+    assert c_off.check_step(system, q1, q0, 0.01) is None
