@@ -66,9 +66,19 @@ def test_shipped_table_grid():
 
 
 @pytest.mark.slow
-def test_quick_der_grid(tmp_path):
-    """9 DER runs (about 5-10 min on 2 cores): the simulated grid reproduces the table."""
+def test_quick_spot_checks_reproduce_the_table(tmp_path):
+    """Quick mode: 4 new DER runs (about 2.5 CPU-minutes) agree with the shipped table."""
     res = case.run(quick=True, out_dir=tmp_path)
+    assert res["verdict"] == "pass", res["checks"]
+    spots = res["numbers"]["spot_checks_d_over_2R_t_over_EA_der_table"]
+    assert len(spots) == len(case.SPOT_CHECKS)
+    assert all(der is table for _, _, der, table in spots)
+
+
+@pytest.mark.slow
+def test_der_grid_3x3(tmp_path):
+    """9 DER runs across the boundary (about 15 CPU-minutes): reproduces the table."""
+    res = case.run(quick=True, out_dir=tmp_path, grid=case.GRID_QUICK)
     assert res["verdict"] == "pass", res["checks"]
     table = load_table()
     for x, y, holds in res["numbers"]["points"]:
