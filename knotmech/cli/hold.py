@@ -41,12 +41,14 @@ KNOT_NAMES = ("capstan",) + tuple(KNOTS)
 def register(subparsers) -> None:
     p = subparsers.add_parser(
         "hold",
-        help="does a rod tied to a post hold a load? (closed-form verdict)",
+        help="does a rod tied to a post hold a load? (closed forms; DER for the clove hitch)",
         description=(
             "Verdict (holds / slips) for a rod tied to a rigid post, with the margin, the "
             "model that decided, its assumptions and whether the inputs lie inside its "
-            "validity. Quantities accept units (4mm, 1.47N, 150gf, 360deg, 2pi, 1.5turn); "
-            "bare numbers are SI."
+            "validity. For the clove hitch with a free end it also answers from the DER "
+            "phase diagram (shipped table, or --simulate) and says where it disagrees with "
+            "ideal-rope theory. Quantities accept units (4mm, 1.47N, 150gf, 360deg, 2pi, "
+            "1.5turn); bare numbers are SI."
         ),
     )
     p.add_argument("knot", help=f"one of: {', '.join(KNOT_NAMES)}")
