@@ -126,6 +126,9 @@ class RodContact:
     margin: float | None = None
     exclusion: int | None = None
     max_displacement: float | None = 0.5
+    #: dF/dq is symmetric (penalty Hessian; friction derivative -mu|F_n| D P / dt with D
+    #: symmetric in v_T and the lagged normal): the solver may use Cholesky
+    symmetric_jacobian = True
     pairs: np.ndarray = field(default=None, init=False, repr=False)
     last_normal_force: np.ndarray = field(default=None, init=False, repr=False)
 
@@ -185,8 +188,9 @@ class RodContact:
         c = np.empty(npair * 288, dtype=np.int64)
         v = np.empty(npair * 288)
         fn = np.empty(npair)
-        rodrod_assemble(
-            _positions(system, q),
+        pos = _positions(system, q)
+        e = rodrod_assemble(
+            pos,
             _positions(system, q_old),
             float(dt) if dt else 1.0,
             pairs,
@@ -206,6 +210,7 @@ class RodContact:
             fn,
         )
         self.last_normal_force = fn
+        self._energy_cache = (pairs, pos, float(e))  # energy() at the same q is free
         keep = v != 0.0
         _emit(rows, cols, vals, r[keep], c[keep], v[keep])
 
@@ -241,9 +246,13 @@ class RodContact:
         self._ensure_pairs(system, q)
         if self.pairs.shape[0] == 0:
             return 0.0
+        pos = _positions(system, q)
+        cache = getattr(self, "_energy_cache", None)
+        if cache is not None and cache[0] is self.pairs and np.array_equal(cache[1], pos):
+            return cache[2]
         return float(
             rodrod_energy(
-                _positions(system, q),
+                pos,
                 self.pairs,
                 np.ascontiguousarray(system.edge_nodes, dtype=np.int64),
                 np.ascontiguousarray(system.rod_radius_edge, dtype=float),

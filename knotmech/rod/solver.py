@@ -142,6 +142,8 @@ class Stepper:
         self._jac_pending = False
         self._mode = "band"
         self._order_stale = True
+        self._order_fresh = False
+        self._kd_ordered = 0
         nf = self.free_idx.size
         self._fmap = -np.ones(n, dtype=np.int64)
         self._fmap[self.free_idx] = np.arange(nf)
@@ -202,9 +204,9 @@ class Stepper:
             self._assemble_sparse()
 
     def _reorder(self, er, ec) -> None:
-        """Reverse Cuthill-McKee ordering of the free dofs for the current contact pattern
-        (once per step): contacts couple nodes far apart along the rods, and RCM brings the
-        matrix back to a narrow band."""
+        """Reverse Cuthill-McKee ordering of the free dofs for the current contact pattern:
+        contacts couple nodes far apart along the rods, and RCM brings the matrix back to a
+        narrow band. Redone when new contacts widen the band by more than 25 %."""
         fm = self._fmap
         rows = fm[np.concatenate([er, self.trip.rows])]
         cols = fm[np.concatenate([ec, self.trip.cols])]
@@ -219,36 +221,50 @@ class Stepper:
         self._gmap = gm
         self._elastic_rc = None
         self._order_stale = False
+        self._order_fresh = True
 
     def _assemble_sparse(self) -> None:
         """Jacobian with interaction triplets, restricted to the free dofs and reordered
-        (RCM); stored as a LAPACK band matrix when the reordered half bandwidth is at most
-        _KD_MAX (exact LU with partial pivoting, dgbsv), else as CSC for SuperLU."""
+        (RCM). Stored as a LAPACK band matrix when the reordered half bandwidth is at most
+        _KD_MAX: upper band for Cholesky (dpbsv) when every interaction declares a
+        symmetric Jacobian (``symmetric_jacobian = True``), else the full band for LU with
+        partial pivoting (dgbsv); wider bands go to SuperLU as CSC."""
         er, ec, ev = self.ws.coo()
         if self._order_stale or self._gmap is None:
             self._reorder(er, ec)
         gm = self._gmap
         if self._elastic_rc is None:  # the elastic pattern never changes
             r0, c0 = gm[er], gm[ec]
-            k0 = (r0 >= 0) & (c0 >= 0)
             d0 = gm[self.free_idx]
-            self._elastic_rc = (np.concatenate([r0[k0], d0]), np.concatenate([c0[k0], d0]), k0)
-        r0, c0, k0 = self._elastic_rc
+            self._elastic_rc = (r0, c0, d0, max(_asm.max_band(r0, c0), 0))
+        r0, c0, d0, kd0 = self._elastic_rc
         tr, tc = gm[self.trip.rows], gm[self.trip.cols]
-        kt = (tr >= 0) & (tc >= 0)
-        rows = np.concatenate([r0, tr[kt]])
-        cols = np.concatenate([c0, tc[kt]])
-        vals = np.concatenate([ev[k0], self.diag[self.free_idx], -self.trip.vals[kt]])
+        tv = self.trip.vals
+        kd = max(kd0, _asm.max_band(tr, tc), 1)
+        if not self._order_fresh and kd > 1.25 * self._kd_ordered + 4:
+            # the contact pattern changed enough to widen the band: new ordering
+            self._order_stale = True
+            return self._assemble_sparse()
+        if self._order_fresh:
+            self._kd_ordered = kd
+            self._order_fresh = False
         nf = self.free_idx.size
-        kd = int(np.max(np.abs(rows - cols), initial=0))
+        dv = self.diag[self.free_idx]
         if kd <= _KD_MAX:
-            kd = max(kd, 1)
-            nb = 3 * kd + 1
-            ab = np.bincount((2 * kd + rows - cols) * nf + cols, weights=vals, minlength=nb * nf)
-            self._ab = np.asfortranarray(ab.reshape(nb, nf))
-            self._kd = kd
+            sym = all(getattr(it, "symmetric_jacobian", False) for it in self.interactions)
+            off = kd if sym else 2 * kd
+            ab = np.zeros((kd + 1 if sym else 3 * kd + 1, nf), order="F")
+            _asm.band_scatter(r0, c0, ev, 1.0, off, sym, ab)
+            _asm.band_scatter(d0, d0, dv, 1.0, off, sym, ab)
+            _asm.band_scatter(tr, tc, tv, -1.0, off, sym, ab)
+            self._ab, self._kd, self._sym = ab, kd, sym
             self._mode = "sparse-band"
         else:
+            k0 = (r0 >= 0) & (c0 >= 0)
+            kt = (tr >= 0) & (tc >= 0)
+            rows = np.concatenate([r0[k0], d0, tr[kt]])
+            cols = np.concatenate([c0[k0], d0, tc[kt]])
+            vals = np.concatenate([ev[k0], dv, -tv[kt]])
             self._J = sp.csc_matrix((vals, (rows, cols)), shape=(nf, nf))
             self._mode = "sparse"
 
@@ -270,10 +286,21 @@ class Stepper:
         b = np.empty(self.free_idx.size)
         b[gm] = rhs[self.free_idx]
         if self._mode == "sparse-band":
-            kd = self._kd
-            _, _, y, info = lapack.dgbsv(kd, kd, self._ab, b, overwrite_ab=1, overwrite_b=1)
+            kd, ab = self._kd, self._ab
+            info = 1
+            if self._sym:  # Cholesky; LU on the mirrored band if not positive definite
+                _, y, info = lapack.dpbsv(ab, b, lower=0, overwrite_ab=0, overwrite_b=0)
+                if info != 0:
+                    gb = np.zeros((3 * kd + 1, ab.shape[1]), order="F")
+                    for d in range(kd + 1):  # ab[kd + i - j, j] = A[i, j], i <= j
+                        v = ab[kd - d, d:]
+                        gb[2 * kd - d, d:] = v  # upper: A[j - d, j]
+                        gb[2 * kd + d, : ab.shape[1] - d] = v  # lower: A[j, j - d]
+                    ab = gb
             if info != 0:
-                raise _StepFailed("singular Jacobian")
+                _, _, y, info = lapack.dgbsv(kd, kd, ab, b, overwrite_ab=1, overwrite_b=1)
+                if info != 0:
+                    raise _StepFailed("singular Jacobian")
         else:
             try:
                 lu = splu(self._J, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.1,
@@ -312,7 +339,6 @@ class Stepper:
             q[c.dofs(self.system)] = c.values(self.system, t_new, dt, st.q)
         for it in self.interactions:
             it.begin_step(self.system, st.q, st.v, dt)
-        self._order_stale = True  # new contact pairs: new ordering of the sparse Jacobian
         scales = self.evaluate(q, st, dt, t_new)
         for k in range(opt.max_newton + 1):
             if not np.all(np.isfinite(self.f)):

@@ -199,3 +199,30 @@ def max_abs_strain(lengths, rest_length):
     for k in range(lengths.shape[0]):
         out = max(out, abs(lengths[k] / rest_length[k] - 1.0))
     return out
+
+
+@njit(cache=True)
+def band_scatter(rows, cols, vals, scale, off, upper_only, ab):
+    """Add ``scale * vals`` at (rows, cols) of a LAPACK band matrix: entry (i, j) goes to
+    ``ab[off + i - j, j]`` (off = kd for the dpbsv upper layout with ``upper_only``, 2 kd for
+    dgbsv). Entries with a negative index (eliminated dofs) are skipped."""
+    for k in range(rows.shape[0]):
+        i = rows[k]
+        j = cols[k]
+        if i < 0 or j < 0 or (upper_only and i > j):
+            continue
+        ab[off + i - j, j] += scale * vals[k]
+
+
+@njit(cache=True)
+def max_band(rows, cols):
+    """Largest |i - j| over the entries with both indices >= 0."""
+    kd = 0
+    for k in range(rows.shape[0]):
+        i = rows[k]
+        j = cols[k]
+        if i >= 0 and j >= 0:
+            d = i - j if i > j else j - i
+            if d > kd:
+                kd = d
+    return kd

@@ -67,6 +67,18 @@ def segment_params(x1, x2, x3, x4):
 
 
 @njit(cache=True)
+def edge_distance(x):
+    """Distance Delta between two edges, ``x`` (12,) = (x_i, x_i+1, x_j, x_j+1) (Lumelsky
+    1985); the cheap value-only version of :func:`edge_distance_hessian`."""
+    s, t, _, _ = segment_params(x[0:3], x[3:6], x[6:9], x[9:12])
+    d2 = 0.0
+    for m in range(3):
+        w = (1.0 - s) * x[m] + s * x[3 + m] - (1.0 - t) * x[6 + m] - t * x[9 + m]
+        d2 += w * w
+    return np.sqrt(d2)
+
+
+@njit(cache=True)
 def edge_distance_hessian(x, grad, hess):
     """Distance Delta between two edges, its gradient and Hessian w.r.t. the 12 coordinates.
 
@@ -249,15 +261,16 @@ def rodrod_assemble(
                 dofs[3 * k + m] = node_dofs[nodes[k], m]
         base = p * 288
         two_h = radius_edge[ei] + radius_edge[ej]
-        dist = edge_distance_hessian(x, grad, hess)
-        e, de, d2e = penalty_derivs(two_h - dist, sharpness, stiffness)
         contact_force[p] = 0.0
-        if sharpness * (two_h - dist) < -40.0:
+        # far pairs (penalty below e^-40 of its scale): skip before the Hessian
+        if sharpness * (two_h - edge_distance(x)) < -40.0:
             for a in range(288):
                 rows[base + a] = dofs[0]
                 cols[base + a] = dofs[0]
                 vals[base + a] = 0.0
             continue
+        dist = edge_distance_hessian(x, grad, hess)
+        e, de, d2e = penalty_derivs(two_h - dist, sharpness, stiffness)
         energy += e
         # force = -dE/dx = -de * grad ; dF/dx = -(d2e grad grad^T + de hess)
         for a in range(12):
@@ -323,8 +336,6 @@ def rodrod_assemble(
 @njit(cache=True)
 def rodrod_energy(pos, pairs, edge_nodes, radius_edge, sharpness, stiffness):
     """Total penalty energy of the candidate pairs (IMC squared softplus)."""
-    grad = np.empty(12)
-    hess = np.empty((12, 12))
     x = np.empty(12)
     energy = 0.0
     for p in range(pairs.shape[0]):
@@ -334,7 +345,7 @@ def rodrod_energy(pos, pairs, edge_nodes, radius_edge, sharpness, stiffness):
         for k in range(4):
             for m in range(3):
                 x[3 * k + m] = pos[nodes[k], m]
-        dist = edge_distance_hessian(x, grad, hess)
+        dist = edge_distance(x)
         e, de, d2e = penalty_derivs(radius_edge[ei] + radius_edge[ej] - dist, sharpness, stiffness)
         energy += e
     return energy
