@@ -126,9 +126,6 @@ class RodContact:
     margin: float | None = None
     exclusion: int | None = None
     max_displacement: float | None = 0.5
-    #: dF/dq is symmetric (penalty Hessian; friction derivative -mu|F_n| D P / dt with D
-    #: symmetric in v_T and the lagged normal): the solver may use Cholesky
-    symmetric_jacobian = True
     pairs: np.ndarray = field(default=None, init=False, repr=False)
     last_normal_force: np.ndarray = field(default=None, init=False, repr=False)
 

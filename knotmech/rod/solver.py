@@ -226,9 +226,9 @@ class Stepper:
     def _assemble_sparse(self) -> None:
         """Jacobian with interaction triplets, restricted to the free dofs and reordered
         (RCM). Stored as a LAPACK band matrix when the reordered half bandwidth is at most
-        _KD_MAX: upper band for Cholesky (dpbsv) when every interaction declares a
-        symmetric Jacobian (``symmetric_jacobian = True``), else the full band for LU with
-        partial pivoting (dgbsv); wider bands go to SuperLU as CSC."""
+        _KD_MAX, solved by LU with partial pivoting (dgbsv; the blocked band Cholesky
+        dpbtrf used at these widths was erratic, up to seconds per call, with threaded
+        OpenBLAS on a loaded machine); wider bands go to SuperLU as CSC."""
         er, ec, ev = self.ws.coo()
         if self._order_stale or self._gmap is None:
             self._reorder(er, ec)
@@ -251,13 +251,11 @@ class Stepper:
         nf = self.free_idx.size
         dv = self.diag[self.free_idx]
         if kd <= _KD_MAX:
-            sym = all(getattr(it, "symmetric_jacobian", False) for it in self.interactions)
-            off = kd if sym else 2 * kd
-            ab = np.zeros((kd + 1 if sym else 3 * kd + 1, nf), order="F")
-            _asm.band_scatter(r0, c0, ev, 1.0, off, sym, ab)
-            _asm.band_scatter(d0, d0, dv, 1.0, off, sym, ab)
-            _asm.band_scatter(tr, tc, tv, -1.0, off, sym, ab)
-            self._ab, self._kd, self._sym = ab, kd, sym
+            ab = np.zeros((3 * kd + 1, nf), order="F")
+            _asm.band_scatter(r0, c0, ev, 1.0, 2 * kd, False, ab)
+            _asm.band_scatter(d0, d0, dv, 1.0, 2 * kd, False, ab)
+            _asm.band_scatter(tr, tc, tv, -1.0, 2 * kd, False, ab)
+            self._ab, self._kd = ab, kd
             self._mode = "sparse-band"
         else:
             k0 = (r0 >= 0) & (c0 >= 0)
@@ -286,21 +284,10 @@ class Stepper:
         b = np.empty(self.free_idx.size)
         b[gm] = rhs[self.free_idx]
         if self._mode == "sparse-band":
-            kd, ab = self._kd, self._ab
-            info = 1
-            if self._sym:  # Cholesky; LU on the mirrored band if not positive definite
-                _, y, info = lapack.dpbsv(ab, b, lower=0, overwrite_ab=0, overwrite_b=0)
-                if info != 0:
-                    gb = np.zeros((3 * kd + 1, ab.shape[1]), order="F")
-                    for d in range(kd + 1):  # ab[kd + i - j, j] = A[i, j], i <= j
-                        v = ab[kd - d, d:]
-                        gb[2 * kd - d, d:] = v  # upper: A[j - d, j]
-                        gb[2 * kd + d, : ab.shape[1] - d] = v  # lower: A[j, j - d]
-                    ab = gb
+            kd = self._kd
+            _, _, y, info = lapack.dgbsv(kd, kd, self._ab, b, overwrite_ab=1, overwrite_b=1)
             if info != 0:
-                _, _, y, info = lapack.dgbsv(kd, kd, ab, b, overwrite_ab=1, overwrite_b=1)
-                if info != 0:
-                    raise _StepFailed("singular Jacobian")
+                raise _StepFailed("singular Jacobian")
         else:
             try:
                 lu = splu(self._J, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.1,
