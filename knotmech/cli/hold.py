@@ -17,7 +17,10 @@ hitch with a free end it also answers from the DER phase diagram
 package, or, with ``--simulate``, from one DER run of the user's geometry (progress
 bar on stderr), and says where the ideal-rope theory and the simulation disagree.
 The DER answer is reported next to the closed forms (JSON key ``der`` and an entry
-of ``answers``); the verdict and ``holds`` stay those of the deciding closed form.
+of ``answers``). The most faithful model whose inputs lie inside its validity decides:
+the closed form, unless it is outside its validity range (e.g. the ideal rope for
+d/D > 0.1) and the DER gives a definite answer inside its table, in which case the DER
+decides and the closed forms are shown for comparison.
 Exit status 0 whether the knot holds or slips (read the verdict or the JSON key
 ``holds``); 2 on bad input.
 """
@@ -162,10 +165,16 @@ def run(args) -> int:
             ideal_holds=next(a.holds for a in verdict.answers if a.model == "ideal-rope"),
             progress=bool(args.simulate) and args.json != "-",
         )
-        if der["answer"] is not None:
-            verdict = verdict.with_answer(der.pop("answer"), decides=False)
-        else:
-            der.pop("answer")
+        answer = der.pop("answer")
+        if answer is not None:
+            # The most faithful model whose inputs lie inside its validity decides: the DER
+            # answer takes over when the closed-form decider is outside its range.
+            takes_over = (
+                answer.holds is not None
+                and answer.inside_validity
+                and not verdict.deciding.inside_validity
+            )
+            verdict = verdict.with_answer(answer, decides=takes_over)
     data = verdict.to_dict()
     if der is not None:
         data["der"] = der

@@ -23,18 +23,37 @@ CLOVE = [
 ]
 
 
-def test_issue_example_free_end_slips(capsys, tmp_path):
+def test_issue_example_free_end(capsys, tmp_path):
+    """Issue 2's example: the ideal rope slips (margin -100 %) but d/D = 0.13 lies outside
+    its validity, so the DER phase table (inside its grid, clove-hitch paper Fig. 4:
+    such hitches hold) decides, and the disagreement is printed."""
     out_json = tmp_path / "verdict.json"
     rc = main(CLOVE + ["--free-end-load", "0N", "--json", str(out_json)])
     assert rc == 0
     out = capsys.readouterr().out
-    assert "verdict: SLIPS" in out
-    assert "ideal-rope" in out and "T_low = 0" in out
+    assert "verdict: HOLDS" in out
+    assert "ideal-rope" in out and "T_low = 0" in out and "disagreement" in out
+    data = json.loads(out_json.read_text())
+    assert data["holds"] is True
+    assert data["decided_by"] == "DER-table"
+    ideal = next(a for a in data["answers"] if a["model"] == "ideal-rope")
+    assert ideal["holds"] is False and ideal["margin"] == -1.0
+    assert ideal["inside_validity"] is False
+    assert data["inputs"]["rod_diameter"] == pytest.approx(0.004)
+
+
+def test_thin_rope_free_end_slips_by_ideal_rope(capsys, tmp_path):
+    """Inside the ideal rope's validity (d/D <= 0.1) it decides: a free end always slips."""
+    out_json = tmp_path / "verdict.json"
+    args = ["hold", "clove-hitch", "--rod-diameter", "2mm", "--post-diameter", "50mm", "--mu",
+            "0.3", "--load", "1.47N", "--free-end-load", "0N", "--json", str(out_json)]  # fmt: skip
+    assert main(args) == 0
+    assert "verdict: SLIPS" in capsys.readouterr().out
     data = json.loads(out_json.read_text())
     assert data["holds"] is False
     assert data["decided_by"] == "ideal-rope"
     assert data["margin"] == -1.0
-    assert data["inputs"]["rod_diameter"] == pytest.approx(0.004)
+    assert data["inputs"]["rod_diameter"] == pytest.approx(0.002)
     assert data["inputs"]["load"] == pytest.approx(1.47)
     assert any(a["model"] == "thick-nip" for a in data["answers"])
 

@@ -101,18 +101,19 @@ def test_cli_table_answer_disagrees_with_ideal_rope(table_file, capsys, tmp_path
     )
     assert main(args) == 0
     text = capsys.readouterr().out
-    assert "verdict: SLIPS" in text  # the ideal rope still decides
+    # d/D = 0.11 is outside the ideal rope's validity (d/D <= 0.1): the DER table decides
+    assert "verdict: HOLDS" in text
     assert "HOLDS (DER phase table)" in text
     assert "disagreement: ideal-rope theory says it slips" in text
     data = json.loads(out_json.read_text())
-    assert data["holds"] is False and data["decided_by"] == "ideal-rope"
+    assert data["holds"] is True and data["decided_by"] == "DER-table"
     der = data["der"]
     assert der["source"] == "table" and der["holds"] is True and der["inside_table"]
     assert der["d_over_2R"] == pytest.approx(0.1)
     assert der["t_over_EA"] == pytest.approx(0.15)
     assert der["agrees_with_ideal_rope"] is False
     ans = next(a for a in data["answers"] if a["model"] == "DER-table")
-    assert ans["decides"] is False and ans["holds"] is True
+    assert ans["decides"] is True and ans["holds"] is True
     assert ans["capacity"] == pytest.approx(0.2 * EA)  # largest load held in the column
 
 
