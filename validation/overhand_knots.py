@@ -25,9 +25,9 @@ reported too; on a coarse grid it is biased because F is not linear in mu.
 Quick mode (``quick=True``): n = 1 only, mu in {0.2, 0.5, 0.9}, 101 nodes (3 mm
 edges, the coarsest the knot generator accepts), pulled 0.1 m at 60 mm/s with 5 ms
 steps (the paper pulls at 3.3 mm/s; inertia stays small: the curves at 30 and
-60 mm/s agree within the stick-slip ripple). Full mode: n = 1 .. 4, all five mu, the
-paper's node spacing (1.5 mm), 30 mm/s, pulled 90 % of the loop length; it takes hours
-on two cores.
+60 mm/s agree within the stick-slip ripple). Full mode: n = 1 .. 4, all five mu,
+2 mm edges, 30 mm/s, 2.5 ms steps, pulled 90 % of the loop length; it takes hours on
+two cores (not part of the tests).
 """
 
 from __future__ import annotations
@@ -52,7 +52,8 @@ SEED = 6
 #: scene overrides of the quick runs (n = 1; 101 nodes is the coarsest the generator accepts)
 QUICK_RUN = dict(n_nodes=101, pull_speed=0.06, dt=5e-3, wait_time=0.2, pull_time=1.7)
 PULL_SPEED_FULL = 0.03  #: [m/s]
-FULL_DT = 2.5e-3  #: [s]
+FULL_DT = 2.5e-3  #: [s] (the coated-rod setup's step)
+FULL_EDGE = 2e-3  #: [m] edge length of the full runs (151 nodes for n = 1, 2; 301 for n = 3, 4)
 
 
 def _overhand_task(turns, mu, n_frames, **overrides):
@@ -177,9 +178,14 @@ def _settings(quick, turns):
         return dict(QUICK_RUN)
     from knotmech.scenes.overhand import coated_setup
 
-    s = coated_setup(turns)  # the paper's node spacing; pulled 90 % of the loop length
-    return dict(pull_speed=PULL_SPEED_FULL, dt=FULL_DT, wait_time=0.5,
-                pull_time=s.pull_time * s.pull_speed / PULL_SPEED_FULL)  # fmt: skip
+    s = coated_setup(turns)  # pulled 90 % of the loop length, as the paper's setup
+    return dict(
+        n_nodes=int(round(s.rod_length / FULL_EDGE)) + 1,
+        pull_speed=PULL_SPEED_FULL,
+        dt=FULL_DT,
+        wait_time=0.5,
+        pull_time=s.pull_time * s.pull_speed / PULL_SPEED_FULL,
+    )
 
 
 def run(quick=True, out_dir=".", progress=False, scheduler=None, processes=None) -> dict:
@@ -316,8 +322,8 @@ def run(quick=True, out_dir=".", progress=False, scheduler=None, processes=None)
             f"{QUICK_RUN['pull_speed'] * QUICK_RUN['pull_time'] * 1e3:g} mm (coarse; the paper "
             "pulls at 3.3 mm/s and n = 1..4: run with quick=False)."
             if quick
-            else f"full: n = 1..4, mu in {list(mus)}, paper's nodes, "
-            f"{PULL_SPEED_FULL * 1e3:g} mm/s."
+            else f"full: n = 1..4, mu in {list(mus)}, {FULL_EDGE * 1e3:g} mm edges, "
+            f"{PULL_SPEED_FULL * 1e3:g} mm/s, dt = {FULL_DT * 1e3:g} ms."
         ),
         "Inverse problem: the curve simulated at mu = "
         f"{MU_TRUE:g} plus Gaussian noise ({NOISE:.0%} of its maximum, seed {SEED}) is the "
