@@ -118,6 +118,10 @@ class RodContact:
         the other between two penalty evaluations (the role of ``colLimit`` in the IMC
         code). It does not stop a penalty that is too soft for the load from being pushed
         through quasi-statically: raise ``stiffness`` for that.
+    friction_normal_derivative : bool
+        Include the derivative of |F_n| (through the penalty) in the friction's dF/dq
+        (default False: only the velocity derivative, |F_n| and n lagged). Unsymmetric,
+        closer to the exact Jacobian when mu is large.
     """
 
     stiffness: float
@@ -126,6 +130,7 @@ class RodContact:
     margin: float | None = None
     exclusion: int | None = None
     max_displacement: float | None = 0.5
+    friction_normal_derivative: bool = False
     pairs: np.ndarray = field(default=None, init=False, repr=False)
     last_normal_force: np.ndarray = field(default=None, init=False, repr=False)
 
@@ -205,6 +210,7 @@ class RodContact:
             c,
             v,
             fn,
+            bool(self.friction_normal_derivative),
         )
         self.last_normal_force = fn
         self._energy_cache = (pairs, pos, float(e))  # energy() at the same q is free

@@ -230,6 +230,7 @@ def rodrod_assemble(
     cols,
     vals,
     contact_force,
+    normal_derivative=False,
 ):
     """Contact + friction forces and Jacobian blocks of all candidate edge pairs.
 
@@ -321,6 +322,9 @@ def rodrod_assemble(
                 if vtn_raw > 0.0:
                     Dm[a, b] += dgam * vt[a] * vt[b] / (vtn * vtn_raw)
         Dm = -mu * fnorm * (Dm @ P)
+        # with normal_derivative: also the dependence of |F_n| on q (the normal stays
+        # lagged), d|F_n|/dx = (d2e/de) |F_n| grad Delta, which makes dF/dq unsymmetric
+        cn = d2e / de if (normal_derivative and de != 0.0) else 0.0
         for k in range(4):
             for l in range(4):
                 scale = sgn[k] * sgn[l] / dt
@@ -329,7 +333,7 @@ def rodrod_assemble(
                         kk = base2 + 12 * (3 * k + a) + (3 * l + b)
                         rows[kk] = dofs[3 * k + a]
                         cols[kk] = dofs[3 * l + b]
-                        vals[kk] = scale * Dm[a, b]
+                        vals[kk] = scale * Dm[a, b] + sgn[k] * ffr[a] * cn * grad[3 * l + b]
     return energy
 
 
