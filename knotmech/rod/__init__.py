@@ -16,7 +16,7 @@ Loads (generalized forces; ``apply(system, t, q, q_old, dt, force, jac_diag)``)
 Constraints (dofs eliminated from Newton; reactions reported)
     Clamp(nodes=(), edges=()), MovingNodes(nodes, velocity=None, path=None),
     RotatingEdges(edges, rate), clamp_end(system, rod=0, end="start", twist=True)
-Interactions (contact, friction, springs: see ``Interaction`` and notes/der_contract.md)
+Interactions (contact, friction, springs: see ``Interaction``, ``RodContact``, ``CylinderContact``)
     Interaction (Protocol: begin_step, assemble(system, q, q_old, dt, force, triplets),
     end_step, energy), Triplets (add(rows, cols, vals) of dF/dq), PointSpring
 Solve
@@ -40,8 +40,16 @@ Example
 ...                    constraints=[rod.clamp_end(system)])
 """
 
+from .broadphase import candidate_edge_pairs
 from .constraints import Clamp, MovingNodes, RotatingEdges, clamp_end
+from .contact import Cylinder, CylinderContact, RodContact
 from .elastic import ElasticWorkspace
+from .friction import (
+    AnchorFriction,
+    SmoothFriction,
+    default_stick_slip_parameters,
+    stick_slip_weight,
+)
 from .interactions import Interaction, PointSpring
 from .jacobian import Triplets
 from .loads import EdgeTorque, Gravity, NodeForce, ViscousDamping
@@ -69,4 +77,12 @@ __all__ = [
     "Result",
     "load_result",
     "ElasticWorkspace",
+    "RodContact",
+    "Cylinder",
+    "CylinderContact",
+    "SmoothFriction",
+    "AnchorFriction",
+    "stick_slip_weight",
+    "default_stick_slip_parameters",
+    "candidate_edge_pairs",
 ]
