@@ -140,7 +140,7 @@ def run(args) -> int:
         raise InputError(
             "--simulate covers the clove hitch with a free end only (--free-end-load 0)"
         )
-    verdict = hold_verdict(
+    verdict, der = decide(
         knot,
         rod_diameter=d,
         post_diameter=D,
@@ -149,32 +149,11 @@ def run(args) -> int:
         free_end_load=free,
         mu_rr=mu_rr,
         wrap_angle=theta,
+        youngs_modulus=E,
+        simulate=bool(args.simulate),
+        table_path=args.phase_table,
+        progress=bool(args.simulate) and args.json != "-",
     )
-    der = None
-    if knot == "clove-hitch":
-        der = der_answer(
-            rod_diameter=d,
-            post_diameter=D,
-            mu=mu,
-            mu_rr=mu if mu_rr is None else mu_rr,
-            load=load,
-            free_end_load=free,
-            youngs_modulus=E,
-            simulate=bool(args.simulate),
-            table_path=args.phase_table,
-            ideal_holds=next(a.holds for a in verdict.answers if a.model == "ideal-rope"),
-            progress=bool(args.simulate) and args.json != "-",
-        )
-        answer = der.pop("answer")
-        if answer is not None:
-            # The most faithful model whose inputs lie inside its validity decides: the DER
-            # answer takes over when the closed-form decider is outside its range.
-            takes_over = (
-                answer.holds is not None
-                and answer.inside_validity
-                and not verdict.deciding.inside_validity
-            )
-            verdict = verdict.with_answer(answer, decides=takes_over)
     data = verdict.to_dict()
     if der is not None:
         data["der"] = der
@@ -196,6 +175,70 @@ def run(args) -> int:
 
 
 _VPS32 = 1.26e6  # [Pa] the DER table's material (clove-hitch paper, VPS32)
+
+
+def decide(
+    knot,
+    *,
+    rod_diameter,
+    post_diameter,
+    mu,
+    load,
+    free_end_load,
+    mu_rr=None,
+    wrap_angle=None,
+    youngs_modulus=None,
+    simulate=False,
+    table_path=None,
+    progress=False,
+):
+    """The verdict of ``knotmech hold``: closed forms plus, for the clove hitch, the DER.
+
+    The most faithful model whose inputs lie inside its validity decides: the closed
+    form, unless it is outside its validity range and the DER gives a definite answer
+    inside its table (or from ``simulate``), in which case the DER decides.
+
+    Returns
+    -------
+    verdict : HoldVerdict
+    der : dict or None
+        The DER answer's details (see :func:`der_answer`), None for other knots.
+    """
+    d, D, free = rod_diameter, post_diameter, free_end_load
+    verdict = hold_verdict(
+        knot,
+        rod_diameter=d,
+        post_diameter=D,
+        mu=mu,
+        load=load,
+        free_end_load=free,
+        mu_rr=mu_rr,
+        wrap_angle=wrap_angle,
+    )
+    if knot != "clove-hitch":
+        return verdict, None
+    der = der_answer(
+        rod_diameter=d,
+        post_diameter=D,
+        mu=mu,
+        mu_rr=mu if mu_rr is None else mu_rr,
+        load=load,
+        free_end_load=free,
+        youngs_modulus=youngs_modulus,
+        simulate=simulate,
+        table_path=table_path,
+        ideal_holds=next(a.holds for a in verdict.answers if a.model == "ideal-rope"),
+        progress=progress,
+    )
+    answer = der.pop("answer")
+    if answer is not None:
+        takes_over = (
+            answer.holds is not None
+            and answer.inside_validity
+            and not verdict.deciding.inside_validity
+        )
+        verdict = verdict.with_answer(answer, decides=takes_over)
+    return verdict, der
 
 
 def der_answer(

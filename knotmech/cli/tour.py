@@ -103,20 +103,30 @@ def section_capstan(ctx: TourContext) -> list[str]:
 
 
 def section_hold(ctx: TourContext) -> list[str]:
-    """A hold verdict, the command-line example of issue 2."""
-    from knotmech.analytic.hitch import FREE_END_STATEMENT, hold_verdict
+    """Hold verdicts as ``knotmech hold`` gives them (closed forms and the DER table)."""
+    from knotmech.analytic.hitch import FREE_END_STATEMENT
+    from knotmech.cli.hold import decide
 
     lines = ["Does it hold? (knotmech hold ...), rod 4 mm on a 30 mm post, mu = mu_rr = 0.3:"]
     for knot, free in (("clove-hitch", 0.0), ("clove-hitch", 0.05), ("two-half-hitches", 0.05)):
-        v = hold_verdict(
+        v, _ = decide(
             knot, rod_diameter=4e-3, post_diameter=30e-3, mu=0.3, load=1.47, free_end_load=free
         )
         m = "unbounded" if math.isinf(v.margin) else f"{v.margin * 100:+.0f} %"
+        others = ", ".join(
+            f"{a.model} {'holds' if a.holds else 'slips'}"
+            for a in v.answers
+            if not a.decides and a.holds is not None
+        )
         lines.append(
             f"  {knot:17s} load 1.47 N, free end {free:4.2f} N: "
-            f"{'HOLDS' if v.holds else 'SLIPS'} (margin {m}, {v.decided_by})"
+            f"{'HOLDS' if v.holds else 'SLIPS'} (margin {m}, decided by {v.decided_by}; {others})"
         )
     lines.append(f"  {FREE_END_STATEMENT}")
+    lines.append(
+        "  d/D = 0.13 is outside the ideal rope's validity; the DER phase table decides the "
+        "free-end case, as the clove-hitch paper's experiments (Fig. 4) do"
+    )
     return lines
 
 
