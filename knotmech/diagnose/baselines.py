@@ -36,7 +36,11 @@ Augmentations (symbols as in :mod:`knotmech.diagnose.effects`):
 
 The DER baseline plugs in through :func:`get_baseline`: a baseline is any object
 with ``name`` and ``check(recording)``; ``closed-form`` is the default, ``der``
-needs :mod:`knotmech.scenes.capstan` (see :func:`get_baseline`).
+(``capstan_pull`` only) replaces the closed-form curve by the force-displacement
+curve of :func:`knotmech.scenes.capstan.capstan` with kinetic friction only
+(:class:`DERCurves`, :class:`DERModel`): free parameters ``mu`` (interpolated
+between simulations on a small grid) and a signed displacement shift ``delta0_m``;
+``static_friction`` re-runs the scene with ``mu_s = mu + dmu_static > mu_k``.
 """
 
 from __future__ import annotations
@@ -48,9 +52,18 @@ import numpy as np
 from knotmech.analytic.capstan import mu_eff
 from knotmech.analytic.pinch import pinch_load_parameter
 from knotmech.diagnose.recording import Recording
-from knotmech.errors import InputError
+from knotmech.errors import InputError, SolverError
 
-__all__ = ["Model", "build_model", "get_baseline", "BASELINES", "pinch_load_parameter"]
+__all__ = [
+    "Model",
+    "build_model",
+    "get_baseline",
+    "BASELINES",
+    "pinch_load_parameter",
+    "DERCurves",
+    "DERModel",
+    "build_der_model",
+]
 
 
 @dataclass
@@ -241,12 +254,204 @@ class ClosedFormBaseline:
         return None
 
 
+#: defaults of the DER capstan behind ``--baseline der`` (see :class:`DERCurves`)
+DER_ELEMENTS = 40
+DER_STEPS = 60
+DER_SPEED = 0.01
+DER_EI_FACTOR = 1e-4
+DER_DENSITY = 1000.0
+
+
+class DERCurves:
+    r"""Force-displacement curves of the DER capstan for one recording, cached by (mu_s, mu_k).
+
+    Each curve is one run of :func:`knotmech.scenes.capstan.capstan` with the
+    recording's geometry and loads (``wrap_angle_rad``, ``T_low_N``, ``rod_diameter_m``,
+    ``post_diameter_m``, ``youngs_modulus_Pa``), kept from the start of the pull:
+    :math:`T_\mathrm{high}(u)` for :math:`u \ge 0`.
+
+    Settings (chosen for speed; the curve is quasi-static):
+
+    - rope-like bending stiffness :math:`EI = 10^{-4}\,EA\,R^2` (``R = (D+d)/2``) unless
+      ``bending_stiffness`` is given (as in ``benchmarks/capstan_vs_pyelastica.py``);
+      a solid rod at a small ``T_low`` needs tiny steps;
+    - ``n_elements`` = 40 elements over the wrap, the leads and the pulled length;
+    - pull speed from the recording's ``speed`` (median) or 0.01 m/s; the step is
+      :math:`dt = u_\mathrm{max} / (60\,v)` (60 implicit steps over the pull, every step saved);
+    - pull distance 1.05 :math:`u_\mathrm{max}`, loads ramped over 0.1 s, density 1000 kg/m^3.
+
+    Curves of other ``mu`` are interpolated linearly in ``mu`` on :math:`\ln T` between
+    runs on a grid (the sliding plateau :math:`T_\mathrm{low} e^{\mu_\mathrm{eff}\theta}`
+    is then exact where :math:`\mu_\mathrm{eff}` is linear in ``mu``).
+    """
+
+    def __init__(self, rec, *, n_elements=None, bending_stiffness=None, pull_speed=None):
+        self.theta = rec.meta("wrap_angle_rad")
+        self.t_low = rec.meta("T_low_N")
+        self.d = rec.meta("rod_diameter_m")
+        self.D = rec.meta("post_diameter_m")
+        self.E = rec.meta("youngs_modulus_Pa")
+        ea = self.E * np.pi * self.d**2 / 4.0
+        r = 0.5 * (self.D + self.d)
+        self.ei = DER_EI_FACTOR * ea * r**2 if bending_stiffness is None else bending_stiffness
+        self.n_elements = DER_ELEMENTS if n_elements is None else int(n_elements)
+        if pull_speed is None:
+            pull_speed = float(np.median(rec.speed)) if rec.speed is not None else DER_SPEED
+        self.v = float(pull_speed)
+        self.u_max = max(float(np.max(rec.x)), 1e-6)
+        self.dt = self.u_max / (DER_STEPS * self.v)
+        self._cache = {}
+        self.seconds = 0.0
+
+    def settings(self) -> dict:
+        return {
+            "n_elements": self.n_elements,
+            "bending_stiffness_N_m2": float(f"{self.ei:.6g}"),
+            "pull_speed_m_per_s": self.v,
+            "dt_s": float(f"{self.dt:.6g}"),
+            "pull_distance_m": float(f"{1.05 * self.u_max:.6g}"),
+            "simulations": len(self._cache),
+            "simulation_seconds": float(f"{self.seconds:.3g}"),
+        }
+
+    def curve(self, mu_s: float, mu_k: float):
+        """(u, T_high) of one run [m, N], from the start of the pull."""
+        key = (round(float(mu_s), 10), round(float(mu_k), 10))
+        if key in self._cache:
+            return self._cache[key]
+        import time
+
+        from knotmech.rod.solver import SolverOptions
+        from knotmech.scenes.capstan import capstan
+
+        t0 = time.perf_counter()
+        res = capstan(
+            wrap_angle=self.theta,
+            mu=key[0],
+            mu_kinetic=key[1],
+            rod_diameter=self.d,
+            post_diameter=self.D,
+            youngs_modulus=self.E,
+            t_low=self.t_low,
+            density=DER_DENSITY,
+            bending_stiffness=self.ei,
+            n_elements=self.n_elements,
+            pull_speed=self.v,
+            pull_distance=1.05 * self.u_max,
+            ramp_time=0.1,
+            dt=self.dt,
+            options=SolverOptions(throw=False, save_every=self.dt),
+        )
+        self.seconds += time.perf_counter() - t0
+        if res.status != "success":
+            raise SolverError(
+                f"DER capstan baseline failed at mu_s = {key[0]:.4g}, mu_k = {key[1]:.4g}: "
+                f"{res.message}"
+            )
+        u = np.asarray(res.displacement, float)
+        t = np.asarray(res.t_high, float)
+        i0 = int(np.nonzero(u <= 1e-12 * self.u_max)[0][-1])
+        u, t = u[i0:], t[i0:]
+        u, idx = np.unique(u, return_index=True)
+        out = (u, np.maximum(t[idx], 1e-12 * self.t_low))
+        self._cache[key] = out
+        return out
+
+    def at(self, x: np.ndarray, mu_s: float, mu_k: float) -> np.ndarray:
+        """T_high at displacements ``x`` [m] of one run (flat beyond both ends)."""
+        u, t = self.curve(mu_s, mu_k)
+        return np.interp(x, u, t)
+
+    def kinetic_grid(self, mu_guess: float, n: int = 9) -> np.ndarray:
+        """Grid of ``mu`` for the kinetic-only baseline, around ``mu_guess``."""
+        lo = max(0.4 * mu_guess, 0.01)
+        hi = max(1.8 * mu_guess, lo + 0.2)
+        return np.linspace(lo, hi, n)
+
+
+def _interp_log(grid, values, at, curves_fn, x):
+    """Linear interpolation of ln T between the two grid curves bracketing ``at``."""
+    j = int(np.clip(np.searchsorted(grid, at) - 1, 0, grid.size - 2))
+    w = (at - grid[j]) / (grid[j + 1] - grid[j])
+    a = np.log(curves_fn(values[j], x))
+    b = np.log(curves_fn(values[j + 1], x))
+    return np.exp((1.0 - w) * a + w * b)
+
+
+@dataclass
+class DERModel(Model):
+    """A capstan_pull model whose mean is the DER curve (see :class:`DERCurves`).
+
+    Free parameters: ``mu`` (kinetic) and ``delta0_m`` (signed shift of the curve:
+    the model is :math:`T(u - \\delta_0)`); with ``static_friction`` also
+    ``dmu_static`` (:math:`\\mu_s = \\mu + \\Delta\\mu_s`). The static curves are run
+    at the baseline's fitted ``mu_k0`` on a grid of ``dmu_static`` and corrected to
+    the current ``mu`` to first order with the kinetic curves:
+    :math:`T(\\mu, \\Delta\\mu_s) = S(\\mu_{k0}, \\Delta\\mu_s) + K(\\mu) - K(\\mu_{k0})`.
+    """
+
+    curves: DERCurves = None
+    mu_grid: np.ndarray = None
+    dmu_grid: np.ndarray = None
+    mu_k0: float = None
+
+    def kinetic(self, x, mu):
+        return _interp_log(self.mu_grid, self.mu_grid, mu, lambda m, z: self.curves.at(z, m, m), x)
+
+    def mean(self, p: np.ndarray) -> np.ndarray:
+        q = self.params(p)
+        x = self.rec.x - q["delta0_m"]
+        out = self.kinetic(x, q["mu"])
+        if "static_friction" in self.effects:
+            mk = self.mu_k0
+            stat = _interp_log(
+                self.dmu_grid,
+                self.dmu_grid,
+                min(q["dmu_static"], self.dmu_grid[-1]),
+                lambda dm, z: self.curves.at(z, mk + dm, mk),
+                x,
+            )
+            out = stat + out - self.kinetic(x, mk)
+        return out
+
+
+#: grid of dmu_static = mu_s - mu_k run by the DER static_friction effect
+DER_DMU_GRID = np.array([0.0, 0.04, 0.08, 0.12, 0.18, 0.25, 0.35, 0.5])
+
+
+def build_der_model(
+    rec: Recording, curves: DERCurves, mu_grid, effects: tuple = (), mu_k0=None
+) -> DERModel:
+    """DER model of a capstan_pull recording (``effects`` empty or ``static_friction``)."""
+    names, lo, hi = (
+        ["mu", "delta0_m"],
+        [mu_grid[0], -0.3 * curves.u_max],
+        [mu_grid[-1], 0.5 * curves.u_max],
+    )
+    if "static_friction" in effects:
+        names.append("dmu_static")
+        lo.append(0.0)
+        hi.append(float(DER_DMU_GRID[-1]))
+    return DERModel(
+        rec,
+        tuple(effects),
+        names,
+        np.array(lo, float),
+        np.array(hi, float),
+        {},
+        curves=curves,
+        mu_grid=np.asarray(mu_grid, float),
+        dmu_grid=DER_DMU_GRID,
+        mu_k0=mu_k0,
+    )
+
+
 @dataclass(frozen=True)
 class DERBaseline:
-    """DER-simulated capstan baseline (kinetic friction only).
+    """DER-simulated capstan baseline (kinetic friction only), ``capstan_pull`` only.
 
-    Needs ``knotmech.scenes.capstan``; :func:`get_baseline` refuses it until the
-    scene provides a fast force-displacement curve.
+    The clove-hitch paper's FEM used kinetic friction only, so its two-loops curve had
+    no peak; ``static_friction`` re-runs the scene with ``mu_s > mu_k``.
     """
 
     name: str = "der"
@@ -254,7 +459,8 @@ class DERBaseline:
     def check(self, rec: Recording) -> None:
         if rec.experiment != "capstan_pull":
             raise InputError(
-                f"--baseline der applies to capstan_pull recordings, not {rec.experiment}"
+                f"baseline 'der' is not available for {rec.experiment} recordings "
+                "(capstan_pull only); use closed-form"
             )
 
 
@@ -267,13 +473,8 @@ def get_baseline(name: str):
     Raises
     ------
     InputError
-        Unknown name, or ``der`` while the DER capstan baseline is not available.
+        Unknown name.
     """
     if name not in BASELINES:
         raise InputError(f"baseline must be one of {', '.join(BASELINES)}, got {name!r}")
-    if name == "der":
-        raise InputError(
-            "baseline 'der' is not available in this version (needs a fast DER capstan "
-            "force-displacement curve from knotmech.scenes.capstan); use closed-form"
-        )
     return BASELINES[name]

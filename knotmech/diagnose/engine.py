@@ -26,11 +26,13 @@ from __future__ import annotations
 from pathlib import Path
 
 import numpy as np
+from scipy.stats import chi2
 
-from knotmech.diagnose.baselines import get_baseline
+from knotmech.diagnose.baselines import DER_DMU_GRID, DERCurves, build_der_model, get_baseline
 from knotmech.diagnose.effects import CATALOGUE, applicable_effects
 from knotmech.diagnose.fitting import (
     Data,
+    baseline_start,
     fit_baseline,
     fit_model,
     fit_with_effect,
@@ -39,7 +41,7 @@ from knotmech.diagnose.fitting import (
 from knotmech.diagnose.locate import flexible_mismatch, regions_from_mask
 from knotmech.diagnose.recording import Recording, read_recording, recording_from_arrays
 from knotmech.diagnose.report import Report, effect_parameters, public_parameters
-from knotmech.diagnose.stats import monte_carlo_pvalue, trial_starts
+from knotmech.diagnose.stats import estimate_noise, monte_carlo_pvalue, trial_starts
 from knotmech.errors import InputError
 
 __all__ = ["diagnose"]
@@ -94,7 +96,10 @@ def diagnose(
         ``capstan_pull``, ``pinch`` or ``tension_profile`` (with ``x``, ``y``,
         ``metadata`` and optional ``sigma``, ``trial``, ``speed``).
     baseline : {"closed-form", "der"}
-        Baseline model family (``der`` is not available in this version).
+        Baseline model family. ``der`` (capstan_pull only): the DER capstan with kinetic
+        friction only (:class:`knotmech.diagnose.baselines.DERCurves`); only
+        ``static_friction`` is tested against it, by the asymptotic likelihood ratio
+        (no parametric bootstrap), BIC and the held-out check.
     seed : int
         Seed of the parametric bootstrap.
     alpha : float
@@ -118,8 +123,11 @@ def diagnose(
     starts = trial_starts(rec.trial)
     gs = rec.sigma
     data = Data(rec.y, rec.mu_nominal, rec.mu_nominal_sigma)
-    n = rec.n
-    base = fit_baseline(rec, data, starts, given_sigma=gs)
+    der = None
+    if baseline == "der":
+        der, base = _der_baseline(rec, data, starts, gs)
+    else:
+        base = fit_baseline(rec, data, starts, given_sigma=gs)
     base_mis = flexible_mismatch(
         rec.x,
         rec.y - base.mean,
@@ -131,6 +139,108 @@ def diagnose(
         rng=rng,
         decide_at=alpha,
     )
+    if der is not None:
+        sel = _select_der(der, base, rec, data, starts, gs, alpha, effects)
+    else:
+        sel = _select_closed_form(base, rec, data, starts, gs, rng, alpha, effects, max_effects)
+    current, accepted, tested, steps, skipped, held_before, held_cur = sel
+    final = current
+    if final is base:
+        fin_mis = base_mis
+    else:
+        fin_mis = flexible_mismatch(
+            rec.x,
+            rec.y - final.mean,
+            final.mean,
+            final.noise,
+            starts,
+            rec.trial,
+            given_sigma=gs,
+            rng=rng,
+            decide_at=alpha,
+        )
+    remaining = fin_mis.p_value < alpha and bool(fin_mis.regions)
+    names = [a[0] for a in accepted]
+    if remaining:
+        verdict = "unexplained"
+        regions = fin_mis.regions
+    elif accepted:
+        gains = {}
+        for nm, _, g in accepted:
+            gains[nm] = gains.get(nm, 0.0) + g
+        verdict = max(gains, key=gains.get)
+        regions = _effect_regions(rec, base, final, names)
+    else:
+        verdict = "none"
+        regions = []
+    fin_public = public_parameters(final.params, final.model.effects, rec)
+    base_public = public_parameters(base.params, (), rec)
+    effects_out = []
+    for nm, ev, _ in accepted:
+        if nm in [e["name"] for e in effects_out]:
+            continue
+        effects_out.append(
+            {
+                "name": nm,
+                "parameters": effect_parameters(nm, fin_public),
+                "evidence": {
+                    k: ev[k]
+                    for k in ("delta_bic", "p_value", "likelihood_ratio", "p_value_method")
+                    if k in ev
+                },
+            }
+        )
+    rms_base = float(np.sqrt(np.mean((rec.y - base.mean) ** 2)))
+    rms_final = float(np.sqrt(np.mean((rec.y - final.mean) ** 2)))
+    details = {
+        "baseline_model": baseline,
+        "noise": {"baseline": base.noise.describe(), "final": final.noise.describe()},
+        "located": {
+            "baseline_residuals": {
+                "p_value": float(f"{base_mis.p_value:.3g}"),
+                "regions": [{"start": a, "end": b} for a, b in base_mis.regions],
+                "shape": base_mis.shape,
+            },
+            "final_residuals": {
+                "p_value": float(f"{fin_mis.p_value:.3g}"),
+                "regions": [{"start": a, "end": b} for a, b in fin_mis.regions],
+                "shape": fin_mis.shape,
+            },
+        },
+        "candidates": tested,
+        # delta BIC of every applicable effect at each forward step (confusable ones
+        # show here next to the accepted one)
+        "selection_steps": steps,
+        "confusable_with": {nm: list(CATALOGUE[nm].confusable_with) for nm in names},
+        "skipped_effects": skipped,
+        "alpha": alpha,
+        "seed": seed,
+        **({"der": der[0].settings()} if der is not None else {}),
+    }
+    report = Report(
+        experiment=rec.experiment,
+        verdict=verdict,
+        effects=effects_out,
+        regions=regions,
+        baseline={"parameters": base_public, "rms": float(f"{rms_base:.6g}")},
+        final={"parameters": fin_public, "rms": float(f"{rms_final:.6g}")},
+        heldout_rms_before=held_before,
+        heldout_rms_after=held_cur,
+        summary="",
+        details=details,
+        x=rec.x,
+        y=rec.y,
+        baseline_mean=base.mean,
+        final_mean=final.mean,
+        columns=rec.columns,
+    )
+    report.summary = _summary(report, rec, fin_mis, base_mis)
+    return report
+
+
+def _select_closed_form(base, rec, data, starts, gs, rng, alpha, effects, max_effects):
+    """Forward selection over the catalogue with the parametric bootstrap."""
+    n = rec.n
     ok, skipped = applicable_effects(rec)
     if effects is not None:
         unknown = set(effects) - set(CATALOGUE)
@@ -187,93 +297,84 @@ def diagnose(
         name, alt, ev, held_alt = step
         accepted.append((name, ev, lr_gain(current, alt)))
         current, held_cur = alt, held_alt
-    final = current
-    if final is base:
-        fin_mis = base_mis
-    else:
-        fin_mis = flexible_mismatch(
-            rec.x,
-            rec.y - final.mean,
-            final.mean,
-            final.noise,
-            starts,
-            rec.trial,
-            given_sigma=gs,
-            rng=rng,
-            decide_at=alpha,
-        )
-    remaining = fin_mis.p_value < alpha and bool(fin_mis.regions)
-    names = [a[0] for a in accepted]
-    if remaining:
-        verdict = "unexplained"
-        regions = fin_mis.regions
-    elif accepted:
-        gains = {}
-        for nm, _, g in accepted:
-            gains[nm] = gains.get(nm, 0.0) + g
-        verdict = max(gains, key=gains.get)
-        regions = _effect_regions(rec, base, final, names)
-    else:
-        verdict = "none"
-        regions = []
-    fin_public = public_parameters(final.params, final.model.effects, rec)
-    base_public = public_parameters(base.params, (), rec)
-    effects_out = []
-    for nm, ev, _ in accepted:
-        if nm in [e["name"] for e in effects_out]:
-            continue
-        effects_out.append(
-            {
-                "name": nm,
-                "parameters": effect_parameters(nm, fin_public),
-                "evidence": {k: ev[k] for k in ("delta_bic", "p_value", "likelihood_ratio")},
-            }
-        )
-    rms_base = float(np.sqrt(np.mean((rec.y - base.mean) ** 2)))
-    rms_final = float(np.sqrt(np.mean((rec.y - final.mean) ** 2)))
-    details = {
-        "baseline_model": baseline,
-        "noise": {"baseline": base.noise.describe(), "final": final.noise.describe()},
-        "located": {
-            "baseline_residuals": {
-                "p_value": float(f"{base_mis.p_value:.3g}"),
-                "regions": [{"start": a, "end": b} for a, b in base_mis.regions],
-                "shape": base_mis.shape,
-            },
-            "final_residuals": {
-                "p_value": float(f"{fin_mis.p_value:.3g}"),
-                "regions": [{"start": a, "end": b} for a, b in fin_mis.regions],
-                "shape": fin_mis.shape,
-            },
-        },
-        "candidates": tested,
-        # delta BIC of every applicable effect at each forward step (confusable ones
-        # show here next to the accepted one)
-        "selection_steps": steps,
-        "confusable_with": {nm: list(CATALOGUE[nm].confusable_with) for nm in names},
-        "skipped_effects": skipped,
-        "alpha": alpha,
-        "seed": seed,
+    return current, accepted, tested, steps, skipped, held_before, held_cur
+
+
+_DER_P_METHOD = (
+    "asymptotic: 0.5 * chi2_1 tail of the likelihood ratio of the whitened residuals "
+    "(dmu_static = 0 on the boundary); no parametric bootstrap under the DER baseline "
+    "(each bootstrap draw would need new simulations); the held-out check still applies"
+)
+
+
+def _der_baseline(rec, data, starts, gs):
+    """Kinetic-only DER baseline: grid scan in mu and delta0, then GLS on (mu, delta0_m)."""
+    curves = DERCurves(rec)
+    mu_app = baseline_start(rec, data.y)["mu"]
+    grid = curves.kinetic_grid(mu_app)
+    model = build_der_model(rec, curves, grid)
+    x = rec.x
+    shifts = np.linspace(model.lower[1], model.upper[1], 41)
+    best = None
+    for mu in grid:
+        for d0 in shifts:
+            ss = float(np.sum((data.y - curves.at(x - d0, mu, mu)) ** 2))
+            if best is None or ss < best[0]:
+                best = (ss, mu, d0)
+    p0 = np.array([best[1], best[2]])
+    f0 = model.mean(p0)
+    noise = estimate_noise(data.y - f0, f0, starts, given_sigma=gs)
+    fit = fit_model(model, data, [p0], noise, starts, given_sigma=gs)
+    return (curves, grid), fit
+
+
+def _select_der(der, base, rec, data, starts, gs, alpha, effects):
+    """static_friction against the DER baseline (LR / BIC / held-out; see _DER_P_METHOD)."""
+    curves, grid = der
+    ok, skipped = applicable_effects(rec)
+    for name in ok:
+        if name != "static_friction":
+            skipped[name] = "not modelled under the DER baseline (only static_friction is)"
+    if effects is not None:
+        unknown = set(effects) - set(CATALOGUE)
+        if unknown:
+            raise InputError(
+                f"unknown effect {sorted(unknown)[0]!r}; known: {', '.join(CATALOGUE)}"
+            )
+    held_before = heldout_rms(base, data, rec.trial)
+    if effects is not None and "static_friction" not in set(effects):
+        return base, [], [], [], skipped, held_before, held_before
+    mu_k0 = float(base.params["mu"])
+    d0 = float(base.params["delta0_m"])
+    model = build_der_model(rec, curves, grid, ("static_friction",), mu_k0=mu_k0)
+    sd = base.noise.sd(base.mean)
+    scores = []
+    for dm in DER_DMU_GRID[1:]:
+        p = np.array([mu_k0, d0, dm])
+        e = base.noise.whiten(data.y - model.mean(p), sd, starts)
+        scores.append((float(e @ e), dm))
+    scores.sort()
+    p_starts = [np.array([mu_k0, d0, dm]) for _, dm in scores[:2]]
+    alt = fit_model(model, data, p_starts, base.noise, starts, given_sigma=gs)
+    lr = max(2.0 * (alt.loglik - base.loglik), 0.0)
+    dbic = lr - np.log(rec.n)
+    p = 0.5 * float(chi2.sf(lr, 1)) if lr > 0 else 1.0
+    held_alt = heldout_rms(alt, data, rec.trial)
+    ev = {
+        "effect": "static_friction",
+        "delta_bic": float(f"{dbic:.4g}"),
+        "likelihood_ratio": float(f"{lr:.4g}"),
+        "p_value": float(f"{p:.3g}"),
+        "bootstrap_draws": 0,
+        "p_value_method": _DER_P_METHOD,
+        "heldout_rms": float(f"{held_alt:.4g}"),
+        "accepted": bool(p < alpha and dbic > 0 and held_alt < held_before),
     }
-    report = Report(
-        experiment=rec.experiment,
-        verdict=verdict,
-        effects=effects_out,
-        regions=regions,
-        baseline={"parameters": base_public, "rms": float(f"{rms_base:.6g}")},
-        final={"parameters": fin_public, "rms": float(f"{rms_final:.6g}")},
-        heldout_rms_before=held_before,
-        heldout_rms_after=held_cur,
-        summary="",
-        details=details,
-        x=rec.x,
-        y=rec.y,
-        baseline_mean=base.mean,
-        final_mean=final.mean,
-        columns=rec.columns,
-    )
-    report.summary = _summary(report, rec, fin_mis, base_mis)
-    return report
+    steps = [{"static_friction": ev["delta_bic"]}]
+    if not ev["accepted"]:
+        return base, [], [ev], steps, skipped, held_before, held_before
+    accepted = [("static_friction", ev, lr)]
+    return alt, accepted, [ev], steps, skipped, held_before, held_alt
 
 
 def lr_gain(current, alt) -> float:
