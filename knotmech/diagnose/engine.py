@@ -19,6 +19,13 @@ Procedure (one recording):
 4. Test the final residuals for structure; a located, significant remainder
    gives the verdict ``unexplained``; otherwise the verdict is the accepted
    effect with the largest likelihood gain, or ``none``.
+
+Under ``baseline="der"`` (capstan_pull only) step 1 fits the DER capstan with kinetic
+friction only (``mu`` and a signed shift ``delta0_m``; :class:`DERCurves`), and step 3
+tests ``static_friction`` only (a re-run with ``mu_s > mu_k``). Its p-value is the
+asymptotic one, ``0.5 * P(chi2_1 > LR)`` (``dmu_static = 0`` on the boundary),
+with the whitened residuals of the fitted noise model: a parametric bootstrap would
+need new simulations for every draw. BIC and the held-out check apply as above.
 """
 
 from __future__ import annotations
