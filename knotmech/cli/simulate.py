@@ -7,6 +7,9 @@ Example::
     knotmech simulate capstan --mode hold --t-high 0.5N ...
     knotmech simulate two-loops --json two_loops.json
     knotmech simulate pinch --normal-load 0.3N --mu 0.5 --csv pinch.csv
+    knotmech simulate overhand --turns 2 --mu 0.3 --n-nodes 151 --pull-time 5s --dt 5ms \\
+        --csv knot.csv
+    knotmech simulate clove-hitch --loading free --t-high 1.47N --mu 0.3 --json hitch.json
 
 The command parses quantities (``knotmech.units``; bare numbers are SI), calls the scene
 function of :mod:`knotmech.scenes` with a progress bar, prints a summary, and writes the
@@ -26,13 +29,13 @@ from knotmech.units import parse_quantity
 
 __all__ = ["register", "run"]
 
-SCENES = ("capstan", "two-loops", "pinch")
+SCENES = ("capstan", "two-loops", "pinch", "overhand", "clove-hitch")
 
 
 def register(subparsers) -> None:
     p = subparsers.add_parser(
         "simulate",
-        help="run a simulated experiment (capstan, two-loops, pinch) with the DER solver",
+        help="run a simulated experiment (capstan, two-loops, pinch, overhand, clove-hitch)",
         description=(
             "Simulate an experiment with the discrete-elastic-rods solver and frictional "
             "contact. Quantities accept units (4mm, 0.16N, 180deg, 1.26MPa, 10mm/s); bare "
@@ -58,7 +61,25 @@ def register(subparsers) -> None:
     g2 = p.add_argument_group("pinch")
     g2.add_argument("--normal-load", default=None, help="normal load F_n, e.g. 0.3N")
     g2.add_argument("--cylinder-diameter", default="8mm", help="pinching cylinders' D")
-    g2.add_argument("--rod-length", default="9cm")
+    g2.add_argument("--rod-length", default=None, help="rod length (pinch default 9cm)")
+    g3 = p.add_argument_group("overhand")
+    g3.add_argument("--turns", type=int, default=1, help="braid turns n = 1..4 (default 1)")
+    g3.add_argument(
+        "--params",
+        default="imc",
+        choices=("imc", "coated"),
+        help="parameter set: implicit-contact-model paper (imc) or coated-rod paper table 1",
+    )
+    g3.add_argument("--n-nodes", type=int, default=None, help="nodes (overhand, clove-hitch)")
+    g3.add_argument("--pull-time", default=None, help="duration of the pull, e.g. 60s")
+    g4 = p.add_argument_group("clove-hitch")
+    g4.add_argument(
+        "--loading",
+        default="free",
+        choices=("symmetric", "asymmetric", "free"),
+        help="end loads: both --t-high, --t-high/--t-low, or --t-high with a free end",
+    )
+    g4.add_argument("--mu-rr", default=None, help="rod-rod friction (default --mu)")
     c = p.add_argument_group("common")
     c.add_argument("--mu", default=None, help="(static) friction coefficient, e.g. 0.5")
     c.add_argument("--mu-kinetic", default=None, help="kinetic coefficient (default --mu)")
@@ -159,6 +180,10 @@ def run(args) -> int:
             )
             prof = Path(args.csv).with_name(Path(args.csv).stem + "_profile.csv")
             _write_csv(prof, ["s_m", "tension_N"], [res.s, res.tension])
+    elif scene == "overhand":
+        summary = _run_overhand(args, progress)
+    elif scene == "clove-hitch":
+        summary = _run_clove_hitch(args, progress)
     else:
         from knotmech.scenes.pinch import pinch
 
@@ -168,7 +193,7 @@ def run(args) -> int:
         kw["normal_load"] = _q(args.normal_load, "force", "--normal-load", True)
         kw["mu"] = _q(args.mu, "dimensionless", "--mu", True)
         kw["cylinder_diameter"] = _q(args.cylinder_diameter, "length", "--cylinder-diameter")
-        kw["rod_length"] = _q(args.rod_length, "length", "--rod-length")
+        kw["rod_length"] = _q(args.rod_length or "9cm", "length", "--rod-length")
         kw["density"] = _q(args.density, "dimensionless", "--density")
         if args.rod_diameter is not None:
             kw["rod_diameter"] = _q(args.rod_diameter, "length", "--rod-diameter")
@@ -194,3 +219,76 @@ def run(args) -> int:
             raise InputError(f"--json: cannot write {args.json!r}: {exc.strerror}") from None
         print(f"wrote {args.json}", file=sys.stderr)
     return 0 if summary.get("status") == "success" else 1
+
+
+def _run_overhand(args, progress) -> dict:
+    from knotmech.scenes.overhand import overhand
+
+    if not 1 <= args.turns <= 4:
+        raise InputError(f"--turns must be 1, 2, 3 or 4, got {args.turns}")
+    mu = _q(args.mu, "dimensionless", "--mu", True)
+    overrides = {
+        "n_nodes": args.n_nodes,
+        "pull_time": _q(args.pull_time, "time", "--pull-time"),
+        "dt": _q(args.dt, "time", "--dt"),
+        "pull_speed": _q(args.pull_speed, "velocity", "--pull-speed"),
+    }
+    overrides = {k: v for k, v in overrides.items() if v is not None}
+    res = overhand(args.turns, mu, params=args.params, progress=progress, **overrides)
+    print(
+        f"overhand n = {args.turns}, mu = {mu:g}: status {res.status}; pull force "
+        f"{res.pull_force[-1]:.4g} N at end-to-end {res.end_to_end[-1]:.4g} m; knot "
+        f"{res.knot_start} -> {res.knot_end}"
+        + ("" if res.knot_preserved else " (KNOT TYPE CHANGED: a strand passed through)")
+    )
+    if args.csv:
+        _write_csv(
+            args.csv,
+            ["time_s", "end_to_end_m", "pull_force_N", "loop_diameter_m"],
+            [res.times, res.end_to_end, res.pull_force, res.loop_diameter],
+        )
+    return res.to_dict()
+
+
+def _run_clove_hitch(args, progress) -> dict:
+    from knotmech.scenes.clove_hitch import clove_hitch
+
+    kw = {
+        "loading": args.loading,
+        "t_high": _q(args.t_high, "force", "--t-high", True),
+        "t_low": _q(args.t_low, "force", "--t-low", args.loading == "asymmetric"),
+        "rod_diameter": _q(args.rod_diameter, "length", "--rod-diameter"),
+        "post_diameter": _q(args.post_diameter, "length", "--post-diameter"),
+        "rod_length": _q(args.rod_length, "length", "--rod-length"),
+        "youngs_modulus": _q(args.youngs_modulus, "pressure", "--youngs-modulus"),
+        "density": _q(args.density, "dimensionless", "--density"),
+        "mu_rod_post": _q(args.mu, "dimensionless", "--mu"),
+        "mu_rod_rod": _q(
+            args.mu_rr if args.mu_rr is not None else args.mu, "dimensionless", "--mu-rr"
+        ),  # fmt: skip
+        "hold_time": _q(args.hold_time, "time", "--hold-time"),
+        "n_nodes": args.n_nodes,
+        "dt": _q(args.dt, "time", "--dt"),
+    }
+    kw = {k: v for k, v in kw.items() if v is not None}
+    if kw["loading"] != "asymmetric":
+        kw.pop("t_low", None)
+    res = clove_hitch(progress=progress, **kw)
+    verdict = f"; verdict: {res.verdict.upper()}" if res.verdict else ""
+    print(
+        f"clove-hitch ({res.loading}): status {res.status}; T_high = {res.t_high:.4g} N, "
+        f"T_low = {res.t_low:.4g} N, creep {res.creep:.3g} m{verdict}"
+    )
+    if args.csv:
+        _write_csv(
+            args.csv,
+            ["s_m", "tension_N", "rod_contact"],
+            [res.s, res.tension, res.rod_contact.astype(int)],
+        )
+        prof = Path(args.csv).with_name(Path(args.csv).stem + "_darboux.csv")
+        _write_csv(
+            prof,
+            ["s_m", "omega1_per_m", "omega2_per_m", "omega3_per_m"],
+            [res.s_nodes, res.darboux[:, 0], res.darboux[:, 1], res.darboux[:, 2]],
+        )
+    return res.to_dict()
