@@ -386,8 +386,10 @@ class DERModel(Model):
     the model is :math:`T(u - \\delta_0)`); with ``static_friction`` also
     ``dmu_static`` (:math:`\\mu_s = \\mu + \\Delta\\mu_s`). The static curves are run
     at the baseline's fitted ``mu_k0`` on a grid of ``dmu_static`` and corrected to
-    the current ``mu`` to first order with the kinetic curves:
-    :math:`T(\\mu, \\Delta\\mu_s) = S(\\mu_{k0}, \\Delta\\mu_s) + K(\\mu) - K(\\mu_{k0})`.
+    the current ``mu`` to first order:
+    :math:`T(\\mu, \\Delta\\mu_s) = K(\\mu) + S(\\mu_{k0}, \\Delta\\mu_s) - S(\\mu_{k0}, 0)`
+    (``K`` interpolated on the ``mu`` grid, ``S`` on the ``dmu_static`` grid; at
+    ``dmu_static = 0`` the model is the baseline exactly, so the two nest).
     """
 
     curves: DERCurves = None
@@ -411,7 +413,8 @@ class DERModel(Model):
                 lambda dm, z: self.curves.at(z, mk + dm, mk),
                 x,
             )
-            out = stat + out - self.kinetic(x, mk)
+            # the run's own dmu = 0 curve is subtracted, so dmu_static = 0 is the baseline
+            out = out + stat - self.curves.at(x, mk, mk)
         return out
 
 
