@@ -39,7 +39,8 @@ with ``name`` and ``check(recording)``; ``closed-form`` is the default, ``der``
 (``capstan_pull`` only) replaces the closed-form curve by the force-displacement
 curve of :func:`knotmech.scenes.capstan.capstan` with kinetic friction only
 (:class:`DERCurves`, :class:`DERModel`): free parameters ``mu`` (interpolated
-between simulations on a small grid) and a signed displacement shift ``delta0_m``;
+between simulations on a small grid), a signed displacement shift ``delta0_m`` and a
+displacement scale ``u_scale`` (compliance ratio; neither needs a new simulation);
 ``static_friction`` re-runs the scene with ``mu_s = mu + dmu_static > mu_k``.
 """
 
@@ -382,8 +383,10 @@ def _interp_log(grid, values, at, curves_fn, x):
 class DERModel(Model):
     """A capstan_pull model whose mean is the DER curve (see :class:`DERCurves`).
 
-    Free parameters: ``mu`` (kinetic) and ``delta0_m`` (signed shift of the curve:
-    the model is :math:`T(u - \\delta_0)`); with ``static_friction`` also
+    Free parameters: ``mu`` (kinetic), ``delta0_m`` (signed shift of the curve) and
+    ``u_scale`` (the recording's compliance over the simulated one: the free leads, the
+    load cell and the machine are not simulated); the model is
+    :math:`T((u - \\delta_0)/s)`. With ``static_friction`` also
     ``dmu_static`` (:math:`\\mu_s = \\mu + \\Delta\\mu_s`). The static curves are run
     at the baseline's fitted ``mu_k0`` on a grid of ``dmu_static`` and corrected to
     the current ``mu`` to first order:
@@ -402,7 +405,7 @@ class DERModel(Model):
 
     def mean(self, p: np.ndarray) -> np.ndarray:
         q = self.params(p)
-        x = self.rec.x - q["delta0_m"]
+        x = (self.rec.x - q["delta0_m"]) / q["u_scale"]
         out = self.kinetic(x, q["mu"])
         if "static_friction" in self.effects:
             mk = self.mu_k0
@@ -427,9 +430,9 @@ def build_der_model(
 ) -> DERModel:
     """DER model of a capstan_pull recording (``effects`` empty or ``static_friction``)."""
     names, lo, hi = (
-        ["mu", "delta0_m"],
-        [mu_grid[0], -0.3 * curves.u_max],
-        [mu_grid[-1], 0.5 * curves.u_max],
+        ["mu", "delta0_m", "u_scale"],
+        [mu_grid[0], -0.3 * curves.u_max, 0.1],
+        [mu_grid[-1], 0.5 * curves.u_max, 10.0],
     )
     if "static_friction" in effects:
         names.append("dmu_static")

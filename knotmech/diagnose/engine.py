@@ -21,7 +21,8 @@ Procedure (one recording):
    effect with the largest likelihood gain, or ``none``.
 
 Under ``baseline="der"`` (capstan_pull only) step 1 fits the DER capstan with kinetic
-friction only (``mu`` and a signed shift ``delta0_m``; :class:`DERCurves`), and step 3
+friction only (``mu``, a signed shift ``delta0_m``, a displacement scale ``u_scale``;
+:class:`DERCurves`), and step 3
 tests ``static_friction`` only (a re-run with ``mu_s > mu_k``). Its p-value is the
 asymptotic one, ``0.5 * P(chi2_1 > LR)`` (``dmu_static = 0`` on the boundary),
 with the whitened residuals of the fitted noise model: a parametric bootstrap would
@@ -315,7 +316,7 @@ _DER_P_METHOD = (
 
 
 def _der_baseline(rec, data, starts, gs):
-    """Kinetic-only DER baseline: grid scan in mu and delta0, then GLS on (mu, delta0_m)."""
+    """Kinetic-only DER baseline: grid scan, then GLS on (mu, delta0_m, u_scale)."""
     curves = DERCurves(rec)
     mu_app = baseline_start(rec, data.y)["mu"]
     grid = curves.kinetic_grid(mu_app)
@@ -325,10 +326,11 @@ def _der_baseline(rec, data, starts, gs):
     best = None
     for mu in grid:
         for d0 in shifts:
-            ss = float(np.sum((data.y - curves.at(x - d0, mu, mu)) ** 2))
-            if best is None or ss < best[0]:
-                best = (ss, mu, d0)
-    p0 = np.array([best[1], best[2]])
+            for sc in (0.25, 0.5, 1.0, 2.0, 4.0):
+                ss = float(np.sum((data.y - curves.at((x - d0) / sc, mu, mu)) ** 2))
+                if best is None or ss < best[0]:
+                    best = (ss, mu, d0, sc)
+    p0 = np.array(best[1:])
     f0 = model.mean(p0)
     noise = estimate_noise(data.y - f0, f0, starts, given_sigma=gs)
     fit = fit_model(model, data, [p0], noise, starts, given_sigma=gs)
@@ -353,15 +355,16 @@ def _select_der(der, base, rec, data, starts, gs, alpha, effects):
         return base, [], [], [], skipped, held_before, held_before
     mu_k0 = float(base.params["mu"])
     d0 = float(base.params["delta0_m"])
+    sc = float(base.params["u_scale"])
     model = build_der_model(rec, curves, grid, ("static_friction",), mu_k0=mu_k0)
     sd = base.noise.sd(base.mean)
     scores = []
     for dm in DER_DMU_GRID[1:]:
-        p = np.array([mu_k0, d0, dm])
+        p = np.array([mu_k0, d0, sc, dm])
         e = base.noise.whiten(data.y - model.mean(p), sd, starts)
         scores.append((float(e @ e), dm))
     scores.sort()
-    p_starts = [np.array([mu_k0, d0, dm]) for _, dm in scores[:2]]
+    p_starts = [np.array([mu_k0, d0, sc, dm]) for _, dm in scores[:2]]
     alt = fit_model(model, data, p_starts, base.noise, starts, given_sigma=gs)
     lr = max(2.0 * (alt.loglik - base.loglik), 0.0)
     dbic = lr - np.log(rec.n)
