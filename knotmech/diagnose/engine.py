@@ -489,7 +489,8 @@ def _summary(report: Report, rec, fin_mis, base_mis) -> str:
     )
     for ev in report.details["candidates"]:
         lines.append(
-            f"  tested {ev['effect']}: delta BIC {ev['delta_bic']}, p = {ev['p_value']}, "
+            f"  tested {ev['effect']}: delta BIC {ev['delta_bic']}, p = {ev['p_value']}"
+            f"{' (asymptotic LR, no bootstrap)' if 'p_value_method' in ev else ''}, "
             f"held-out rms {ev['heldout_rms']} -> {'accepted' if ev['accepted'] else 'rejected'}"
         )
     for name, why in report.details["skipped_effects"].items():

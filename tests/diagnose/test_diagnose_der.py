@@ -64,6 +64,7 @@ def test_der_names_static_friction(static_case):
     assert p["mu_static"] == pytest.approx(0.5, abs=0.04)
     assert p["mu_kinetic"] == pytest.approx(0.35, abs=0.01)
     assert rep.final["parameters"]["delta0_m"] == pytest.approx(SHIFT, abs=1e-4)
+    assert rep.final["parameters"]["u_scale"] == pytest.approx(1.0, abs=0.03)
     assert rep.heldout_rms_after < 0.8 * rep.heldout_rms_before
     assert "no parametric bootstrap" in rep.effects[0]["evidence"]["p_value_method"]
     assert rep.details["baseline_model"] == "der"
@@ -99,5 +100,6 @@ def test_cli_baseline_der(static_case, tmp_path, capsys):
     text = capsys.readouterr().out
     assert rc == 0
     assert text.startswith("static friction at the onset of sliding: mu_s = ")
+    assert "(asymptotic LR, no bootstrap)" in text
     d = json.loads(out.read_text())
     assert d["verdict"] == "static_friction"
