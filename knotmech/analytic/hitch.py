@@ -508,6 +508,12 @@ def _bisect_mu(holds_at, hi=20.0, iters=60) -> float:
     return hi
 
 
+#: largest d/D for which the zero-thickness (ideal-rope) models are taken as valid
+THIN_ROPE_LIMIT = 0.1
+_THIN_ROPE_VALIDITY = (
+    f"rope thin compared with the post (d/D <= {THIN_ROPE_LIMIT:g} taken as the limit)"
+)
+
 _COMMON_ASSUMPTIONS = (
     "rigid circular post, inextensible rope, Amontons-Coulomb friction",
     "static equilibrium at the onset of slip (no dynamics, no creep)",
@@ -549,10 +555,10 @@ def _capstan_answers(mu, theta, d, D, load, free):
         capacity=cap_ideal,
         critical_mu=crit_ideal,
         decides=False,
-        inside_validity=bool(d / D <= 0.1),
+        inside_validity=bool(d / D <= THIN_ROPE_LIMIT),
         assumptions=_COMMON_ASSUMPTIONS
         + ("Euler-Eytelwein: zero-thickness rope, T_high/T_low = exp(mu theta)",),
-        validity=("rope thin compared with the post (d/D <= 0.1 taken as the limit)",),
+        validity=(_THIN_ROPE_VALIDITY,),
         reference="Euler (1762), Eytelwein (1808); derivations/capstan_ode.py",
     )
     return thick, ideal
@@ -573,7 +579,7 @@ def _hitch_answers(g: HitchGeometry, mu, mrr, d, D, load, free):
         capacity=cap,
         critical_mu=crit,
         decides=True,
-        inside_validity=bool(d / D <= 0.1),
+        inside_validity=bool(d / D <= THIN_ROPE_LIMIT),
         assumptions=_COMMON_ASSUMPTIONS
         + (
             "zero-thickness, perfectly flexible rope: crossings carry no point force",
@@ -582,7 +588,7 @@ def _hitch_answers(g: HitchGeometry, mu, mrr, d, D, load, free):
             f"holds iff T_high <= K T_low with K = exp(mu*{g.post_wrap:.4g} + "
             f"mu_rr*{g.rope_wrap:.4g}) = {K:.4g}",
         ),
-        validity=("rope thin compared with the post (d/D <= 0.1 taken as the limit)",),
+        validity=(_THIN_ROPE_VALIDITY,),
         reference=(
             "Bayman, Am. J. Phys. 45 (1977) 185; Maddocks & Keller, SIAM J. Appl. Math. 47 "
             "(1987) 1185 (as summarised in the clove-hitch paper, Sec. 8); derivations/hitches.py"
