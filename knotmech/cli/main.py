@@ -36,13 +36,7 @@ def build_parser(only: str | None = None) -> argparse.ArgumentParser:
     parser.add_argument("--version", action="version", version=f"knotmech {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     for name in SUBCOMMANDS if only is None else (only,):
-        try:
-            module = importlib.import_module(f"knotmech.cli.{name}")
-        except ModuleNotFoundError as exc:  # a subcommand not built yet
-            if exc.name == f"knotmech.cli.{name}":
-                continue
-            raise
-        module.register(sub)
+        importlib.import_module(f"knotmech.cli.{name}").register(sub)
     return parser
 
 
