@@ -36,6 +36,7 @@ import numpy as np
 from knotmech import rod
 from knotmech.analytic.capstan import mu_eff as _mu_eff
 from knotmech.errors import InputError, check_nonnegative, check_positive
+from knotmech.rod.constraints import Clamp, MovingNodes
 from knotmech.rod.contact import Cylinder, CylinderContact, RodContact
 from knotmech.rod.friction import AnchorFriction, SmoothFriction
 from knotmech.scenes.curves import _edge_distances, clove_hitch_curve
@@ -132,8 +133,9 @@ class CloveHitchResult:
 
     Attributes
     ----------
-    loading : "symmetric", "asymmetric" or "free"
-    t_high, t_low : float [N]  final end loads (end 0 carries t_high)
+    loading : "symmetric", "asymmetric", "free" or "pull"
+    t_high, t_low : float [N]  final end loads (end 0 carries t_high; ``"pull"``: the
+        last recorded T_high)
     times : (n,) [s]; end_displacement : (n,) [m]  displacement of end 0 along its load
     s : (n_edges,) [m]  arc length of edge midpoints from end 0 (rest lengths)
     tension : (n_edges,) [N]  T(s) at the end of the run
@@ -152,6 +154,11 @@ class CloveHitchResult:
     creep : float [m]  displacement of end 0 during the last half of the hold
     positions : (n, n_nodes, 3) [m]
     status, message : str; stats : dict
+    pull_speed : float [m/s]  ``"pull"`` loading: speed of end 0 (0 otherwise)
+    pull_displacement : (m,) [m]  ``"pull"``: displacement of end 0 since the pull started
+    pull_force : (m,) [N]  ``"pull"``: T_high, the force the moving clamp applies to end 0
+        along the pull (its reaction), at each saved frame of the pull
+    mu_kinetic : float  kinetic rod-post coefficient (= ``mu_rod_post`` unless given)
     """
 
     loading: str
@@ -180,6 +187,22 @@ class CloveHitchResult:
     message: str
     stats: dict = field(default_factory=dict)
     _rod_diameter: float = 0.0
+    pull_speed: float = 0.0
+    pull_displacement: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    pull_force: np.ndarray = field(default_factory=lambda: np.zeros(0))
+    mu_kinetic: float = float("nan")
+
+    @property
+    def ratio_curve(self) -> np.ndarray:
+        """``"pull"`` loading: T_high/T_low along the pull (empty otherwise)."""
+        return self.pull_force / self.t_low if self.pull_force.size else np.zeros(0)
+
+    def ratio_at(self, displacement) -> float:
+        """T_high/T_low at a pulled displacement [m] (linear interpolation; nan if outside)."""
+        x = self.pull_displacement
+        if x.size < 2 or not x[0] <= displacement <= x[-1]:
+            return float("nan")
+        return float(np.interp(displacement, x, self.ratio_curve))
 
     @property
     def topology_preserved(self) -> bool:
@@ -223,7 +246,47 @@ class CloveHitchResult:
             "post_contact": self.post_contact.astype(int).tolist(),
             "s_nodes": self.s_nodes.tolist(),
             "darboux": self.darboux.tolist(),
+            "mu_kinetic": self.mu_kinetic,
+            "pull_speed": self.pull_speed,
+            "pull_displacement": self.pull_displacement.tolist(),
+            "pull_force": self.pull_force.tolist(),
+            "ratio_curve": self.ratio_curve.tolist(),
         }
+
+
+PAPER_PRETENSION = 0.559
+"""[N] pre-tension of the clove-hitch paper's pull test (sect. 5: T_low raised to 0.559 N
+with an extra 50 g, end 0 displaced until T_high = T_low, then the extra weight removed)."""
+
+
+@dataclass
+class _ScheduledDamping:
+    """Viscous drag per unit length whose coefficient switches at ``t_switch``.
+
+    Same force law as :class:`knotmech.rod.ViscousDamping` (F = -c l v, implicit); the
+    coefficient is ``before`` for t <= t_switch and ``after`` later. ``apply`` records the
+    coefficient of the step it is called for, and ``step_potential`` (the line-search
+    merit, evaluated right after ``apply`` at the same step) uses it.
+    """
+
+    before: float
+    after: float
+    t_switch: float
+    _c: float = float("nan")
+
+    def _drag(self, c):
+        return rod.ViscousDamping(coefficient=c)
+
+    def apply(self, system, t, q, q_old, dt, force, jac_diag) -> None:
+        self._c = self.before if t <= self.t_switch else self.after
+        self._drag(self._c).apply(system, t, q, q_old, dt, force, jac_diag)
+
+    def energy(self, system, q, t=np.inf) -> float:
+        return 0.0
+
+    def step_potential(self, system, q, q_old, dt) -> float:
+        c = self.before if not np.isfinite(self._c) else self._c
+        return self._drag(c).step_potential(system, q, q_old, dt)
 
 
 def clove_hitch(
@@ -248,39 +311,67 @@ def clove_hitch(
     n_frames: int = 100,
     options: rod.SolverOptions | None = None,
     progress: bool = False,
+    pull_speed: float = 0.02,
+    pull_distance: float = 0.04,
+    mu_kinetic: float | None = None,
+    pull_dt: float | None = None,
 ) -> CloveHitchResult:
     r"""Tie a clove hitch on a post and load it.
 
     Parameters
     ----------
-    loading : {"symmetric", "asymmetric", "free"}
+    loading : {"symmetric", "asymmetric", "free", "pull"}
+        ``"pull"``: the clove-hitch paper's force-displacement test (sect. 5, Fig. 1d). End 0
+        is held (moving clamp) while the hitch settles with both ends at ``pretension``; the
+        other end's dead load is then lowered to ``t_low`` (the extra weight removed) and
+        end 0 is pulled at ``pull_speed`` along its tail for ``pull_distance``; T_high is
+        the clamp's reaction along the pull.
     t_high : float [N]
-        Load on end 0 (and on both ends when symmetric).
+        Load on end 0 (and on both ends when symmetric); ignored by ``"pull"``.
     t_low : float [N], optional
-        Load on the other end: ``t_high`` (symmetric), required (asymmetric), 0 (free).
+        Load on the other end: ``t_high`` (symmetric), required (asymmetric), 0 (free);
+        ``"pull"``: the dead load (default 0.069 N, the paper's 7 g).
     rod_diameter, post_diameter, rod_length : float [m]
     youngs_modulus : float [Pa]; density : float [kg/m^3]
     mu_rod_post, mu_rod_rod : float
-        Rod-cylinder and rod-rod friction coefficients.
+        Rod-cylinder (static, mu_s) and rod-rod friction coefficients. The rod-rod friction
+        is the regularised single-coefficient law of the coated-rod paper (no separate
+        static coefficient).
     pretension : float [N], optional
-        Load on both ends while the hitch settles (default ``0.1 * t_high``).
+        Load on both ends while the hitch settles (default ``0.1 * t_high``; ``"pull"``:
+        the paper's 0.559 N).
     settle_time, load_time, hold_time : float [s]
-        Settling under the pre-tension, ramp to the final loads, hold at the final loads.
+        Settling under the pre-tension, ramp to the final loads, hold at the final loads
+        (``"pull"``: ``load_time`` lowers the dead load to ``t_low``; no hold).
     n_nodes : int
     dt : float [s]
+        Nominal step of the settling (and of the dead-load phases).
     slip_distance : float [m], optional
         Free-end loading: slip if end 0 moves more than this during the last half of the
         hold (default one rod diameter); the run stops early once end 0 has moved 0.3 L.
     n_frames : int
     options : knotmech.rod.SolverOptions, optional
     progress : bool
+    pull_speed : float [m/s]
+        ``"pull"``: speed of end 0 (default 20 mm/s; the run is quasi-static: the drag during
+        the pull is 1 % of ``t_low``).
+    pull_distance : float [m]
+        ``"pull"``: displacement of end 0 (default 40 mm).
+    mu_kinetic : float, optional
+        Kinetic rod-post coefficient mu_k <= ``mu_rod_post`` (default ``mu_rod_post``:
+        kinetic friction only).
+    pull_dt : float [s], optional
+        ``"pull"``: nominal step of the pull (default: end 0 moves 1/4 of an edge per step,
+        at most 0.2 rod radii).
 
     Returns
     -------
     CloveHitchResult
     """
-    if loading not in ("symmetric", "asymmetric", "free"):
-        raise InputError(f"loading must be 'symmetric', 'asymmetric' or 'free', got {loading!r}")
+    if loading not in ("symmetric", "asymmetric", "free", "pull"):
+        raise InputError(
+            f"loading must be 'symmetric', 'asymmetric', 'free' or 'pull', got {loading!r}"
+        )
     d = float(check_positive("rod_diameter", rod_diameter))
     D = float(check_positive("post_diameter", post_diameter))
     L = float(check_positive("rod_length", rod_length))
@@ -289,17 +380,28 @@ def clove_hitch(
     th = float(check_positive("t_high", t_high))
     mrc = float(check_nonnegative("mu_rod_post", mu_rod_post))
     mrr = float(check_nonnegative("mu_rod_rod", mu_rod_rod))
+    mk = mrc if mu_kinetic is None else float(check_nonnegative("mu_kinetic", mu_kinetic))
+    if mk > mrc:
+        raise InputError(f"mu_kinetic must be <= mu_rod_post ({mrc:g}), got {mk:g}")
     if loading == "symmetric":
         tl = th if t_low is None else float(check_positive("t_low", t_low))
     elif loading == "asymmetric":
         if t_low is None:
             raise InputError("t_low is required for the asymmetric loading")
         tl = float(check_nonnegative("t_low", t_low))
+    elif loading == "pull":
+        tl = 0.069 if t_low is None else float(check_positive("t_low", t_low))
     else:
         if t_low not in (None, 0, 0.0):
             raise InputError("t_low must be 0 (or omitted) for the free-end loading")
         tl = 0.0
-    pre = 0.1 * th if pretension is None else float(check_positive("pretension", pretension))
+    if loading == "pull":
+        pre = PAPER_PRETENSION if pretension is None else pretension
+        pre = float(check_positive("pretension", pre))
+        v = float(check_positive("pull_speed", pull_speed))
+        dist = float(check_positive("pull_distance", pull_distance))
+    else:
+        pre = 0.1 * th if pretension is None else float(check_positive("pretension", pretension))
     for name, val in (("settle_time", settle_time), ("load_time", load_time)):
         check_positive(name, val)
     check_nonnegative("hold_time", hold_time)
@@ -324,22 +426,36 @@ def clove_hitch(
     t1 = float(settle_time)
     t2 = t1 + float(load_time)
     t_end = t2 + float(hold_time)
-    loads = [
-        _RampedEndLoad(0, pre * dir0, 0.3 * t1),
-        _RampedEndLoad(N - 1, pre * dir1, 0.3 * t1),
-        _RampedEndLoad(0, (th - pre) * dir0, t2 - t1, delay=t1),
-        _RampedEndLoad(N - 1, (tl - pre) * dir1, t2 - t1, delay=t1),
-    ]
+    if loading == "pull":
+        t_end = t2 + dist / v
     mass_per_length = rho * np.pi * d * d / 4
-    loads.append(rod.ViscousDamping(coefficient=2.0 * mass_per_length / (0.1 * t1)))
-    t_max = max(th, tl, pre)
+    damp_settle = 2.0 * mass_per_length / (0.1 * t1)
+    if loading == "pull":
+        # end 0 held by the clamp; only the other end carries dead loads
+        loads = [
+            _RampedEndLoad(N - 1, pre * dir1, 0.3 * t1),
+            _RampedEndLoad(N - 1, (tl - pre) * dir1, t2 - t1, delay=t1),
+            # drag of the whole rod moving at v: 1 % of T_low
+            _ScheduledDamping(damp_settle, 0.01 * tl / (L * v), t2),
+        ]
+        # contact penalties sized for T_high up to about 2 T_low exp(mu 4 pi) (two loops)
+        t_max = max(pre, 2.0 * tl * float(np.exp(mrc * 4 * np.pi)))
+    else:
+        loads = [
+            _RampedEndLoad(0, pre * dir0, 0.3 * t1),
+            _RampedEndLoad(N - 1, pre * dir1, 0.3 * t1),
+            _RampedEndLoad(0, (th - pre) * dir0, t2 - t1, delay=t1),
+            _RampedEndLoad(N - 1, (tl - pre) * dir1, t2 - t1, delay=t1),
+            rod.ViscousDamping(coefficient=damp_settle),
+        ]
+        t_max = max(th, tl, pre)
     K = 200.0 * t_max / (R * d)
     post = Cylinder(point=(0.0, 0.0, 0.0), axis=(0.0, 0.0, 1.0), radius=0.5 * D)
     post_contact = CylinderContact(
         (post,),
         stiffness=K,
         sharpness=400.0 / d,
-        friction=AnchorFriction(mu_static=mrc, tangential_stiffness=K),
+        friction=AnchorFriction(mu_static=mrc, mu_kinetic=mk, tangential_stiffness=K),
         rod_radius=0.5 * d,
     )
     rr_contact = RodContact(
@@ -361,19 +477,76 @@ def clove_hitch(
         return float((x[0] - x_start) @ dir0) > lim
 
     base = options if options is not None else rod.SolverOptions(throw=False, rtol=1e-6)
-    opts = type(base)(**{**base.__dict__, "save_every": t_end / (int(n_frames) - 1)})
-    res = rod.simulate(
-        system,
-        t_end=t_end,
-        dt=float(check_positive("dt", dt)),
-        loads=loads,
-        interactions=[post_contact, rr_contact],
-        options=opts,
-        progress=progress,
-        callback=callback,
-    )
-    pos = np.asarray(res.positions)
-    times = np.asarray(res.times)
+    step = float(check_positive("dt", dt))
+    if loading != "pull":
+        opts = type(base)(**{**base.__dict__, "save_every": t_end / (int(n_frames) - 1)})
+        res = rod.simulate(
+            system,
+            t_end=t_end,
+            dt=step,
+            loads=loads,
+            interactions=[post_contact, rr_contact],
+            options=opts,
+            progress=progress,
+            callback=callback,
+        )
+        times = np.asarray(res.times)
+        pos = np.asarray(res.positions)
+        tension_last = np.asarray(res.tension[-1])
+        status, message, stats, st = res.status, res.message, dict(res.stats), res.final_state
+        pull_disp = pull_force = np.zeros(0)
+    else:
+        interactions = [post_contact, rr_contact]
+        clamp0 = (Clamp(nodes=[0], edges=[0]),)
+        every = t_end / (int(n_frames) - 1)
+        opts1 = type(base)(**{**base.__dict__, "save_every": min(every, t2 / 4)})
+        res1 = rod.simulate(
+            system,
+            t_end=t2,
+            dt=step,
+            loads=loads,
+            constraints=clamp0,
+            interactions=interactions,
+            options=opts1,
+            progress=progress,
+            callback=callback,
+        )
+        status, message, st = res1.status, res1.message, res1.final_state
+        stats = dict(res1.stats)
+        times, pos = np.asarray(res1.times), np.asarray(res1.positions)
+        tension_last = np.asarray(res1.tension[-1])
+        pull_disp = pull_force = np.zeros(0)
+        if status == "success":
+            h = L / (N - 1)
+            pstep = min(0.25 * h, 0.1 * d) / v if pull_dt is None else pull_dt
+            pstep = float(check_positive("pull_dt", pstep))
+
+            def path(t, xs=x_start, v=v, t2=t2):
+                return xs + dir0 * v * max(0.0, t - t2)
+
+            opts2 = type(base)(**{**base.__dict__, "save_every": every})
+            res2 = rod.simulate(
+                system,
+                st,
+                t_end=t_end,
+                dt=pstep,
+                loads=loads,
+                constraints=(MovingNodes(nodes=[0], path=path), Clamp(edges=[0])),
+                interactions=interactions,
+                options=opts2,
+                progress=progress,
+                callback=callback,
+            )
+            status, message, st = res2.status, res2.message, res2.final_state
+            for k, val in res2.stats.items():
+                stats[k] = stats.get(k, 0) + val
+            times = np.concatenate([times, np.asarray(res2.times)[1:]])
+            pos = np.concatenate([pos, np.asarray(res2.positions)[1:]])
+            tension_last = np.asarray(res2.tension[-1])
+            t_pull = np.asarray(res2.times)
+            # reaction of the moving clamp on node 0 (frame 0: static) along the pull
+            pull_force = np.asarray(res2.reactions)[:, 0, :] @ dir0
+            pull_disp = v * (t_pull - t2)
     disp = (pos[:, 0, :] - x0[0]) @ dir0
     last = pos[-1]
     rad = np.hypot(last[:, 0], last[:, 1])
@@ -382,7 +555,6 @@ def clove_hitch(
     idx = np.arange(N - 1)
     ed[np.abs(idx[:, None] - idx[None, :]) < 3] = np.inf
     on_rod = ed.min(axis=1) < 1.05 * d
-    st = res.final_state
     q = st.q
     thetas = system.thetas(q)
     tang = st.tangents
@@ -393,11 +565,13 @@ def clove_hitch(
     verdict = ""
     creep = float("nan")
     sel = times >= t2 + 0.5 * (t_end - t2)
-    if np.any(sel):
+    if np.any(sel) and loading != "pull":
         creep = float(disp[-1] - disp[sel][0])
     if loading == "free":
-        stopped_early = times[-1] < t_end - 1e-9 and res.status == "success"
+        stopped_early = times[-1] < t_end - 1e-9 and status == "success"
         verdict = "slip" if stopped_early or not (creep <= slip) else "hold"
+    if loading == "pull":
+        th = float(pull_force[-1]) if pull_force.size else float("nan")
     le = system.rest_length
     s_mid = np.cumsum(le) - 0.5 * le
     return CloveHitchResult(
@@ -407,7 +581,7 @@ def clove_hitch(
         times=times,
         end_displacement=disp,
         s=s_mid,
-        tension=np.asarray(res.tension[-1]),
+        tension=tension_last,
         post_contact=on_post,
         rod_contact=on_rod,
         s_nodes=s_nodes,
@@ -423,8 +597,12 @@ def clove_hitch(
         min_rod_distance=watch["rod"],
         min_post_gap=watch["post"],
         positions=pos,
-        status=res.status,
-        message=res.message,
-        stats=dict(res.stats),
+        status=status,
+        message=message,
+        stats=stats,
         _rod_diameter=d,
+        pull_speed=v if loading == "pull" else 0.0,
+        pull_displacement=pull_disp,
+        pull_force=pull_force,
+        mu_kinetic=mk,
     )
