@@ -431,7 +431,13 @@ def clove_hitch(
     mass_per_length = rho * np.pi * d * d / 4
     damp_settle = 2.0 * mass_per_length / (0.1 * t1)
     if loading == "pull":
-        # end 0 held by the clamp; only the other end carries dead loads
+        # settling: both ends at the pre-tension; then end 0 is clamped where it settled
+        # and only the other end carries a dead load (lowered to t_low)
+        settle_loads = [
+            _RampedEndLoad(0, pre * dir0, 0.3 * t1),
+            _RampedEndLoad(N - 1, pre * dir1, 0.3 * t1),
+            rod.ViscousDamping(coefficient=damp_settle),
+        ]
         loads = [
             _RampedEndLoad(N - 1, pre * dir1, 0.3 * t1),
             _RampedEndLoad(N - 1, (tl - pre) * dir1, t2 - t1, delay=t1),
@@ -497,15 +503,13 @@ def clove_hitch(
         pull_disp = pull_force = np.zeros(0)
     else:
         interactions = [post_contact, rr_contact]
-        clamp0 = (Clamp(nodes=[0], edges=[0]),)
         every = t_end / (int(n_frames) - 1)
-        opts1 = type(base)(**{**base.__dict__, "save_every": min(every, t2 / 4)})
+        opts1 = type(base)(**{**base.__dict__, "save_every": min(every, t1 / 4)})
         res1 = rod.simulate(
             system,
-            t_end=t2,
+            t_end=t1,
             dt=step,
-            loads=loads,
-            constraints=clamp0,
+            loads=settle_loads,
             interactions=interactions,
             options=opts1,
             progress=progress,
@@ -520,33 +524,45 @@ def clove_hitch(
             h = L / (N - 1)
             pstep = min(0.25 * h, 0.1 * d) / v if pull_dt is None else pull_dt
             pstep = float(check_positive("pull_dt", pstep))
+            xs = system.positions(st.q)
+            pull_dir = (xs[0] - xs[1]) / np.linalg.norm(xs[0] - xs[1])
+            x_clamp = xs[0].copy()
 
-            def path(t, xs=x_start, v=v, t2=t2):
-                return xs + dir0 * v * max(0.0, t - t2)
+            def path(t, xc=x_clamp, u=pull_dir, v=v, t2=t2):
+                return xc + u * v * max(0.0, t - t2)
 
             opts2 = type(base)(**{**base.__dict__, "save_every": every})
-            res2 = rod.simulate(
-                system,
-                st,
-                t_end=t_end,
-                dt=pstep,
-                loads=loads,
-                constraints=(MovingNodes(nodes=[0], path=path), Clamp(edges=[0])),
-                interactions=interactions,
-                options=opts2,
-                progress=progress,
-                callback=callback,
-            )
-            status, message, st = res2.status, res2.message, res2.final_state
-            for k, val in res2.stats.items():
-                stats[k] = stats.get(k, 0) + val
-            times = np.concatenate([times, np.asarray(res2.times)[1:]])
-            pos = np.concatenate([pos, np.asarray(res2.positions)[1:]])
-            tension_last = np.asarray(res2.tension[-1])
-            t_pull = np.asarray(res2.times)
-            # reaction of the moving clamp on node 0 (frame 0: static) along the pull
-            pull_force = np.asarray(res2.reactions)[:, 0, :] @ dir0
-            pull_disp = v * (t_pull - t2)
+            constraints = (MovingNodes(nodes=[0], path=path), Clamp(edges=[0]))
+            pt, pf = [], []
+            # lower the dead load (end 0 held), then pull, each with its own nominal step
+            for t_stop, seg_dt in ((t2, min(5 * step, pstep)), (t_end, pstep)):
+                res2 = rod.simulate(
+                    system,
+                    st,
+                    t_end=t_stop,
+                    dt=seg_dt,
+                    loads=loads,
+                    constraints=constraints,
+                    interactions=interactions,
+                    options=opts2,
+                    progress=progress,
+                    callback=callback,
+                )
+                status, message, st = res2.status, res2.message, res2.final_state
+                for k, val in res2.stats.items():
+                    stats[k] = stats.get(k, 0) + val
+                times = np.concatenate([times, np.asarray(res2.times)[1:]])
+                pos = np.concatenate([pos, np.asarray(res2.positions)[1:]])
+                tension_last = np.asarray(res2.tension[-1])
+                if t_stop > t2:
+                    pt.append(np.asarray(res2.times))
+                    # the clamp's reaction on node 0 along the pull: what the machine reads
+                    pf.append(np.asarray(res2.reactions)[:, 0, :] @ pull_dir)
+                if status != "success":
+                    break
+            if pt:
+                pull_force = np.concatenate(pf)
+                pull_disp = v * (np.concatenate(pt) - t2)
     disp = (pos[:, 0, :] - x0[0]) @ dir0
     last = pos[-1]
     rad = np.hypot(last[:, 0], last[:, 1])
