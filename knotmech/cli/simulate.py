@@ -10,6 +10,8 @@ Example::
     knotmech simulate overhand --turns 2 --mu 0.3 --n-nodes 151 --pull-time 5s --dt 5ms \\
         --csv knot.csv
     knotmech simulate clove-hitch --loading free --t-high 1.47N --mu 0.3 --json hitch.json
+    knotmech simulate clove-hitch --loading pull --speed 20mm/s --t-low 0.069N --mu 0.5 \\
+        --mu-kinetic 0.32 --pull-distance 40mm --csv pull.csv
 
 The command parses quantities (``knotmech.units``; bare numbers are SI), calls the scene
 function of :mod:`knotmech.scenes` with a progress bar, prints a summary, and writes the
@@ -76,8 +78,10 @@ def register(subparsers) -> None:
     g4.add_argument(
         "--loading",
         default="free",
-        choices=("symmetric", "asymmetric", "free"),
-        help="end loads: both --t-high, --t-high/--t-low, or --t-high with a free end",
+        choices=("symmetric", "asymmetric", "free", "pull"),
+        help="end loads: both --t-high, --t-high/--t-low, or --t-high with a free end; "
+        "pull: dead load --t-low (default 0.069N) on one end, the other pulled at --speed "
+        "for --pull-distance (default 20mm/s, 40mm); --mu-kinetic for the post",
     )
     g4.add_argument("--mu-rr", default=None, help="rod-rod friction (default --mu)")
     c = p.add_argument_group("common")
@@ -86,7 +90,7 @@ def register(subparsers) -> None:
     c.add_argument("--rod-diameter", default=None, help="rod diameter d, e.g. 4mm")
     c.add_argument("--youngs-modulus", default=None, help="E, e.g. 1.26MPa")
     c.add_argument("--density", default="1160", help="kg/m^3 (default 1160)")
-    c.add_argument("--pull-speed", default=None, help="e.g. 10mm/s")
+    c.add_argument("--pull-speed", "--speed", default=None, help="e.g. 10mm/s")
     c.add_argument("--dt", default=None, help="nominal time step, e.g. 20ms")
     c.add_argument("--json", metavar="FILE", default=None, help="write the scalars as JSON")
     c.add_argument("--csv", metavar="FILE", default=None, help="write the curves as CSV")
@@ -253,9 +257,10 @@ def _run_overhand(args, progress) -> dict:
 def _run_clove_hitch(args, progress) -> dict:
     from knotmech.scenes.clove_hitch import clove_hitch
 
+    pull = args.loading == "pull"
     kw = {
         "loading": args.loading,
-        "t_high": _q(args.t_high, "force", "--t-high", True),
+        "t_high": _q(args.t_high, "force", "--t-high", not pull),
         "t_low": _q(args.t_low, "force", "--t-low", args.loading == "asymmetric"),
         "rod_diameter": _q(args.rod_diameter, "length", "--rod-diameter"),
         "post_diameter": _q(args.post_diameter, "length", "--post-diameter"),
@@ -266,19 +271,33 @@ def _run_clove_hitch(args, progress) -> dict:
         "mu_rod_rod": _q(
             args.mu_rr if args.mu_rr is not None else args.mu, "dimensionless", "--mu-rr"
         ),  # fmt: skip
+        "mu_kinetic": _q(args.mu_kinetic, "dimensionless", "--mu-kinetic"),
         "hold_time": _q(args.hold_time, "time", "--hold-time"),
         "n_nodes": args.n_nodes,
         "dt": _q(args.dt, "time", "--dt"),
+        "pull_speed": _q(args.pull_speed, "velocity", "--speed"),
+        "pull_distance": _q(args.pull_distance, "length", "--pull-distance"),
     }
     kw = {k: v for k, v in kw.items() if v is not None}
-    if kw["loading"] != "asymmetric":
+    if kw["loading"] in ("symmetric", "free"):
         kw.pop("t_low", None)
+    if pull:
+        kw.pop("hold_time", None)
     res = clove_hitch(progress=progress, **kw)
-    verdict = f"; verdict: {res.verdict.upper()}" if res.verdict else ""
-    print(
-        f"clove-hitch ({res.loading}): status {res.status}; T_high = {res.t_high:.4g} N, "
-        f"T_low = {res.t_low:.4g} N, creep {res.creep:.3g} m{verdict}"
-    )
+    if pull:
+        print(
+            f"clove-hitch (pull at {res.pull_speed * 1e3:.3g} mm/s): status {res.status}; "
+            f"T_low = {res.t_low:.4g} N; T_high/T_low = {res.ratio_curve[-1]:.4g} after "
+            f"{res.pull_displacement[-1] * 1e3:.3g} mm (T_high = {res.t_high:.4g} N)"
+            if res.pull_force.size
+            else f"clove-hitch (pull): status {res.status}: {res.message}"
+        )
+    else:
+        verdict = f"; verdict: {res.verdict.upper()}" if res.verdict else ""
+        print(
+            f"clove-hitch ({res.loading}): status {res.status}; T_high = {res.t_high:.4g} N, "
+            f"T_low = {res.t_low:.4g} N, creep {res.creep:.3g} m{verdict}"
+        )
     if args.csv:
         _write_csv(
             args.csv,
@@ -291,4 +310,11 @@ def _run_clove_hitch(args, progress) -> dict:
             ["s_m", "omega1_per_m", "omega2_per_m", "omega3_per_m"],
             [res.s_nodes, res.darboux[:, 0], res.darboux[:, 1], res.darboux[:, 2]],
         )
+        if pull:
+            curve = Path(args.csv).with_name(Path(args.csv).stem + "_pull.csv")
+            _write_csv(
+                curve,
+                ["displacement_m", "t_high_N", "t_high_over_t_low"],
+                [res.pull_displacement, res.pull_force, res.ratio_curve],
+            )
     return res.to_dict()

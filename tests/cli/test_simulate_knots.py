@@ -32,6 +32,11 @@ def test_overhand_short_pull_writes_curves_and_keeps_the_trefoil(tmp_path, capsy
         (["overhand", "--turns", "1"], "--mu is required"),
         (["clove-hitch", "--loading", "asymmetric", "--t-high", "1N"], "--t-low is required"),
         (["clove-hitch", "--t-high", "1kg"], "--t-high"),
+        (["clove-hitch", "--loading", "pull", "--speed", "-1mm/s"], "pull_speed"),
+        (
+            ["clove-hitch", "--loading", "pull", "--mu", "0.3", "--mu-kinetic", "0.5"],
+            "mu_kinetic must be <=",
+        ),
     ],
 )
 def test_bad_input_is_one_line_and_exit_2(extra, message, capsys):
@@ -53,3 +58,27 @@ def test_clove_hitch_free_end_holds_and_tension_vanishes(tmp_path, capsys):
     tension = np.array([float(r["tension_N"]) for r in rows])
     assert tension[0] == pytest.approx(1.47, rel=0.01)
     assert abs(tension[-1]) < 0.01 * 1.47
+
+
+def test_clove_hitch_pull_writes_the_curve(tmp_path, capsys):
+    # clove-hitch paper sect. 5: dead load T_low = 0.069 N, the other end pulled (4 mm here)
+    out_csv, out_json = tmp_path / "p.csv", tmp_path / "p.json"
+    args = ["simulate", "clove-hitch", "--loading", "pull", "--speed", "20mm/s",
+            "--pull-distance", "4mm", "--t-low", "0.069N", "--mu", "0.32", "--n-nodes", "120",
+            "--no-progress", "--csv", str(out_csv), "--json", str(out_json)]  # fmt: skip
+    assert main(args) == 0
+    assert "T_high/T_low" in capsys.readouterr().out
+    rows = list(csv.DictReader((tmp_path / "p_pull.csv").open()))
+    x = np.array([float(r["displacement_m"]) for r in rows])
+    t_high = np.array([float(r["t_high_N"]) for r in rows])
+    ratio = np.array([float(r["t_high_over_t_low"]) for r in rows])
+    assert x[0] == 0.0 and x[-1] == pytest.approx(4e-3, abs=1e-9)
+    assert np.allclose(ratio, t_high / 0.069, rtol=1e-8)
+    # starts pre-tensioned (paper: 0.559 N before the extra weight is removed), rises
+    assert 0.069 < t_high[0] < 0.559 and t_high[-1] > t_high[0]
+    # the profile CSV: the far end carries the dead load
+    prof = list(csv.DictReader(out_csv.open()))
+    assert float(prof[-1]["tension_N"]) == pytest.approx(0.069, rel=0.01)
+    data = json.loads(out_json.read_text())
+    assert data["loading"] == "pull" and data["status"] == "success"
+    assert data["pull_force"] == pytest.approx(t_high.tolist(), rel=1e-8)

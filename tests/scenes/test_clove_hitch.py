@@ -53,6 +53,78 @@ def test_bad_input():
         clove_hitch(loading="free", t_low=0.5)
     with pytest.raises(InputError):
         clove_hitch(rod_length=0.1)
+    with pytest.raises(InputError, match="mu_kinetic"):
+        clove_hitch(loading="pull", mu_rod_post=0.3, mu_kinetic=0.5)
+    with pytest.raises(InputError, match="pull_speed"):
+        clove_hitch(loading="pull", pull_speed=0.0)
+    with pytest.raises(InputError, match="t_low"):
+        clove_hitch(loading="pull", t_low=0.0)
+
+
+# ---------------------------------------------------------------------------
+# default run: a short pull at speed (clove-hitch paper, sect. 5, Fig. 1d protocol)
+# ---------------------------------------------------------------------------
+
+T_LOW = 0.069  # [N] the paper's dead load (7 g)
+
+
+@pytest.fixture(scope="module")
+def pulled():
+    """10 mm of the paper's pull test: d, D, L = 4, 30, 374 mm, mu = 0.32 (about 3 s)."""
+    return clove_hitch(
+        loading="pull",
+        t_low=T_LOW,
+        mu_rod_post=0.32,
+        mu_rod_rod=0.32,
+        n_nodes=120,
+        settle_time=0.2,
+        load_time=0.2,
+        pull_speed=0.02,
+        pull_distance=0.01,
+        n_frames=26,
+    )
+
+
+def test_pull_keeps_the_knot_and_the_dead_load(pulled):
+    r = pulled
+    assert r.status == "success" and r.topology_preserved
+    assert r.code_start == r.code_end == "UOOU"
+    # the far end carries the dead load T_low (quasi-static pull; drag is 1 % of T_low)
+    assert r.tension[-1] == pytest.approx(T_LOW, rel=0.01)
+    # T_high is the clamp's reaction: equal to the axial force of the first edge
+    assert r.pull_force[-1] == pytest.approx(r.tension[0], rel=0.01)
+    assert r.t_high == r.pull_force[-1]
+    assert r.pull_displacement[0] == 0.0
+    assert r.pull_displacement[-1] == pytest.approx(0.01, abs=1e-9)
+
+
+def test_pull_starts_pretensioned_and_stretches_part_of_the_rod(pulled):
+    """Paper sect. 5: the curve starts above T_low (pre-tension 0.559 N kept by the hitch,
+    measured 0.49 N); the first millimetres stretch the rod without sliding on the post, so
+    the stiffness lies between EA/l_tail (only the pulled tail stretches) and
+    EA/(l_tail + 4 pi R) (the whole wrapped part too); measured 143 N/m."""
+    r = pulled
+    f0 = r.pull_force[0]
+    assert T_LOW < f0 < 0.559
+    ea = 1.26e6 * np.pi * 4e-3**2 / 4
+    R = 0.017
+    tail = 0.5 * (0.374 - 4 * np.pi * R * 1.15)
+    sel = r.pull_displacement <= 2.05e-3
+    k = np.polyfit(r.pull_displacement[sel], r.pull_force[sel], 1)[0]
+    assert ea / (tail + 4 * np.pi * R) < k < ea / tail
+    # rising over the pull, below the ideal-rope sliding ratio exp(mu 4 pi) = 55.8
+    assert np.all(np.diff(r.pull_force) > 0)
+    assert r.ratio_curve[0] < r.ratio_at(0.005) < r.ratio_at(0.01) < np.exp(0.32 * 4 * np.pi)
+    assert np.isnan(r.ratio_at(0.02))
+
+
+def test_pull_result_is_plain_json(pulled):
+    import json
+
+    d = json.loads(json.dumps(pulled.to_dict()))
+    assert d["loading"] == "pull" and d["pull_speed"] == 0.02
+    assert len(d["ratio_curve"]) == len(d["pull_displacement"]) == len(d["pull_force"]) > 5
+    assert d["ratio_curve"][-1] == pytest.approx(d["pull_force"][-1] / T_LOW)
 
 
 # ---------------------------------------------------------------------------
