@@ -7,9 +7,13 @@ Procedure (one recording):
    signal; :mod:`knotmech.diagnose.stats`).
 2. Locate the structure left in its residuals (:mod:`knotmech.diagnose.locate`).
 3. Forward selection: fit every applicable catalogue effect added to the
-   current model; rank by the BIC change; for the best candidates compute a
-   parametric-bootstrap p-value of the likelihood ratio, simulating recordings
-   from the current fit and refitting both models on each (this calibrates
+   current model; its likelihood ratio compares both means under the noise model
+   estimated with the effect in the mean (the current model is refitted under it:
+   a noise model estimated without the effect absorbs smooth structure into a lag-one
+   correlation near 1 and hides the effect); rank by the BIC change; for the best
+   candidates compute a parametric-bootstrap p-value of that likelihood ratio,
+   simulating recordings from the current model under that noise and repeating the
+   whole procedure on each (this calibrates
    boundary amplitudes, onsets and positions that only exist under the effect,
    and correlated noise); accept an effect only if ``p < alpha / m`` (``m``
    the number of effects tested, Bonferroni), the BIC improves and the held-out
@@ -273,16 +277,17 @@ def _select_closed_form(base, rec, data, starts, gs, rng, alpha, effects, max_ef
             if count >= _MAX_NIPS:
                 continue
             alt = fit_with_effect(current, name, data, starts, given_sigma=gs)
-            lr = 2.0 * (alt.loglik - current.loglik)
+            null_c = _null_under(current, alt, data, starts, gs)
+            lr = 2.0 * (alt.loglik - null_c.loglik)
             k = _n_new(current, alt, name)
-            cands.append((lr - k * np.log(n), name, alt, lr))
+            cands.append((lr - k * np.log(n), name, alt, lr, null_c))
         cands.sort(key=lambda c: -c[0])
         steps.append({c[1]: float(f"{c[0]:.4g}") for c in cands})
         step = None
-        for dbic, name, alt, lr in cands[:2]:
+        for dbic, name, alt, lr, null_c in cands[:2]:
             if dbic <= 0:
                 break
-            p, b = _bootstrap_p(current, name, lr, data, starts, gs, rng, alpha_each)
+            p, b = _bootstrap_p(null_c, name, lr, data, starts, gs, rng, alpha_each)
             held_alt = heldout_rms(alt, data, rec.trial)
             # an effect with no new free parameter (finite_thickness reinterprets mu to
             # meet the prior) need not improve the curve, only not spoil it (1 %)
@@ -391,6 +396,17 @@ def lr_gain(current, alt) -> float:
     return 2.0 * (alt.loglik - current.loglik)
 
 
+def _null_under(null, alt, data, starts, gs):
+    """The null model refitted under the augmented model's noise (held fixed).
+
+    The likelihood ratio ``2 (l(alt) - l(null_c))`` compares both means under one noise
+    model, the one estimated with the effect in the mean; a noise model estimated under
+    the null alone absorbs smooth structure into a larger lag-one correlation (or sd)
+    and hides the effect behind it.
+    """
+    return fit_model(null.model, data, [null.p], alt.noise, starts, given_sigma=gs, rounds=0)
+
+
 def _bootstrap_p(current, name, lr, data, starts, gs, rng, decide_at):
     rec = current.model.rec
     mu0 = current.params["mu"]
@@ -405,7 +421,7 @@ def _bootstrap_p(current, name, lr, data, starts, gs, rng, decide_at):
             d = Data(ystar, mu_nom, data.mu_sigma)
             null = fit_model(current.model, d, [current.p], current.noise, starts, given_sigma=gs)
             alt = fit_with_effect(null, name, d, starts, given_sigma=gs)
-            out[i] = 2.0 * (alt.loglik - null.loglik)
+            out[i] = 2.0 * (alt.loglik - _null_under(null, alt, d, starts, gs).loglik)
         return out
 
     del rec

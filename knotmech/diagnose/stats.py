@@ -200,10 +200,12 @@ def monte_carlo_pvalue(observed: float, draw, *, batches=(9, 30, 60, 100), decid
     simulated statistics exceed ``observed`` (p clearly large), or the
     scaled-chi-square tail fitted to the draws puts ``p`` below ``decide_at/20``
     or above ``20*decide_at`` (after the first, small batch: below
-    ``decide_at/1000`` or above ``50*decide_at``). With no exceedance the p-value is the fitted tail
+    ``decide_at/1e6`` or above ``50*decide_at``). With no exceedance the p-value is the fitted tail
     (a ``a chi2_nu`` matched to the mean and variance of the positive part of the
-    draws, Satterthwaite 1946; a normal tail when most draws are <= 0, as for the
-    non-nested ``finite_thickness`` comparison), never above ``1/(B+1)``;
+    draws, Satterthwaite 1946; a normal tail when many draws are < 0, as for the
+    non-nested ``finite_thickness`` comparison; when most draws sit on the boundary
+    (likelihood ratio 0), the share of positive draws times a scaled chi-square fitted
+    to them), never above ``1/(B+1)``;
     otherwise ``(1 + #exceed) / (B + 1)`` (Davison & Hinkley 1997, eq. 4.11).
 
     Returns
@@ -218,8 +220,10 @@ def monte_carlo_pvalue(observed: float, draw, *, batches=(9, 30, 60, 100), decid
         p_tail = _tail_p(observed, sims)
         if n_exceed >= 5:
             break
-        margin = 1000.0 if i == 0 else 20.0
-        if p_tail < decide_at / margin or p_tail > min(margin, 50.0) * decide_at:
+        # the first, small batch decides only far from decide_at: a tail fitted to
+        # nine draws may be badly off
+        low, high = (1e6, 50.0) if i == 0 else (20.0, 20.0)
+        if p_tail < decide_at / low or p_tail > high * decide_at:
             break
     b = sims.size
     if n_exceed == 0:
@@ -231,11 +235,23 @@ def _tail_p(observed: float, sims: np.ndarray) -> float:
     pos = np.maximum(sims, 0.0)
     m, v = float(np.mean(pos)), float(np.var(pos))
     if m <= 0 or v <= 0 or np.mean(sims > 0) < 0.2:
-        # statistic mostly <= 0 under the null (non-nested models): normal tail of the draws
-        sd = float(np.std(sims))
-        if sd <= 0:
-            return 0.0 if observed > float(np.mean(sims)) else 1.0
-        return float(stats.norm.sf((observed - float(np.mean(sims))) / sd))
+        if np.mean(sims < -1e-6) >= 0.2:
+            # statistic mostly < 0 under the null (non-nested models): normal tail
+            sd = float(np.std(sims))
+            if sd <= 0:
+                return 0.0 if observed > float(np.mean(sims)) else 1.0
+            return float(stats.norm.sf((observed - float(np.mean(sims))) / sd))
+        # nested, most draws on the boundary (likelihood ratio 0): a mixture, the share
+        # of positive draws (plus one) times a scaled chi-square fitted to them (chi2_2
+        # when fewer than three: a normal tail of a few nonzero draws would be far too
+        # liberal)
+        p_pos = sims[sims > 0]
+        w = (p_pos.size + 1) / (sims.size + 1)
+        a, nu = 1.0, 2.0
+        if p_pos.size >= 3 and np.var(p_pos) > 0:
+            a = float(np.var(p_pos)) / (2 * float(np.mean(p_pos)))
+            nu = max(float(np.mean(p_pos)) / a, 1.0)
+        return float(min(w * stats.chi2.sf(observed / a, nu), 1.0))
     a = v / (2 * m)
     nu = m / a
     return float(stats.chi2.sf(observed / a, nu))
