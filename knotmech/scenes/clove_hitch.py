@@ -14,6 +14,12 @@ Loading (the clove-hitch paper, sec. 5-8), dead loads along the two tails:
 - ``"asymmetric"``: end 0 with :math:`T_\mathrm{high}`, the other end with :math:`T_\mathrm{low}`;
 - ``"free"``: :math:`T_\mathrm{low} = 0`, a hanging load :math:`T_\mathrm{high}` on end 0 and the
   other end free; the run decides *hold* (the loaded end stops) or *slip*.
+- ``"pull"``: the force-displacement test of the clove-hitch paper (sect. 5, Fig. 1d): the
+  hitch settles with both ends at the pre-tension (0.559 N), end 0 is then clamped where it
+  settled, the other end's dead load is lowered to :math:`T_\mathrm{low}` (0.069 N), and
+  end 0 is pulled at a constant speed; :math:`T_\mathrm{high}(\Delta)` is the clamp's
+  reaction along the pull. Rod-post friction with :math:`\mu_s \ge \mu_k`
+  (``mu_rod_post``, ``mu_kinetic``); the rod-rod friction has a single coefficient.
 
 Outputs: tension profile :math:`T(s)` (axial force of each edge), rod-post and rod-rod
 contact regions, the components of the Darboux vector :math:`\Omega_a(s)` in the material
@@ -321,11 +327,11 @@ def clove_hitch(
     Parameters
     ----------
     loading : {"symmetric", "asymmetric", "free", "pull"}
-        ``"pull"``: the clove-hitch paper's force-displacement test (sect. 5, Fig. 1d). End 0
-        is held (moving clamp) while the hitch settles with both ends at ``pretension``; the
-        other end's dead load is then lowered to ``t_low`` (the extra weight removed) and
-        end 0 is pulled at ``pull_speed`` along its tail for ``pull_distance``; T_high is
-        the clamp's reaction along the pull.
+        ``"pull"``: the clove-hitch paper's force-displacement test (sect. 5, Fig. 1d). The
+        hitch settles with dead loads ``pretension`` on both ends; end 0 is then held by a
+        clamp where it settled while the other end's dead load is lowered to ``t_low`` (the
+        extra weight removed), and pulled at ``pull_speed`` along its tail for
+        ``pull_distance``; T_high is the clamp's reaction along the pull.
     t_high : float [N]
         Load on end 0 (and on both ends when symmetric); ignored by ``"pull"``.
     t_low : float [N], optional
