@@ -23,7 +23,14 @@ import numpy as np
 
 from knotmech.errors import InputError, check_finite, check_nonnegative, check_positive
 from knotmech.rod._kernels.contact_cylinder import ENTRIES_PER_CONTACT, cylinder_assemble
-from knotmech.rod._kernels.contact_rodrod import rodrod_assemble, rodrod_energy
+from knotmech.rod._kernels.contact_rodrod import (
+    ENTRIES_PER_PAIR,
+    Z_CUTOFF,
+    Z_JACOBIAN,
+    rodrod_assemble,
+    rodrod_energy,
+    rodrod_near,
+)
 from knotmech.rod.broadphase import candidate_edge_pairs
 from knotmech.rod.friction import AnchorFriction, SmoothFriction
 
@@ -182,23 +189,31 @@ class RodContact:
         if npair == 0:
             self.last_normal_force = np.zeros(0)
             return
-        rad = np.ascontiguousarray(system.rod_radius_edge, dtype=float)
+        rad, en, nd = self._arrays(system)
         if self.friction is not None:
             mu, fk, fc = self.friction.parameters(float(np.min(rad)))
         else:
             mu, fk, fc = 0.0, 1.0, 0.0
-        r = np.empty(npair * 288, dtype=np.int64)
-        c = np.empty(npair * 288, dtype=np.int64)
-        v = np.empty(npair * 288)
-        fn = np.empty(npair)
         pos = _positions(system, q)
-        e = rodrod_assemble(
+        near = self._near_buffer(npair)
+        n_near = rodrod_near(pos, pairs, en, rad, self.sharpness, Z_CUTOFF, near)
+        room = n_near * ENTRIES_PER_PAIR
+        if hasattr(rows, "reserve"):
+            r, c, v = rows.reserve(room)
+        else:
+            r = np.empty(room, dtype=np.int64)
+            c = np.empty(room, dtype=np.int64)
+            v = np.empty(room)
+        fn = np.empty(npair)
+        e, cnt = rodrod_assemble(
             pos,
             _positions(system, q_old),
             float(dt) if dt else 1.0,
             pairs,
-            np.ascontiguousarray(system.edge_nodes, dtype=np.int64),
-            np.ascontiguousarray(system.node_dofs, dtype=np.int64),
+            near,
+            n_near,
+            en,
+            nd,
             rad,
             self.sharpness,
             self.stiffness,
@@ -212,11 +227,34 @@ class RodContact:
             v,
             fn,
             bool(self.friction_normal_derivative),
+            Z_JACOBIAN,
         )
         self.last_normal_force = fn
         self._energy_cache = (pairs, pos, float(e))  # energy() at the same q is free
-        keep = v != 0.0
-        _emit(rows, cols, vals, r[keep], c[keep], v[keep])
+        if hasattr(rows, "reserve"):
+            rows.commit(cnt)
+        else:
+            _emit(rows, cols, vals, r[:cnt], c[:cnt], v[:cnt])
+
+    def _arrays(self, system):
+        """Contiguous radius, edge-node and node-dof arrays of ``system`` (cached)."""
+        cache = getattr(self, "_array_cache", None)
+        if cache is None or cache[0] is not system:
+            cache = (
+                system,
+                np.ascontiguousarray(system.rod_radius_edge, dtype=float),
+                np.ascontiguousarray(system.edge_nodes, dtype=np.int64),
+                np.ascontiguousarray(system.node_dofs, dtype=np.int64),
+            )
+            self._array_cache = cache
+        return cache[1:]
+
+    def _near_buffer(self, npair):
+        buf = getattr(self, "_near", None)
+        if buf is None or buf.size < npair:
+            buf = np.empty(max(npair, 2 * (0 if buf is None else buf.size)), dtype=np.int64)
+            self._near = buf
+        return buf
 
     def check_step(self, system, q_new, q_old, dt):
         """Tunnelling guard: None if the converged step is acceptable, else the reason.

@@ -4,6 +4,8 @@ from __future__ import annotations
 
 import numpy as np
 
+from ..errors import InputError
+
 __all__ = ["Triplets"]
 
 
@@ -23,6 +25,15 @@ class Triplets:
     def clear(self) -> None:
         self.size = 0
 
+    def _grow(self, n: int) -> None:
+        if self.size + n > self._rows.size:
+            cap = max(2 * self._rows.size, self.size + n)
+            for name in ("_rows", "_cols", "_vals"):
+                old = getattr(self, name)
+                new = np.empty(cap, dtype=old.dtype)
+                new[: self.size] = old[: self.size]
+                setattr(self, name, new)
+
     def add(self, rows, cols, vals) -> None:
         """Append entries; the three arguments broadcast to one flat length."""
         r, c, v = np.broadcast_arrays(
@@ -32,16 +43,26 @@ class Triplets:
         )
         r, c, v = r.ravel(), c.ravel(), v.ravel()
         n = r.size
-        if self.size + n > self._rows.size:
-            cap = max(2 * self._rows.size, self.size + n)
-            for name in ("_rows", "_cols", "_vals"):
-                old = getattr(self, name)
-                new = np.empty(cap, dtype=old.dtype)
-                new[: self.size] = old[: self.size]
-                setattr(self, name, new)
+        self._grow(n)
         self._rows[self.size : self.size + n] = r
         self._cols[self.size : self.size + n] = c
         self._vals[self.size : self.size + n] = v
+        self.size += n
+
+    def reserve(self, n: int):
+        """Room for up to ``n`` more entries: writable views (rows, cols, vals) of length
+        ``n`` past the current end; fill a prefix of them, then :meth:`commit` its length
+        (lets a kernel write its entries in place, without temporaries)."""
+        n = int(n)
+        self._grow(n)
+        k = self.size
+        return self._rows[k : k + n], self._cols[k : k + n], self._vals[k : k + n]
+
+    def commit(self, n: int) -> None:
+        """Keep ``n`` entries written into the views of the last :meth:`reserve`."""
+        n = int(n)
+        if n < 0 or self.size + n > self._rows.size:
+            raise InputError(f"commit of {n} entries exceeds the reserved room")
         self.size += n
 
     @property

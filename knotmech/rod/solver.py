@@ -9,9 +9,13 @@ with the reference frames carried from the step start by time-parallel transport
 iterations use a backtracking line search on |f|; constrained dofs are eliminated (their rows
 and columns replaced by the identity), and the residual left on them is the reaction. The
 Jacobian is solved in LAPACK band storage (half bandwidth 10: Cholesky dpbsv, falling back to
-LU dgbsv when J is not positive definite) unless interactions add triplets, then as a sparse
-CSC matrix with SuperLU. A failed step is retried with half the step (interactions'
-``begin_step`` is called again); below ``dt_min`` the run stops with status "failed" and
+LU dgbsv when J is not positive definite) unless interactions add triplets; then the free
+dofs are reordered (reverse Cuthill-McKee) and the band matrix is factored by an envelope
+LU without pivoting (checked: pivot size and backward error, else LAPACK's pivoted dgbtrf),
+or, for very wide bands, as a sparse CSC matrix with SuperLU. Newton starts from a
+second-order predictor (the last change of velocity; see ``SolverOptions.predictor``).
+A failed step is retried with half the step (interactions' ``begin_step`` is called
+again); below ``dt_min`` the run stops with status "failed" and
 the last good state.
 
 The elastic part of J is the symmetric Hessian of the DER energy with parallel-transported
@@ -37,6 +41,7 @@ from scipy.sparse.linalg import splu
 
 from ..errors import InputError, SolverError, check_positive
 from ._kernels import assembly as _asm
+from ._kernels import envelope as _env
 from .elastic import ElasticWorkspace
 from .jacobian import Triplets
 from .results import Result
@@ -48,6 +53,10 @@ _B = _asm.BAND
 # widest half bandwidth of the reordered sparse Jacobian still solved as a band matrix
 # (beyond it, SuperLU with a minimum-degree ordering is faster)
 _KD_MAX = 64
+# Jacobians assembled on one RCM ordering before it is recomputed: contacts come and go,
+# and an ordering made for an older contact pattern lets the band (and the LU cost, which
+# grows like its square) creep up long before the 25 % widening test below triggers
+_REORDER_EVERY = 100
 
 
 @dataclass(frozen=True)
@@ -67,6 +76,9 @@ class SolverOptions:
     linear_solver : {"auto", "banded", "sparse"}  "auto": banded unless interactions add
         Jacobian triplets
     throw : bool  raise SolverError on failure (default True); else return status "failed"
+    predictor : {"quadratic", "linear"}  Newton's start: q + dt v + dt (dt + h) a / 2 with
+        the last change of velocity a (default; falls back to the linear guess if Newton
+        fails from it), or q + dt v
     """
 
     dt_min: float = 1e-9
@@ -79,6 +91,7 @@ class SolverOptions:
     save_every: float | None = None
     linear_solver: str = "auto"
     throw: bool = True
+    predictor: str = "quadratic"
 
     def __post_init__(self):
         check_positive("dt_min", self.dt_min)
@@ -90,6 +103,8 @@ class SolverOptions:
                 raise InputError(f"{name} must be an integer >= 1, got {v!r}")
         if self.save_every is not None:
             check_positive("save_every", self.save_every)
+        if self.predictor not in ("quadratic", "linear"):
+            raise InputError(f"predictor must be 'quadratic' or 'linear', got {self.predictor!r}")
         if self.linear_solver not in ("auto", "banded", "sparse"):
             raise InputError(
                 f"linear_solver must be 'auto', 'banded' or 'sparse', got {self.linear_solver!r}"
@@ -97,7 +112,13 @@ class SolverOptions:
 
 
 class _StepFailed(Exception):
-    pass
+    """A step attempt failed; ``iterations`` spent on it; ``guard``: rejected by an
+    interaction's step check (a smaller dt is needed, not a better start)."""
+
+    def __init__(self, msg, iterations: int = 0, guard: bool = False):
+        super().__init__(msg)
+        self.iterations = iterations
+        self.guard = guard
 
 
 class Stepper:
@@ -222,25 +243,32 @@ class Stepper:
         self._elastic_rc = None
         self._order_stale = False
         self._order_fresh = True
+        self._n_on_order = 0
 
     def _assemble_sparse(self) -> None:
         """Jacobian with interaction triplets, restricted to the free dofs and reordered
         (RCM). Stored as a LAPACK band matrix when the reordered half bandwidth is at most
         _KD_MAX, solved by LU with partial pivoting (dgbsv; the blocked band Cholesky
         dpbtrf used at these widths was erratic, up to seconds per call, with threaded
-        OpenBLAS on a loaded machine); wider bands go to SuperLU as CSC."""
-        er, ec, ev = self.ws.coo()
+        OpenBLAS on a loaded machine); wider bands go to SuperLU as CSC. The band matrix
+        is filled straight from the elastic Hessian blocks and the triplets through the
+        dof map (no COO temporaries)."""
+        self._n_on_order = getattr(self, "_n_on_order", 0) + 1
+        if self._n_on_order > _REORDER_EVERY and self.trip.size:
+            self._order_stale = True
         if self._order_stale or self._gmap is None:
+            er, ec, _ = self.ws.coo()
             self._reorder(er, ec)
         gm = self._gmap
+        s, ws = self.system, self.ws
         if self._elastic_rc is None:  # the elastic pattern never changes
+            er, ec, _ = ws.coo()
             r0, c0 = gm[er], gm[ec]
             d0 = gm[self.free_idx]
             self._elastic_rc = (r0, c0, d0, max(_asm.max_band(r0, c0), 0))
         r0, c0, d0, kd0 = self._elastic_rc
-        tr, tc = gm[self.trip.rows], gm[self.trip.cols]
-        tv = self.trip.vals
-        kd = max(kd0, _asm.max_band(tr, tc), 1)
+        trip = self.trip
+        kd = max(kd0, _asm.max_band_mapped(trip.rows, trip.cols, gm), 1)
         if not self._order_fresh and kd > 1.25 * self._kd_ordered + 4:
             # the contact pattern changed enough to widen the band: new ordering
             self._order_stale = True
@@ -251,13 +279,20 @@ class Stepper:
         nf = self.free_idx.size
         dv = self.diag[self.free_idx]
         if kd <= _KD_MAX:
-            ab = np.zeros((3 * kd + 1, nf), order="F")
-            _asm.band_scatter(r0, c0, ev, 1.0, 2 * kd, False, ab)
-            _asm.band_scatter(d0, d0, dv, 1.0, 2 * kd, False, ab)
-            _asm.band_scatter(tr, tc, tv, -1.0, 2 * kd, False, ab)
+            # (2 kd + 1, nf) band, A[i, j] at ab[kd + i - j, j]: envelope LU (no pivoting)
+            ab = self._band_buffer(2 * kd + 1, nf)
+            _asm.band_add_hessians_mapped(
+                s.edge_dof0, s.stencil_edge, ws.hess_s, ws.hess8, gm, kd, ab
+            )
+            _asm.band_scatter(d0, d0, dv, 1.0, kd, False, ab)
+            _asm.band_scatter_mapped(trip.rows, trip.cols, trip.vals, gm, -1.0, kd, ab)
             self._ab, self._kd = ab, kd
+            self._factor_band()
             self._mode = "sparse-band"
         else:
+            er, ec, ev = ws.coo()
+            tr, tc = gm[trip.rows], gm[trip.cols]
+            tv = trip.vals
             k0 = (r0 >= 0) & (c0 >= 0)
             kt = (tr >= 0) & (tc >= 0)
             rows = np.concatenate([r0[k0], d0, tr[kt]])
@@ -265,6 +300,64 @@ class Stepper:
             vals = np.concatenate([ev[k0], dv, -tv[kt]])
             self._J = sp.csc_matrix((vals, (rows, cols)), shape=(nf, nf))
             self._mode = "sparse"
+
+    def _factor_band(self) -> None:
+        """Factor the (2 kd + 1)-row band matrix ``self._ab``: envelope LU without pivoting
+        (:mod:`._kernels.envelope`, a fraction of the cost of the pivoted band LU on the
+        RCM-ordered contact Jacobian), or, when a pivot falls below 1e-13 of its diagonal
+        entry, LAPACK's pivoted band LU (dgbtrf) on the kept copy of the matrix."""
+        ab, kd = self._ab, self._kd
+        nf = ab.shape[1]
+        orig = getattr(self, "_ab_orig", None)
+        if orig is None or orig.shape != ab.shape:
+            orig = np.empty_like(ab, order="F")
+            self._ab_orig = orig
+            self._env_first = np.empty(nf, dtype=np.int64)
+            self._env_last = np.empty(nf, dtype=np.int64)
+        orig[...] = ab
+        _env.env_first(ab, kd, self._env_first)
+        _env.env_last(self._env_first, self._env_last)
+        tiny = 1e-13 * np.abs(orig[kd])
+        self._lu_piv = None
+        if _env.env_factor(ab, kd, self._env_last, tiny) != 0:
+            self._factor_pivoted()
+
+    def _factor_pivoted(self) -> None:
+        """LU with partial pivoting (LAPACK dgbtrf) of the kept copy of the band matrix."""
+        kd, orig = self._kd, self._ab_orig
+        gb = np.zeros((3 * kd + 1, orig.shape[1]), order="F")
+        gb[kd:] = orig
+        lu, piv, info = lapack.dgbtrf(gb, kd, kd, overwrite_ab=1)
+        if info != 0:
+            raise _StepFailed("singular Jacobian")
+        self._lu_piv = (lu, piv)
+
+    def _solve_band(self, b: np.ndarray) -> np.ndarray:
+        """Solve with the factors of :meth:`_factor_band`; an envelope solution whose
+        componentwise backward error exceeds 1e-10 (element growth without pivoting) is
+        redone with the pivoted LU."""
+        kd = self._kd
+        if self._lu_piv is None:
+            y = b.copy()
+            _env.env_solve(self._ab, kd, self._env_last, y)
+            if _env.band_residual(self._ab_orig, kd, y, b) <= 1e-10:
+                return y
+            self._factor_pivoted()
+        lu, piv = self._lu_piv
+        y, info = lapack.dgbtrs(lu, kd, kd, b, piv)
+        if info != 0:
+            raise _StepFailed("singular Jacobian")
+        return y
+
+    def _band_buffer(self, nrow: int, ncol: int) -> np.ndarray:
+        """A zeroed Fortran-ordered (nrow, ncol) band matrix, reusing the last buffer."""
+        buf = getattr(self, "_ab_buf", None)
+        if buf is None or buf.shape != (nrow, ncol):
+            buf = np.zeros((nrow, ncol), order="F")
+            self._ab_buf = buf
+        else:
+            buf.fill(0.0)
+        return buf
 
     def solve(self, rhs: np.ndarray) -> np.ndarray:
         """Solve J x = rhs with x = 0 on constrained dofs."""
@@ -284,10 +377,7 @@ class Stepper:
         b = np.empty(self.free_idx.size)
         b[gm] = rhs[self.free_idx]
         if self._mode == "sparse-band":
-            kd = self._kd
-            _, _, y, info = lapack.dgbsv(kd, kd, self._ab, b, overwrite_ab=1, overwrite_b=1)
-            if info != 0:
-                raise _StepFailed("singular Jacobian")
+            y = self._solve_band(b)
         else:
             try:
                 lu = splu(self._J, permc_spec="MMD_AT_PLUS_A", diag_pivot_thresh=0.1,
@@ -307,7 +397,7 @@ class Stepper:
             if chk is not None:
                 why = chk(self.system, q, st.q, dt)
                 if why:
-                    raise _StepFailed(why)
+                    raise _StepFailed(why, guard=True)
 
     def _converged(self, scales) -> tuple[bool, float]:
         sx, st_, rx, rt = scales
@@ -318,18 +408,38 @@ class Stepper:
 
     # ------------------------------------------------------------ one step
     def step(self, st: State, dt: float):
-        """Attempt one step; return (q_new, iterations) or raise _StepFailed."""
-        opt = self.opt
+        """Attempt one step; return (q_new, iterations) or raise _StepFailed.
+
+        Predictor: second order, q_old + dt v_old + dt (dt + h_last)/2 a_old with a_old the
+        change of velocity over the last two steps (``State.accel``), which starts Newton
+        closer to the solution than the constant-velocity guess q_old + dt v_old (the
+        converged step satisfies the same tolerances either way). If Newton fails from it,
+        the step is retried once from the constant-velocity guess before the solver halves
+        dt (``SolverOptions.predictor = "linear"`` always uses the latter)."""
         t_new = st.t + dt
-        q = st.q + dt * st.v
+        q_lin = st.q + dt * st.v
+        for it in self.interactions:  # once per attempt: it depends on the step start only
+            it.begin_step(self.system, st.q, st.v, dt)
+        if self.opt.predictor == "quadratic" and st.accel is not None and np.isfinite(st.h_last):
+            q0 = q_lin + (0.5 * dt * (dt + st.h_last)) * st.accel
+            try:
+                return self._newton(q0, st, dt, t_new)
+            except _StepFailed as exc:
+                if exc.guard:
+                    raise
+                wasted = exc.iterations
+            q, k = self._newton(q_lin, st, dt, t_new)
+            return q, k + wasted
+        return self._newton(q_lin, st, dt, t_new)
+
+    def _newton(self, q, st: State, dt: float, t_new: float):
+        opt = self.opt
         for c in self.constraints:
             q[c.dofs(self.system)] = c.values(self.system, t_new, dt, st.q)
-        for it in self.interactions:
-            it.begin_step(self.system, st.q, st.v, dt)
         scales = self.evaluate(q, st, dt, t_new)
         for k in range(opt.max_newton + 1):
             if not np.all(np.isfinite(self.f)):
-                raise _StepFailed("non-finite residual")
+                raise _StepFailed("non-finite residual", k)
             ok, rel = self._converged(scales)
             if ok:
                 self._check(q, st, dt)
@@ -338,7 +448,7 @@ class Stepper:
                 break
             dq = self.solve(-self.f)
             if not np.all(np.isfinite(dq)):
-                raise _StepFailed("non-finite Newton step")
+                raise _StepFailed("non-finite Newton step", k)
             # backtracking: accept when the incremental potential decreases (Armijo, with a
             # round-off slack) or the residual norm does
             r0 = float(np.linalg.norm(self.f[self.free]))
@@ -359,7 +469,7 @@ class Stepper:
                 alpha *= 0.5
             else:
                 if not (np.isfinite(r1) and rel < 1e3):
-                    raise _StepFailed("line search found no decrease of the residual")
+                    raise _StepFailed("line search found no decrease of the residual", k)
             q = q_try
             stepx = float(np.max(np.abs(alpha * dq[self.fx]), initial=0.0))
             stept = float(np.max(np.abs(alpha * dq[self.ft]), initial=0.0))
@@ -371,7 +481,8 @@ class Stepper:
                 self._check(q, st, dt)
                 return q, k + 1
         raise _StepFailed(
-            f"Newton did not converge in {opt.max_newton} iterations (residual {rel:.2e})"
+            f"Newton did not converge in {opt.max_newton} iterations (residual {rel:.2e})",
+            opt.max_newton,
         )
 
 
@@ -514,15 +625,22 @@ def simulate(
             ws = stepper.ws
             for it in stepper.interactions:
                 it.end_step(system, q_new, st.q, h)
+            h_step = t_new - st.t
+            v_new = (q_new - st.q) / h
+            accel = None
+            if np.isfinite(st.h_last):  # v is the mean rate over a step: centred difference
+                accel = (v_new - st.v) / (0.5 * (h_step + st.h_last))
             new = State(
                 t=t_new,
                 q=q_new,
-                v=(q_new - st.q) / h,
+                v=v_new,
                 tangents=ws.tangents.copy(),
                 d1=ws.d1.copy(),
                 ref_twist=ws.ref_twist.copy(),
                 dt_next=dt_cur,
                 n_good=n_good,
+                accel=accel,
+                h_last=h_step,
             )
             residual = stepper.f.copy()
             if bar is not None:

@@ -177,6 +177,9 @@ class State:
     ref_twist : (n_stencils,) array [rad]  reference twist, tracked continuously
     dt_next : float [s]  step size the adaptive solver will try next (nan: the nominal dt)
     n_good : int  accepted steps since dt was last changed (drives dt growth)
+    accel : (n_dof,) array or None  rate of change of ``v`` over the last two steps (the
+        solver's second-order predictor; None: not known yet, e.g. at the start)
+    h_last : float [s]  the step that led to this state (nan: not known)
     """
 
     t: float
@@ -187,9 +190,11 @@ class State:
     ref_twist: np.ndarray
     dt_next: float = float("nan")
     n_good: int = 0
+    accel: np.ndarray | None = None
+    h_last: float = float("nan")
 
     def as_dict(self) -> dict:
-        return {
+        out = {
             "t": np.float64(self.t),
             "q": self.q,
             "v": self.v,
@@ -198,7 +203,11 @@ class State:
             "ref_twist": self.ref_twist,
             "dt_next": np.float64(self.dt_next),
             "n_good": np.int64(self.n_good),
+            "h_last": np.float64(self.h_last),
         }
+        if self.accel is not None:
+            out["accel"] = self.accel
+        return out
 
     @classmethod
     def from_dict(cls, d) -> State:
@@ -211,6 +220,8 @@ class State:
             ref_twist=np.array(d["ref_twist"], dtype=float),
             dt_next=float(d["dt_next"]),
             n_good=int(d["n_good"]),
+            accel=np.array(d["accel"], dtype=float) if "accel" in d else None,
+            h_last=float(d["h_last"]) if "h_last" in d else float("nan"),
         )
 
     def save(self, path) -> None:

@@ -226,3 +226,60 @@ def max_band(rows, cols):
             if d > kd:
                 kd = d
     return kd
+
+
+@njit(cache=True)
+def band_add_hessians_mapped(edge_dof0, stencil_edge, hess_s, hess8, gmap, off, ab):
+    """Add the full elastic Hessian (stretching 6x6 per edge, then bending+twisting
+    H11 = P^T H8 P per stencil) into a general band matrix, row/column i of the system
+    going to ``gmap[i]`` (skipped if negative): A[gi, gj] at ``ab[off + gi - gj, gj]``.
+    The same entries in the same order as :func:`coo_hessians` + :func:`band_scatter`
+    through ``gmap``, without the COO temporaries."""
+    for k in range(edge_dof0.shape[0]):
+        d = edge_dof0[k]
+        for a in range(6):
+            ga = gmap[d + a + (a >= 3)]
+            if ga < 0:
+                continue
+            for b in range(6):
+                gb = gmap[d + b + (b >= 3)]
+                if gb >= 0:
+                    ab[off + ga - gb, gb] += hess_s[k, a, b]
+    h11 = np.empty((11, 11))
+    for s in range(stencil_edge.shape[0]):
+        d = edge_dof0[stencil_edge[s] - 1]
+        stencil_local(hess8[s], h11)
+        for a in range(11):
+            ga = gmap[d + a]
+            if ga < 0:
+                continue
+            for b in range(11):
+                gb = gmap[d + b]
+                if gb >= 0:
+                    ab[off + ga - gb, gb] += h11[a, b]
+
+
+@njit(cache=True)
+def band_scatter_mapped(rows, cols, vals, gmap, scale, off, ab):
+    """Add ``scale * vals`` at (gmap[rows], gmap[cols]) of a general band matrix (entry
+    (i, j) at ``ab[off + i - j, j]``); entries with a negative mapped index are skipped."""
+    for k in range(rows.shape[0]):
+        i = gmap[rows[k]]
+        j = gmap[cols[k]]
+        if i < 0 or j < 0:
+            continue
+        ab[off + i - j, j] += scale * vals[k]
+
+
+@njit(cache=True)
+def max_band_mapped(rows, cols, gmap):
+    """Largest |gmap[i] - gmap[j]| over the entries with both mapped indices >= 0."""
+    kd = 0
+    for k in range(rows.shape[0]):
+        i = gmap[rows[k]]
+        j = gmap[cols[k]]
+        if i >= 0 and j >= 0:
+            d = i - j if i > j else j - i
+            if d > kd:
+                kd = d
+    return kd

@@ -67,10 +67,49 @@ def segment_params(x1, x2, x3, x4):
 
 
 @njit(cache=True)
+def _segment_params_flat(x):
+    """:func:`segment_params` of the two edges packed in ``x`` (12,) = (x_i, x_i+1, x_j,
+    x_j+1), in scalar arithmetic (no temporary arrays: the broad-phase filter calls it for
+    every candidate pair and Newton iterate)."""
+    a = 0.0
+    b = 0.0
+    c = 0.0
+    d = 0.0
+    e = 0.0
+    for m in range(3):
+        e1 = x[3 + m] - x[m]
+        e2 = x[9 + m] - x[6 + m]
+        w0 = x[m] - x[6 + m]
+        a += e1 * e1
+        b += e1 * e2
+        c += e2 * e2
+        d += e1 * w0
+        e += e2 * w0
+    den = a * c - b * b
+    parallel = den <= _PARALLEL_TOL * a * c
+    if not parallel:
+        s = _clamp01((b * e - c * d) / den)
+    else:
+        s = 0.0
+    t = (b * s + e) / c
+    if t < 0.0:
+        t = 0.0
+        s = _clamp01(-d / a)
+    elif t > 1.0:
+        t = 1.0
+        s = _clamp01((b - d) / a)
+    free_s = (s > 0.0) and (s < 1.0)
+    free_t = (t > 0.0) and (t < 1.0)
+    if parallel and free_s and free_t:
+        free_s = False
+    return s, t, free_s, free_t
+
+
+@njit(cache=True)
 def edge_distance(x):
     """Distance Delta between two edges, ``x`` (12,) = (x_i, x_i+1, x_j, x_j+1) (Lumelsky
     1985); the cheap value-only version of :func:`edge_distance_hessian`."""
-    s, t, _, _ = segment_params(x[0:3], x[3:6], x[6:9], x[9:12])
+    s, t, _, _ = _segment_params_flat(x)
     d2 = 0.0
     for m in range(3):
         w = (1.0 - s) * x[m] + s * x[3 + m] - (1.0 - t) * x[6 + m] - t * x[9 + m]
@@ -98,7 +137,7 @@ def edge_distance_hessian(x, grad, hess):
     x2 = x[3:6]
     x3 = x[6:9]
     x4 = x[9:12]
-    s, t, free_s, free_t = segment_params(x1, x2, x3, x4)
+    s, t, free_s, free_t = _segment_params_flat(x)
     coef = np.array([1.0 - s, s, -(1.0 - t), -t])
     w = coef[0] * x1 + coef[1] * x2 + coef[2] * x3 + coef[3] * x4
     dist = np.sqrt(w @ w)
@@ -210,12 +249,47 @@ def penalty_derivs(gap_arg, sharpness, stiffness):
     return e, de, d2e
 
 
+# Pairs with z = k (2h - Delta) below this carry a penalty energy, force and Hessian below
+# e^(2 Z_CUTOFF) ~ 4e-18 of their contact scale (the squared softplus decays like e^(2z)):
+# negligible against any solver tolerance, so they are skipped before the Hessian.
+Z_CUTOFF = -20.0
+# Pairs with z below this add their force but no Jacobian entries: their penalty stiffness
+# is below e^(2 Z_JACOBIAN) ~ 2e-9 of the contact stiffness, so leaving it out of dF/dq
+# does not change Newton's convergence, while it keeps these distant pairs from widening
+# the band of the reordered Jacobian (and the cost of its LU)
+Z_JACOBIAN = -10.0
+# Jacobian entries per near pair: 144 penalty + 144 friction
+ENTRIES_PER_PAIR = 288
+
+
+@njit(cache=True)
+def rodrod_near(pos, pairs, edge_nodes, radius_edge, sharpness, z_cutoff, near):
+    """Indices of the candidate pairs with k (2h - Delta) >= ``z_cutoff`` into ``near``;
+    returns their number (the cheap distance-only pass before :func:`rodrod_assemble`)."""
+    x = np.empty(12)
+    cnt = 0
+    for p in range(pairs.shape[0]):
+        ei = pairs[p, 0]
+        ej = pairs[p, 1]
+        nodes = (edge_nodes[ei, 0], edge_nodes[ei, 1], edge_nodes[ej, 0], edge_nodes[ej, 1])
+        for k in range(4):
+            for m in range(3):
+                x[3 * k + m] = pos[nodes[k], m]
+        two_h = radius_edge[ei] + radius_edge[ej]
+        if sharpness * (two_h - edge_distance(x)) >= z_cutoff:
+            near[cnt] = p
+            cnt += 1
+    return cnt
+
+
 @njit(cache=True)
 def rodrod_assemble(
     pos,
     pos_old,
     dt,
     pairs,
+    near,
+    n_near,
     edge_nodes,
     node_dofs,
     radius_edge,
@@ -230,29 +304,41 @@ def rodrod_assemble(
     cols,
     vals,
     contact_force,
-    normal_derivative=False,
+    normal_derivative,
+    z_jacobian,
 ):
-    """Contact + friction forces and Jacobian blocks of all candidate edge pairs.
+    """Contact + friction forces and Jacobian blocks of the near candidate pairs.
 
-    For pair p = (i, j): force (12,) = -dE/dx (IMC eq. for the penalty); friction of
-    coated-rod eqs. (11)-(12): F_n = force on edge i, n = F_n/|F_n|,
-    v_rel = (v_i + v_i+1 - v_j - v_j+1)/2 with v = (x - x_old)/dt, v_T = (I - n n^T) v_rel,
+    ``near[:n_near]`` are the indices (into ``pairs``) of the pairs to assemble (see
+    :func:`rodrod_near`; the others have a negligible penalty, ``Z_CUTOFF``). For pair
+    p = (i, j): force (12,) = -dE/dx (IMC eq. for the penalty); friction of coated-rod
+    eqs. (11)-(12): F_n = force on edge i, n = F_n/|F_n|, v_rel = (v_i + v_i+1 - v_j -
+    v_j+1)/2 with v = (x - x_old)/dt, v_T = (I - n n^T) v_rel,
     gamma = 1/(1 + exp(-k(|v_T| - c))), F_fr = -gamma mu |F_n| v_T/|v_T| (capped at mu|F_n|
     by gamma <= 1), distributed (+1/2, +1/2, -1/2, -1/2).
 
     Jacobian: the exact Hessian of the penalty; for friction the derivative through the
-    velocity only (n and |F_n| lagged at the current iterate, i.e. their dependence on q is
-    left out of dF/dq). ``rows/cols/vals`` have room for 144 * 2 entries per pair (penalty and
-    friction blocks); unused entries are written with value 0. ``contact_force`` (n_pairs,)
-    receives |F_n|. Returns the total penalty energy.
+    velocity (and, with ``normal_derivative``, through |F_n|; the normal n is lagged);
+    only for pairs with k (2h - Delta) >= ``z_jacobian`` (see ``Z_JACOBIAN``).
+    Entries are written compactly to ``rows/cols/vals`` (room for ``ENTRIES_PER_PAIR`` per
+    near pair: 144 penalty, then 144 friction if the pair has friction); returns (energy,
+    number of entries written). ``contact_force`` (n_pairs,) receives |F_n| (0 for pairs
+    that are not near).
     """
-    npairs = pairs.shape[0]
     x = np.empty(12)
     grad = np.empty(12)
     hess = np.empty((12, 12))
     dofs = np.empty(12, dtype=np.int64)
+    fn = np.empty(3)
+    n = np.empty(3)
+    vrel = np.empty(3)
+    Dm = np.empty((3, 3))
+    Dp = np.empty((3, 3))
     energy = 0.0
-    for p in range(npairs):
+    contact_force[:] = 0.0
+    cnt = 0
+    for kp in range(n_near):
+        p = near[kp]
         ei = pairs[p, 0]
         ej = pairs[p, 1]
         nodes = (edge_nodes[ei, 0], edge_nodes[ei, 1], edge_nodes[ej, 0], edge_nodes[ej, 1])
@@ -260,50 +346,38 @@ def rodrod_assemble(
             for m in range(3):
                 x[3 * k + m] = pos[nodes[k], m]
                 dofs[3 * k + m] = node_dofs[nodes[k], m]
-        base = p * 288
         two_h = radius_edge[ei] + radius_edge[ej]
-        contact_force[p] = 0.0
-        # far pairs (penalty below e^-40 of its scale): skip before the Hessian
-        if sharpness * (two_h - edge_distance(x)) < -40.0:
-            for a in range(288):
-                rows[base + a] = dofs[0]
-                cols[base + a] = dofs[0]
-                vals[base + a] = 0.0
-            continue
         dist = edge_distance_hessian(x, grad, hess)
         e, de, d2e = penalty_derivs(two_h - dist, sharpness, stiffness)
         energy += e
+        # pairs beyond z_jacobian add their force but no Jacobian entries
+        jac = sharpness * (two_h - dist) >= z_jacobian
         # force = -dE/dx = -de * grad ; dF/dx = -(d2e grad grad^T + de hess)
         for a in range(12):
             force[dofs[a]] -= de * grad[a]
-        for a in range(12):
+        for a in range(12 if jac else 0):
             for b in range(12):
-                k = base + 12 * a + b
-                rows[k] = dofs[a]
-                cols[k] = dofs[b]
-                vals[k] = -(d2e * grad[a] * grad[b] + de * hess[a, b])
+                rows[cnt] = dofs[a]
+                cols[cnt] = dofs[b]
+                vals[cnt] = -(d2e * grad[a] * grad[b] + de * hess[a, b])
+                cnt += 1
         # normal force on edge i (sum over its two nodes)
-        fn = np.zeros(3)
         for m in range(3):
             fn[m] = -de * (grad[m] + grad[3 + m])
-        fnorm = np.sqrt(fn @ fn)
+        fnorm = np.sqrt(fn[0] * fn[0] + fn[1] * fn[1] + fn[2] * fn[2])
         contact_force[p] = fnorm
-        base2 = base + 144
-        for a in range(144):
-            rows[base2 + a] = dofs[0]
-            cols[base2 + a] = dofs[0]
-            vals[base2 + a] = 0.0
         if mu <= 0.0 or fnorm <= 0.0:
             continue
-        n = fn / fnorm
-        vrel = np.zeros(3)
+        for m in range(3):
+            n[m] = fn[m] / fnorm
         for m in range(3):
             vi = 0.5 * (pos[nodes[0], m] - pos_old[nodes[0], m])
             vi += 0.5 * (pos[nodes[1], m] - pos_old[nodes[1], m])
             vj = 0.5 * (pos[nodes[2], m] - pos_old[nodes[2], m])
             vj += 0.5 * (pos[nodes[3], m] - pos_old[nodes[3], m])
             vrel[m] = (vi - vj) / dt
-        vt = vrel - (vrel @ n) * n
+        vn = vrel[0] * n[0] + vrel[1] * n[1] + vrel[2] * n[2]
+        vt = vrel - vn * n
         vtn_raw = np.sqrt(vt @ vt)
         vtn = np.sqrt(vtn_raw * vtn_raw + vel_eps * vel_eps)
         gam = _sigmoid(fric_k * (vtn_raw - fric_c))
@@ -313,28 +387,34 @@ def rodrod_assemble(
         for k in range(4):
             for m in range(3):
                 force[dofs[3 * k + m]] += sgn[k] * ffr[m]
+        if not jac:
+            continue
         # dF_fr/dv_rel = -mu |Fn| [gamma/vtn (I - vt vt^T/vtn^2) + gamma' vt vt^T/(vtn vtn_raw)] P
-        P = np.eye(3) - np.outer(n, n)
-        Dm = np.zeros((3, 3))
         for a in range(3):
             for b in range(3):
                 Dm[a, b] = gam / vtn * ((1.0 if a == b else 0.0) - vt[a] * vt[b] / (vtn * vtn))
                 if vtn_raw > 0.0:
                     Dm[a, b] += dgam * vt[a] * vt[b] / (vtn * vtn_raw)
-        Dm = -mu * fnorm * (Dm @ P)
+        # Dp = -mu |Fn| Dm P, P = I - n n^T
+        for a in range(3):
+            for b in range(3):
+                acc = Dm[a, b]
+                for c in range(3):
+                    acc -= Dm[a, c] * n[c] * n[b]
+                Dp[a, b] = -mu * fnorm * acc
         # with normal_derivative: also the dependence of |F_n| on q (the normal stays
         # lagged), d|F_n|/dx = (d2e/de) |F_n| grad Delta, which makes dF/dq unsymmetric
         cn = d2e / de if (normal_derivative and de != 0.0) else 0.0
         for k in range(4):
-            for l in range(4):
-                scale = sgn[k] * sgn[l] / dt
-                for a in range(3):
+            for a in range(3):
+                for l in range(4):
+                    scale = sgn[k] * sgn[l] / dt
                     for b in range(3):
-                        kk = base2 + 12 * (3 * k + a) + (3 * l + b)
-                        rows[kk] = dofs[3 * k + a]
-                        cols[kk] = dofs[3 * l + b]
-                        vals[kk] = scale * Dm[a, b] + sgn[k] * ffr[a] * cn * grad[3 * l + b]
-    return energy
+                        rows[cnt] = dofs[3 * k + a]
+                        cols[cnt] = dofs[3 * l + b]
+                        vals[cnt] = scale * Dp[a, b] + sgn[k] * ffr[a] * cn * grad[3 * l + b]
+                        cnt += 1
+    return energy, cnt
 
 
 @njit(cache=True)
