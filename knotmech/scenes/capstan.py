@@ -15,6 +15,15 @@ Validity: the capstan law (with mu_eff) needs the bending boundary layers at the
 points to be short, eps^2 = EI/(T_low R^2) << 1 (R the centreline radius); the correction is
 about -(1+mu^2)/2 eps^2 (see :func:`knotmech.analytic.capstan.capstan_ratio_bending`). A
 rope-like rod (``bending_stiffness`` below the solid value) meets it at small strains.
+
+mu_eff is the decay rate away from the ends of the contact (the clove-hitch paper, text of
+eq. 3). In the wrap the friction couple (d/2) f is carried by a shear force Q = (d/2) f,
+which builds up where the rod comes onto the post (it meets the post at an angle) and
+vanishes where it leaves (a layer of length R/|l2|, l2 the second root of
+mu a l^2 + l - mu (1-a) = 0, a = d/(D+d)); these end layers multiply the sliding ratio by a
+theta-independent factor above 1 that is negligible for thin rods and grows with d/(D+d)
+and mu (mu = 0.5: -0.1, +0.5, +1.5, +3.1, +5.5 % at D/d = 10, 4, 2, 1, 0.5, measured with
+EI/(T_low R^2) = 0.01; see ``tests/scenes/test_capstan.py``).
 """
 
 from __future__ import annotations
