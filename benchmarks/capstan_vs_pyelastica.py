@@ -36,7 +36,8 @@ exp(mu_eff theta) = 3.3536), centreline control 4.8008 (-0.2 % on exp(mu theta) 
 PyElastica 33.5 s (115x), plateau 3.309 (stick-slip between 2.61 and 3.58; -31 % on its
 target exp(mu theta)), 2.430 at 5 mm/s and 1.719 at 2.5 mm/s: ratio - 1 about proportional
 to the speed, i.e. mostly viscous friction. Its 3.31 at 10 mm/s is near exp(mu_eff theta)
-by coincidence.
+by coincidence. With ``--pyelastica-dt 5e-6`` (c doubled; 58 s): 3.50, stick-slip between
+2.12 and 4.18.
 
 Output (stdout, JSON): {"knotmech_s", "pyelastica_s", "knotmech_ratio", "pyelastica_ratio",
 "exp_mu_theta", "exp_mu_eff_theta", "knotmech_ratio_centreline", "pyelastica_ratio_t",
