@@ -39,7 +39,7 @@ from scipy.linalg import lapack
 from scipy.sparse.csgraph import reverse_cuthill_mckee
 from scipy.sparse.linalg import splu
 
-from ..errors import InputError, SolverError, check_positive
+from ..errors import InputError, SolverError, check_positive, check_range
 from ._kernels import assembly as _asm
 from ._kernels import envelope as _env
 from .elastic import ElasticWorkspace
@@ -57,6 +57,10 @@ _KD_MAX = 64
 # and an ordering made for an older contact pattern lets the band (and the LU cost, which
 # grows like its square) creep up long before the 25 % widening test below triggers
 _REORDER_EVERY = 100
+# chord iterations (SolverOptions.jacobian_reuse) only when contacts have made the reordered
+# band this much wider than a plain rod's (then the LU, growing like kd^2, dominates a
+# Newton iteration; below, a fresh Jacobian is cheaper than the extra iterations)
+_KD_REUSE = 2 * _B
 
 
 @dataclass(frozen=True)
@@ -79,6 +83,11 @@ class SolverOptions:
     predictor : {"quadratic", "linear"}  Newton's start: q + dt v + dt (dt + h) a / 2 with
         the last change of velocity a (default; falls back to the linear guess if Newton
         fails from it), or q + dt v
+    jacobian_reuse : float  with interaction triplets that widen the reordered band beyond
+        twice a plain rod's (rod-rod contact): reuse the step's last LU factors for the
+        next Newton iteration while the last iteration cut the residual by at least this
+        factor (default 0.1; 0: always a fresh Jacobian); a chord iteration that converges
+        slower brings a fresh Jacobian back
     """
 
     dt_min: float = 1e-9
@@ -92,11 +101,13 @@ class SolverOptions:
     linear_solver: str = "auto"
     throw: bool = True
     predictor: str = "quadratic"
+    jacobian_reuse: float = 0.1
 
     def __post_init__(self):
         check_positive("dt_min", self.dt_min)
         check_positive("rtol", self.rtol)
         check_positive("xtol", self.xtol)
+        check_range("jacobian_reuse", self.jacobian_reuse, 0.0, 1.0)
         for name in ("max_newton", "max_backtracks", "grow_after"):
             v = getattr(self, name)
             if int(v) != v or v < 1:
@@ -161,6 +172,7 @@ class Stepper:
         self.floor_t = 64.0 * eps * float(np.max(system.gj / system.voronoi))
         self.n_evals = 0
         self._jac_pending = False
+        self._factors_valid = False
         self._mode = "band"
         self._order_stale = True
         self._order_fresh = False
@@ -265,8 +277,10 @@ class Stepper:
             er, ec, _ = ws.coo()
             r0, c0 = gm[er], gm[ec]
             d0 = gm[self.free_idx]
-            self._elastic_rc = (r0, c0, d0, max(_asm.max_band(r0, c0), 0))
-        r0, c0, d0, kd0 = self._elastic_rc
+            first0 = np.arange(self.free_idx.size, dtype=np.int64)
+            _env.pattern_first(r0, c0, first0)
+            self._elastic_rc = (r0, c0, d0, max(_asm.max_band(r0, c0), 0), first0)
+        r0, c0, d0, kd0, first0 = self._elastic_rc
         trip = self.trip
         kd = max(kd0, _asm.max_band_mapped(trip.rows, trip.cols, gm), 1)
         if not self._order_fresh and kd > 1.25 * self._kd_ordered + 4:
@@ -287,6 +301,11 @@ class Stepper:
             _asm.band_scatter(d0, d0, dv, 1.0, kd, False, ab)
             _asm.band_scatter_mapped(trip.rows, trip.cols, trip.vals, gm, -1.0, kd, ab)
             self._ab, self._kd = ab, kd
+            first = getattr(self, "_env_first", None)
+            if first is None or first.size != nf:
+                first = self._env_first = np.empty(nf, dtype=np.int64)
+            first[:] = first0
+            _env.pattern_first_mapped(trip.rows, trip.cols, gm, first)
             self._factor_band()
             self._mode = "sparse-band"
         else:
@@ -312,14 +331,12 @@ class Stepper:
         if orig is None or orig.shape != ab.shape:
             orig = np.empty_like(ab, order="F")
             self._ab_orig = orig
-            self._env_first = np.empty(nf, dtype=np.int64)
             self._env_last = np.empty(nf, dtype=np.int64)
-        orig[...] = ab
-        _env.env_first(ab, kd, self._env_first)
+            self._work = np.empty(nf)
+        self._anorm = _env.copy_band(ab, orig)
         _env.env_last(self._env_first, self._env_last)
-        tiny = 1e-13 * np.abs(orig[kd])
         self._lu_piv = None
-        if _env.env_factor(ab, kd, self._env_last, tiny) != 0:
+        if _env.env_factor(ab, kd, self._env_last, orig, 1e-13) != 0:
             self._factor_pivoted()
 
     def _factor_pivoted(self) -> None:
@@ -334,13 +351,14 @@ class Stepper:
 
     def _solve_band(self, b: np.ndarray) -> np.ndarray:
         """Solve with the factors of :meth:`_factor_band`; an envelope solution whose
-        componentwise backward error exceeds 1e-10 (element growth without pivoting) is
-        redone with the pivoted LU."""
+        backward error is too large (element growth without pivoting) is
+        redone with the pivoted LU (normwise backward error above 1e-11; pivoted LU
+        reaches ~1e-16)."""
         kd = self._kd
         if self._lu_piv is None:
             y = b.copy()
             _env.env_solve(self._ab, kd, self._env_last, y)
-            if _env.band_residual(self._ab_orig, kd, y, b) <= 1e-10:
+            if _env.band_residual(self._ab_orig, kd, y, b, self._anorm, self._work) <= 1e-11:
                 return y
             self._factor_pivoted()
         lu, piv = self._lu_piv
@@ -359,10 +377,14 @@ class Stepper:
             buf.fill(0.0)
         return buf
 
-    def solve(self, rhs: np.ndarray) -> np.ndarray:
-        """Solve J x = rhs with x = 0 on constrained dofs."""
-        if self._jac_pending:
+    def solve(self, rhs: np.ndarray, reuse: bool = False) -> np.ndarray:
+        """Solve J x = rhs with x = 0 on constrained dofs; ``reuse``: with the factors of
+        the last Jacobian of this step (reordered band only) instead of the current one."""
+        if reuse and self._mode == "sparse-band" and self._factors_valid and self._kd > _KD_REUSE:
+            self._jac_pending = False
+        elif self._jac_pending:
             self._assemble()
+            self._factors_valid = self._mode == "sparse-band"
         if self._mode == "band":
             b = rhs.copy()
             b[self.cdofs] = 0.0
@@ -437,6 +459,8 @@ class Stepper:
         for c in self.constraints:
             q[c.dofs(self.system)] = c.values(self.system, t_new, dt, st.q)
         scales = self.evaluate(q, st, dt, t_new)
+        self._factors_valid = False
+        rel_prev = np.inf
         for k in range(opt.max_newton + 1):
             if not np.all(np.isfinite(self.f)):
                 raise _StepFailed("non-finite residual", k)
@@ -446,7 +470,10 @@ class Stepper:
                 return q, k
             if k == opt.max_newton:
                 break
-            dq = self.solve(-self.f)
+            # chord step (the last factors of this step) while they still cut the
+            # residual by the factor jacobian_reuse per iteration
+            dq = self.solve(-self.f, reuse=rel <= opt.jacobian_reuse * rel_prev)
+            rel_prev = rel
             if not np.all(np.isfinite(dq)):
                 raise _StepFailed("non-finite Newton step", k)
             # backtracking: accept when the incremental potential decreases (Armijo, with a

@@ -133,22 +133,34 @@ def edge_distance_hessian(x, grad, hess):
     point-edge and point-point cases) are simply held fixed, which is exact away from the
     switching surfaces. Writes ``grad`` (12,) and ``hess`` (12, 12); returns Delta.
     """
-    x1 = x[0:3]
-    x2 = x[3:6]
-    x3 = x[6:9]
-    x4 = x[9:12]
+    coef = np.empty(4)
+    w = np.empty(3)
+    gphi = np.empty(12)
+    H = np.empty((12, 12))
+    B = np.empty((12, 2))
+    U = np.empty((2, 2))
+    return _edge_distance_hessian_ws(x, grad, hess, coef, w, gphi, H, B, U)
+
+
+@njit(cache=True)
+def _edge_distance_hessian_ws(x, grad, hess, coef, w, gphi, H, B, U):
+    """:func:`edge_distance_hessian` with caller-provided work arrays coef (4,), w (3,),
+    gphi (12,), H (12, 12), B (12, 2), U (2, 2) (no allocation per pair)."""
     s, t, free_s, free_t = _segment_params_flat(x)
-    coef = np.array([1.0 - s, s, -(1.0 - t), -t])
-    w = coef[0] * x1 + coef[1] * x2 + coef[2] * x3 + coef[3] * x4
-    dist = np.sqrt(w @ w)
-    e1 = x2 - x1
-    e2 = x4 - x3
+    coef[0] = 1.0 - s
+    coef[1] = s
+    coef[2] = -(1.0 - t)
+    coef[3] = -t
+    d2 = 0.0
+    for m in range(3):
+        w[m] = coef[0] * x[m] + coef[1] * x[3 + m] + coef[2] * x[6 + m] + coef[3] * x[9 + m]
+        d2 += w[m] * w[m]
+    dist = np.sqrt(d2)
     # phi_x = A^T w ; phi_xx = (coef coef^T) kron I3
-    gphi = np.zeros(12)
     for k in range(4):
         for m in range(3):
             gphi[3 * k + m] = coef[k] * w[m]
-    H = np.zeros((12, 12))
+    H[:, :] = 0.0
     for k in range(4):
         for l in range(4):
             for m in range(3):
@@ -156,8 +168,8 @@ def edge_distance_hessian(x, grad, hess):
     nfree = int(free_s) + int(free_t)
     if nfree > 0:
         # columns of phi_xu for the free parameters and the matrix phi_uu
-        B = np.zeros((12, 2))
-        U = np.zeros((2, 2))
+        B[:, :] = 0.0
+        U[:, :] = 0.0
         col = 0
         idx_s = -1
         idx_t = -1
@@ -167,26 +179,35 @@ def edge_distance_hessian(x, grad, hess):
         if free_t:
             idx_t = col
             col += 1
+        e11 = 0.0
+        e22 = 0.0
+        e12 = 0.0
+        for m in range(3):
+            a1 = x[3 + m] - x[m]
+            a2 = x[9 + m] - x[6 + m]
+            e11 += a1 * a1
+            e22 += a2 * a2
+            e12 += a1 * a2
         if free_s:
             # d/dx (w . e1) = A^T e1 + [-w, w, 0, 0]
             for k in range(4):
                 for m in range(3):
-                    B[3 * k + m, idx_s] = coef[k] * e1[m]
+                    B[3 * k + m, idx_s] = coef[k] * (x[3 + m] - x[m])
             for m in range(3):
                 B[m, idx_s] -= w[m]
                 B[3 + m, idx_s] += w[m]
-            U[idx_s, idx_s] = e1 @ e1
+            U[idx_s, idx_s] = e11
         if free_t:
             # d/dx (-w . e2) = -A^T e2 + [0, 0, w, -w]
             for k in range(4):
                 for m in range(3):
-                    B[3 * k + m, idx_t] = -coef[k] * e2[m]
+                    B[3 * k + m, idx_t] = -coef[k] * (x[9 + m] - x[6 + m])
             for m in range(3):
                 B[6 + m, idx_t] += w[m]
                 B[9 + m, idx_t] -= w[m]
-            U[idx_t, idx_t] = e2 @ e2
+            U[idx_t, idx_t] = e22
         if free_s and free_t:
-            U[0, 1] = -(e1 @ e2)
+            U[0, 1] = -e12
             U[1, 0] = U[0, 1]
         if nfree == 1:
             inv = 1.0 / U[0, 0]
@@ -334,6 +355,12 @@ def rodrod_assemble(
     vrel = np.empty(3)
     Dm = np.empty((3, 3))
     Dp = np.empty((3, 3))
+    coef = np.empty(4)
+    w = np.empty(3)
+    gphi = np.empty(12)
+    H = np.empty((12, 12))
+    B = np.empty((12, 2))
+    U = np.empty((2, 2))
     energy = 0.0
     contact_force[:] = 0.0
     cnt = 0
@@ -347,7 +374,7 @@ def rodrod_assemble(
                 x[3 * k + m] = pos[nodes[k], m]
                 dofs[3 * k + m] = node_dofs[nodes[k], m]
         two_h = radius_edge[ei] + radius_edge[ej]
-        dist = edge_distance_hessian(x, grad, hess)
+        dist = _edge_distance_hessian_ws(x, grad, hess, coef, w, gphi, H, B, U)
         e, de, d2e = penalty_derivs(two_h - dist, sharpness, stiffness)
         energy += e
         # pairs beyond z_jacobian add their force but no Jacobian entries

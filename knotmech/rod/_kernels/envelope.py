@@ -7,9 +7,9 @@ inside the envelope {(i, j): first[max(i, j)] <= min(i, j)} (George & Liu, "Comp
 solution of large sparse positive definite systems", Prentice-Hall 1981, ch. 4), so its
 cost is the sum of the squared envelope widths instead of n kd^2 (kd^2 to 2 kd^2 per row
 for the pivoted band LU, LAPACK dgbtrf). Without pivoting the factorisation can meet a
-small pivot or element growth: :func:`env_factor` reports a pivot below ``tiny`` and the
-caller checks the backward error of each solve (:func:`band_residual`), falling back to the
-pivoted LU when either fails.
+small pivot or element growth: :func:`env_factor` reports a pivot that fell below a fraction
+of its diagonal entry, and the caller checks the backward error of each solve
+(:func:`band_residual`), falling back to the pivoted LU when either check fails.
 
 Storage: ``ab`` (2 kd + 1, n), Fortran order, A[i, j] at ``ab[kd + i - j, j]``; L (unit
 lower) and U overwrite it.
@@ -17,22 +17,37 @@ lower) and U overwrite it.
 
 from __future__ import annotations
 
-import numpy as np
 from numba import njit
 
 
 @njit(cache=True)
-def env_first(ab, kd, first):
-    """first[i] = the smallest j <= i with A[i, j] != 0 or A[j, i] != 0 (row/column profile
-    of the structurally symmetrised matrix)."""
-    n = ab.shape[1]
-    for i in range(n):
-        f = i
-        for j in range(max(0, i - kd), i):
-            if ab[kd + i - j, j] != 0.0 or ab[kd + j - i, i] != 0.0:
-                f = j
-                break
-        first[i] = f
+def pattern_first(rows, cols, first):
+    """Widen the envelope to the entries (rows[k], cols[k]) (skipped if an index is negative):
+    first[i] = the smallest j <= i with A[i, j] or A[j, i] structurally non-zero (start
+    from first[i] = i)."""
+    for k in range(rows.shape[0]):
+        i = rows[k]
+        j = cols[k]
+        if i < 0 or j < 0:
+            continue
+        if i < j:
+            i, j = j, i
+        if j < first[i]:
+            first[i] = j
+
+
+@njit(cache=True)
+def pattern_first_mapped(rows, cols, gmap, first):
+    """:func:`pattern_first` of the entries (gmap[rows[k]], gmap[cols[k]])."""
+    for k in range(rows.shape[0]):
+        i = gmap[rows[k]]
+        j = gmap[cols[k]]
+        if i < 0 or j < 0:
+            continue
+        if i < j:
+            i, j = j, i
+        if j < first[i]:
+            first[i] = j
 
 
 @njit(cache=True)
@@ -50,16 +65,30 @@ def env_last(first, last):
             last[k] = last[k - 1]
 
 
+@njit(cache=True)
+def copy_band(ab, out):
+    """out[...] = ab; returns the largest column sum of |A| (its 1-norm)."""
+    norm = 0.0
+    for j in range(ab.shape[1]):
+        c = 0.0
+        for r in range(ab.shape[0]):
+            v = ab[r, j]
+            out[r, j] = v
+            c += abs(v)
+        norm = max(norm, c)
+    return norm
+
+
 @njit(cache=True, fastmath=True)
-def env_factor(ab, kd, last, tiny):
+def env_factor(ab, kd, last, orig, rel_tiny):
     """In-place LU without pivoting (Doolittle, right-looking) inside the envelope.
 
-    Returns 0, or k + 1 if the k-th pivot fell to ``|u_kk| <= tiny[k]`` (factorisation
-    abandoned; ``ab`` is then garbage)."""
+    Returns 0, or k + 1 if the k-th pivot fell to ``|u_kk| <= rel_tiny |a_kk|`` (``orig``
+    the unfactored matrix; factorisation abandoned, ``ab`` is then garbage)."""
     n = ab.shape[1]
     for k in range(n):
         p = ab[kd, k]
-        if not (abs(p) > tiny[k]):
+        if not (abs(p) > rel_tiny * abs(orig[kd, k])):
             return k + 1
         inv = 1.0 / p
         lk = last[k]
@@ -90,21 +119,24 @@ def env_solve(ab, kd, last, b):
 
 
 @njit(cache=True)
-def band_residual(ab, kd, x, b):
-    """max_i |(A x - b)_i| / max_i (sum_j |A_ij x_j| + |b_i|): the componentwise backward
-    error of a solution x of the band system A (layout above, unfactored) x = b."""
+def band_residual(ab, kd, x, b, anorm, r):
+    """Normwise backward error |A x - b|_inf / (|A| |x|_inf + |b|_inf) of a solution x of the
+    band system A (layout above, unfactored) x = b; ``anorm`` a norm of A, ``r`` (n,) work."""
     n = ab.shape[1]
-    r = np.zeros(n)
-    s = np.zeros(n)
+    for i in range(n):
+        r[i] = -b[i]
     for j in range(n):
         xj = x[j]
-        for i in range(max(0, j - kd), min(n, j + kd + 1)):
-            v = ab[kd + i - j, j] * xj
-            r[i] += v
-            s[i] += abs(v)
+        i0 = max(0, j - kd)
+        i1 = min(n, j + kd + 1)
+        for i in range(i0, i1):
+            r[i] += ab[kd + i - j, j] * xj
     num = 0.0
-    den = 0.0
+    xmax = 0.0
+    bmax = 0.0
     for i in range(n):
-        num = max(num, abs(r[i] - b[i]))
-        den = max(den, s[i] + abs(b[i]))
+        num = max(num, abs(r[i]))
+        xmax = max(xmax, abs(x[i]))
+        bmax = max(bmax, abs(b[i]))
+    den = anorm * xmax + bmax
     return num / den if den > 0.0 else 0.0
