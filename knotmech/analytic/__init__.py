@@ -17,11 +17,13 @@ This subpackage imports nothing of knotmech except the leaf module
 
 from knotmech.analytic.capstan import (
     bending_parameter,
+    capstan_end_factors,
     capstan_high_tension_nonlinear,
     capstan_ratio,
     capstan_ratio_bending,
     capstan_ratio_nonlinear,
     capstan_ratio_thick,
+    capstan_ratio_thick_ends,
     capstan_tension_profile,
     liftoff_angle,
     mu_eff,
@@ -81,6 +83,8 @@ __all__ = [
     # capstan
     "capstan_ratio",
     "capstan_ratio_thick",
+    "capstan_end_factors",
+    "capstan_ratio_thick_ends",
     "capstan_tension_profile",
     "mu_eff",
     "mu_from_mu_eff",

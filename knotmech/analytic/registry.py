@@ -345,6 +345,16 @@ def _register_builtin() -> None:
             limits=(Limit("issue 2 reference, D/d = 1", {"D_over_d": 1.0}, 0.1467688363035169),),
             reference="clove-hitch paper, finite-thickness capstan",
         )
+    ends = _optional("capstan", "capstan_ratio_thick_ends")
+    if ends is not None:
+        register(
+            ends,
+            sample={"mu": 0.5, "wrap_angle": np.pi, "D_over_d": 1.0},
+            positive=("D_over_d",),
+            nonnegative=("mu", "wrap_angle"),
+            limits=(Limit("mu = 0 gives 1", {"mu": 0.0}, 1.0),),
+            reference="clove-hitch paper eq. (3) with the end layers derived in this package",
+        )
 
 
 _register_builtin()

@@ -10,11 +10,13 @@ from scipy.integrate import solve_ivp
 
 from knotmech.analytic.capstan import (
     bending_parameter,
+    capstan_end_factors,
     capstan_high_tension_nonlinear,
     capstan_ratio,
     capstan_ratio_bending,
     capstan_ratio_nonlinear,
     capstan_ratio_thick,
+    capstan_ratio_thick_ends,
     capstan_tension_profile,
     liftoff_angle,
     mu_eff,
@@ -246,3 +248,44 @@ def test_howell_ratio_grows_slower_than_exponential_at_high_tension():
 def test_bad_input_names_the_argument(call, name):
     with pytest.raises(InputError, match=name):
         call()
+
+
+# --------------------------------------------------------------------------- end layers
+@given(mus, st.floats(0.05, 1e3))
+@FAST
+def test_end_factors_bounds_and_fast_root(mu, Dt):
+    entry, exit_ = capstan_end_factors(mu, Dt)
+    assert entry >= 1.0 and 0.0 < exit_ <= 1.0
+    # the exit factor is |l2| / (|l2| + mu_eff), l2 the negative root of the quadratic whose
+    # positive root is mu_eff: mu a l^2 + l - mu (1 - a) = 0, a = d / (D + d)
+    a = 1.0 / (1.0 + Dt)
+    roots = np.roots([mu * a, 1.0, -mu * (1.0 - a)])
+    l2, l1 = sorted(roots.real)
+    assert l1 == pytest.approx(float(mu_eff(mu, Dt)), rel=1e-8)
+    assert exit_ == pytest.approx(-l2 / (-l2 + l1), rel=1e-9)
+
+
+@given(mus)
+@FAST
+def test_end_factors_vanish_for_thin_rods(mu):
+    entry, exit_ = capstan_end_factors(mu, 1e9)
+    assert abs(entry - 1.0) < 1e-6 and abs(exit_ - 1.0) < 1e-6
+    assert capstan_end_factors(0.0, 1.0) == (1.0, 1.0)
+
+
+def test_end_factors_against_der():
+    # DER capstan with surface friction, mu = 0.5, D/d = 1, mesh converged: entry 1.0875,
+    # exit 0.9491, sliding ratio +3.1 % above exp(mu_eff theta) at theta = pi/2 and pi
+    # (tests/scenes/test_capstan.py::test_D_over_d_1_excess_is_an_end_layer_factor)
+    entry, exit_ = capstan_end_factors(0.5, 1.0)
+    assert entry == pytest.approx(1.0875, rel=1e-2)
+    assert exit_ == pytest.approx(0.9491, rel=1e-2)
+    excess = capstan_ratio_thick_ends(0.5, math.pi, 1.0) / capstan_ratio_thick(0.5, math.pi, 1.0)
+    assert math.log(excess) == pytest.approx(0.031, abs=4e-3)
+
+
+def test_end_factors_reject_bad_input():
+    with pytest.raises(InputError, match="D_over_d"):
+        capstan_end_factors(0.3, -1.0)
+    with pytest.raises(InputError, match="mu"):
+        capstan_end_factors(float("nan"), 1.0)

@@ -9,7 +9,7 @@ bending correction -(1+mu^2)/2 EI/(T_low R^2) is then below 1 %).
 import numpy as np
 import pytest
 
-from knotmech.analytic.capstan import mu_eff
+from knotmech.analytic.capstan import capstan_end_factors, mu_eff
 from knotmech.scenes.capstan import capstan, capstan_two_loops
 
 D_ROD = 4e-3
@@ -124,26 +124,6 @@ def _interior_fit(r, lo=0.2, hi=0.8):
     return np.polyfit(ang[inner], np.log(r.tension[inner]), 1)
 
 
-def _end_layer_factors(mu, D_over_d):
-    """Entry and exit factors of a sliding thick rope (EI -> 0) on a post, with surface friction.
-
-    In the wrap (planar Kirchhoff rod, moment constant) Q = (d/2) mu N, T' = -(1-a) mu N and
-    N = T/R + Q', a = d/(D+d): T = A exp(-l1 phi) + B exp(-l2 phi) with l1 = mu_eff and
-    l2 = (-1 - sqrt(1 + 4 mu^2 a (1-a)))/(2 mu a) < 0 the roots of
-    mu a l^2 + l - mu (1-a) = 0. Exit (straight lead, no shear): N = 0 there, which fixes the
-    fast mode: T_exit_of_slow_mode/T_low = |l2|/(|l2| + l1). Entry: the straight lead meets
-    the post with the shear Q = (d/2) mu N that the wrap needs, so the rod comes onto the
-    post at an angle Delta with tan(Delta) = a mu_eff/(1-a) before the lead's tangent point
-    and T(0+) = T_high cos(Delta): T_high/T_slow(phi = 0) = exp(l1 Delta)/cos(Delta).
-    The sliding ratio is exp(mu_eff theta) times their product (derived for this test).
-    """
-    a = 1.0 / (1.0 + D_over_d)
-    l1 = float(mu_eff(mu, D_over_d))
-    l2 = (-1.0 - np.sqrt(1.0 + 4.0 * mu**2 * a * (1.0 - a))) / (2.0 * mu * a)
-    delta = np.arctan(a * l1 / (1.0 - a))
-    return np.exp(l1 * delta) / np.cos(delta), -l2 / (l1 - l2)
-
-
 def test_D_over_d_1_excess_is_an_end_layer_factor():
     """At D/d = 1 the sliding ratio is +3.1 % above exp(mu_eff theta) (mu = 0.5), outside the
     2 % of the thicker rods, and this is the thick-rod model's end layers, not an error of
@@ -152,7 +132,8 @@ def test_D_over_d_1_excess_is_an_end_layer_factor():
     Q = (d/2) f, which must build up where the rod comes onto the post and vanish where it
     leaves, and these two layers (about 0.3 rad each) multiply the ratio by a factor
     (measured: 1.0875 at the entry, 0.949 at the exit, product 1.031; a rope-limit model,
-    :func:`_end_layer_factors`, gives 1.0853 and 0.9472, +2.8 %) that does not depend
+    :func:`~knotmech.analytic.capstan_end_factors`, gives 1.0853 and 0.9472, +2.8 %)
+    that does not depend
     on theta and grows with d/(D+d) and mu (-0.1, +0.5, +1.5, +3.1, +5.5 % at
     D/d = 10, 4, 2, 1, 0.5, theta = pi; +0.9 % at D/d = 1, mu = 0.2).
     Measured at D/d = 1: interior rate 0.2358 vs mu_eff = 0.2361; excess +3.16 %
@@ -174,7 +155,7 @@ def test_D_over_d_1_excess_is_an_end_layer_factor():
     # the model is approximate: inextensible, EI -> 0; over D/d = 0.5 .. 4 and mu = 0.2 .. 0.8
     # its factors are within about 1 % of the simulated ones)
     fit = _interior_fit(full)
-    entry, exit_ = _end_layer_factors(0.5, 1.0)
+    entry, exit_ = capstan_end_factors(0.5, 1.0)
     t_high = full.ratio * full.t_low
     assert t_high / np.exp(np.polyval(fit, 0.0)) == pytest.approx(entry, rel=1e-2)
     assert np.exp(np.polyval(fit, np.pi)) / full.t_low == pytest.approx(exit_, rel=1e-2)
