@@ -17,9 +17,12 @@ Procedure (one recording):
    boundary amplitudes, onsets and positions that only exist under the effect,
    and correlated noise); accept an effect only if ``p < alpha / m`` (``m``
    the number of effects tested, Bonferroni), the BIC improves and the held-out
-   RMS (contiguous blocks held out) drops (for ``finite_thickness``, which adds no
-   free parameter but reconciles mu with the prior ``mu_nominal``: does not rise by
-   more than 1 %). Repeat until no candidate passes.
+   error drops: contiguous blocks are held out in turn, and the RMS of their whitened
+   one-step-ahead prediction errors (innovations, both models under the augmented
+   model's noise) must fall (for ``finite_thickness``, which adds no free parameter
+   but reconciles mu with the prior ``mu_nominal``: not rise by more than 1 %); the
+   report's ``heldout_rms_*`` stay the raw held-out RMS. Repeat until no candidate
+   passes.
 4. Test the final residuals for structure; a located, significant remainder
    gives the verdict ``unexplained``; otherwise the verdict is the accepted
    effect with the largest likelihood gain, or ``none``.
@@ -30,7 +33,7 @@ friction only (``mu``, a signed shift ``delta0_m``, a displacement scale ``u_sca
 tests ``static_friction`` only (a re-run with ``mu_s > mu_k``). Its p-value is the
 asymptotic one, ``0.5 * P(chi2_1 > LR)`` (``dmu_static = 0`` on the boundary),
 with the whitened residuals of the fitted noise model: a parametric bootstrap would
-need new simulations for every draw. BIC and the held-out check apply as above.
+need new simulations for every draw. BIC and the (raw) held-out RMS check apply.
 """
 
 from __future__ import annotations
@@ -48,6 +51,8 @@ from knotmech.diagnose.fitting import (
     fit_baseline,
     fit_model,
     fit_with_effect,
+    heldout_errors,
+    heldout_innovation_rms,
     heldout_rms,
 )
 from knotmech.diagnose.locate import flexible_mismatch, regions_from_mask
@@ -262,7 +267,8 @@ def _select_closed_form(base, rec, data, starts, gs, rng, alpha, effects, max_ef
             )
         ok = [e for e in ok if e in set(effects)]
     alpha_each = alpha / max(len(ok), 1)
-    held_before = heldout_rms(base, data, rec.trial)
+    err_cur, block = heldout_errors(base, data, rec.trial)
+    held_before = _rms(err_cur)
     held_cur = held_before
     current = base
     accepted = []
@@ -288,10 +294,16 @@ def _select_closed_form(base, rec, data, starts, gs, rng, alpha, effects, max_ef
             if dbic <= 0:
                 break
             p, b = _bootstrap_p(null_c, name, lr, data, starts, gs, rng, alpha_each)
-            held_alt = heldout_rms(alt, data, rec.trial)
+            err_alt, _ = heldout_errors(alt, data, rec.trial)
+            held_alt = _rms(err_alt)
+            # the held-out criterion on whitened one-step-ahead prediction errors (both
+            # models under the augmented model's noise): under correlated noise the raw
+            # RMS hardly moves for a sharp mismatch of a few noise sd
+            inn_cur = heldout_innovation_rms(err_cur, block, alt.noise, alt.mean, starts)
+            inn_alt = heldout_innovation_rms(err_alt, block, alt.noise, alt.mean, starts)
             # an effect with no new free parameter (finite_thickness reinterprets mu to
             # meet the prior) need not improve the curve, only not spoil it (1 %)
-            held_ok = held_alt < held_cur * (1.01 if _n_new(current, alt, name) == 0 else 1.0)
+            held_ok = inn_alt < inn_cur * (1.01 if _n_new(current, alt, name) == 0 else 1.0)
             ev = {
                 "effect": name,
                 "delta_bic": float(f"{dbic:.4g}"),
@@ -299,15 +311,16 @@ def _select_closed_form(base, rec, data, starts, gs, rng, alpha, effects, max_ef
                 "p_value": float(f"{p:.3g}"),
                 "bootstrap_draws": b,
                 "heldout_rms": float(f"{held_alt:.4g}"),
+                "heldout_innovation_rms": [float(f"{inn_cur:.4g}"), float(f"{inn_alt:.4g}")],
                 "accepted": bool(p < alpha_each and held_ok),
             }
             tested.append(ev)
             if ev["accepted"]:
-                step = (name, alt, ev, held_alt)
+                step = (name, alt, ev, held_alt, err_alt)
                 break
         if step is None:
             break
-        name, alt, ev, held_alt = step
+        name, alt, ev, held_alt, err_cur = step
         accepted.append((name, ev, lr_gain(current, alt)))
         current, held_cur = alt, held_alt
     return current, accepted, tested, steps, skipped, held_before, held_cur
@@ -390,6 +403,10 @@ def _select_der(der, base, rec, data, starts, gs, alpha, effects):
         return base, [], [ev], steps, skipped, held_before, held_before
     accepted = [("static_friction", ev, lr)]
     return alt, accepted, [ev], steps, skipped, held_before, held_alt
+
+
+def _rms(err) -> float:
+    return float(np.sqrt(np.mean(err**2)))
 
 
 def lr_gain(current, alt) -> float:
