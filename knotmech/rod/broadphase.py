@@ -25,6 +25,7 @@ def candidate_edge_pairs(
     edge_rod=None,
     exclusion=2,
     method="sweep",
+    validate=True,
 ):
     """Edge pairs whose grown bounding boxes overlap (candidates for contact).
 
@@ -46,12 +47,26 @@ def candidate_edge_pairs(
         paired; edges sharing a node never are.
     method : {"sweep", "brute"}
         Sort-and-sweep (default) or the O(N^2) reference.
+    validate : bool
+        Check and convert the arguments (default). False: the caller passes contiguous
+        float64 positions and radii (n_edges,), int64 edge_nodes and edge_rod, a margin
+        >= 0 (the per-step call of the contact interaction).
 
     Returns
     -------
     pairs : (n_pairs, 2) int64 array
         Sorted rows (i < j), sorted lexicographically.
     """
+    if not validate:
+        inflate = edge_radius + 0.5 * margin
+        n_edges = edge_nodes.shape[0]
+        lo = np.empty((n_edges, 3))
+        hi = np.empty((n_edges, 3))
+        edge_boxes(positions, edge_nodes, inflate, lo, hi)
+        pairs = sweep_pairs(lo, hi, edge_nodes, edge_rod, int(exclusion))
+        if pairs.shape[0] > 1:
+            pairs = pairs[np.lexsort((pairs[:, 1], pairs[:, 0]))]
+        return pairs
     pos = np.ascontiguousarray(positions, dtype=float)
     en = np.ascontiguousarray(edge_nodes, dtype=np.int64)
     if pos.ndim != 2 or pos.shape[1] != 3:

@@ -27,6 +27,8 @@ from knotmech.rod._kernels.contact_rodrod import (
     ENTRIES_PER_PAIR,
     Z_CUTOFF,
     Z_JACOBIAN,
+    max_node_speed,
+    max_pair_displacement,
     rodrod_assemble,
     rodrod_energy,
     rodrod_near,
@@ -159,22 +161,22 @@ class RodContact:
 
     def begin_step(self, system, q_old, v_old, dt):
         """Broad phase at the start of the step (pairs kept fixed during Newton)."""
+        rad, en, nd, rod_of_edge, rmax = self._arrays(system)[:5]
         pos = _positions(system, q_old)
-        rad = np.asarray(system.rod_radius_edge, dtype=float)
         margin = self.margin
         if margin is None:
             vmax = 0.0
             if v_old is not None:
-                v = np.asarray(v_old, dtype=float)[system.node_dofs]
-                vmax = float(np.max(np.linalg.norm(v, axis=1))) if v.size else 0.0
-            margin = 30.0 / self.sharpness + 2.0 * float(np.max(rad)) + 2.0 * vmax * dt
+                vmax = max_node_speed(np.asarray(v_old, dtype=float), nd)
+            margin = 30.0 / self.sharpness + 2.0 * rmax + 2.0 * vmax * dt
         self.pairs = candidate_edge_pairs(
             pos,
-            system.edge_nodes,
+            en,
             edge_radius=rad,
             margin=margin,
-            edge_rod=system.edge_rod,
+            edge_rod=rod_of_edge,
             exclusion=self._exclusion(system),
+            validate=False,
         )
 
     def _ensure_pairs(self, system, q):
@@ -189,12 +191,12 @@ class RodContact:
         if npair == 0:
             self.last_normal_force = np.zeros(0)
             return
-        rad, en, nd = self._arrays(system)
+        rad, en, nd, _, _, rmin = self._arrays(system)
         if self.friction is not None:
-            mu, fk, fc = self.friction.parameters(float(np.min(rad)))
+            mu, fk, fc = self.friction.parameters(rmin)
         else:
             mu, fk, fc = 0.0, 1.0, 0.0
-        pos = _positions(system, q)
+        pos = np.asarray(q, dtype=float)[nd]
         near = self._near_buffer(npair)
         n_near = rodrod_near(pos, pairs, en, rad, self.sharpness, Z_CUTOFF, near)
         room = n_near * ENTRIES_PER_PAIR
@@ -207,7 +209,7 @@ class RodContact:
         fn = np.empty(npair)
         e, cnt = rodrod_assemble(
             pos,
-            _positions(system, q_old),
+            np.asarray(q_old, dtype=float)[nd],
             float(dt) if dt else 1.0,
             pairs,
             near,
@@ -237,14 +239,19 @@ class RodContact:
             _emit(rows, cols, vals, r[:cnt], c[:cnt], v[:cnt])
 
     def _arrays(self, system):
-        """Contiguous radius, edge-node and node-dof arrays of ``system`` (cached)."""
+        """Contiguous radius, edge-node, node-dof and edge-rod arrays of ``system``, and its
+        largest and smallest edge radius (cached per system)."""
         cache = getattr(self, "_array_cache", None)
         if cache is None or cache[0] is not system:
+            rad = np.ascontiguousarray(system.rod_radius_edge, dtype=float)
             cache = (
                 system,
-                np.ascontiguousarray(system.rod_radius_edge, dtype=float),
+                rad,
                 np.ascontiguousarray(system.edge_nodes, dtype=np.int64),
                 np.ascontiguousarray(system.node_dofs, dtype=np.int64),
+                np.ascontiguousarray(system.edge_rod, dtype=np.int64),
+                float(np.max(rad)) if rad.size else 0.0,
+                float(np.min(rad)) if rad.size else 0.0,
             )
             self._array_cache = cache
         return cache[1:]
@@ -265,14 +272,15 @@ class RodContact:
         """
         if self.max_displacement is None or self.pairs is None or self.pairs.shape[0] == 0:
             return None
-        en = system.edge_nodes
-        edges = np.unique(self.pairs)
-        nodes = en[edges].ravel()
-        rad = np.repeat(np.asarray(system.rod_radius_edge, dtype=float)[edges], 2)
-        nd = system.node_dofs[nodes]
-        dx = np.asarray(q_new, dtype=float)[nd] - np.asarray(q_old, dtype=float)[nd]
-        ratio = np.sqrt(np.einsum("ij,ij->i", dx, dx)) / rad
-        worst = float(np.max(ratio))
+        rad, en, nd = self._arrays(system)[:3]
+        worst = max_pair_displacement(
+            self.pairs,
+            en,
+            nd,
+            rad,
+            np.asarray(q_new, dtype=float),
+            np.asarray(q_old, dtype=float),
+        )
         if worst > self.max_displacement:
             return (
                 f"tunnelling guard: a contact node moved {worst:.3g} radii in one step "

@@ -38,30 +38,38 @@ class ElasticWorkspace:
         self.hess8 = np.empty((ns, 8, 8))
         self.kappa = np.empty((ns, 2))
         self.twist = np.empty(ns)
+        # the system's (immutable) arrays, looked up once: evaluations run per Newton iterate
+        self._edge_dof0 = s.edge_dof0
+        self._stencil_edge = s.stencil_edge
+        self._rest_length = s.rest_length
+        self._ea = s.ea
+        self._kappa_bar = s.kappa_bar
+        self._ei = s.ei
+        self._voronoi = s.voronoi
+        self._twist_bar = s.twist_bar
+        self._gj = s.gj
 
     def frames(self, q, tangents_old, d1_old, ref_twist_old) -> None:
         """Reference frames at ``q`` transported from the step-start frames; material frames."""
-        s = self.system
-        _fr.edge_tangents(q, s.edge_dof0, self.tangents, self.lengths)
+        ed0, se = self._edge_dof0, self._stencil_edge
+        _fr.edge_tangents(q, ed0, self.tangents, self.lengths)
         _fr.transport_frames(tangents_old, d1_old, self.tangents, self.d1, self.d2)
-        _fr.reference_twist(s.stencil_edge, self.tangents, self.d1, ref_twist_old, self.ref_twist)
-        _fr.material_frames(q, s.edge_dof0, self.d1, self.d2, self.m1, self.m2)
+        _fr.reference_twist(se, self.tangents, self.d1, ref_twist_old, self.ref_twist)
+        _fr.material_frames(q, ed0, self.d1, self.d2, self.m1, self.m2)
 
     def grad_hess(self, q) -> None:
         """Gradient of the elastic energy into ``grad``; local Hessians into hess_s, hess8;
         the (stretch, bend, twist) energies into ``energy_parts``. Call :meth:`frames` first.
         """
-        s = self.system
+        ed0, se, vor = self._edge_dof0, self._stencil_edge, self._voronoi
         self.grad[:] = 0.0
-        e_s = _st.stretch_grad_hess(q, s.edge_dof0, s.rest_length, s.ea, self.grad, self.hess_s)
+        e_s = _st.stretch_grad_hess(q, ed0, self._rest_length, self._ea, self.grad, self.hess_s)
         e_b = _bend.bend_grad_hess(
-            q, s.edge_dof0, s.stencil_edge, self.m1, self.m2, s.kappa_bar, s.ei, s.voronoi,
-            self.grad, self.hess8,
-        )  # fmt: skip
+            q, ed0, se, self.m1, self.m2, self._kappa_bar, self._ei, vor, self.grad, self.hess8
+        )
         e_t = _tw.twist_grad_hess(
-            q, s.edge_dof0, s.stencil_edge, self.ref_twist, s.twist_bar, s.gj, s.voronoi,
-            self.grad, self.hess8,
-        )  # fmt: skip
+            q, ed0, se, self.ref_twist, self._twist_bar, self._gj, vor, self.grad, self.hess8
+        )
         self.energy_parts = (e_s, e_b, e_t)
 
     def band_add(self, ab, full: bool = True) -> None:

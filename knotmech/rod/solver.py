@@ -162,6 +162,9 @@ class Stepper:
         self.jdiag = np.zeros(n)
         self.diag = np.zeros(n)
         self.f = np.zeros(n)
+        self._mass = system.mass
+        self._is_theta = system.is_theta
+        self._rest_length = system.rest_length
         self.length_scale = float(np.mean(system.rest_length))
         self.radius_scale = float(np.mean(system.rod_radius_edge))
         self.ea_max = float(np.max(system.ea))
@@ -173,6 +176,9 @@ class Stepper:
         self.n_evals = 0
         self._jac_pending = False
         self._factors_valid = False
+        self._lcol = np.empty(0)
+        self._n_on_order = 0
+        self._work_ordered = 0
         self._mode = "band"
         self._order_stale = True
         self._order_fresh = False
@@ -200,7 +206,7 @@ class Stepper:
         for it in self.interactions:
             it.assemble(s, q, st.q, dt, fext, self.trip)
         pot, sx, sth, rx, rt = _asm.residual_and_scales(
-            s.mass, dt, q, st.q, st.v, ws.grad, fext, s.is_theta, self.free, self.f
+            self._mass, dt, q, st.q, st.v, ws.grad, fext, self._is_theta, self.free, self.f
         )
         # incremental potential (the merit of the line search): its gradient is f for
         # conservative loads and interactions
@@ -212,9 +218,9 @@ class Stepper:
             phi += it.energy(s, q)
         self.phi = phi
         if jacobian:  # the matrix itself is built lazily, by solve()
-            np.subtract(s.mass / (dt * dt), jd, out=self.diag)
+            np.subtract(self._mass / (dt * dt), jd, out=self.diag)
             self._jac_pending = True
-        tens = self.ea_max * _asm.max_abs_strain(ws.lengths, s.rest_length)
+        tens = self.ea_max * _asm.max_abs_strain(ws.lengths, self._rest_length)
         return max(sx, tens), sth, rx, rt
 
     def _use_band(self) -> bool:
@@ -265,7 +271,7 @@ class Stepper:
         OpenBLAS on a loaded machine); wider bands go to SuperLU as CSC. The band matrix
         is filled straight from the elastic Hessian blocks and the triplets through the
         dof map (no COO temporaries)."""
-        self._n_on_order = getattr(self, "_n_on_order", 0) + 1
+        self._n_on_order += 1
         if self._n_on_order > _REORDER_EVERY and self.trip.size:
             self._order_stale = True
         if self._order_stale or self._gmap is None:
@@ -333,10 +339,19 @@ class Stepper:
             self._ab_orig = orig
             self._env_last = np.empty(nf, dtype=np.int64)
             self._work = np.empty(nf)
+        if self._lcol.size < kd + 1:
+            self._lcol = np.empty(2 * kd + 2)
         self._anorm = _env.copy_band(ab, orig)
         _env.env_last(self._env_first, self._env_last)
+        # the envelope grows as contacts move away from those the ordering was made for:
+        # reorder at the next Jacobian once the LU work has grown by a quarter
+        work = _env.env_work(self._env_last)
+        if self._n_on_order == 0:  # first Jacobian on a fresh ordering
+            self._work_ordered = work
+        elif work > 1.25 * self._work_ordered:
+            self._order_stale = True
         self._lu_piv = None
-        if _env.env_factor(ab, kd, self._env_last, orig, 1e-13) != 0:
+        if _env.env_factor(ab, kd, self._env_last, orig, 1e-13, self._lcol) != 0:
             self._factor_pivoted()
 
     def _factor_pivoted(self) -> None:

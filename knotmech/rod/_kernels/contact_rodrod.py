@@ -460,3 +460,37 @@ def rodrod_energy(pos, pairs, edge_nodes, radius_edge, sharpness, stiffness):
         e, de, d2e = penalty_derivs(radius_edge[ei] + radius_edge[ej] - dist, sharpness, stiffness)
         energy += e
     return energy
+
+
+@njit(cache=True)
+def max_pair_displacement(pairs, edge_nodes, node_dofs, radius_edge, q_new, q_old):
+    """Largest |x_new - x_old| / r_e over the nodes of the edges e in ``pairs`` (each node
+    taken with the radius of the paired edge): the tunnelling guard's measure."""
+    worst = 0.0
+    for p in range(pairs.shape[0]):
+        for side in range(2):
+            e = pairs[p, side]
+            inv_r = 1.0 / radius_edge[e]
+            for end in range(2):
+                nd = edge_nodes[e, end]
+                d2 = 0.0
+                for m in range(3):
+                    dx = q_new[node_dofs[nd, m]] - q_old[node_dofs[nd, m]]
+                    d2 += dx * dx
+                ratio = np.sqrt(d2) * inv_r
+                if ratio > worst:
+                    worst = ratio
+    return worst
+
+
+@njit(cache=True)
+def max_node_speed(v, node_dofs):
+    """max over nodes of |v_node| (``v`` the generalised velocity)."""
+    vmax = 0.0
+    for i in range(node_dofs.shape[0]):
+        s2 = 0.0
+        for m in range(3):
+            s2 += v[node_dofs[i, m]] ** 2
+        if s2 > vmax:
+            vmax = s2
+    return np.sqrt(vmax)

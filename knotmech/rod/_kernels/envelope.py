@@ -80,11 +80,13 @@ def copy_band(ab, out):
 
 
 @njit(cache=True, fastmath=True)
-def env_factor(ab, kd, last, orig, rel_tiny):
+def env_factor(ab, kd, last, orig, rel_tiny, lcol):
     """In-place LU without pivoting (Doolittle, right-looking) inside the envelope.
 
-    Returns 0, or k + 1 if the k-th pivot fell to ``|u_kk| <= rel_tiny |a_kk|`` (``orig``
-    the unfactored matrix; factorisation abandoned, ``ab`` is then garbage)."""
+    ``lcol`` (>= kd,) work array (the multipliers of the current column, kept apart so that
+    the column updates vectorise). Returns 0, or k + 1 if the k-th pivot fell to
+    ``|u_kk| <= rel_tiny |a_kk|`` (``orig`` the unfactored matrix; factorisation abandoned,
+    ``ab`` is then garbage)."""
     n = ab.shape[1]
     for k in range(n):
         p = ab[kd, k]
@@ -92,14 +94,29 @@ def env_factor(ab, kd, last, orig, rel_tiny):
             return k + 1
         inv = 1.0 / p
         lk = last[k]
-        for i in range(k + 1, lk + 1):
-            ab[kd + i - k, k] *= inv
+        m = lk - k
+        for t in range(m):
+            v = ab[kd + 1 + t, k] * inv
+            ab[kd + 1 + t, k] = v
+            lcol[t] = v
         for j in range(k + 1, lk + 1):
             ukj = ab[kd + k - j, j]
             if ukj != 0.0:
-                for i in range(k + 1, lk + 1):
-                    ab[kd + i - j, j] -= ab[kd + i - k, k] * ukj
+                col = ab[:, j]
+                base = kd + k + 1 - j
+                for t in range(m):
+                    col[base + t] -= lcol[t] * ukj
     return 0
+
+
+@njit(cache=True)
+def env_work(last):
+    """sum_k (last[k] - k)^2: the multiply-adds of :func:`env_factor` (at most)."""
+    w = 0
+    for k in range(last.shape[0]):
+        d = last[k] - k
+        w += d * d
+    return w
 
 
 @njit(cache=True)
