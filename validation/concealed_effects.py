@@ -59,8 +59,8 @@ SETTINGS = {
     True: {  # quick
         "sizes": (3.0, 6.0),
         "reps": 2,
-        "ar1_sizes": (),
-        "ar1_reps": 0,
+        "ar1_sizes": (10.0,),
+        "ar1_reps": 1,
         "null_reps": 4,
         "ooc_sizes": (8.0,),
         "ooc_reps": 2,
@@ -231,8 +231,18 @@ def summarise(results: list) -> dict:
     per_pair = {}
     for row in big:
         per_pair.setdefault(f"{row['experiment']}:{row['effect']}", []).append(row)
+    ar1_by_size = {}
+    for size in sorted({r["size"] for r in recovery if r["noise"] == "ar1"}):
+        rows = [r for r in recovery if r["noise"] == "ar1" and r["size"] == size]
+        ar1_by_size[f"{size:g}"] = {
+            "data_effects": pooled([r for r in rows if r["effect"] != "finite_thickness"]),
+            "finite_thickness": pooled([r for r in rows if r["effect"] == "finite_thickness"]),
+            "per_pair": {f"{r['experiment']}:{r['effect']}": r["rate"] for r in rows},
+        }
     return {
         "recovery": recovery,
+        # AR(1) rho = 0.9 noise, per effect size (same split as the white-noise target)
+        "recovery_ar1_by_size": ar1_by_size,
         # the target applies to effects the data show; finite_thickness is sized by the
         # prior pull (its recovery is limited by mu_nominal_sigma) and reported apart
         "recovery_at_3_sigma_or_more_white": pooled(
@@ -249,6 +259,13 @@ def summarise(results: list) -> dict:
         "confusion": {k: dict(v) for k, v in confusion.items()},
         "seconds_median": float(np.median([r["seconds"] for r in results])),
     }
+
+
+def _ooc_rate(results, noise):
+    rs = [r for r in results if r["effect"] == "out_of_catalogue" and r["noise"] == noise]
+    if not rs:
+        return None
+    return sum(r["verdict"] == "unexplained" for r in rs) / len(rs)
 
 
 def plot_recovery(summary: dict):
@@ -318,6 +335,17 @@ def run(quick=True, out_dir=".", workers=None, progress=False) -> dict:
         "false_positive_rate_white": nul["white"]["rate"],
         "false_positive_rate_ar1": nul["ar1"]["rate"],
         "unexplained_rate_out_of_catalogue": ooc_k / ooc_n if ooc_n else None,
+        "unexplained_rate_out_of_catalogue_by_noise": {
+            noise: _ooc_rate(results, noise) for noise in ("white", "ar1")
+        },
+        "recovery_rate_ar1_by_size": {
+            str(size): v["data_effects"]["rate"]
+            for size, v in summary["recovery_ar1_by_size"].items()
+        },
+        "recovery_rate_ar1_by_size_finite_thickness": {
+            str(size): v["finite_thickness"]["rate"]
+            for size, v in summary["recovery_ar1_by_size"].items()
+        },
         "median_seconds_per_recording": summary["seconds_median"],
         "wall_seconds": wall,
     }
