@@ -93,5 +93,8 @@ def test_der_plateau_and_static_peak(tmp_path):
     assert n["clove_end_over_two_loops_plateau"] > 1.0
     # ...but below the ideal-rope sliding ratio exp(mu 4 pi) = 55.8 within this pull
     assert n["ratio_end_clove_hitch_kinetic_only"] < n["ideal_rope_clove_hitch_ratio"]
-    # static friction on the post (mu_s = 0.5) changes the clove curve by -0.7 %..+3.8 %
-    assert 0.9 < n["clove_static_over_kinetic_min"] <= n["clove_static_over_kinetic_max"] < 1.1
+    # static friction on the post (mu_s = 0.5): no distinct onset peak, only the sawtooth of
+    # edges passing the nips (largest drop 4.5 %, kinetic 3.9 %; 0.8 % and 1.1 % with 180
+    # nodes); static/kinetic along the pull -0.8 %..+3.6 % here, +-17 % with 180 nodes
+    assert n["largest_drop_clove_hitch_static"] < 0.08
+    assert n["largest_drop_clove_hitch_kinetic_only"] < 0.08
