@@ -33,8 +33,8 @@ def test_recovery_at_three_sigma(quick):
 
 def test_recovery_under_ar1_noise_at_ten_sigma(quick):
     # one recording per (experiment, effect) pair at 10 sd under AR(1) rho = 0.9; before
-    # the likelihood ratio used the augmented model's noise, contact flattening and
-    # static friction were found in 1/3 and 2/3 of such recordings
+    # the likelihood ratio used the augmented model's noise, the full table found
+    # contact flattening in 2 of 6 such recordings
     result, _ = quick
     rows = [r for r in result["results"] if r["noise"] == "ar1" and r["size"] == 10.0]
     assert len(rows) == 9
