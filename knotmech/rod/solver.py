@@ -88,6 +88,9 @@ class SolverOptions:
         next Newton iteration while the last iteration cut the residual by at least this
         factor (default 0.1; 0: always a fresh Jacobian); a chord iteration that converges
         slower brings a fresh Jacobian back
+    jacobian_reuse_steps : float  likewise across steps: the next step (same dt) starts
+        with the last factors if their last iteration cut the residual by at least this
+        factor (default 0.03; 0: every step starts with a fresh Jacobian)
     """
 
     dt_min: float = 1e-9
@@ -102,12 +105,14 @@ class SolverOptions:
     throw: bool = True
     predictor: str = "quadratic"
     jacobian_reuse: float = 0.1
+    jacobian_reuse_steps: float = 0.03
 
     def __post_init__(self):
         check_positive("dt_min", self.dt_min)
         check_positive("rtol", self.rtol)
         check_positive("xtol", self.xtol)
         check_range("jacobian_reuse", self.jacobian_reuse, 0.0, 1.0)
+        check_range("jacobian_reuse_steps", self.jacobian_reuse_steps, 0.0, 1.0)
         for name in ("max_newton", "max_backtracks", "grow_after"):
             v = getattr(self, name)
             if int(v) != v or v < 1:
@@ -144,6 +149,7 @@ class Stepper:
         self.ws = ElasticWorkspace(system)
         n = system.n_dof
         cd = [c.dofs(system) for c in self.constraints]
+        self._cdof_list = cd
         self.cdofs = np.concatenate(cd).astype(np.int64) if cd else np.zeros(0, dtype=np.int64)
         if np.unique(self.cdofs).size != self.cdofs.size:
             raise InputError(
@@ -177,6 +183,8 @@ class Stepper:
         self._jac_pending = False
         self._factors_valid = False
         self._lcol = np.empty(0)
+        self._factors_dt = None
+        self._last_ratio = np.inf
         self._n_on_order = 0
         self._work_ordered = 0
         self._mode = "band"
@@ -217,6 +225,8 @@ class Stepper:
         for it in self.interactions:
             phi += it.energy(s, q)
         self.phi = phi
+        self.rnorm = _asm.masked_norm(self.f, self.free)  # |f| on the free dofs
+        self._eval_dt = dt
         if jacobian:  # the matrix itself is built lazily, by solve()
             np.subtract(self._mass / (dt * dt), jd, out=self.diag)
             self._jac_pending = True
@@ -351,6 +361,7 @@ class Stepper:
         elif work > 1.25 * self._work_ordered:
             self._order_stale = True
         self._lu_piv = None
+        self._lu_checked = False
         if _env.env_factor(ab, kd, self._env_last, orig, 1e-13, self._lcol) != 0:
             self._factor_pivoted()
 
@@ -372,8 +383,11 @@ class Stepper:
         kd = self._kd
         if self._lu_piv is None:
             y = b.copy()
-            _env.env_solve(self._ab, kd, self._env_last, y)
+            _env.env_solve(self._ab, kd, self._env_first, self._env_last, y)
+            if self._lu_checked:  # these factors passed the check on their first solve
+                return y
             if _env.band_residual(self._ab_orig, kd, y, b, self._anorm, self._work) <= 1e-11:
+                self._lu_checked = True
                 return y
             self._factor_pivoted()
         lu, piv = self._lu_piv
@@ -400,6 +414,7 @@ class Stepper:
         elif self._jac_pending:
             self._assemble()
             self._factors_valid = self._mode == "sparse-band"
+            self._factors_dt = self._eval_dt
         if self._mode == "band":
             b = rhs.copy()
             b[self.cdofs] = 0.0
@@ -471,15 +486,33 @@ class Stepper:
 
     def _newton(self, q, st: State, dt: float, t_new: float):
         opt = self.opt
-        for c in self.constraints:
-            q[c.dofs(self.system)] = c.values(self.system, t_new, dt, st.q)
+        for c, dofs in zip(self.constraints, self._cdof_list, strict=True):
+            q[dofs] = c.values(self.system, t_new, dt, st.q)
         scales = self.evaluate(q, st, dt, t_new)
-        self._factors_valid = False
+        # the last factors of the previous step start this one if their last iteration
+        # still cut the residual by jacobian_reuse_steps (and dt is the same)
+        cross = (
+            self._factors_valid
+            and self._factors_dt == dt
+            and self._last_ratio <= opt.jacobian_reuse_steps
+        )
+        if not cross:
+            self._factors_valid = False
+        try:
+            return self._iterate(q, st, dt, t_new, scales, cross)
+        except _StepFailed:
+            self._factors_valid = False
+            raise
+
+    def _iterate(self, q, st, dt, t_new, scales, cross):
+        opt = self.opt
         rel_prev = np.inf
         for k in range(opt.max_newton + 1):
             if not np.all(np.isfinite(self.f)):
                 raise _StepFailed("non-finite residual", k)
             ok, rel = self._converged(scales)
+            if k > 0:
+                self._last_ratio = rel / rel_prev
             if ok:
                 self._check(q, st, dt)
                 return q, k
@@ -487,13 +520,14 @@ class Stepper:
                 break
             # chord step (the last factors of this step) while they still cut the
             # residual by the factor jacobian_reuse per iteration
-            dq = self.solve(-self.f, reuse=rel <= opt.jacobian_reuse * rel_prev)
+            reuse = cross if k == 0 else rel <= opt.jacobian_reuse * rel_prev
+            dq = self.solve(-self.f, reuse=reuse)
             rel_prev = rel
             if not np.all(np.isfinite(dq)):
                 raise _StepFailed("non-finite Newton step", k)
             # backtracking: accept when the incremental potential decreases (Armijo, with a
             # round-off slack) or the residual norm does
-            r0 = float(np.linalg.norm(self.f[self.free]))
+            r0 = self.rnorm
             p0 = self.phi
             slope = float(np.dot(self.f, dq))
             slack = 1e-13 * (abs(p0) + 1.0)
@@ -501,7 +535,7 @@ class Stepper:
             for _ in range(opt.max_backtracks + 1):
                 q_try = q + alpha * dq
                 scales = self.evaluate(q_try, st, dt, t_new)
-                r1 = float(np.linalg.norm(self.f[self.free]))
+                r1 = self.rnorm
                 if np.isfinite(r1) and (
                     not opt.line_search
                     or r1 <= (1.0 - 1e-4 * alpha) * r0
@@ -513,8 +547,7 @@ class Stepper:
                 if not (np.isfinite(r1) and rel < 1e3):
                     raise _StepFailed("line search found no decrease of the residual", k)
             q = q_try
-            stepx = float(np.max(np.abs(alpha * dq[self.fx]), initial=0.0))
-            stept = float(np.max(np.abs(alpha * dq[self.ft]), initial=0.0))
+            stepx, stept = _asm.max_abs_split(dq, alpha, self.fx, self.ft)
             if (
                 stepx <= opt.xtol * self.length_scale
                 and stept <= opt.xtol

@@ -283,3 +283,27 @@ def max_band_mapped(rows, cols, gmap):
             if d > kd:
                 kd = d
     return kd
+
+
+@njit(cache=True)
+def masked_norm(f, mask):
+    """Euclidean norm of f over the entries where ``mask`` is True."""
+    s = 0.0
+    for i in range(f.shape[0]):
+        if mask[i]:
+            s += f[i] * f[i]
+    return np.sqrt(s)
+
+
+@njit(cache=True)
+def max_abs_split(dq, alpha, mask_a, mask_b):
+    """(max |alpha dq| over mask_a, over mask_b) (0 for an empty mask)."""
+    a = 0.0
+    b = 0.0
+    for i in range(dq.shape[0]):
+        v = abs(alpha * dq[i])
+        if mask_a[i]:
+            a = max(a, v)
+        elif mask_b[i]:
+            b = max(b, v)
+    return a, b

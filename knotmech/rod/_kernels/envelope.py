@@ -120,8 +120,9 @@ def env_work(last):
 
 
 @njit(cache=True)
-def env_solve(ab, kd, last, b):
-    """Solve L U x = b in place with the factors of :func:`env_factor`."""
+def env_solve(ab, kd, first, last, b):
+    """Solve L U x = b in place with the factors of :func:`env_factor` (L column k has rows
+    up to last[k], U column k rows from first[k])."""
     n = ab.shape[1]
     for k in range(n):
         bk = b[k]
@@ -131,8 +132,9 @@ def env_solve(ab, kd, last, b):
     for k in range(n - 1, -1, -1):
         b[k] /= ab[kd, k]
         bk = b[k]
-        for i in range(max(0, k - kd), k):
-            b[i] -= ab[kd + i - k, k] * bk
+        if bk != 0.0:
+            for i in range(first[k], k):
+                b[i] -= ab[kd + i - k, k] * bk
 
 
 @njit(cache=True)
