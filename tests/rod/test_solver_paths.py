@@ -1,0 +1,244 @@
+"""The fast paths of the contact Newton solver agree with the plain ones.
+
+Envelope LU (no pivoting) against a dense solve and against the pivoted/SuperLU paths,
+pruning of distant contact pairs, the second-order predictor, Jacobian reuse (chord
+iterations) and the tunnelling-guard kernel (issue #4, overhand benchmark speed).
+"""
+
+import numpy as np
+import pytest
+
+from knotmech import rod
+from knotmech.errors import InputError
+from knotmech.rod import contact as contact_mod
+from knotmech.rod import solver as solver_mod
+from knotmech.rod._kernels import envelope as env
+from knotmech.rod._kernels.contact_rodrod import max_pair_displacement
+from knotmech.rod.constraints import Clamp, MovingNodes
+from knotmech.rod.contact import RodContact
+from knotmech.rod.friction import SmoothFriction
+from knotmech.rod.jacobian import Triplets
+
+R = 1e-3
+
+
+def _random_envelope_matrix(n, kd, rng):
+    """Structurally symmetric band matrix with a ragged envelope, unsymmetric values,
+    diagonally dominant; returns (dense A, band storage (2 kd + 1, n), first)."""
+    width = rng.integers(0, kd + 1, n)
+    a = np.zeros((n, n))
+    for i in range(n):
+        j0 = max(0, i - width[i])
+        for j in range(j0, i):
+            if rng.random() < 0.6:
+                a[i, j] = rng.normal()
+                a[j, i] = rng.normal()
+    a += np.diag(np.abs(a).sum(axis=1) + 1.0)
+    ab = np.zeros((2 * kd + 1, n), order="F")
+    for j in range(n):
+        for i in range(max(0, j - kd), min(n, j + kd + 1)):
+            ab[kd + i - j, j] = a[i, j]
+    rows, cols = np.nonzero(a)
+    first = np.arange(n, dtype=np.int64)
+    env.pattern_first(rows.astype(np.int64), cols.astype(np.int64), first)
+    return a, ab, first
+
+
+def test_envelope_lu_solves_like_a_dense_solver_with_less_work():
+    rng = np.random.default_rng(3)
+    n, kd = 300, 25
+    a, ab, first = _random_envelope_matrix(n, kd, rng)
+    orig = ab.copy(order="F")
+    last = np.empty(n, dtype=np.int64)
+    env.env_last(first, last)
+    # a ragged envelope: the LU does far fewer multiply-adds than the full band's n kd^2
+    assert env.env_work(last) < 0.6 * n * kd * kd
+    anorm = env.copy_band(ab, np.empty_like(ab, order="F"))
+    assert anorm == pytest.approx(np.abs(a).sum(axis=0).max(), rel=1e-14)
+    assert env.env_factor(ab, kd, last, orig, 1e-13, np.empty(kd + 1)) == 0
+    b = rng.normal(size=n)
+    x = b.copy()
+    env.env_solve(ab, kd, first, last, x)
+    x_ref = np.linalg.solve(a, b)
+    assert np.max(np.abs(x - x_ref)) <= 1e-12 * np.max(np.abs(x_ref))
+    assert env.band_residual(orig, kd, x, b, anorm, np.empty(n)) < 1e-15
+    # a wrong solution has a large backward error
+    assert env.band_residual(orig, kd, x + 1e-3, b, anorm, np.empty(n)) > 1e-6
+
+
+def test_envelope_lu_reports_a_vanishing_pivot():
+    """[[0, 1], [1, 0]] needs pivoting: the envelope LU must give up, not divide by 0."""
+    kd = 1
+    ab = np.zeros((3, 2), order="F")
+    ab[kd + 1, 0] = 1.0  # A[1, 0]
+    ab[kd - 1, 1] = 1.0  # A[0, 1]
+    last = np.array([1, 1], dtype=np.int64)
+    assert env.env_factor(ab, kd, last, ab.copy(order="F"), 1e-13, np.empty(2)) == 1
+
+
+def test_triplets_reserve_and_commit():
+    t = Triplets(capacity=4)
+    t.add([0], [1], [2.0])
+    r, c, v = t.reserve(10)  # grows the buffer, keeps the first entry
+    r[:2], c[:2], v[:2] = [3, 4], [5, 6], [7.0, 8.0]
+    t.commit(2)
+    assert list(t.rows) == [0, 3, 4] and list(t.cols) == [1, 5, 6]
+    assert list(t.vals) == [2.0, 7.0, 8.0]
+    with pytest.raises(InputError):
+        t.commit(10**6)
+
+
+def _crossing(push=4e-3, t_end=0.2, dt=0.01, options=None, friction=0.3):
+    """Two crossing rods (41 nodes each), the upper one pushed down on the lower one."""
+    n = 41
+    s = np.linspace(-0.05, 0.05, n)
+    a = np.stack([s, 0 * s, 0 * s], 1)
+    b = np.stack([0 * s + 0.0013, s, 0 * s + 2.5 * R], 1)
+    rods = [rod.Rod(positions=p, radius=R, youngs_modulus=1e6, density=1000.0) for p in (a, b)]
+    system = rod.RodSystem(rods)
+    cons = (
+        Clamp(nodes=[0, n - 1], edges=[0, n - 2]),
+        MovingNodes(nodes=[n, 2 * n - 1], velocity=(0.01, 0.0, -push / t_end)),
+        Clamp(edges=[n - 1, 2 * n - 3]),
+    )
+    contact = RodContact(
+        stiffness=200.0,
+        sharpness=1.0 / (0.02 * R),
+        friction=SmoothFriction(friction) if friction else None,
+    )
+    return rod.simulate(
+        system,
+        t_end=t_end,
+        dt=dt,
+        constraints=cons,
+        interactions=[contact],
+        options=options or rod.SolverOptions(),
+    )
+
+
+def test_linear_solver_paths_and_jacobian_reuse_agree(monkeypatch):
+    """The envelope LU, the pivoted band LU (forced fallback) and SuperLU (forced by a
+    zero band limit) give the same trajectory; chord iterations (forced on this small
+    band) converge to it within the Newton tolerance."""
+    plain = rod.SolverOptions(jacobian_reuse=0.0, jacobian_reuse_steps=0.0)
+    ref = _crossing(options=plain)
+    assert ref.status == "success"
+    extent = np.abs(ref.positions).max()
+
+    with monkeypatch.context() as m:
+        m.setattr(solver_mod._env, "env_factor", lambda *args: 1)  # every pivot "too small"
+        pivoted = _crossing(options=plain)
+    with monkeypatch.context() as m:
+        m.setattr(solver_mod, "_KD_MAX", 0)
+        superlu = _crossing(options=plain)
+    for res in (pivoted, superlu):
+        assert res.stats["newton_iterations"] == ref.stats["newton_iterations"]
+        assert np.max(np.abs(res.positions - ref.positions)) < 1e-12 * extent
+
+    with monkeypatch.context() as m:
+        m.setattr(solver_mod, "_KD_REUSE", 0)
+        chord = _crossing()
+    assert chord.stats["newton_iterations"] != ref.stats["newton_iterations"]  # it acted
+    assert np.max(np.abs(chord.positions - ref.positions)) < 1e-6 * extent
+
+
+def test_pruned_contact_pairs_give_the_unpruned_force_and_jacobian(monkeypatch):
+    """Pairs beyond k(2h - Delta) = -20 are skipped and beyond -10 get no Jacobian block:
+    the force is unchanged to round-off, the Jacobian to below 1e-8 of its largest entry."""
+    n = 41
+    s = np.linspace(-0.05, 0.05, n)
+    a = np.stack([s, 0 * s, 0 * s], 1)
+    # a slightly tilted rod above the first: pairs from overlapping (z = 5) to far apart,
+    # z falling by 2.5 per node
+    b = np.stack([s, 0 * s + 1e-4, 1.9 * R + 0.02 * (s - s[0])], 1)
+    system = rod.RodSystem(
+        [rod.Rod(positions=p, radius=R, youngs_modulus=1e6, density=1000.0) for p in (a, b)]
+    )
+    q = system.initial_state().q
+    q_old = q.copy()
+    q_old[system.node_dofs[n:, 0]] -= 2e-6  # the upper rod slides: friction acts
+
+    def run(z_cut, z_jac, mu=0.3):
+        monkeypatch.setattr(contact_mod, "Z_CUTOFF", z_cut)
+        monkeypatch.setattr(contact_mod, "Z_JACOBIAN", z_jac)
+        c = RodContact(stiffness=200.0, sharpness=1.0 / (0.02 * R), margin=3e-3,
+                       friction=SmoothFriction(mu) if mu else None)  # fmt: skip
+        c.begin_step(system, q_old, np.zeros_like(q), 0.01)
+        f, t = np.zeros(system.n_dof), Triplets()
+        c.assemble(system, q, q_old, 0.01, f, t)
+        jac = np.zeros((system.n_dof, system.n_dof))
+        np.add.at(jac, (t.rows, t.cols), t.vals)
+        return c, f, jac
+
+    c_all, f_all, j_all = run(-1e300, -1e300)
+    c_fast, f_fast, j_fast = run(-20.0, -10.0)
+    z = c_fast.sharpness * (2 * R - np.array([_pair_distance(system, q, p) for p in c_fast.pairs]))
+    assert np.sum(z < -20) > 10 and np.sum(z > 0) > 0
+    assert np.sum((z >= -20) & (z < -10)) > 2 and np.sum((z >= -10) & (z < 0)) > 2
+    assert np.max(np.abs(f_fast - f_all)) <= 1e-14 * np.max(np.abs(f_all))
+    assert np.max(np.abs(j_fast - j_all)) <= 1e-8 * np.max(np.abs(j_all))
+    # the penalty Hessian alone (the stuck-friction block dwarfs it above)
+    _, _, j_all = run(-1e300, -1e300, mu=0.0)
+    _, _, j_fast = run(-20.0, -10.0, mu=0.0)
+    assert np.max(np.abs(j_fast - j_all)) <= 1e-8 * np.max(np.abs(j_all))
+    assert c_fast.energy(system, q) == pytest.approx(c_all.energy(system, q), rel=1e-14)
+
+
+def _pair_distance(system, q, pair):
+    from knotmech.rod._kernels.contact_rodrod import edge_distance
+
+    en = system.edge_nodes
+    x = q[system.node_dofs[[en[pair[0], 0], en[pair[0], 1], en[pair[1], 0], en[pair[1], 1]]]]
+    return edge_distance(np.ascontiguousarray(x.ravel()))
+
+
+def test_tunnelling_guard_kernel_matches_its_definition():
+    rng = np.random.default_rng(0)
+    n_nodes = 30
+    node_dofs = np.arange(3 * n_nodes, dtype=np.int64).reshape(n_nodes, 3)
+    edge_nodes = np.stack([np.arange(n_nodes - 1), np.arange(1, n_nodes)], 1).astype(np.int64)
+    rad = rng.uniform(0.5e-3, 2e-3, n_nodes - 1)
+    pairs = np.array([[0, 5], [3, 20], [7, 9]], dtype=np.int64)
+    q_old = rng.normal(size=3 * n_nodes)
+    q_new = q_old + rng.normal(scale=1e-3, size=3 * n_nodes)
+    ref = max(
+        np.linalg.norm(q_new[node_dofs[v]] - q_old[node_dofs[v]]) / rad[e]
+        for e in np.unique(pairs)
+        for v in edge_nodes[e]
+    )
+    got = max_pair_displacement(pairs, edge_nodes, node_dofs, rad, q_new, q_old)
+    assert got == pytest.approx(ref, rel=1e-14)
+
+
+def test_second_order_predictor_is_exact_in_free_fall():
+    """Under gravity alone a free straight rod falls rigidly: implicit Euler gives
+    v_{n+1} = v_n + g dt, which the second-order predictor extrapolates exactly, so from the
+    third step on Newton has nothing left to do; the constant-velocity guess needs an
+    iteration every step."""
+    r = rod.Rod.straight(length=0.1, n_nodes=11, radius=1e-3, youngs_modulus=1e6,
+                         density=1000.0)  # fmt: skip
+    system = rod.RodSystem([r])
+    kw = dict(t_end=0.01, dt=1e-3, loads=rod.Gravity())
+    quad = rod.simulate(system, **kw, options=rod.SolverOptions(predictor="quadratic"))
+    lin = rod.simulate(system, **kw, options=rod.SolverOptions(predictor="linear"))
+    assert quad.stats["steps"] == lin.stats["steps"] == 10
+    assert quad.stats["newton_iterations"] <= 2
+    assert lin.stats["newton_iterations"] >= 10
+    # same trajectory: z(t) of implicit Euler, -g dt^2 n(n+1)/2
+    z_exact = -9.81 * 1e-6 * 10 * 11 / 2
+    for res in (quad, lin):
+        assert res.positions[-1][:, 2] == pytest.approx(z_exact, rel=1e-9)
+
+
+@pytest.mark.parametrize(
+    "kw",
+    [
+        {"predictor": "cubic"},
+        {"jacobian_reuse": -0.1},
+        {"jacobian_reuse": 1.5},
+        {"jacobian_reuse_steps": 2.0},
+    ],
+)
+def test_solver_option_errors(kw):
+    with pytest.raises(InputError):
+        rod.SolverOptions(**kw)
