@@ -12,10 +12,13 @@ Jacobian is solved in LAPACK band storage (half bandwidth 10: Cholesky dpbsv, fa
 LU dgbsv when J is not positive definite) unless interactions add triplets; then the free
 dofs are reordered (reverse Cuthill-McKee) and the band matrix is factored by an envelope
 LU without pivoting (checked: pivot size and backward error, else LAPACK's pivoted dgbtrf),
-or, for very wide bands, as a sparse CSC matrix with SuperLU. Newton starts from a
-second-order predictor (the last change of velocity; see ``SolverOptions.predictor``).
-A failed step is retried with half the step (interactions' ``begin_step`` is called
-again); below ``dt_min`` the run stops with status "failed" and
+or, for very wide bands, as a sparse CSC matrix with SuperLU; on such contact-widened bands
+the LU factors are reused (chord iterations, within a step and into the next one) while
+they still cut the residual fast (``SolverOptions.jacobian_reuse``,
+``jacobian_reuse_steps``): the converged state satisfies the same tolerances. Newton
+starts from a second-order predictor (the last change of velocity; see
+``SolverOptions.predictor``). A failed step is retried with half the step (interactions'
+``begin_step`` is called again); below ``dt_min`` the run stops with status "failed" and
 the last good state.
 
 The elastic part of J is the symmetric Hessian of the DER energy with parallel-transported
@@ -255,7 +258,9 @@ class Stepper:
     def _reorder(self, er, ec) -> None:
         """Reverse Cuthill-McKee ordering of the free dofs for the current contact pattern:
         contacts couple nodes far apart along the rods, and RCM brings the matrix back to a
-        narrow band. Redone when new contacts widen the band by more than 25 %."""
+        narrow band. Redone when new contacts widen the band by more than 25 %, when the
+        LU work of the envelope has grown by 25 % (see :meth:`_factor_band`), and after
+        _REORDER_EVERY Jacobians."""
         fm = self._fmap
         rows = fm[np.concatenate([er, self.trip.rows])]
         cols = fm[np.concatenate([ec, self.trip.cols])]
@@ -275,12 +280,13 @@ class Stepper:
 
     def _assemble_sparse(self) -> None:
         """Jacobian with interaction triplets, restricted to the free dofs and reordered
-        (RCM). Stored as a LAPACK band matrix when the reordered half bandwidth is at most
-        _KD_MAX, solved by LU with partial pivoting (dgbsv; the blocked band Cholesky
-        dpbtrf used at these widths was erratic, up to seconds per call, with threaded
-        OpenBLAS on a loaded machine); wider bands go to SuperLU as CSC. The band matrix
-        is filled straight from the elastic Hessian blocks and the triplets through the
-        dof map (no COO temporaries)."""
+        (RCM). Stored as a (2 kd + 1)-row band matrix when the reordered half bandwidth kd
+        is at most _KD_MAX, factored by :meth:`_factor_band` (envelope LU, pivoted LAPACK
+        dgbtrf as the fallback; the blocked band Cholesky dpbtrf once used at these widths
+        was erratic, up to seconds per call, with threaded OpenBLAS on a loaded machine);
+        wider bands go to SuperLU as CSC. The band matrix is filled straight from the
+        elastic Hessian blocks and the triplets through the dof map (no COO temporaries),
+        and the envelope (first non-zero column of each row) from their patterns."""
         self._n_on_order += 1
         if self._n_on_order > _REORDER_EVERY and self.trip.size:
             self._order_stale = True
