@@ -199,7 +199,9 @@ class RodContact:
         pos = np.asarray(q, dtype=float)[nd]
         near = self._near_buffer(npair)
         n_near = rodrod_near(pos, pairs, en, rad, self.sharpness, Z_CUTOFF, near)
-        room = n_near * ENTRIES_PER_PAIR
+        # the solver says when it needs no Jacobian (a chord iteration): forces only
+        want = bool(getattr(rows, "wanted", True))
+        room = n_near * ENTRIES_PER_PAIR if want else 0
         if hasattr(rows, "reserve"):
             r, c, v = rows.reserve(room)
         else:
@@ -230,6 +232,7 @@ class RodContact:
             fn,
             bool(self.friction_normal_derivative),
             Z_JACOBIAN,
+            want,
         )
         self.last_normal_force = fn
         self._energy_cache = (pairs, pos, float(e))  # energy() at the same q is free

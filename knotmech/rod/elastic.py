@@ -57,18 +57,19 @@ class ElasticWorkspace:
         _fr.reference_twist(se, self.tangents, self.d1, ref_twist_old, self.ref_twist)
         _fr.material_frames(q, ed0, self.d1, self.d2, self.m1, self.m2)
 
-    def grad_hess(self, q) -> None:
-        """Gradient of the elastic energy into ``grad``; local Hessians into hess_s, hess8;
-        the (stretch, bend, twist) energies into ``energy_parts``. Call :meth:`frames` first.
+    def grad_hess(self, q, hessian: bool = True) -> None:
+        """Gradient of the elastic energy into ``grad``; local Hessians into hess_s, hess8
+        (unless ``hessian`` is False: then they are left stale); the (stretch, bend, twist)
+        energies into ``energy_parts``. Call :meth:`frames` first.
         """
-        ed0, se, vor = self._edge_dof0, self._stencil_edge, self._voronoi
+        ed0, se, vor, h = self._edge_dof0, self._stencil_edge, self._voronoi, bool(hessian)
         self.grad[:] = 0.0
-        e_s = _st.stretch_grad_hess(q, ed0, self._rest_length, self._ea, self.grad, self.hess_s)
+        e_s = _st.stretch_grad_hess(q, ed0, self._rest_length, self._ea, self.grad, self.hess_s, h)
         e_b = _bend.bend_grad_hess(
-            q, ed0, se, self.m1, self.m2, self._kappa_bar, self._ei, vor, self.grad, self.hess8
+            q, ed0, se, self.m1, self.m2, self._kappa_bar, self._ei, vor, self.grad, self.hess8, h
         )
         e_t = _tw.twist_grad_hess(
-            q, ed0, se, self.ref_twist, self._twist_bar, self._gj, vor, self.grad, self.hess8
+            q, ed0, se, self.ref_twist, self._twist_bar, self._gj, vor, self.grad, self.hess8, h
         )
         self.energy_parts = (e_s, e_b, e_t)
 

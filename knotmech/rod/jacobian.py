@@ -14,7 +14,11 @@ class Triplets:
 
     Interactions append the entries of dF/dq (the derivative of the force they add, NOT
     its negative); repeated (row, col) pairs are summed when the matrix is built.
+    ``wanted`` False tells them that the solver needs no Jacobian for this evaluation
+    (they may skip their entries; adding them anyway is harmless).
     """
+
+    wanted: bool = True
 
     def __init__(self, capacity: int = 1024):
         self._rows = np.empty(capacity, dtype=np.int64)

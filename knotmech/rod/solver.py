@@ -186,6 +186,9 @@ class Stepper:
         self._jac_pending = False
         self._factors_valid = False
         self._lcol = np.empty(0)
+        self._force_hessian = False
+        self._hess_missing = False
+        self._eval_args = None
         self._factors_dt = None
         self._last_ratio = np.inf
         self._n_on_order = 0
@@ -206,14 +209,17 @@ class Stepper:
         (force scale, torque scale, max |f| on free positions, on free angles)."""
         s, ws = self.system, self.ws
         self.n_evals += 1
+        # while chord iterations may follow, the Hessians wait until solve() needs them
+        lazy = jacobian and self._hessian_may_wait()
         ws.frames(q, st.tangents, st.d1, st.ref_twist)
-        ws.grad_hess(q)
+        ws.grad_hess(q, hessian=jacobian and not lazy)
         fext, jd = self.fext, self.jdiag
         fext[:] = 0.0
         jd[:] = 0.0
         for load in self.loads:
             load.apply(s, t_new, q, st.q, dt, fext, jd)
         self.trip.clear()
+        self.trip.wanted = jacobian and not lazy
         for it in self.interactions:
             it.assemble(s, q, st.q, dt, fext, self.trip)
         pot, sx, sth, rx, rt = _asm.residual_and_scales(
@@ -233,8 +239,23 @@ class Stepper:
         if jacobian:  # the matrix itself is built lazily, by solve()
             np.subtract(self._mass / (dt * dt), jd, out=self.diag)
             self._jac_pending = True
+            self._hess_missing = lazy
+            self._eval_args = (q, st, dt, t_new) if lazy else None
         tens = self.ea_max * _asm.max_abs_strain(ws.lengths, self._rest_length)
         return max(sx, tens), sth, rx, rt
+
+    def _hessian_may_wait(self) -> bool:
+        """True when the next solve may reuse LU factors (reordered contact band wider than
+        _KD_REUSE, factors at hand, reuse enabled): the evaluation then skips the Hessians
+        and Jacobian triplets, and solve() redoes it with them only if it needs a fresh
+        Jacobian after all (same residual, bit for bit)."""
+        return (
+            self._force_hessian is False
+            and self._factors_valid
+            and self._mode == "sparse-band"
+            and self._kd > _KD_REUSE
+            and (self.opt.jacobian_reuse > 0 or self.opt.jacobian_reuse_steps > 0)
+        )
 
     def _use_band(self) -> bool:
         if self.opt.linear_solver == "banded":
@@ -418,6 +439,12 @@ class Stepper:
         if reuse and self._mode == "sparse-band" and self._factors_valid and self._kd > _KD_REUSE:
             self._jac_pending = False
         elif self._jac_pending:
+            if self._hess_missing:  # the evaluation skipped the Hessians: redo it with them
+                self._force_hessian = True
+                try:
+                    self.evaluate(*self._eval_args)
+                finally:
+                    self._force_hessian = False
             self._assemble()
             self._factors_valid = self._mode == "sparse-band"
             self._factors_dt = self._eval_dt

@@ -138,8 +138,14 @@ def test_linear_solver_paths_and_jacobian_reuse_agree(monkeypatch):
     with monkeypatch.context() as m:
         m.setattr(solver_mod, "_KD_REUSE", 0)
         chord = _crossing()
+        # evaluations that may be followed by a chord step skip the Hessians (redone when
+        # a fresh Jacobian is needed): the same iterates as evaluating them every time
+        m.setattr(solver_mod.Stepper, "_hessian_may_wait", lambda self: False)
+        eager = _crossing()
     assert chord.stats["newton_iterations"] != ref.stats["newton_iterations"]  # it acted
     assert np.max(np.abs(chord.positions - ref.positions)) < 1e-6 * extent
+    assert eager.stats["newton_iterations"] == chord.stats["newton_iterations"]
+    assert np.max(np.abs(eager.positions - chord.positions)) <= 1e-14 * extent
 
 
 def test_pruned_contact_pairs_give_the_unpruned_force_and_jacobian(monkeypatch):

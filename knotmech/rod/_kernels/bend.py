@@ -54,9 +54,12 @@ def edge_geometry(q, edge_dof0, e_idx, f_idx, ev, fv, te, tf, kb):
 
 
 @njit(cache=True, fastmath=True)
-def bend_grad_hess(q, edge_dof0, stencil_edge, m1, m2, kappa_bar, ei, voronoi, grad, hess8):
-    """Add dE_b/dq to ``grad``; WRITE the 8x8 edge-space Hessian of each stencil in ``hess8``;
-    return the bending energy E_b [J].
+def bend_grad_hess(
+    q, edge_dof0, stencil_edge, m1, m2, kappa_bar, ei, voronoi, grad, hess8, with_hess=True
+):
+    """Add dE_b/dq to ``grad``; WRITE the 8x8 edge-space Hessian of each stencil in ``hess8``
+    (skipped, ``hess8`` untouched, if ``with_hess`` is False); return the bending energy
+    E_b [J].
 
     ``ei`` (n_stencils,) bending stiffness EI [N m^2], ``voronoi`` (n_stencils,) l_i [m],
     ``kappa_bar`` (n_stencils, 2) rest material curvatures. E_b = EI/(2 l) |kappa - kbar|^2,
@@ -134,6 +137,11 @@ def bend_grad_hess(q, edge_dof0, stencil_edge, m1, m2, kappa_bar, ei, voronoi, g
         g[0, 7] = -0.5 * _dot3(kb, m1f)
         g[1, 3] = -0.5 * _dot3(kb, m2e)
         g[1, 7] = -0.5 * _dot3(kb, m2f)
+        d0 = edge_dof0[e]
+        for i in range(8):
+            _add_edge_grad(grad, d0, i, k * (r1 * g[0, i] + r2 * g[1, i]))
+        if not with_hess:
+            continue
         # ---- combined r1 H1 + r2 H2
         kr = kap1 * r1 + kap2 * r2
         for j in range(3):
@@ -197,10 +205,8 @@ def bend_grad_hess(q, edge_dof0, stencil_edge, m1, m2, kappa_bar, ei, voronoi, g
             h[7, 4 + i] = h[4 + i, 7]
             for j in range(3):
                 h[4 + j, i] = h[i, 4 + j]
-        # ---- energy derivatives
-        d0 = edge_dof0[e]
+        # ---- energy Hessian
         for i in range(8):
-            _add_edge_grad(grad, d0, i, k * (r1 * g[0, i] + r2 * g[1, i]))
             for j in range(8):
                 hess8[s, i, j] = k * (g[0, i] * g[0, j] + g[1, i] * g[1, j] + h[i, j])
     return energy

@@ -237,6 +237,27 @@ def _edge_distance_hessian_ws(x, grad, hess, coef, w, gphi, H, B, U):
 
 
 @njit(cache=True)
+def _edge_distance_grad_ws(x, grad, coef, w):
+    """Distance and its gradient only (the arithmetic of :func:`_edge_distance_hessian_ws`,
+    so both give bitwise the same values): for pairs that need no Jacobian block."""
+    s, t, _, _ = _segment_params_flat(x)
+    coef[0] = 1.0 - s
+    coef[1] = s
+    coef[2] = -(1.0 - t)
+    coef[3] = -t
+    d2 = 0.0
+    for m in range(3):
+        w[m] = coef[0] * x[m] + coef[1] * x[3 + m] + coef[2] * x[6 + m] + coef[3] * x[9 + m]
+        d2 += w[m] * w[m]
+    dist = np.sqrt(d2)
+    inv_d = 1.0 / dist
+    for k in range(4):
+        for m in range(3):
+            grad[3 * k + m] = (coef[k] * w[m]) * inv_d
+    return dist
+
+
+@njit(cache=True)
 def _softplus(z):
     if z > 30.0:
         return z
@@ -327,6 +348,7 @@ def rodrod_assemble(
     contact_force,
     normal_derivative,
     z_jacobian,
+    want_jacobian=True,
 ):
     """Contact + friction forces and Jacobian blocks of the near candidate pairs.
 
@@ -340,7 +362,8 @@ def rodrod_assemble(
 
     Jacobian: the exact Hessian of the penalty; for friction the derivative through the
     velocity (and, with ``normal_derivative``, through |F_n|; the normal n is lagged);
-    only for pairs with k (2h - Delta) >= ``z_jacobian`` (see ``Z_JACOBIAN``).
+    only for pairs with k (2h - Delta) >= ``z_jacobian`` (see ``Z_JACOBIAN``), and not at
+    all if ``want_jacobian`` is False (forces only; the same values).
     Entries are written compactly to ``rows/cols/vals`` (room for ``ENTRIES_PER_PAIR`` per
     near pair: 144 penalty, then 144 friction if the pair has friction); returns (energy,
     number of entries written). ``contact_force`` (n_pairs,) receives |F_n| (0 for pairs
@@ -374,11 +397,13 @@ def rodrod_assemble(
                 x[3 * k + m] = pos[nodes[k], m]
                 dofs[3 * k + m] = node_dofs[nodes[k], m]
         two_h = radius_edge[ei] + radius_edge[ej]
-        dist = _edge_distance_hessian_ws(x, grad, hess, coef, w, gphi, H, B, U)
+        dist = _edge_distance_grad_ws(x, grad, coef, w)
+        # pairs beyond z_jacobian add their force but no Jacobian entries
+        jac = want_jacobian and sharpness * (two_h - dist) >= z_jacobian
+        if jac:
+            dist = _edge_distance_hessian_ws(x, grad, hess, coef, w, gphi, H, B, U)
         e, de, d2e = penalty_derivs(two_h - dist, sharpness, stiffness)
         energy += e
-        # pairs beyond z_jacobian add their force but no Jacobian entries
-        jac = sharpness * (two_h - dist) >= z_jacobian
         # force = -dE/dx = -de * grad ; dF/dx = -(d2e grad grad^T + de hess)
         for a in range(12):
             force[dofs[a]] -= de * grad[a]

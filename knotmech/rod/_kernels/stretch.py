@@ -35,9 +35,9 @@ def stretch_tension(q, edge_dof0, rest_length, ea, tension):
 
 
 @njit(cache=True)
-def stretch_grad_hess(q, edge_dof0, rest_length, ea, grad, hess):
-    """Add dE_s/dq to ``grad`` (n_dof,); write the 6x6 Hessian of each edge in ``hess``;
-    return the stretching energy E_s [J].
+def stretch_grad_hess(q, edge_dof0, rest_length, ea, grad, hess, with_hess=True):
+    """Add dE_s/dq to ``grad`` (n_dof,); write the 6x6 Hessian of each edge in ``hess``
+    (skipped if ``with_hess`` is False); return the stretching energy E_s [J].
 
     ``hess[k]`` is ordered (x_a, x_b) for the edge's two nodes; d2E/dxa2 = d2E/dxb2 =
     -d2E/dxa dxb = d2E/de2.
@@ -57,6 +57,8 @@ def stretch_grad_hess(q, edge_dof0, rest_length, ea, grad, hess):
             g = a * eps * e[j] / n
             grad[d + j] -= g
             grad[d + 4 + j] += g
+        if not with_hess:
+            continue
         c_par = a / lb
         c_perp = a * eps / n
         for i in range(3):

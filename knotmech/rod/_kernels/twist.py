@@ -17,9 +17,11 @@ from .bend import _add_edge_grad, edge_geometry
 
 
 @njit(cache=True, fastmath=True)
-def twist_grad_hess(q, edge_dof0, stencil_edge, ref_twist, twist_bar, gj, voronoi, grad, hess8):
-    """Add dE_t/dq to ``grad`` and the 8x8 edge-space Hessian of each stencil to ``hess8``;
-    return the twisting energy E_t [J].
+def twist_grad_hess(
+    q, edge_dof0, stencil_edge, ref_twist, twist_bar, gj, voronoi, grad, hess8, with_hess=True
+):
+    """Add dE_t/dq to ``grad`` and the 8x8 edge-space Hessian of each stencil to ``hess8``
+    (skipped if ``with_hess`` is False); return the twisting energy E_t [J].
 
     ``gj`` (n_stencils,) twisting stiffness GJ [N m^2], ``twist_bar`` rest twist [rad].
     d2E/dy2 = GJ/l (g g^T + (m - mbar) H), g = dm/dy, H = d2m/dy2.
@@ -45,6 +47,13 @@ def twist_grad_hess(q, edge_dof0, stencil_edge, ref_twist, twist_bar, gj, vorono
             g[4 + j] = 0.5 * kb[j] / nf
         g[3] = -1.0
         g[7] = 1.0
+        k = gj[s] / voronoi[s]
+        r = m - twist_bar[s]
+        energy += 0.5 * k * r * r
+        for i in range(8):
+            _add_edge_grad(grad, d0, i, k * r * g[i])
+        if not with_hess:
+            continue
         ne2 = ne * ne
         nf2 = nf * nf
         nef = ne * nf
@@ -63,11 +72,7 @@ def twist_grad_hess(q, edge_dof0, stencil_edge, ref_twist, twist_bar, gj, vorono
         for i in range(3):
             for j in range(3):
                 h[4 + j, i] = h[i, 4 + j]
-        k = gj[s] / voronoi[s]
-        r = m - twist_bar[s]
-        energy += 0.5 * k * r * r
         for i in range(8):
-            _add_edge_grad(grad, d0, i, k * r * g[i])
             for j in range(8):
                 hess8[s, i, j] += k * (g[i] * g[j] + r * h[i, j])
     return energy
