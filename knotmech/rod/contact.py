@@ -192,10 +192,14 @@ class RodContact:
             self.last_normal_force = np.zeros(0)
             return
         rad, en, nd, _, _, rmin = self._arrays(system)
-        if self.friction is not None:
-            mu, fk, fc = self.friction.parameters(rmin)
-        else:
-            mu, fk, fc = 0.0, 1.0, 0.0
+        fp = getattr(self, "_friction_cache", None)
+        if fp is None or fp[0] is not self.friction or fp[1] != rmin:
+            if self.friction is not None:
+                fp = (self.friction, rmin, self.friction.parameters(rmin))
+            else:
+                fp = (None, rmin, (0.0, 1.0, 0.0))
+            self._friction_cache = fp
+        mu, fk, fc = fp[2]
         pos = np.asarray(q, dtype=float)[nd]
         near = self._near_buffer(npair)
         n_near = rodrod_near(pos, pairs, en, rad, self.sharpness, Z_CUTOFF, near)
