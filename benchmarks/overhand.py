@@ -11,11 +11,11 @@ Target: wall_s < 60 on one core.
 ``--t-end`` shortens the run (simulated seconds, the wait included) for a quick estimate;
 the JSON then reports the simulated time so the full cost can be extrapolated.
 
-Measured on the shared 2-core machine (load 3-4 from other jobs), after the solver work of
-issue #4 (pair pruning, envelope LU, Jacobian reuse, second-order predictor):
-``--turns 1``: wall_s 42.5, cpu_s 40.1, 24800 steps, 39200 Newton iterations (before:
-about 4.2-5.2 s per simulated second, i.e. 260-320 s); ``--turns 2``: cpu_s 61.9
-(wall_s 117 under that load), 24815 steps, 4 rejected.
+Measured on the shared 2-core machine (other jobs running), after the solver work of
+issue #4 (pair pruning, envelope LU, Jacobian reuse with lazy Hessians, second-order
+predictor): ``--turns 1``: wall_s 29.0, cpu_s 28.7, 24800 steps, 39200 Newton iterations,
+final pull force 0.07405255 N (before: 429 s under load, nominally 260-320 s; 31603
+iterations; 0.07405254 N); ``--turns 2``: wall_s 47.1, cpu_s 46.4, 24815 steps (4 rejected).
 """
 
 from __future__ import annotations
