@@ -294,8 +294,8 @@ def overhand(
     The ends are the first and last two nodes (and the end edges' twist), held during
     ``wait_time`` and then moved along the end-to-end axis at ``pull_speed``.
     Cost: the full implicit-contact-model case (301 nodes, 62 s, dt = 2.5 ms) needs about
-    25 000 steps and 75 000 Newton iterations, tens of minutes on one core with the
-    present solver (``benchmarks/overhand.py`` measures it). Quick runs: 151 nodes, 5 ms,
+    24 800 steps and about 39 000 Newton iterations, about 30 s on one core
+    (``benchmarks/overhand.py`` measures it). Quick runs: 151 nodes, 5 ms,
     30 mm/s reproduce the Jawed law within 20 % (see the slow tests).
     """
     n = int(turns)
