@@ -19,12 +19,15 @@ import numpy as np
 from knotmech.diagnose import diagnose, make_recording
 
 CASES = [
-    ("capstan_pull", "static_friction"),
-    ("capstan_pull", None),
-    ("pinch", "contact_flattening"),
-    ("pinch", "rate_dependent_friction"),
-    ("tension_profile", "self_contact_nip"),
-    ("tension_profile", None),
+    ("capstan_pull", "static_friction", "white"),
+    ("capstan_pull", None, "white"),
+    ("pinch", "contact_flattening", "white"),
+    ("pinch", "rate_dependent_friction", "white"),
+    ("tension_profile", "self_contact_nip", "white"),
+    ("tension_profile", None, "white"),
+    # AR(1) rho = 0.9 noise (second fitting pass when the estimated rho is near 1)
+    ("pinch", "contact_flattening", "ar1"),
+    ("capstan_pull", None, "ar1"),
 ]
 
 
@@ -41,17 +44,18 @@ def main(argv=None) -> dict:
         "python": platform.python_version(),
         "cases": {},
     }
-    for exp, eff in CASES:
+    for exp, eff, noise in CASES:
         times = []
         verdicts = set()
         for r in range(args.repeats):
-            rec, _ = make_recording(exp, eff, size=6.0, seed=100 + r, n=args.rows)
+            rec, _ = make_recording(exp, eff, size=6.0, noise=noise, seed=100 + r, n=args.rows)
             assert rec.n >= args.rows - 2
             t0 = time.perf_counter()
             rep = diagnose(rec, seed=r)
             times.append(time.perf_counter() - t0)
             verdicts.add(rep.verdict)
-        out["cases"][f"{exp}:{eff or 'none'}"] = {
+        key = f"{exp}:{eff or 'none'}" + (":ar1" if noise == "ar1" else "")
+        out["cases"][key] = {
             "median_seconds": float(np.median(times)),
             "max_seconds": float(np.max(times)),
             "verdicts": sorted(verdicts),
