@@ -13,9 +13,12 @@ Example::
 The command parses quantities (``knotmech.units``), calls
 :func:`knotmech.analytic.hitch.hold_verdict` and prints its answer. For the clove
 hitch with a free end it also answers from the DER phase diagram
-(:mod:`knotmech.scenes.phase_table`): interpolated from the table shipped in the
-package, or, with ``--simulate``, from one DER run of the user's geometry (progress
-bar on stderr), and says where the ideal-rope theory and the simulation disagree.
+(:mod:`knotmech.scenes.phase_table`): interpolated from the tables shipped in the
+package (one per friction coefficient mu = mu_rr; a friction between two tables is
+decided when both bracketing tables agree, and the answer names the tables used;
+outside their friction range the DER gives no answer and says so), or, with
+``--simulate``, from one DER run of the user's geometry (progress bar on stderr), and
+says where the ideal-rope theory and the simulation disagree.
 The DER answer is reported next to the closed forms (JSON key ``der`` and an entry
 of ``answers``). The most faithful model whose inputs lie inside its validity decides:
 the closed form, unless it is outside its validity range (e.g. the ideal rope for
@@ -259,7 +262,8 @@ def der_answer(
 
     Returns a JSON-ready dict: ``source`` ("table", "simulation" or "none"), ``holds``
     (bool, or None when the table cannot decide), ``d_over_2R``, ``t_over_EA``,
-    ``inside_table``, ``message``, ``agrees_with_ideal_rope`` (None when undecided) and
+    ``inside_table``, ``message``, ``mu_tables`` (friction coefficients of the tables
+    that answered), ``agrees_with_ideal_rope`` (None when undecided) and
     ``answer`` (a :class:`~knotmech.analytic.hitch.ModelAnswer`, or None).
     """
     from knotmech.scenes import phase_table as pt
@@ -278,6 +282,7 @@ def der_answer(
         "youngs_modulus_assumed": youngs_modulus is None,
         "inside_table": False,
         "critical_t_over_EA": None,
+        "mu_tables": [],
         "message": "",
         "agrees_with_ideal_rope": None,
         "answer": None,
@@ -311,26 +316,35 @@ def der_answer(
         validity = "one run of the user's geometry (0.8 s of simulated time)"
     else:
         try:
-            table = pt.load_table(table_path)
+            tables = (
+                pt.load_tables()
+                if table_path is None
+                else pt.PhaseTableSet([pt.load_table(table_path)])
+            )
         except InputError as exc:
             out["message"] = f"no DER table: {exc}"
             return out
-        a = table.lookup(x, y, mu=mu, mu_rr=mu_rr)
+        a = tables.lookup(x, y, mu=mu, mu_rr=mu_rr)
         out.update(
             source="table",
             holds=a.holds,
             inside_table=a.inside,
             message=a.message,
             critical_t_over_EA=a.critical if math.isfinite(a.critical) else None,
+            mu_tables=list(a.mu_tables),
+            mu_tables_available=tables.mus,
         )
         if a.inside and a.bracket[0] > 0:
             capacity = a.bracket[0] * EA  # the largest load that held (interpolated)
         if a.holds is None:
             return out
-        xs, ys = table.d_over_2R, table.t_over_EA
+        used = [tables.table(m) for m in a.mu_tables]
+        xs, ys = used[0].d_over_2R, used[0].t_over_EA
         validity = (
             f"table grid d/2R {xs[0]:.3g}-{xs[-1]:.3g}, T_high/EA {ys[0]:.3g}-{ys[-1]:.3g}, "
-            f"mu = mu_rr = {table.mu:g}; boundary resolved to one grid step"
+            f"mu = mu_rr = {' and '.join(f'{t.mu:g}' for t in used)}"
+            + (" (bracketing the user's friction)" if len(used) > 1 else "")
+            + "; boundary resolved to one grid step"
         )
     holds = bool(out["holds"])
     if ideal_holds is not None:

@@ -44,6 +44,8 @@ __all__ = [
     "simulate_point",
     "point_geometry",
     "load_table",
+    "load_tables",
+    "PhaseTableSet",
     "TABLE_RESOURCE",
     "ROD_DIAMETER",
     "YOUNGS_MODULUS",
@@ -51,7 +53,10 @@ __all__ = [
     "MU",
 ]
 
-TABLE_RESOURCE = "clove_phase_table.json"
+TABLE_RESOURCE = "clove_phase_table.json"  #: the mu = mu_rr = 0.3 table (the first one shipped)
+#: every shipped table: ``clove_phase_table.json`` and ``clove_phase_table_mu<mu>.json``
+TABLE_GLOB = "clove_phase_table*.json"
+MU_TOL = 0.005  #: a friction coefficient within this of a table's is that table's
 ROD_DIAMETER = 4e-3  #: [m] the clove-hitch paper's rod (VPS32)
 YOUNGS_MODULUS = 1.26e6  #: [Pa] VPS32
 DENSITY = 1150.0  #: [kg/m^3]
@@ -172,6 +177,7 @@ class PhaseAnswer:
     critical: float
     bracket: tuple
     message: str
+    mu_tables: tuple = ()
 
     def to_dict(self) -> dict:
         def num(v):
@@ -183,6 +189,7 @@ class PhaseAnswer:
             "critical_t_over_EA": num(self.critical),
             "bracket_t_over_EA": [num(float(v)) for v in self.bracket],
             "message": self.message,
+            "mu_tables": list(self.mu_tables),
         }
 
 
@@ -328,7 +335,7 @@ class PhaseTable:
                 f"{where} lies near a hold/slip boundary of the DER table (grid points: "
                 f"{pts}): undecided, use --simulate"
             )
-        return PhaseAnswer(holds, True, crit, (lo_i, hi_i), msg)
+        return PhaseAnswer(holds, True, crit, (lo_i, hi_i), msg, (self.mu,))
 
     def to_dict(self) -> dict:
         return {
@@ -367,4 +374,148 @@ def load_table(path=None) -> PhaseTable:
         data = json.loads(text)
     except json.JSONDecodeError as exc:
         raise InputError(f"phase table is not JSON: {exc}") from None
+    return PhaseTable.from_dict(data)
+
+
+def table_resource(mu: float) -> str:
+    """File name in ``knotmech/data`` of the shipped table at mu = mu_rr = ``mu``."""
+    return TABLE_RESOURCE if abs(float(mu) - MU) <= MU_TOL else f"clove_phase_table_mu{mu:g}.json"
+
+
+def _fmt_mus(mus) -> str:
+    return ", ".join(f"{m:g}" for m in mus)
+
+
+@dataclass
+class PhaseTableSet:
+    r"""Phase tables at several friction coefficients mu = mu_rr, answering for any mu.
+
+    :meth:`lookup` brackets the user's friction by the tables: with
+    :math:`\mu_- = \min(\mu, \mu_{rr})` and :math:`\mu_+ = \max(\mu, \mu_{rr})`,
+    the largest table coefficient :math:`\le \mu_-` and the smallest :math:`\ge \mu_+`
+    (one table when the query is on a table's coefficient, within :data:`MU_TOL`). The
+    answer is decided when both tables decide the same way; this rests on the hold
+    being monotonic in friction (a hold at lower friction stays a hold at higher
+    friction), which the shipped tables are tested for. Outside the tables' friction
+    range the answer is None and says so.
+    """
+
+    tables: list
+
+    def __post_init__(self):
+        if not self.tables:
+            raise InputError("a phase-table set needs at least one table")
+        for t in self.tables:
+            if abs(t.mu - t.mu_rr) > MU_TOL:
+                raise InputError(
+                    f"a phase-table set holds tables with mu = mu_rr only, got mu = {t.mu:g}, "
+                    f"mu_rr = {t.mu_rr:g}"
+                )
+        self.tables = sorted(self.tables, key=lambda t: t.mu)
+        mus = [t.mu for t in self.tables]
+        if any(b - a <= MU_TOL for a, b in zip(mus, mus[1:], strict=False)):
+            raise InputError(f"two phase tables at the same mu: {_fmt_mus(mus)}")
+
+    @property
+    def mus(self) -> list:
+        """Friction coefficients (mu = mu_rr) of the tables, ascending."""
+        return [t.mu for t in self.tables]
+
+    def table(self, mu: float) -> PhaseTable:
+        """The table at ``mu`` (within :data:`MU_TOL`)."""
+        for t in self.tables:
+            if abs(t.mu - float(mu)) <= MU_TOL:
+                return t
+        raise InputError(f"no phase table at mu = {float(mu):g} (tables: {_fmt_mus(self.mus)})")
+
+    def lookup(self, d_over_2R: float, t_over_EA: float, *, mu: float, mu_rr=None) -> PhaseAnswer:
+        r"""Hold or slip at (d/2R, T_high/EA) and friction (mu, mu_rr) from the bracketing tables.
+
+        ``mu_rr`` defaults to ``mu``. The answer's ``mu_tables`` names the tables used;
+        ``bracket`` is (smallest largest-load-held, largest smallest-load-slipped) of
+        those tables, ``critical`` the upper boundary interpolated linearly in mu at
+        :math:`(\mu + \mu_{rr})/2`.
+        """
+        m = float(mu)
+        mr = m if mu_rr is None else float(mu_rr)
+        if not (math.isfinite(m) and math.isfinite(mr)) or m < 0 or mr < 0:
+            raise InputError(f"mu and mu_rr must be finite, >= 0; got {m}, {mr}")
+        lo_m, hi_m = min(m, mr), max(m, mr)
+        mus = self.mus
+        nan = (float("nan"), float("nan"))
+        which = f"mu = {m:g}" + ("" if mr == m else f", mu_rr = {mr:g}")
+        if lo_m < mus[0] - MU_TOL or hi_m > mus[-1] + MU_TOL:
+            return PhaseAnswer(
+                None,
+                False,
+                float("nan"),
+                nan,
+                f"{which} is outside the friction range of the DER tables (computed at "
+                f"mu = mu_rr = {_fmt_mus(mus)} only)",
+            )
+        below = max((t for t in self.tables if t.mu <= lo_m + MU_TOL), key=lambda t: t.mu)
+        above = min((t for t in self.tables if t.mu >= hi_m - MU_TOL), key=lambda t: t.mu)
+        if below is above:
+            a = below.lookup(d_over_2R, t_over_EA)
+            if not a.inside:
+                return a
+            return PhaseAnswer(
+                a.holds,
+                True,
+                a.critical,
+                a.bracket,
+                f"{a.message}; table mu = mu_rr = {below.mu:g}",
+                (below.mu,),
+            )
+        a = below.lookup(d_over_2R, t_over_EA)
+        b = above.lookup(d_over_2R, t_over_EA)
+        for r in (a, b):
+            if not r.inside:
+                return r
+        used = (below.mu, above.mu)
+
+        def say(r):
+            return {True: "holds", False: "slips", None: "undecided"}[r.holds]
+
+        w = (0.5 * (lo_m + hi_m) - below.mu) / (above.mu - below.mu)
+        if math.isfinite(a.critical) and math.isfinite(b.critical):
+            crit = (1 - w) * a.critical + w * b.critical
+        else:
+            crit = math.inf if math.isinf(a.critical) and math.isinf(b.critical) else float("nan")
+        bracket = (min(a.bracket[0], b.bracket[0]), max(a.bracket[1], b.bracket[1]))
+        tabs = f"the DER tables at mu = mu_rr = {below.mu:g} ({say(a)}) and {above.mu:g} ({say(b)})"
+        if a.holds is not None and a.holds == b.holds:
+            msg = (
+                f"{say(a)} in {tabs}, which bracket {which} (assumes friction does not turn a "
+                f"hold into a slip); {below.mu:g}: {a.message}; {above.mu:g}: {b.message}"
+            )
+            return PhaseAnswer(a.holds, True, crit, bracket, msg, used)
+        msg = (
+            f"{tabs}, which bracket {which}, do not agree: undecided, use --simulate "
+            f"({below.mu:g}: {a.message}; {above.mu:g}: {b.message})"
+        )
+        return PhaseAnswer(None, True, crit, bracket, msg, used)
+
+
+def load_tables(paths=None) -> PhaseTableSet:
+    """Every shipped table (``knotmech/data/clove_phase_table*.json``) or those in ``paths``."""
+    if paths is not None:
+        return PhaseTableSet([load_table(p) for p in paths])
+    try:
+        folder = resources.files("knotmech").joinpath("data")
+        names = sorted(
+            f.name for f in folder.iterdir() if Path(f.name).match(TABLE_GLOB) and f.is_file()
+        )
+    except (FileNotFoundError, OSError) as exc:
+        raise InputError(f"the shipped phase tables are missing: {exc}") from None
+    if not names:
+        raise InputError("the shipped phase tables are missing")
+    return PhaseTableSet([_read_table(folder.joinpath(n).read_text(), n) for n in names])
+
+
+def _read_table(text: str, name: str) -> PhaseTable:
+    try:
+        data = json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise InputError(f"phase table {name} is not JSON: {exc}") from None
     return PhaseTable.from_dict(data)

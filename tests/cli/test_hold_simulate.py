@@ -131,7 +131,9 @@ def test_cli_outside_table_and_other_mu(table_file, capsys):
     der = json.loads(capsys.readouterr().out)["der"]
     assert der["holds"] is None and not der["inside_table"] and "outside" in der["message"]
     assert main(_hold("4mm", "36mm", "1N", "--phase-table", str(table_file), mu="0.5")) == 0
-    assert "computed at mu = 0.3 only" in capsys.readouterr().out
+    assert "outside the friction range of the DER tables (computed at mu = mu_rr = 0.3 only)" in (
+        capsys.readouterr().out
+    )
 
 
 def test_cli_free_end_load_and_youngs_modulus(table_file, capsys):
