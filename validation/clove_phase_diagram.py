@@ -63,19 +63,26 @@ NOTE = (
 )
 
 
-def grid_points(grid) -> list[dict]:
-    """Parameter sets of :func:`knotmech.scenes.phase_table.simulate_point` for a grid."""
+def grid_points(grid, mu=None) -> list[dict]:
+    """Parameter sets of :func:`knotmech.scenes.phase_table.simulate_point` for a grid.
+
+    ``mu`` (rod-post and rod-rod friction) enters the parameters only when it differs
+    from the default :data:`knotmech.scenes.phase_table.MU` (so that mu = 0.3 runs keep
+    their cache keys).
+    """
+    extra = {} if mu is None or abs(mu - pt.MU) <= pt.MU_TOL else {"mu": mu, "mu_rr": mu}
     return [
-        {"d_over_2R": float(x), "t_over_EA": float(y)}
+        {"d_over_2R": float(x), "t_over_EA": float(y), **extra}
         for x in grid["d_over_2R"]
         for y in grid["t_over_EA"]
     ]
 
 
-def simulate_grid(grid, *, progress=False, scheduler=None, cache_dir=None, processes=None):
-    """Run the DER points of ``grid``; return (list of point dicts, list of failures)."""
+def simulate_grid(grid, *, mu=None, progress=False, scheduler=None, cache_dir=None, processes=None):
+    """Run the DER points of ``grid`` (at friction ``mu`` = mu_rr, default 0.3);
+    return (list of point dicts, list of failures)."""
     return simulate_grid_points(
-        grid_points(grid),
+        grid_points(grid, mu),
         progress=progress,
         scheduler=scheduler,
         cache_dir=cache_dir,
@@ -135,6 +142,64 @@ def fit_boundary(table: pt.PhaseTable):
                 out["peak_d_over_2R"] = float(xp)
                 out["peak_t_over_EA"] = float(np.polyval(coef, xp))
     return out
+
+
+def _boundary_numbers(table: pt.PhaseTable) -> dict:
+    xs, lo, hi, mid = table.boundary()
+    return {
+        "columns_d_over_2R": xs,
+        "lower_t_over_EA": lo,
+        "upper_t_over_EA": hi,
+        "mid_t_over_EA": mid,
+        "lower_boundary_slipped_t_over_EA": [table.low_slip(float(c)) for c in xs],
+    }
+
+
+def hold_to_slip_as_mu_rises(by_mu: dict) -> list:
+    """Grid points that hold at a lower friction and slip at a higher one.
+
+    More friction should not make a hitch slip; each entry ``[d/2R, T/EA, mu_lo, mu_hi]``
+    is a point where the tables say otherwise (every pair of tables, all common points).
+    """
+    out = []
+    mus = sorted(by_mu)
+    for i, m1 in enumerate(mus):
+        held = {(p.d_over_2R, p.t_over_EA): p.holds for p in by_mu[m1].points}
+        for m2 in mus[i + 1 :]:
+            for p in by_mu[m2].points:
+                if held.get((p.d_over_2R, p.t_over_EA)) is True and not p.holds:
+                    out.append([p.d_over_2R, p.t_over_EA, m1, m2])
+    return out
+
+
+def _tables_by_mu(table, *, simulate, grid, progress, scheduler, cache_dir, processes):
+    """{mu: PhaseTable} at every friction of the shipped tables: ``table`` at mu = 0.3, the
+    others simulated on ``grid`` (``simulate``) or read from the shipped tables."""
+    try:
+        shipped = pt.load_tables()
+    except InputError:
+        return {pt.MU: table}, "shipped"
+    out = {pt.MU: table}
+    for m in shipped.mus:
+        if abs(m - pt.MU) <= pt.MU_TOL:
+            continue
+        if not simulate:
+            out[m] = shipped.table(m)
+            continue
+        points, _ = simulate_grid(
+            grid,
+            mu=m,
+            progress=progress,
+            scheduler=scheduler,
+            cache_dir=cache_dir,
+            processes=processes,
+        )
+        out[m] = pt.PhaseTable(
+            [pt.PhasePoint(p["d_over_2R"], p["t_over_EA"], bool(p["holds"])) for p in points],
+            mu=m,
+            mu_rr=m,
+        )
+    return out, "DER" if simulate else "shipped"
 
 
 def _thick_nip_note():
@@ -206,6 +271,16 @@ def run(
     if not table.points:
         raise InputError("no phase point finished; nothing to draw")
     fit = fit_boundary(table)
+    by_mu, mu_source = _tables_by_mu(
+        table,
+        simulate=der and not quick,
+        grid=grid or GRID_FULL,
+        progress=progress,
+        scheduler=scheduler,
+        cache_dir=Path(out_dir) / "cache" / NAME,
+        processes=processes,
+    )
+    violations = hold_to_slip_as_mu_rises(by_mu)
     nip_holds, nip_mu = _thick_nip_note()
     x = np.array([p.d_over_2R for p in table.points])
     y = np.array([p.t_over_EA for p in table.points])
@@ -249,6 +324,10 @@ def run(
         "spot_checks_d_over_2R_t_over_EA_der_table": spot,
         "wall_s_per_run": wall,
         "wall_s_total": float(np.sum(wall)) if wall else 0.0,
+        "mu_tables": sorted(by_mu),
+        "mu_tables_source": mu_source,
+        "boundary_per_mu": {f"{m:g}": _boundary_numbers(t) for m, t in sorted(by_mu.items())},
+        "hold_to_slip_as_mu_rises_d_over_2R_t_over_EA_mu_lo_mu_hi": violations,
         "elapsed_s": (datetime.datetime.now() - t0).total_seconds(),
     }
     checks = {
@@ -352,6 +431,29 @@ def run(
             label="DER spot check, this run",
             zorder=4,
         )
+    if len(by_mu) > 1:
+        for k, (m, t) in enumerate(sorted(by_mu.items())):
+            bx, blo, bhi, bmid = t.boundary()
+            okm = np.isfinite(bmid)
+            ax.plot(
+                bx[okm],
+                bmid[okm],
+                ls="-.",
+                marker="D",
+                ms=4,
+                lw=1,
+                color=f"C{(k + 4) % 10}",
+                label=f"boundary at mu = mu_rr = {m:g} (bracket midpoints, {mu_source})",
+            )
+        for v in violations:
+            ax.annotate(
+                f"holds at mu {v[2]:g}, slips at {v[3]:g}",
+                (v[0], v[1]),
+                fontsize=5.5,
+                color="C3",
+                xytext=(4, -9),
+                textcoords="offset points",
+            )
     ax.axvline(PAPER_D_OVER_2R, color="0.6", lw=0.8, ls=":")
     ax.set_ylim(-0.02, 1.6 * float(y.max()))
     ax.legend(fontsize=6, loc="upper left", framealpha=0.9, ncol=2)
@@ -367,20 +469,47 @@ def run(
     )
 
 
-def write_table(path=TABLE_PATH, *, progress=True, processes=None, scheduler=None, cache_dir=None):
-    """Run the full grid and write the phase table that ``knotmech hold`` interpolates."""
+def table_path(mu: float = pt.MU) -> Path:
+    """Where the shipped table at mu = mu_rr = ``mu`` lives in the source tree."""
+    return TABLE_PATH.parent / pt.table_resource(mu)
+
+
+def write_table(
+    path=None,
+    *,
+    mu: float = pt.MU,
+    progress=True,
+    processes=None,
+    scheduler=None,
+    cache_dir=None,
+    note: str | None = None,
+):
+    """Run the full grid at friction ``mu`` = mu_rr and write the phase table that
+    ``knotmech hold`` interpolates (default path: the shipped table of that mu)."""
     t0 = datetime.datetime.now()
+    mu = float(mu)
+    path = table_path(mu) if path is None else path
     points, failed = simulate_grid(
-        GRID_FULL, progress=progress, scheduler=scheduler, cache_dir=cache_dir, processes=processes
+        GRID_FULL,
+        mu=mu,
+        progress=progress,
+        scheduler=scheduler,
+        cache_dir=cache_dir,
+        processes=processes,
     )
     if failed:
         raise InputError(f"{len(failed)} runs failed; not writing a table with holes: {failed}")
     wall = [p["wall_s"] for p in points]
+    gen = "python -m validation.clove_phase_diagram --write-table"
+    if abs(mu - pt.MU) > pt.MU_TOL:
+        gen += f" --mu {mu:g}"
     table = pt.PhaseTable(
         [pt.PhasePoint(p["d_over_2R"], p["t_over_EA"], bool(p["holds"])) for p in points],
+        mu=mu,
+        mu_rr=mu,
         meta={
             "what": "DER clove hitch with a free end: holds at (d/2R, T_high/EA)",
-            "generator": "python -m validation.clove_phase_diagram --write-table",
+            "generator": gen,
             "grid": GRID_FULL,
             "rod": {"d_m": pt.ROD_DIAMETER, "E_Pa": pt.YOUNGS_MODULUS, "rho": pt.DENSITY},
             "protocol": pt.PROTOCOL,
@@ -398,6 +527,7 @@ def write_table(path=TABLE_PATH, *, progress=True, processes=None, scheduler=Non
             ],
             "written": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
             "elapsed_s": round((datetime.datetime.now() - t0).total_seconds(), 1),
+            **({"note": note} if note else {}),
         },
     )
     Path(path).parent.mkdir(parents=True, exist_ok=True)
@@ -412,16 +542,22 @@ def _main(argv=None) -> int:
     parser.add_argument(
         "--write-table",
         nargs="?",
-        const=str(TABLE_PATH),
+        const="",
         default=None,
         metavar="PATH",
-        help=f"run the full grid and write the phase table (default {TABLE_PATH})",
+        help="run the full grid and write the phase table (default: the shipped table of "
+        f"--mu, {TABLE_PATH.parent}/clove_phase_table[_mu<mu>].json)",
+    )
+    parser.add_argument(
+        "--mu", type=float, default=pt.MU, help="--write-table: friction mu = mu_rr (default 0.3)"
     )
     parser.add_argument("--cache", default=None, help="sweep cache folder for --write-table")
+    parser.add_argument("--note", default=None, help="--write-table: a note kept in the meta")
     args = parser.parse_args(argv)
-    if args.write_table:
-        table = write_table(args.write_table, cache_dir=args.cache)
-        print(f"wrote {args.write_table}: {len(table.points)} points")
+    if args.write_table is not None:
+        path = args.write_table or table_path(args.mu)
+        table = write_table(path, mu=args.mu, cache_dir=args.cache, note=args.note)
+        print(f"wrote {path}: {len(table.points)} points at mu = mu_rr = {table.mu:g}")
         return 0
     from ._common import main
 
