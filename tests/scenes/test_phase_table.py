@@ -121,3 +121,57 @@ def test_shipped_tables_are_backward_compatible():
     # the paper's geometry (d/2R = 4/34) at 0.1 EA held in the mu = 0.3 DER runs
     a = s.lookup(0.1176, 0.1, mu=0.3)
     assert a.holds is True and a.mu_tables == (0.3,)
+
+
+# Shipped DER tables (python -m validation.clove_phase_diagram --write-table --mu <mu>):
+# d = 4 mm VPS32 rod, free end, 4 x 4 grid; hold = end 0 creeps < d over the last 0.2 s.
+SHIPPED_HOLDS = {0.2: 0, 0.25: 0, 0.3: 6, 0.35: 13, 0.4: 16, 0.5: 16}
+
+
+def test_shipped_tables_grid_and_meta():
+    s = load_tables()
+    assert s.mus == sorted(SHIPPED_HOLDS)
+    for m in s.mus:
+        t = s.table(m)
+        assert t.mu == t.mu_rr == m
+        assert tuple(t.d_over_2R) == (0.06, 0.1176, 0.2, 0.3)
+        assert tuple(t.t_over_EA) == (0.03, 0.1, 0.2, 0.3)
+        assert len(t.points) == 16
+        assert sum(p.holds for p in t.points) == SHIPPED_HOLDS[m]
+        assert t.meta["generator"].startswith("python -m validation.clove_phase_diagram")
+        assert (f"--mu {m:g}" in t.meta["generator"]) is (m != 0.3)
+        assert t.meta["cpu_s_total"] > 0 and "written" in t.meta
+
+
+def test_shipped_tables_values():
+    s = load_tables()
+    # mu = 0.35: everything holds up to 0.2 EA; 0.3 EA slips except at the paper's d/2R
+    slips = {(p.d_over_2R, p.t_over_EA) for p in s.table(0.35).points if not p.holds}
+    assert slips == {(0.06, 0.3), (0.2, 0.3), (0.3, 0.3)}
+    # the paper's d/2R = 4/34 at 0.1 EA: slips at mu <= 0.25, holds from 0.3 on
+    got = {m: s.lookup(4 / 34, 0.1, mu=m).holds for m in s.mus}
+    assert got == {0.2: False, 0.25: False, 0.3: True, 0.35: True, 0.4: True, 0.5: True}
+    # between tables: 0.325 is bracketed by 0.3 and 0.35 (both hold here) ...
+    a = s.lookup(4 / 34, 0.1, mu=0.325)
+    assert a.holds is True and a.mu_tables == (0.3, 0.35)
+    # ... and at (0.2, 0.03) they disagree (0.3 slips, 0.35 holds): undecided
+    b = s.lookup(0.2, 0.03, mu=0.325)
+    assert b.holds is None and b.mu_tables == (0.3, 0.35) and "do not agree" in b.message
+    # 0.22 between two all-slip tables slips; 0.45 between two all-hold tables holds
+    assert s.lookup(0.3, 0.3, mu=0.22).holds is False
+    assert s.lookup(0.3, 0.3, mu=0.45).holds is True
+
+
+def test_shipped_tables_more_friction_never_turns_a_hold_into_a_slip():
+    """Physically a hitch that holds at some friction must hold at any higher friction
+    (same geometry and load). Checked over every pair of shipped tables and every point;
+    also per column: the largest load held does not decrease with mu."""
+    s = load_tables()
+    for i, lo in enumerate(s.tables):
+        held = {(p.d_over_2R, p.t_over_EA) for p in lo.points if p.holds}
+        for hi in s.tables[i + 1 :]:
+            lost = {(p.d_over_2R, p.t_over_EA) for p in hi.points if not p.holds} & held
+            assert not lost, f"hold at mu = {lo.mu} but slip at mu = {hi.mu}: {sorted(lost)}"
+    for x in (0.06, 0.1176, 0.2, 0.3):
+        largest = [s.table(m).column_bracket(x)[0] for m in s.mus]
+        assert largest == sorted(largest)
