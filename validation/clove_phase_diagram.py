@@ -185,9 +185,10 @@ def hold_to_slip_as_mu_rises(by_mu: dict) -> list:
     return out
 
 
-def _tables_by_mu(table, *, simulate, grid, progress, scheduler, cache_dir, processes):
+def _tables_by_mu(table, *, simulate, grid, progress, scheduler, cache_dir, processes, failed):
     """{mu: PhaseTable} at every friction of the shipped tables: ``table`` at mu = 0.3, the
-    others simulated on ``grid`` (``simulate``) or read from the shipped tables."""
+    others simulated on ``grid`` (``simulate``; failed runs appended to ``failed``) or
+    read from the shipped tables."""
     try:
         shipped = pt.load_tables()
     except InputError:
@@ -199,7 +200,7 @@ def _tables_by_mu(table, *, simulate, grid, progress, scheduler, cache_dir, proc
         if not simulate:
             out[m] = shipped.table(m)
             continue
-        points, _ = simulate_grid(
+        points, lost = simulate_grid(
             grid,
             mu=m,
             progress=progress,
@@ -207,6 +208,7 @@ def _tables_by_mu(table, *, simulate, grid, progress, scheduler, cache_dir, proc
             cache_dir=cache_dir,
             processes=processes,
         )
+        failed += lost
         out[m] = pt.PhaseTable(
             [pt.PhasePoint(p["d_over_2R"], p["t_over_EA"], bool(p["holds"])) for p in points],
             mu=m,
@@ -292,6 +294,7 @@ def run(
         scheduler=scheduler,
         cache_dir=Path(out_dir) / "cache" / NAME,
         processes=processes,
+        failed=failed,
     )
     violations = hold_to_slip_as_mu_rises(by_mu)
     nip_holds, nip_mu = _thick_nip_note()

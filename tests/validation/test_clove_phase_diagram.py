@@ -45,6 +45,33 @@ def test_shipped_table_diagram(shipped):
     assert on_disk["numbers"] == shipped["numbers"]
 
 
+def test_shipped_boundary_per_mu(shipped):
+    """The diagram carries every shipped friction's boundary (tables at mu = mu_rr =
+    0.2 ... 0.5, DER runs): all slip at 0.2 and 0.25 (midpoint = half of 0.03 EA), all
+    hold at 0.4 and 0.5 (no slip above: inf), 0.35 slips only at 0.3 EA off the paper's
+    d/2R, and no point that holds at a lower mu slips at a higher one."""
+    n = shipped["numbers"]
+    assert n["mu_tables"] == [0.2, 0.25, 0.3, 0.35, 0.4, 0.5]
+    assert n["mu_tables_source"] == "shipped"
+    per = n["boundary_per_mu"]
+    assert per["0.2"]["mid_t_over_EA"] == pytest.approx([0.015] * 4)
+    assert per["0.25"]["mid_t_over_EA"] == pytest.approx([0.015] * 4)
+    assert per["0.3"]["mid_t_over_EA"] == pytest.approx([0.15, 0.25, 0.15, 0.015])
+    assert per["0.35"]["lower_t_over_EA"] == pytest.approx([0.2, 0.3, 0.2, 0.2])
+    assert per["0.35"]["upper_t_over_EA"][0] == pytest.approx(0.3)
+    for key in ("0.4", "0.5"):  # numbers are JSON-ready: inf as "inf"
+        assert [float(v) for v in per[key]["mid_t_over_EA"]] == [np.inf] * 4
+    assert n["hold_to_slip_as_mu_rises_d_over_2R_t_over_EA_mu_lo_mu_hi"] == []
+
+
+def test_hold_to_slip_as_mu_rises_finds_a_planted_violation():
+    from knotmech.scenes.phase_table import PhasePoint, PhaseTable
+
+    lo = PhaseTable([PhasePoint(0.1, 0.1, True), PhasePoint(0.1, 0.2, False)], mu=0.2, mu_rr=0.2)
+    hi = PhaseTable([PhasePoint(0.1, 0.1, False), PhasePoint(0.1, 0.2, True)], mu=0.4, mu_rr=0.4)
+    assert case.hold_to_slip_as_mu_rises({0.2: lo, 0.4: hi}) == [[0.1, 0.1, 0.2, 0.4]]
+
+
 def test_fit_boundary_peak_of_a_known_parabola():
     """Midpoints on T = 0.3 - 10 (x - 0.15)^2 at three columns: the fit finds the peak."""
     from knotmech.scenes.phase_table import PhasePoint, PhaseTable
@@ -83,3 +110,23 @@ def test_der_grid_3x3(tmp_path):
     table = load_table()
     for x, y, holds in res["numbers"]["points"]:
         assert table.lookup(x, y).holds is holds
+
+
+@pytest.mark.slow
+def test_full_mode_simulates_every_friction(tmp_path):
+    """Full mode on a one-column grid (d/2R = 0.3; 12 DER runs, about 40 s): every
+    shipped friction is simulated and reproduces its table."""
+    from knotmech.scenes.phase_table import load_tables
+
+    grid = {"d_over_2R": (0.3,), "t_over_EA": (0.03, 0.3)}
+    res = case.run(quick=False, out_dir=tmp_path, grid=grid, processes=1)
+    n = res["numbers"]
+    assert n["mu_tables_source"] == "DER" and not n["failed"]
+    tables = load_tables()
+    assert len(n["boundary_per_mu"]) == len(tables.mus)
+    for key, b in n["boundary_per_mu"].items():
+        t = tables.table(float(key))
+        light, heavy = t.lookup(0.3, 0.03).holds, t.lookup(0.3, 0.3).holds
+        # bracket of the two simulated loads, as the shipped table's points predict it
+        assert b["lower_t_over_EA"][0] == (0.3 if heavy else 0.03 if light else 0.0)
+        assert float(b["upper_t_over_EA"][0]) == (np.inf if heavy else 0.3 if light else 0.03)
