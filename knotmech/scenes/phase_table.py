@@ -15,14 +15,23 @@ This module
   :func:`knotmech.scenes.clove_hitch.clove_hitch` (:func:`simulate_point`, a module-level
   function for :func:`knotmech.sweep.sweep`),
 - loads the precomputed table shipped in ``knotmech/data/clove_phase_table.json``
-  (:func:`load_table`; regenerate with ``python -m validation.clove_phase_diagram
-  --write-table``),
+  (:func:`load_table`, mu = mu_rr = 0.3; regenerate with ``python -m
+  validation.clove_phase_diagram --write-table``) or every shipped table, one per
+  friction coefficient mu = mu_rr (``clove_phase_table_mu<mu>.json``, written by
+  ``--write-table --mu <mu>``; :func:`load_tables`),
 - answers a query from that table (:meth:`PhaseTable.lookup`): the simulated points
   around the query decide when they agree (all held or all slipped), otherwise the
   query is near a boundary and the table does not decide; per d/2R column the upper
   boundary lies between the largest load that held and the smallest that slipped
   above it, interpolated linearly in d/2R. Outside the grid (or at another friction
-  coefficient) the table gives no answer and says so.
+  coefficient) the table gives no answer and says so,
+- answers for any friction from the set of tables (:meth:`PhaseTableSet.lookup`): the
+  tables bracketing the user's (mu, mu_rr) decide when they agree, assuming that more
+  friction does not turn a hold into a slip (true of every shipped table pair).
+
+Shipped tables (d = 4 mm VPS32 rod, 4 x 4 grid): mu = 0.2 and 0.25 slip at every
+point, 0.3 holds 6 of 16 (interior boundary), 0.35 holds 13 (slips only at 0.3 EA off
+the paper's d/2R), 0.4 and 0.5 hold all 16.
 """
 
 from __future__ import annotations
