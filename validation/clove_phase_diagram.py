@@ -26,7 +26,9 @@ with a 1.2 s hold: 0.03 EA seated at 0.01 EA (the 0.1 EA run's seat) holds (cree
 0.26 mm over the last 0.6 s), 0.1 EA seated at 0.003 EA (the 0.03 EA run's seat)
 unties at t = 0.48 s, and both original verdicts survive the longer hold (0.03 EA
 unties at 0.90 s; 0.1 EA creeps 0.24 mm over the last 0.6 s, after sliding 54 mm
-during the ramp and catching).
+during the ramp and catching). With the seat fixed at 0.01 EA for every load, the 12
+points off the 0.1 EA row keep their mu = 0.3 verdicts except (0.2, 0.03 EA), which
+then holds: the upper boundary does not depend on the seat, the lower bracket does.
 
 Friction moves the whole map (tables at mu = mu_rr = 0.2, 0.3, 0.4, 0.5 on the same
 grid): at 0.2 every point slips, at 0.4 and 0.5 every point holds (up to 0.3 EA at
@@ -385,7 +387,8 @@ def run(
         + f". Points that hold at a lower mu and slip at a higher one: {len(violations)}.",
         "Lower bracket at d/2R = 0.2 (0.03 EA slips, 0.1 EA holds at mu = 0.3): each run "
         "settles under 0.1 T_high, so the lightest load has the loosest seat; swapping the "
-        "seats swaps the verdicts (1.2 s hold reruns), so it is the seat, not the load.",
+        "seats swaps the verdicts (1.2 s hold reruns), so it is the seat, not the load; "
+        "seated at 0.01 EA for every load the other points keep their verdicts.",
     ]
 
     from matplotlib.figure import Figure
