@@ -144,18 +144,25 @@ QUICK_COATED_N3 = dict(n_nodes=151, pull_speed=0.03, dt=5e-3, wait_time=0.5, pul
 
 
 @pytest.mark.slow
-def test_inversion_at_low_mu():
-    """Coated-rod paper, sec. 4 (n = 3): the uncoated rod (mu = 0.2) shows a sudden force
-    drop (inversion) while the knot is pulled tight, and the knot type is kept. Measured:
-    the smoothed force falls from 0.054 N to 0.034 N at an end-to-end length of 0.46 m.
+def test_inversion_sooner_at_higher_mu():
+    """Coated-rod paper, sec. 4 (n = 3): the pull force drops suddenly at the inversion point,
+    and "the inversion point occurs sooner as the friction increase". Measured (151 nodes,
+    30 mm/s, 5 ms; inversions as 20 % falls within 5 % of the range pulled, as in
+    validation/overhand_knots.py): mu = 0.2 at an end-to-end length of 0.457 m, mu = 0.6 at
+    0.446 m (mu = 0.9: 0.432 m), knot type 7_1 kept in all three.
 
-    The other half of the claim (no inversion at mu = 0.6-0.9) is not tested: with this
-    quick setup (151 nodes, 30 mm/s) the mu = 0.9 pull stops with a Newton failure at
-    t = 4.9 s and the mu = 0.6 pull lets strands pass through (7_1 -> 3_1), see the report.
+    The paper also reports no inversion at mu = 0.6-0.9 for n = 3, 4 (its experiments); the
+    DER pulls here invert at every mu (the full validation run too), so that half of the
+    claim is not reproduced and not asserted.
     """
-    r = overhand(3, 0.2, params="coated", n_frames=381, **QUICK_COATED_N3)
-    assert r.status == "success"
-    assert r.knot_start == r.knot_end == "7_1"
-    pulling = r.times > r.setup.wait_time + 0.2
-    found = inversion_points(r.end_to_end[pulling], r.pull_force[pulling])
-    assert found.size == 1
+    found = {}
+    for mu in (0.2, 0.6):
+        r = overhand(3, mu, params="coated", n_frames=381, **QUICK_COATED_N3)
+        assert r.status == "success", r.message
+        assert r.knot_start == r.knot_end == "7_1"
+        pulling = r.times > r.setup.wait_time + 0.2
+        inv = inversion_points(r.end_to_end[pulling], r.pull_force[pulling], span=0.05)
+        assert inv.size == 1
+        found[mu] = inv[0]
+    assert found[0.2] == pytest.approx(0.457, abs=0.01)
+    assert found[0.6] < found[0.2]
