@@ -37,7 +37,8 @@ import numpy as np
 from scipy import stats
 
 from knotmech.diagnose.engine import diagnose
-from knotmech.diagnose.stats import wilson_interval
+from knotmech.diagnose.locate import smooth_mismatch
+from knotmech.diagnose.stats import trial_starts, wilson_interval
 from knotmech.diagnose.synth import SYNTH_EFFECTS, make_recording
 
 from ._common import finish, output_dir, save_figure, to_jsonable
@@ -134,6 +135,51 @@ def run_one(case, n=240) -> dict:
         "estimate": est,
         "truth": {k: v for k, v in truth.items() if k not in ("effect", "size", "noise")},
         "seconds": dt,
+    }
+
+
+def smooth_trial_one(case, n=240) -> dict:
+    """Trial of the second structure test (issue 5, not adopted by the engine).
+
+    Diagnose one recording, then run :func:`knotmech.diagnose.locate.smooth_mismatch`
+    (5 knots, noise estimated with the basis, at ``alpha / 2 = 0.005``) on the final
+    residuals when the verdict is not already ``unexplained``; ``verdict_with_smooth``
+    is what the engine would say with that test wired in after its own.
+    """
+    exp, eff, size, noise, seed = case
+    rec, _ = make_recording(exp, eff, size=size, noise=noise, seed=seed, n=n)
+    rep = diagnose(rec, seed=seed)
+    out = {"experiment": exp, "effect": eff or "none", "size": size, "noise": noise}
+    out.update(seed=seed, verdict=rep.verdict, smooth_p=None)
+    out["verdict_with_smooth"] = rep.verdict
+    if rep.verdict != "unexplained":
+        sm = smooth_mismatch(
+            rec.x,
+            rec.y - rep.final_mean,
+            rep.final_mean,
+            trial_starts(rec.trial),
+            rec.trial,
+            given_sigma=rec.sigma,
+            rng=np.random.default_rng(seed + 7),
+            decide_at=0.005,
+        )
+        out["smooth_p"] = sm.p_value
+        if sm.p_value < 0.005 and sm.regions:
+            out["verdict_with_smooth"] = "unexplained"
+    return out
+
+
+def smooth_trial_cases() -> dict:
+    """The measured subset: all nulls and out-of-catalogue recordings of the full
+    table, every white-noise effect recording at >= 3 sd and every AR(1) one at
+    >= 3 sd (their full-table seeds)."""
+    allc = cases(False)
+    eff = [c for c in allc if c[1] not in (None, "out_of_catalogue") and c[2] >= 3.0]
+    return {
+        "nulls": [c for c in allc if c[1] is None],
+        "out_of_catalogue": [c for c in allc if c[1] == "out_of_catalogue"],
+        "white_effects": [c for c in eff if c[3] == "white"],
+        "ar1_effects": [c for c in eff if c[3] == "ar1"],
     }
 
 
