@@ -303,6 +303,16 @@ def capstan(
     ang = np.unwrap(np.arctan2(last[in_contact, 1], last[in_contact, 0]))
     contact_angle = float(ang.max() - ang.min()) if ang.size > 1 else 0.0
     s_mid = np.cumsum(system.rest_length) - 0.5 * system.rest_length
+    status, message = res.status, res.message
+    if mode == "pull" and status == "success" and contact_angle < 0.5 * theta:
+        # the solver converged, but the rod is no longer wrapped: no capstan ratio to report
+        status = "failed"
+        message = (
+            f"the rod left the post: its contact spans {contact_angle:.2f} rad of the "
+            f"{theta:.2f} rad wrap at the end (an unstable set-up, e.g. a thick rod wrapped "
+            "more than once round a thin post); no sliding ratio"
+        )
+        ratio = float("nan")
     return CapstanResult(
         mode=mode,
         wrap_angle=theta,
@@ -322,8 +332,8 @@ def capstan(
         mu_eff=me,
         exp_mu_theta=exp_mu,
         exp_mu_eff_theta=exp_mue,
-        status=res.status,
-        message=res.message,
+        status=status,
+        message=message,
         stats=dict(res.stats),
         positions=pos,
     )
