@@ -405,8 +405,10 @@ class PhaseTableSet:
     (one table when the query is on a table's coefficient, within :data:`MU_TOL`). The
     answer is decided when both tables decide the same way; this rests on the hold
     being monotonic in friction (a hold at lower friction stays a hold at higher
-    friction), which the shipped tables are tested for. Outside the tables' friction
-    range the answer is None and says so.
+    friction), which the shipped tables are tested for. Beyond the tables' friction range
+    the same assumption decides one way only: above the largest coefficient a hold in
+    that table is a hold; below the smallest a slip in that table is a slip; otherwise
+    the answer is None and says so.
     """
 
     tables: list
@@ -453,7 +455,11 @@ class PhaseTableSet:
         mus = self.mus
         nan = (float("nan"), float("nan"))
         which = f"mu = {m:g}" + ("" if mr == m else f", mu_rr = {mr:g}")
-        if lo_m < mus[0] - MU_TOL or hi_m > mus[-1] + MU_TOL:
+        below = max((t for t in self.tables if t.mu <= lo_m + MU_TOL), key=lambda t: t.mu,
+                    default=None)  # fmt: skip
+        above = min((t for t in self.tables if t.mu >= hi_m - MU_TOL), key=lambda t: t.mu,
+                    default=None)  # fmt: skip
+        if below is None and above is None:
             return PhaseAnswer(
                 None,
                 False,
@@ -462,8 +468,30 @@ class PhaseTableSet:
                 f"{which} is outside the friction range of the DER tables (computed at "
                 f"mu = mu_rr = {_fmt_mus(mus)} only)",
             )
-        below = max((t for t in self.tables if t.mu <= lo_m + MU_TOL), key=lambda t: t.mu)
-        above = min((t for t in self.tables if t.mu >= hi_m - MU_TOL), key=lambda t: t.mu)
+        if below is None or above is None:
+            # one side only: a hold at less friction stays a hold at more, a slip at more
+            # friction stays a slip at less (the assumption the bracketing rests on)
+            one = below if above is None else above
+            a = one.lookup(d_over_2R, t_over_EA)
+            if not a.inside:
+                return a
+            side = "above" if above is None else "below"
+            decides = a.holds is (above is None)  # holds from below, slips from above
+            if decides:
+                msg = (
+                    f"{'holds' if a.holds else 'slips'} in the DER table at mu = mu_rr = "
+                    f"{one.mu:g}, and {which} lies {side} the tables (computed at mu = mu_rr = "
+                    f"{_fmt_mus(mus)}): {'more' if a.holds else 'less'} friction keeps that "
+                    f"(assumed; true of every pair of shipped tables); {a.message}"
+                )
+                return PhaseAnswer(a.holds, True, a.critical, a.bracket, msg, (one.mu,))
+            state = {True: "holds", False: "slips", None: "undecided"}[a.holds]
+            msg = (
+                f"{which} lies {side} the friction range of the DER tables (computed at "
+                f"mu = mu_rr = {_fmt_mus(mus)}) and the nearest, mu = {one.mu:g}, {state}: "
+                f"undecided, use --simulate ({a.message})"
+            )
+            return PhaseAnswer(None, True, float("nan"), nan, msg, (one.mu,))
         if below is above:
             a = below.lookup(d_over_2R, t_over_EA)
             if not a.inside:

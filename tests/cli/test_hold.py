@@ -158,4 +158,11 @@ def test_huge_friction_does_not_overflow(knot, free, capsys):
         args += ["--wrap-angle", "1turn"]
     assert main(args) == 0
     data = json.loads(capsys.readouterr().out)  # '--json -' prints only the JSON
-    assert data["holds"] is (free != "0N")
+    if knot == "clove-hitch" and free == "0N":
+        # beyond the DER tables' friction range (0.2-0.5): the mu = 0.5 table holds at this
+        # geometry, and more friction keeps a hold, so the DER decides (the ideal rope would
+        # say it slips at any load)
+        assert data["holds"] is True and data["decided_by"] == "DER-table"
+        assert data["der"]["mu_tables"] == [0.5]
+    else:
+        assert data["holds"] is (free != "0N")

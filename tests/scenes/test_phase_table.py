@@ -70,11 +70,20 @@ def test_set_mu_rr_widens_the_bracket(tables):
     assert tables.lookup(0.2, 0.1, mu=0.4, mu_rr=0.4).holds is True
 
 
-def test_set_outside_the_friction_range(tables):
-    for mu, mu_rr in ((0.5, None), (0.1, None), (0.3, 0.5), (0.3, 0.1)):
-        a = tables.lookup(0.1, 0.1, mu=mu, mu_rr=mu_rr)
-        assert a.holds is None and not a.inside and a.mu_tables == ()
-        assert "outside the friction range" in a.message and "0.2, 0.4" in a.message
+def test_set_beyond_the_friction_range_decides_one_way(tables):
+    # above the largest mu (0.4): a hold there is a hold; a slip there is undecided
+    a = tables.lookup(0.1, 0.1, mu=0.5)
+    assert a.holds is True and a.inside and a.mu_tables == (0.4,)
+    assert "lies above the tables" in a.message and "more friction keeps that" in a.message
+    u = tables.lookup(0.1, 0.3, mu=0.5)  # slips at 0.4
+    assert u.holds is None and u.inside and "--simulate" in u.message
+    # below the smallest mu (0.2): a slip there is a slip; a hold there is undecided
+    s = tables.lookup(0.2, 0.1, mu=0.1)  # column 0.2 holds nothing at 0.2
+    assert s.holds is False and s.mu_tables == (0.2,) and "less friction" in s.message
+    assert tables.lookup(0.1, 0.1, mu=0.1).holds is None  # held at 0.2
+    # mu_rr on the other side of the range: one-sided too
+    assert tables.lookup(0.1, 0.1, mu=0.3, mu_rr=0.5).holds is True  # 0.2 table holds
+    assert tables.lookup(0.2, 0.2, mu=0.3, mu_rr=0.1).holds is False  # 0.4 table slips
     # outside the grid at a covered mu: the table's own message
     assert "outside the DER table" in tables.lookup(0.5, 0.1, mu=0.3).message
 
