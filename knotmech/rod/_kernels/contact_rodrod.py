@@ -30,21 +30,9 @@ def _clamp01(x):
 
 
 @njit(cache=True)
-def segment_params(x1, x2, x3, x4):
-    """Closest-point parameters (s, t) of segments x1-x2 and x3-x4 (Lumelsky 1985).
-
-    Returns s, t in [0, 1] and flags free_s, free_t telling whether each parameter lies in the
-    open interval (the edge-edge case has both free, point-edge one, point-point none). For
-    (near-)parallel edges s is fixed first (one free parameter at most).
-    """
-    e1 = x2 - x1
-    e2 = x4 - x3
-    w0 = x1 - x3
-    a = e1 @ e1
-    b = e1 @ e2
-    c = e2 @ e2
-    d = e1 @ w0
-    e = e2 @ w0
+def _closest_params(a, b, c, d, e):
+    """Lumelsky's clamped closest-point parameters from the dot products a = e1.e1,
+    b = e1.e2, c = e2.e2, d = e1.w0, e = e2.w0 (w0 = x1 - x3); see :func:`segment_params`."""
     den = a * c - b * b
     parallel = den <= _PARALLEL_TOL * a * c
     if not parallel:
@@ -67,6 +55,25 @@ def segment_params(x1, x2, x3, x4):
 
 
 @njit(cache=True)
+def segment_params(x1, x2, x3, x4):
+    """Closest-point parameters (s, t) of segments x1-x2 and x3-x4 (Lumelsky 1985).
+
+    Returns s, t in [0, 1] and flags free_s, free_t telling whether each parameter lies in the
+    open interval (the edge-edge case has both free, point-edge one, point-point none). For
+    (near-)parallel edges s is fixed first (one free parameter at most).
+    """
+    e1 = x2 - x1
+    e2 = x4 - x3
+    w0 = x1 - x3
+    a = e1 @ e1
+    b = e1 @ e2
+    c = e2 @ e2
+    d = e1 @ w0
+    e = e2 @ w0
+    return _closest_params(a, b, c, d, e)
+
+
+@njit(cache=True)
 def _segment_params_flat(x):
     """:func:`segment_params` of the two edges packed in ``x`` (12,) = (x_i, x_i+1, x_j,
     x_j+1), in scalar arithmetic (no temporary arrays: the broad-phase filter calls it for
@@ -85,24 +92,7 @@ def _segment_params_flat(x):
         c += e2 * e2
         d += e1 * w0
         e += e2 * w0
-    den = a * c - b * b
-    parallel = den <= _PARALLEL_TOL * a * c
-    if not parallel:
-        s = _clamp01((b * e - c * d) / den)
-    else:
-        s = 0.0
-    t = (b * s + e) / c
-    if t < 0.0:
-        t = 0.0
-        s = _clamp01(-d / a)
-    elif t > 1.0:
-        t = 1.0
-        s = _clamp01((b - d) / a)
-    free_s = (s > 0.0) and (s < 1.0)
-    free_t = (t > 0.0) and (t < 1.0)
-    if parallel and free_s and free_t:
-        free_s = False
-    return s, t, free_s, free_t
+    return _closest_params(a, b, c, d, e)
 
 
 @njit(cache=True)
