@@ -21,33 +21,30 @@ from numba import njit
 
 
 @njit(cache=True)
+def _widen(first, i, j):
+    """Widen the envelope of row max(i, j) to column min(i, j) (skipped if either is < 0)."""
+    if i < 0 or j < 0:
+        return
+    if i < j:
+        i, j = j, i
+    if j < first[i]:
+        first[i] = j
+
+
+@njit(cache=True)
 def pattern_first(rows, cols, first):
     """Widen the envelope to the entries (rows[k], cols[k]) (skipped if an index is negative):
     first[i] = the smallest j <= i with A[i, j] or A[j, i] structurally non-zero (start
     from first[i] = i)."""
     for k in range(rows.shape[0]):
-        i = rows[k]
-        j = cols[k]
-        if i < 0 or j < 0:
-            continue
-        if i < j:
-            i, j = j, i
-        if j < first[i]:
-            first[i] = j
+        _widen(first, rows[k], cols[k])
 
 
 @njit(cache=True)
 def pattern_first_mapped(rows, cols, gmap, first):
     """:func:`pattern_first` of the entries (gmap[rows[k]], gmap[cols[k]])."""
     for k in range(rows.shape[0]):
-        i = gmap[rows[k]]
-        j = gmap[cols[k]]
-        if i < 0 or j < 0:
-            continue
-        if i < j:
-            i, j = j, i
-        if j < first[i]:
-            first[i] = j
+        _widen(first, gmap[rows[k]], gmap[cols[k]])
 
 
 @njit(cache=True)
