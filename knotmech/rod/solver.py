@@ -322,7 +322,8 @@ class Stepper:
             d0 = gm[self.free_idx]
             first0 = np.arange(self.free_idx.size, dtype=np.int64)
             _env.pattern_first(r0, c0, first0)
-            self._elastic_rc = (r0, c0, d0, max(_asm.max_band(r0, c0), 0), first0)
+            kd0 = _asm.max_band_mapped(er, ec, gm)
+            self._elastic_rc = (r0, c0, d0, kd0, first0)
         r0, c0, d0, kd0, first0 = self._elastic_rc
         trip = self.trip
         kd = max(kd0, _asm.max_band_mapped(trip.rows, trip.cols, gm), 1)
@@ -341,7 +342,8 @@ class Stepper:
             _asm.band_add_hessians_mapped(
                 s.edge_dof0, s.stencil_edge, ws.hess_s, ws.hess8, gm, kd, ab
             )
-            _asm.band_scatter(d0, d0, dv, 1.0, kd, False, ab)
+            fi = self.free_idx
+            _asm.band_scatter_mapped(fi, fi, dv, gm, 1.0, kd, ab)
             _asm.band_scatter_mapped(trip.rows, trip.cols, trip.vals, gm, -1.0, kd, ab)
             self._ab, self._kd = ab, kd
             first = getattr(self, "_env_first", None)

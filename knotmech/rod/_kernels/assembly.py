@@ -202,38 +202,11 @@ def max_abs_strain(lengths, rest_length):
 
 
 @njit(cache=True)
-def band_scatter(rows, cols, vals, scale, off, upper_only, ab):
-    """Add ``scale * vals`` at (rows, cols) of a LAPACK band matrix: entry (i, j) goes to
-    ``ab[off + i - j, j]`` (off = kd for the dpbsv upper layout with ``upper_only``, 2 kd for
-    dgbsv). Entries with a negative index (eliminated dofs) are skipped."""
-    for k in range(rows.shape[0]):
-        i = rows[k]
-        j = cols[k]
-        if i < 0 or j < 0 or (upper_only and i > j):
-            continue
-        ab[off + i - j, j] += scale * vals[k]
-
-
-@njit(cache=True)
-def max_band(rows, cols):
-    """Largest |i - j| over the entries with both indices >= 0."""
-    kd = 0
-    for k in range(rows.shape[0]):
-        i = rows[k]
-        j = cols[k]
-        if i >= 0 and j >= 0:
-            d = i - j if i > j else j - i
-            if d > kd:
-                kd = d
-    return kd
-
-
-@njit(cache=True)
 def band_add_hessians_mapped(edge_dof0, stencil_edge, hess_s, hess8, gmap, off, ab):
     """Add the full elastic Hessian (stretching 6x6 per edge, then bending+twisting
     H11 = P^T H8 P per stencil) into a general band matrix, row/column i of the system
     going to ``gmap[i]`` (skipped if negative): A[gi, gj] at ``ab[off + gi - gj, gj]``.
-    The same entries in the same order as :func:`coo_hessians` + :func:`band_scatter`
+    The same entries in the same order as :func:`coo_hessians` + :func:`band_scatter_mapped`
     through ``gmap``, without the COO temporaries."""
     for k in range(edge_dof0.shape[0]):
         d = edge_dof0[k]
