@@ -133,9 +133,10 @@ def edge_distance_hessian(x, grad, hess):
 
 
 @njit(cache=True)
-def _edge_distance_hessian_ws(x, grad, hess, coef, w, gphi, H, B, U):
-    """:func:`edge_distance_hessian` with caller-provided work arrays coef (4,), w (3,),
-    gphi (12,), H (12, 12), B (12, 2), U (2, 2) (no allocation per pair)."""
+def _gap(x, coef, w):
+    """Closest points of the two edges in ``x`` (12,): writes the weights ``coef`` (4,) of
+    the four nodes in the gap vector w = A x = (1-s) x1 + s x2 - (1-t) x3 - t x4 and ``w``
+    (3,); returns (|w|, free_s, free_t) (see :func:`segment_params`)."""
     s, t, free_s, free_t = _segment_params_flat(x)
     coef[0] = 1.0 - s
     coef[1] = s
@@ -146,6 +147,14 @@ def _edge_distance_hessian_ws(x, grad, hess, coef, w, gphi, H, B, U):
         w[m] = coef[0] * x[m] + coef[1] * x[3 + m] + coef[2] * x[6 + m] + coef[3] * x[9 + m]
         d2 += w[m] * w[m]
     dist = np.sqrt(d2)
+    return dist, free_s, free_t
+
+
+@njit(cache=True)
+def _edge_distance_hessian_ws(x, grad, hess, coef, w, gphi, H, B, U):
+    """:func:`edge_distance_hessian` with caller-provided work arrays coef (4,), w (3,),
+    gphi (12,), H (12, 12), B (12, 2), U (2, 2) (no allocation per pair)."""
+    dist, free_s, free_t = _gap(x, coef, w)
     # phi_x = A^T w ; phi_xx = (coef coef^T) kron I3
     for k in range(4):
         for m in range(3):
@@ -230,16 +239,7 @@ def _edge_distance_hessian_ws(x, grad, hess, coef, w, gphi, H, B, U):
 def _edge_distance_grad_ws(x, grad, coef, w):
     """Distance and its gradient only (the arithmetic of :func:`_edge_distance_hessian_ws`,
     so both give bitwise the same values): for pairs that need no Jacobian block."""
-    s, t, _, _ = _segment_params_flat(x)
-    coef[0] = 1.0 - s
-    coef[1] = s
-    coef[2] = -(1.0 - t)
-    coef[3] = -t
-    d2 = 0.0
-    for m in range(3):
-        w[m] = coef[0] * x[m] + coef[1] * x[3 + m] + coef[2] * x[6 + m] + coef[3] * x[9 + m]
-        d2 += w[m] * w[m]
-    dist = np.sqrt(d2)
+    dist, _, _ = _gap(x, coef, w)
     inv_d = 1.0 / dist
     for k in range(4):
         for m in range(3):
