@@ -131,9 +131,14 @@ def flexible_mismatch(
         return out
 
     p, _ = monte_carlo_pvalue(stat, draw, batches=(19, 40, 80), decide_at=decide_at)
+    xw = _whiten_cols(nz, nz.sd(mean), starts, design)
+    return _located(x, design, coef, xw, stat, p)
+
+
+def _located(x, design, coef, xw, stat, p) -> Mismatch:
+    """The fitted mismatch curve ``design @ coef``, its pointwise z-scores under the
+    whitened design ``xw``, and the regions where |z| > 3."""
     curve = design @ coef
-    sd = nz.sd(mean)
-    xw = _whiten_cols(nz, sd, starts, design)
     cov = np.linalg.pinv(xw.T @ xw)
     se = np.sqrt(np.maximum(np.einsum("ij,jk,ik->i", design, cov, design), 1e-300))
     z = curve / se
@@ -212,13 +217,7 @@ def smooth_mismatch(
         return out
 
     p, _ = monte_carlo_pvalue(stat, draw, batches=(19, 40, 80), decide_at=decide_at)
-    curve = design @ coef
-    cov = np.linalg.pinv(xw.T @ xw)
-    se = np.sqrt(np.maximum(np.einsum("ij,jk,ik->i", design, cov, design), 1e-300))
-    z = curve / se
-    mask = np.abs(z) > 3.0
-    regions = regions_from_mask(x, mask)
-    return Mismatch(float(stat), float(p), curve, z, regions, describe_shape(x, curve, mask))
+    return _located(x, design, coef, xw, stat, p)
 
 
 def regions_from_mask(x, mask) -> list:
