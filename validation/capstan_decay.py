@@ -91,6 +91,11 @@ TRIM = 0.1  #: fraction of the contact arc left out of the fit at each end (lift
 THICK_ROD_MAX_WRAP = np.pi
 
 
+def _wrap_of(D_over_d, wrap_angle):
+    """The wrap a rod of this D/d is simulated with (see :data:`THICK_ROD_MAX_WRAP`)."""
+    return min(wrap_angle, THICK_ROD_MAX_WRAP) if D_over_d < 2 else wrap_angle
+
+
 def _der_runs(ratios, *, wrap_angle):
     """Keyword sets of :func:`knotmech.scenes.capstan.capstan`, one per D/d, plus a control.
 
@@ -103,7 +108,7 @@ def _der_runs(ratios, *, wrap_angle):
         R = 0.5 * (D + ROD_DIAMETER)
         runs.append(
             dict(
-                wrap_angle=min(wrap_angle, THICK_ROD_MAX_WRAP) if Dt < 2 else wrap_angle,
+                wrap_angle=_wrap_of(Dt, wrap_angle),
                 mu=MU,
                 rod_diameter=ROD_DIAMETER,
                 post_diameter=D,
@@ -260,7 +265,7 @@ def run(quick=True, out_dir=".", progress=False, scheduler=None, der=None, proce
             der_fitted[Dt] = fit_decay_rate(s_[keep], t_[keep])
         ok = [Dt for Dt in ratios if Dt in der_fitted]
         der_err = {Dt: abs(der_fitted[Dt] - me[Dt]) / me[Dt] for Dt in ok}
-        wraps = {Dt: min(wrap, THICK_ROD_MAX_WRAP) if Dt < 2 else wrap for Dt in ratios}
+        wraps = {Dt: _wrap_of(Dt, wrap) for Dt in ratios}
         ratio_err = {Dt: abs(sim["ratio"][Dt] / float(np.exp(me[Dt] * wraps[Dt])) - 1) for Dt in ok}
         control = sim["control"]
         control_rate = (

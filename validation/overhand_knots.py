@@ -311,9 +311,8 @@ def run(quick=True, out_dir=".", progress=False, scheduler=None, processes=None)
     # the paper: "the inversion point occurs sooner as the friction increase" (sec. 4)
     sooner = {}
     for n in turns_list:
-        first = [inversions[f"n={n}, mu={m:g}"][0] for m in mus
-                 if inversions.get(f"n={n}, mu={m:g}") is not None
-                 and inversions[f"n={n}, mu={m:g}"].size]  # fmt: skip
+        found = [inversions.get(f"n={n}, mu={m:g}") for m in mus]
+        first = [inv[0] for inv in found if inv is not None and inv.size]
         if len(first) >= 2:
             sooner[f"n={n}"] = bool(np.all(np.diff(first) < 0))
     numbers["inversion_sooner_with_higher_mu"] = sooner
