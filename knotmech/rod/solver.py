@@ -251,11 +251,13 @@ class Stepper:
         Jacobian after all (same residual, bit for bit)."""
         return (
             self._force_hessian is False
-            and self._factors_valid
-            and self._mode == "sparse-band"
-            and self._kd > _KD_REUSE
+            and self._factors_reusable()
             and (self.opt.jacobian_reuse > 0 or self.opt.jacobian_reuse_steps > 0)
         )
+
+    def _factors_reusable(self) -> bool:
+        """LU factors of a contact-widened reordered band (wider than _KD_REUSE) at hand."""
+        return self._factors_valid and self._mode == "sparse-band" and self._kd > _KD_REUSE
 
     def _use_band(self) -> bool:
         if self.opt.linear_solver == "banded":
@@ -438,7 +440,7 @@ class Stepper:
     def solve(self, rhs: np.ndarray, reuse: bool = False) -> np.ndarray:
         """Solve J x = rhs with x = 0 on constrained dofs; ``reuse``: with the factors of
         the last Jacobian of this step (reordered band only) instead of the current one."""
-        if reuse and self._mode == "sparse-band" and self._factors_valid and self._kd > _KD_REUSE:
+        if reuse and self._factors_reusable():
             self._jac_pending = False
         elif self._jac_pending:
             if self._hess_missing:  # the evaluation skipped the Hessians: redo it with them
