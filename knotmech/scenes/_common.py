@@ -154,7 +154,7 @@ def check_quasi_static(*, length, ea, mass_per_length, times, speed=None) -> lis
         raise InputError(
             f"an axial wave takes L/c = {cross:.3g} s to cross the rod (c = sqrt(EA/(rho A)) "
             f"= {c:.3g} m/s), longer than the {key} ({tau:.3g} s): the measured force would "
-            "be the rod's inertia; lower the density or slow the loading"
+            "be the rod's inertia; slow the loading (ramp_time, pull_speed) or lower the density"
         )
     if cross > QUASI_STATIC * tau:
         return [
