@@ -74,10 +74,10 @@ class CapstanResult:
     contact_angle : float [rad]  angle swept by the contact nodes around the post
     exp_mu_theta, exp_mu_eff_theta : float  the ideal and thick-rod capstan ratios
     mu_eff : float
-    status, message : str ; stats : dict (from the solver; "failed" also when the result
-        contradicts a capstan: a pull ratio below 1 or above 1.1 exp(mu theta), the rod off
-        the post, a strain above 50 %)
-    stats : dict
+    status, message : str  from the solver; "failed" also when the result contradicts a
+        capstan (a pull ratio below 1 or above 1.1 exp(mu theta), the rod off the post, a
+        strain above 50 %), with the reason
+    stats : dict  from the solver
     positions : (n_frames, n_nodes, 3) [m]  trajectory (saved frames)
     bending_group : float  EI/(T_low R^2), the capstan law's small parameter
     ratio_bending : float  :func:`knotmech.analytic.capstan_ratio_bending` with mu_eff (the
@@ -180,13 +180,15 @@ def _bending_check(*, mu, theta, bending_stiffness, t_low, radius):
     return eps2, ratio, None
 
 
-def _bending_note(*, eps2, ratio_bending, why, closed_form, contact_angle, theta, measured):
+def _bending_note(
+    *, eps2, ratio_bending, why, closed_form, contact_angle, theta, measured, mu_name="mu_eff"
+):
     """One line when the capstan law's assumption EI/(T_low R^2) << 1 fails, else None."""
     if why is None and abs(ratio_bending / closed_form - 1.0) <= _BENDING_NOTE:
         return None
     head = (
         f"bending: EI/(T_low R^2) = {eps2:.3g} is not << 1, so the rod lifts off the post "
-        f"(contact {contact_angle:.2f} of {theta:.2f} rad) and exp(mu_eff theta) = "
+        f"(contact {contact_angle:.2f} of {theta:.2f} rad) and exp({mu_name} theta) = "
         f"{closed_form:.4g} does not apply"
     )
     got = f" (measured {measured:.4g})" if np.isfinite(measured) else ""
@@ -194,7 +196,7 @@ def _bending_note(*, eps2, ratio_bending, why, closed_form, contact_angle, theta
         return f"{head}; knotmech.analytic.capstan_ratio_bending does not either: {why}"
     return (
         f"{head}; the model that applies is knotmech.analytic.capstan_ratio_bending "
-        f"(with mu_eff) = {ratio_bending:.4g}{got}"
+        f"(with {mu_name}) = {ratio_bending:.4g}{got}"
     )
 
 
@@ -433,7 +435,8 @@ def capstan(
     )
     note = _bending_note(eps2=eps2, ratio_bending=ratio_b, why=why,
                          closed_form=float(np.exp(mu_slide * theta)),
-                         contact_angle=contact_angle, theta=theta, measured=ratio)  # fmt: skip
+                         contact_angle=contact_angle, theta=theta, measured=ratio,
+                         mu_name="mu_eff" if surface_friction else "mu")  # fmt: skip
     if note is not None:
         warnings.append(note)
     return CapstanResult(
