@@ -61,6 +61,13 @@ from knotmech.sweep import TaskFailure
 from ._common import finish, save_figure
 
 NAME = "clove_phase_diagram"
+#: one sentence for the validation page: what this case checks, and against what
+SUMMARY = (
+    "DER hold/slip map of a free-end clove hitch over (d/2R, T_high/EA) against the paper's "
+    "experiments (Fig. 4: a critical load that depends on d/2R, at most about 0.3 EA) and "
+    "against ideal-rope theory (slips at any load); DER spot checks reproduce the shipped "
+    "phase table."
+)
 PAPER_D_OVER_2R = 4.0 / 34.0  #: the paper's (d, D) = (4, 30) mm, R = (D + d)/2
 GRID_QUICK = {"d_over_2R": (0.06, 0.1176, 0.2), "t_over_EA": (0.1, 0.2, 0.3)}
 #: quick mode: DER spot checks of the shipped table on both sides of its boundaries
