@@ -402,8 +402,10 @@ def run(
 
     xb = np.linspace(xs.min(), xs.max(), 100)
 
-    fig = Figure(figsize=(6.4, 5.8), layout="constrained")
-    ax, axn = fig.subplots(2, 1, height_ratios=[4, 1])
+    # the legend has its own panel below the map: inside the axes it hid the lines drawn
+    # above the grid (the mu tables that hold at every load)
+    fig = Figure(figsize=(6.4, 7.4), layout="constrained")
+    ax, axl, axn = fig.subplots(3, 1, height_ratios=[4, 1.3, 1])
     phase_diagram_plot(
         x,
         y,
@@ -503,8 +505,12 @@ def run(
                 textcoords="offset points",
             )
     ax.axvline(PAPER_D_OVER_2R, color="0.6", lw=0.8, ls=":")
-    ax.set_ylim(-0.02, (1.6 if len(by_mu) == 1 else 1.75) * float(y.max()))
-    ax.legend(fontsize=6, loc="upper left", framealpha=0.9, ncol=2)
+    ax.set_ylim(-0.02, (1.15 if len(by_mu) == 1 else 1.06 + 0.05 * len(by_mu)) * float(y.max()))
+    if ax.get_legend() is not None:
+        ax.get_legend().remove()
+    axl.axis("off")
+    handles, labels = ax.get_legend_handles_labels()
+    axl.legend(handles, labels, fontsize=6.5, loc="center", ncol=2, frameon=False)
     figures = [save_figure(ax.figure, out_dir, NAME)]
     return finish(
         NAME,
