@@ -226,3 +226,15 @@ def test_the_browser_check_sees_a_missing_image(browser, page):
     images, errors = _open(browser, page)
     assert [i["natural"] > 0 for i in images] == [True, False]
     assert any("small_figure.png" in e.get("message", "") for e in errors), errors
+
+
+def test_every_real_case_says_what_it_checks_in_one_sentence():
+    """Each validation/<name>.py has a SUMMARY for the page: one sentence, what against what."""
+    from knotmech.cli.validate import discover_cases, load_case
+
+    for name in discover_cases():
+        text = getattr(load_case(name), "SUMMARY", "")
+        assert 60 < len(text) < 400, (name, text)
+        assert text.endswith(".") and not re.search(r"\.\s+[A-Z]", text), (name, text)
+        assert " against " in text, (name, text)
+        assert not re.search(r"\w- ", text), (name, text)  # no broken hyphenation

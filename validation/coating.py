@@ -46,7 +46,7 @@ NAME = "coating"
 #: one sentence for the validation page: what this case checks, and against what
 SUMMARY = (
     "Dip-coating film thickness against the Landau-Levich-Derjaguin laws for a fibre and a "
-    "plate and the coated-rod paper's measured 5.85 um layer, and the friction-versus- "
+    "plate and the coated-rod paper's measured 5.85 um layer, and the friction-versus-"
     "particle-fraction interpolation against the paper's five measured points (exact fit, "
     "monotonic, invertible)."
 )

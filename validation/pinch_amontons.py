@@ -38,7 +38,7 @@ from ._common import finish, save_figure
 NAME = "pinch_amontons"
 #: one sentence for the validation page: what this case checks, and against what
 SUMMARY = (
-    "DER sliding force of a rod pinched between two crossed cylinders against Amontons- "
+    "DER sliding force of a rod pinched between two crossed cylinders against Amontons-"
     "Coulomb, F_t* = 2 mu F_n, over the load parameter x = 4 F_n/(pi E d D) (clove-hitch "
     "paper, sec. 9 and Fig. 5d: within 3 % for x < 0.05)."
 )
