@@ -166,7 +166,10 @@ def run(args) -> int:
         )
     json_path = _json_path(args.json)
     if args.plot is not None:
-        check_plot_path(args.plot)
+        try:
+            check_plot_path(args.plot)
+        except InputError as exc:
+            raise InputError(f"--{exc}") from None
         if knot != "clove-hitch" or free > 0 or args.simulate:
             raise InputError(
                 "--plot draws the query on the DER phase diagram: clove-hitch with a free "
