@@ -8,9 +8,10 @@ subpackages: :mod:`knotmech.analytic` (closed forms, importable alone),
 cached parameter sweeps) and :mod:`knotmech.plotting`.
 
 ``knotmech.hold(knot, ...)`` is the hold verdict (:mod:`knotmech.hold`, loaded on first
-use; the module is callable). Only the closed forms are imported eagerly; ``knotmech.rod``, ``knotmech.scenes``
-and ``knotmech.diagnose`` load on first attribute access (numba compilation and
-SciPy imports cost seconds that a classroom using ``mu_eff`` should not pay).
+use; the module is callable). Only the closed forms are imported eagerly;
+``knotmech.rod``, ``knotmech.scenes`` and ``knotmech.diagnose`` load on first attribute
+access (numba compilation and SciPy imports cost seconds that a classroom using
+``mu_eff`` should not pay).
 """
 
 from __future__ import annotations

@@ -39,6 +39,7 @@ was reached as the module or as the function.
 
 from __future__ import annotations
 
+import functools
 import inspect
 import json
 import math
@@ -366,6 +367,14 @@ def _load_user_table(path):
     return pt.PhaseTableSet([t])
 
 
+@functools.lru_cache(maxsize=1)
+def _shipped_tables():
+    """The shipped DER tables, read once per process (they are package data)."""
+    from knotmech.scenes import phase_table as pt
+
+    return pt.load_tables()
+
+
 def _nearest_hold_creep(table, x, y):
     """Creep [m] of the grid point that held nearest to (x, y), from the table's meta."""
     rows = table.meta.get("creep_m_of_holds") or []
@@ -433,7 +442,7 @@ def _der(*, d, D, mu, mu_rr, load, E, simulate, phase_table, progress, ideal_hol
         )
         validity = f"one run of the user's geometry ({sum(pt.PROTOCOL[k] for k in ('settle_time', 'load_time', 'hold_time')):g} s of simulated time)"  # noqa: E501
     else:
-        tables = pt.load_tables() if phase_table is None else _load_user_table(phase_table)
+        tables = _shipped_tables() if phase_table is None else _load_user_table(phase_table)
         a = tables.lookup(x, y, mu=mu, mu_rr=mu_rr)
         out.update(
             source="table",
@@ -657,8 +666,11 @@ def hold(
     if key == "clove-hitch":
         ideal = next(a.holds for a in answers if a.model == "ideal-rope")
         if free > 0:
-            der = {"source": "none", "holds": None,
-                   "message": "the DER phase diagram covers the free end only (T_low = 0)"}  # fmt: skip
+            der = {
+                "source": "none",
+                "holds": None,
+                "message": "the DER phase diagram covers the free end only (T_low = 0)",
+            }
         elif E is None:
             der = {
                 "source": "none",
@@ -698,9 +710,7 @@ def hold(
             "check against the DER phase table"
         )
     elif key == "clove-hitch" and der_silent and not simulate and dec.model != "DER-table":
-        next_step = (
-            "next: --simulate (simulate=True) checks it with one DER run of this geometry"
-        )
+        next_step = "next: --simulate (simulate=True) checks it with one DER run of this geometry"
     warns = _warnings(mu, mu_rr, d, D, load, E, theta)
     return Verdict(
         knot=key,
@@ -792,9 +802,7 @@ def plot_verdict(verdict: Verdict, path, *, phase_table=None) -> Path:
     import matplotlib.pyplot as plt
     import numpy as np
 
-    from knotmech.scenes import phase_table as pt
-
-    tables = pt.load_tables() if phase_table is None else _load_user_table(phase_table)
+    tables = _shipped_tables() if phase_table is None else _load_user_table(phase_table)
     used = [tables.table(m) for m in der["mu_tables"]]
     fig, axes = plt.subplots(1, len(used), figsize=(5.2 * len(used), 4.2), squeeze=False)
     for ax, t in zip(axes[0], used, strict=True):

@@ -30,7 +30,7 @@ Two models are implemented (``derivations/hitches.py`` derives every ``K``):
     :math:`T_\mathrm{high}` is proportional to :math:`T_\mathrm{low}`, so **with a
     free end (:math:`T_\mathrm{low}=0`) the ideal-rope clove hitch slips at any load,
     whatever d and D** (:data:`FREE_END_STATEMENT`). This model decides the
-    closed-form verdict inside its validity (d/D <= 0.1, no half hitches).
+    closed-form verdict; its validity is d/D <= 0.1 and no half hitches.
 ``thick-nip``
     Finite rod diameter d (derived here, not taken from the papers): a rider
     lifted over a strand of diameter d lying on a support of diameter
@@ -52,7 +52,7 @@ round turn :math:`2\pi` (ends leaving on the same side; opposite sides add
 from __future__ import annotations
 
 import math
-from dataclasses import asdict, dataclass, field, replace
+from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
@@ -673,13 +673,15 @@ def hold_verdict(
     HoldVerdict
         ``holds``, ``margin``, ``decided_by`` and ``answers``. For ``capstan`` the
         finite-thickness capstan decides and the ideal capstan is reported; for
-        hitches the ideal-rope theory decides when its inputs lie inside its validity
-        (d/D <= 0.1, no half hitches), the thick-nip model otherwise.
+        hitches the ideal-rope theory (the reference theory of the papers) decides and
+        the thick-nip model is reported, each with ``inside_validity``.
 
     Notes
     -----
-    Closed forms only. The verdict of knotmech, which adds the DER phase diagram,
-    materials and warnings, is :func:`knotmech.hold`.
+    Closed forms only, each model's answer. The verdict of knotmech, which lets no
+    model outside its validity decide and adds the DER phase diagram, materials and
+    warnings, is :func:`knotmech.hold` (``knotmech.hold_verdict`` is its deprecated
+    alias).
     """
     key = str(knot).strip().lower().replace("_", "-").replace(" ", "-")
     d = float(check_positive("rod_diameter", rod_diameter))
@@ -721,8 +723,4 @@ def hold_verdict(
                 "hitch with a free end holds below a critical load depending on d/2R, "
                 "contradicting the ideal-rope prediction"
             )
-    answers = tuple(answers)
-    if not answers[0].inside_validity and answers[1].inside_validity:
-        # a model outside its validity never decides when another inside it answers
-        answers = (replace(answers[0], decides=False), replace(answers[1], decides=True))
-    return HoldVerdict(knot=key, inputs=inputs, answers=answers, notes=tuple(notes))
+    return HoldVerdict(knot=key, inputs=inputs, answers=tuple(answers), notes=tuple(notes))

@@ -127,7 +127,9 @@ def run(args) -> int:
     d = parse_quantity(args.rod_diameter, "length", name="--rod-diameter")
     D = parse_quantity(args.post_diameter, "length", name="--post-diameter")
     mu = parse_quantity(args.mu, "dimensionless", name="--mu")
-    mu_rr = None if args.mu_rr is None else parse_quantity(args.mu_rr, "dimensionless", name="--mu-rr")  # noqa: E501
+    mu_rr = (
+        None if args.mu_rr is None else parse_quantity(args.mu_rr, "dimensionless", name="--mu-rr")
+    )  # noqa: E501
     load = parse_quantity(args.load, "force", name="--load")
     free = parse_quantity(args.free_end_load, "force", name="--free-end-load")
     theta = None

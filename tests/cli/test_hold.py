@@ -198,8 +198,8 @@ def test_implausible_inputs_warn(extra, flag, words, capsys):
 
 def test_wrap_beyond_20_turns_warns(capsys):
     # a bare 360 is 360 rad = 57.3 turns (knotmech.units may refuse a bare angle instead)
-    args = ["hold", "capstan", "--wrap-angle", "21turn", "--rod-diameter", "4mm",
-            "--post-diameter", "30mm", "--mu", "0.3", "--load", "6N", "--free-end-load", "1N"]  # fmt: skip
+    args = ["hold", "capstan", "--wrap-angle", "21turn", "--rod-diameter", "4mm", "--mu", "0.3",
+            "--post-diameter", "30mm", "--load", "6N", "--free-end-load", "1N"]  # fmt: skip
     data = _json(args, capsys)
     assert [w["input"] for w in data["warnings"]] == ["wrap_angle"]
     assert "21 turns" in data["warnings"][0]["message"]
@@ -267,8 +267,13 @@ def test_bad_input_one_line_exit_2(extra, name, capsys):
 
 
 @pytest.mark.parametrize(
-    "content", ["{not json", '{"points": 3}', '{"mu": 0.3, "mu_rr": 0.3, "points": []}',
-                '{"mu": 0.3, "mu_rr": 0.3, "points": [[0.7, 0.1, true]]}'],  # fmt: skip
+    "content",
+    [
+        "{not json",
+        '{"points": 3}',
+        '{"mu": 0.3, "mu_rr": 0.3, "points": []}',
+        '{"mu": 0.3, "mu_rr": 0.3, "points": [[0.7, 0.1, true]]}',
+    ],  # fmt: skip
 )
 def test_malformed_phase_table_fails(content, tmp_path, capsys):
     """Issue 13: a table the user named must exist and parse (it used to exit 0 and
@@ -300,8 +305,9 @@ def test_knot_aliases(capsys):
 
 def test_capstan_refuses_hitch_options(capsys):
     cap = ["hold", "capstan", "--wrap-angle", "1turn"] + CLOVE[2:]
+    table = ["--phase-table", "t.json", "--material", "vps32"]
     for extra, flag in ((["--mu-rr", "0.2"], "--mu-rr"), (["--simulate"], "--simulate"),
-                        (["--phase-table", "t.json", "--material", "vps32"], "--phase-table")):  # fmt: skip
+                        (table, "--phase-table")):  # fmt: skip
         assert _run(cap + extra) == 2
         assert flag in capsys.readouterr().err
     assert _run(["hold", "capstan"] + CLOVE[2:]) == 2
