@@ -182,6 +182,9 @@ class Verdict:
     inputs: dict = field(default_factory=dict)
     der: dict | None = None
     notes: tuple = ()
+    #: the simulated knot (``positions`` (n, 3) [m], ``tension`` (n - 1,) [N], ``rod_diameter``,
+    #: ``post_diameter``) when a DER simulation answered; not part of :meth:`to_dict`
+    shape: dict | None = field(default=None, repr=False, compare=False)
 
     @property
     def deciding(self):
@@ -367,6 +370,16 @@ def _load_user_table(path):
     return pt.PhaseTableSet([t])
 
 
+def _shape(result, *, d, D):
+    """The last frame's centreline and tension of a DER result, or None."""
+    try:
+        pos = result.positions[-1]
+        tension = result.tension
+    except (AttributeError, IndexError, TypeError):
+        return None
+    return {"positions": pos, "tension": tension, "rod_diameter": d, "post_diameter": D}
+
+
 @functools.lru_cache(maxsize=1)
 def _shipped_tables():
     """The shipped DER tables, read once per process (they are package data)."""
@@ -414,15 +427,17 @@ def _der(*, d, D, mu, mu_rr, load, E, simulate, phase_table, progress, ideal_hol
         "agrees_with_ideal_rope": None,
     }
     creep = None
+    shape = None
     capacity = math.nan
     if simulate:
         p = pt.simulate_point(
             d_over_2R=x, t_over_EA=y, mu=mu, mu_rr=mu_rr, rod_diameter=d, youngs_modulus=E,
-            progress=progress,
+            progress=progress, keep_result=True,
         )  # fmt: skip
+        shape = _shape(p.get("result"), d=d, D=D)
         if p["holds"] is None:
             out["message"] = f"the DER simulation failed: {p['message']}"
-            return out, None, None
+            return out, None, None, shape
         window = pt.PROTOCOL["hold_time"] / 2
         creep = {
             "source": "DER simulation of this geometry",
@@ -457,7 +472,7 @@ def _der(*, d, D, mu, mu_rr, load, E, simulate, phase_table, progress, ideal_hol
         if a.inside and a.bracket[0] > 0:
             capacity = a.bracket[0] * EA  # the largest load that held (interpolated)
         if a.holds is None:
-            return out, None, None
+            return out, None, None, shape
         used = [tables.table(m) for m in a.mu_tables]
         xs, ys = used[0].d_over_2R, used[0].t_over_EA
         validity = (
@@ -506,7 +521,7 @@ def _der(*, d, D, mu, mu_rr, load, E, simulate, phase_table, progress, ideal_hol
         ),
         notes=(out["message"],),
     )
-    return out, answer, creep
+    return out, answer, creep, shape
 
 
 # --------------------------------------------------------------------------- policy
@@ -662,6 +677,7 @@ def hold(
     notes = list(base.notes)
     der = None
     creep = None
+    shape = None
     next_step = ""
     if key == "clove-hitch":
         ideal = next(a.holds for a in answers if a.model == "ideal-rope")
@@ -682,7 +698,7 @@ def hold(
                 "(in T_high/EA) was not consulted"
             )
         else:
-            der, der_answer, creep = _der(
+            der, der_answer, creep, shape = _der(
                 d=d, D=D, mu=mu, mu_rr=mu if mu_rr is None else float(mu_rr), load=load, E=E,
                 simulate=bool(simulate), phase_table=phase_table, progress=progress,
                 ideal_holds=ideal,
@@ -727,6 +743,7 @@ def hold(
         inputs=inputs,
         der=der,
         notes=tuple(notes),
+        shape=shape,
     )
 
 
@@ -778,23 +795,26 @@ def check_plot_path(path) -> Path:
 
 
 def plot_verdict(verdict: Verdict, path, *, phase_table=None) -> Path:
-    """Draw where the query sits on the DER phase diagram (clove hitch, table answer).
+    """Draw the DER answer: the query on the phase diagram, or the simulated knot.
 
-    One panel per friction table used: grid points held (filled) and slipped (open),
-    the interpolated upper boundary, and the query (star, labelled with the verdict).
+    Table answer: one panel per friction table used, grid points held (dots) and
+    slipped (crosses), the interpolated upper boundary and the query (star, labelled with
+    the verdict). Simulation: the knot's centreline at the end of the hold in 3-D,
+    coloured by the tension T(s), with the post (axis z through the origin).
 
     Raises
     ------
     InputError
-        The verdict has no table answer (``verdict.der["source"] != "table"``), or a
-        bad path.
+        The verdict has neither a table answer nor a simulated knot, or a bad path.
     """
     p = check_plot_path(path)
+    if verdict.shape is not None:
+        return _plot_knot(verdict, p)
     der = verdict.der or {}
     if der.get("source") != "table" or not der.get("mu_tables"):
         raise InputError(
-            "plot: only a DER table answer has a phase diagram to show (clove hitch, free "
-            "end, E given, inside the tables)"
+            "plot: there is no DER answer to draw (clove hitch, free end, E given, inside "
+            "the tables, or simulate)"
         )
     import matplotlib
 
@@ -824,6 +844,43 @@ def plot_verdict(verdict: Verdict, path, *, phase_table=None) -> Path:
         ax.set_ylabel("T_high/EA")
         ax.set_title(f"clove hitch, free end, mu = mu_rr = {t.mu:g}")
         ax.legend(loc="lower left", fontsize=8)
+    fig.tight_layout()
+    fig.savefig(p)
+    plt.close(fig)
+    return p
+
+
+def _plot_knot(verdict: Verdict, p: Path) -> Path:
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+    import numpy as np
+    from mpl_toolkits.mplot3d.art3d import Line3DCollection
+
+    sh = verdict.shape
+    x = np.asarray(sh["positions"], dtype=float)
+    t = np.asarray(sh["tension"], dtype=float)
+    segs = np.stack([x[:-1], x[1:]], axis=1) * 1e3  # mm
+    fig = plt.figure(figsize=(6.4, 5.6))
+    ax = fig.add_subplot(projection="3d")
+    lc = Line3DCollection(segs, cmap="viridis", linewidths=3)
+    lc.set_array(t[: len(segs)])
+    ax.add_collection3d(lc)
+    R = 0.5 * float(sh["post_diameter"]) * 1e3
+    zlo, zhi = segs[..., 2].min(), segs[..., 2].max()
+    phi = np.linspace(0, 2 * np.pi, 41)
+    for z in np.linspace(zlo, zhi, 5):
+        ax.plot(R * np.cos(phi), R * np.sin(phi), np.full_like(phi, z), color="0.7", lw=0.6)
+    lim = np.abs(segs[..., :2]).max() * 1.05
+    ax.set_xlim(-lim, lim)
+    ax.set_ylim(-lim, lim)
+    ax.set_zlim(zlo, zhi)
+    ax.set_xlabel("x [mm]")
+    ax.set_ylabel("y [mm]")
+    ax.set_zlabel("z [mm] (post axis)")
+    fig.colorbar(lc, ax=ax, shrink=0.7, pad=0.12, label="tension T(s) [N]")
+    ax.set_title(f"{verdict.knot}: {verdict.state} (DER simulation, end of the hold)")
     fig.tight_layout()
     fig.savefig(p)
     plt.close(fig)

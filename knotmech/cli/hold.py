@@ -102,8 +102,8 @@ def register(subparsers) -> None:
         "--plot",
         metavar="FILE",
         default=None,
-        help="clove hitch, DER table answer: draw where the query sits on the phase "
-        "diagram (png, pdf or svg)",
+        help="clove hitch with a free end: draw where the query sits on the DER phase "
+        "diagram, or with --simulate the knot coloured by tension (png, pdf or svg)",
     )
     p.add_argument("--verbose", "-v", action="store_true", help="every model's answer in full")
     p.set_defaults(func=run)
@@ -172,10 +172,10 @@ def run(args) -> int:
             check_plot_path(args.plot)
         except InputError as exc:
             raise InputError(f"--{exc}") from None
-        if knot != "clove-hitch" or free > 0 or args.simulate:
+        if knot != "clove-hitch" or free > 0:
             raise InputError(
-                "--plot draws the query on the DER phase diagram: clove-hitch with a free "
-                "end, answered from the table (not --simulate)"
+                "--plot draws the DER answer (phase diagram or simulated knot): clove-hitch "
+                "with a free end only"
             )
     try:
         verdict = hold(
@@ -207,7 +207,10 @@ def run(args) -> int:
             raise InputError(f"--json: cannot write {args.json!r}: {exc.strerror}") from None
         print(f"wrote {args.json}", file=sys.stderr)
     if args.plot is not None:
-        plot_verdict(verdict, args.plot, phase_table=args.phase_table)
+        try:
+            plot_verdict(verdict, args.plot, phase_table=args.phase_table)
+        except InputError as exc:
+            raise InputError(f"--{exc}") from None
         print(f"wrote {args.plot}", file=sys.stderr)
     return 0
 

@@ -250,3 +250,37 @@ def test_shipped_tables_answer_other_friction(capsys):
     # above the tables: the mu = 0.5 hold stands (more friction keeps a hold)
     assert der["holds"] is True and der["mu_tables"] == [0.5] and by == "DER-table" and holds
     assert "lies above the tables" in der["message"]
+
+
+def test_simulate_plot_draws_the_knot_coloured_by_tension(monkeypatch, tmp_path, capsys):
+    """--simulate --plot draws the simulated centreline (stubbed run: a helix of 40 nodes
+    around the 36 mm post, tension falling from 2 N to 0)."""
+    from types import SimpleNamespace
+
+    import numpy as np
+
+    from knotmech.scenes import phase_table
+
+    s = np.linspace(0, 4 * np.pi, 40)
+    helix = np.c_[0.02 * np.cos(s), 0.02 * np.sin(s), 0.002 * s]
+    result = SimpleNamespace(positions=helix[None], tension=np.linspace(2.0, 0.0, 39))
+
+    def fake(**kw):
+        assert kw["keep_result"] is True
+        return {"holds": True, "verdict": "hold", "creep": 1e-5, "wall_s": 1.0, "message": "",
+                "result": result}  # fmt: skip
+
+    monkeypatch.setattr(phase_table, "simulate_point", fake)
+    out = tmp_path / "knot.png"
+    assert main(_hold("4mm", "36mm", "2N", "--simulate", "--plot", str(out))) == 0
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and out.stat().st_size > 10000
+    # the verdict's JSON does not carry the arrays
+    assert main(_hold("4mm", "36mm", "2N", "--simulate", "--json", "-")) == 0
+    assert "positions" not in capsys.readouterr().out
+
+
+def test_plot_without_a_der_answer_fails_in_one_line(capsys, tmp_path):
+    # d/2R = 4/104 = 0.038 is below the tables' 0.06: no DER answer to draw
+    assert main(_hold("4mm", "100mm", "1N", "--plot", str(tmp_path / "p.png"))) == 2
+    err = capsys.readouterr().err
+    assert "--plot" in err and len(err.strip().splitlines()) == 1
