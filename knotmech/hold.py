@@ -439,23 +439,29 @@ def _der(*, d, D, mu, mu_rr, load, E, simulate, phase_table, progress, ideal_hol
             out["message"] = f"the DER simulation failed: {p['message']}"
             return out, None, None, shape
         window = pt.PROTOCOL["hold_time"] / 2
-        creep = {
-            "source": "DER simulation of this geometry",
-            "creep_m": float(p["creep"]),
-            "window_s": window,
-            "speed_m_per_s": float(p["creep"]) / window,
-            "speed_d_per_s": float(p["creep"]) / window / d,
-        }
+        if math.isfinite(float(p["creep"])):  # a run that slipped early measured none
+            creep = {
+                "source": "DER simulation of this geometry",
+                "creep_m": float(p["creep"]),
+                "window_s": window,
+                "speed_m_per_s": float(p["creep"]) / window,
+                "speed_d_per_s": float(p["creep"]) / window / d,
+            }
+        crept = (
+            f"end creep {p['creep'] * 1e3:.3g} mm over the last {window:g} s of the hold"
+            if creep is not None
+            else "the end ran off before the hold's measuring window"
+        )
         out.update(
             source="simulation",
             holds=bool(p["holds"]),
             message=(
                 f"DER simulation at d/2R = {x:.4g}, T_high/EA = {y:.4g}: {p['verdict']} "
-                f"(end creep {p['creep'] * 1e3:.3g} mm over the last {window:g} s of the "
-                f"hold; {p['wall_s']:.0f} s)"
+                f"({crept}; {p['wall_s']:.0f} s)"
             ),
         )
-        validity = f"one run of the user's geometry ({sum(pt.PROTOCOL[k] for k in ('settle_time', 'load_time', 'hold_time')):g} s of simulated time)"  # noqa: E501
+        run_s = sum(pt.PROTOCOL[k] for k in ("settle_time", "load_time", "hold_time"))
+        validity = f"one run of the user's geometry ({run_s:g} s of simulated time)"
     else:
         tables = _shipped_tables() if phase_table is None else _load_user_table(phase_table)
         a = tables.lookup(x, y, mu=mu, mu_rr=mu_rr)
@@ -876,11 +882,12 @@ def _plot_knot(verdict: Verdict, p: Path) -> Path:
     ax.set_xlim(-lim, lim)
     ax.set_ylim(-lim, lim)
     ax.set_zlim(zlo, zhi)
+    ax.set_box_aspect((1.0, 1.0, max(0.25, min(1.0, (zhi - zlo) / (2 * lim)))))
     ax.set_xlabel("x [mm]")
     ax.set_ylabel("y [mm]")
     ax.set_zlabel("z [mm] (post axis)")
     fig.colorbar(lc, ax=ax, shrink=0.7, pad=0.12, label="tension T(s) [N]")
-    ax.set_title(f"{verdict.knot}: {verdict.state} (DER simulation, end of the hold)")
+    ax.set_title(f"{verdict.knot}: {verdict.state} (DER simulation, last frame)")
     fig.tight_layout()
     fig.savefig(p)
     plt.close(fig)

@@ -284,3 +284,19 @@ def test_plot_without_a_der_answer_fails_in_one_line(capsys, tmp_path):
     assert main(_hold("4mm", "100mm", "1N", "--plot", str(tmp_path / "p.png"))) == 2
     err = capsys.readouterr().err
     assert "--plot" in err and len(err.strip().splitlines()) == 1
+
+
+def test_simulated_slip_reports_no_creep(monkeypatch, capsys):
+    """A run that slipped before the hold's measuring window has no creep (NaN): the
+    verdict says so and the JSON has ``creep: null``, not a NaN."""
+    from knotmech.scenes import phase_table
+
+    def fake(**kw):
+        return {"holds": False, "verdict": "slip", "creep": float("nan"), "wall_s": 9.0,
+                "message": ""}  # fmt: skip
+
+    monkeypatch.setattr(phase_table, "simulate_point", fake)
+    assert main(_hold("4mm", "9.3333mm", "0.47N", "--simulate", "--json", "-")) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["holds"] is False and data["decided_by"] == "DER-simulation"
+    assert data["creep"] is None and "ran off" in data["der"]["message"]
