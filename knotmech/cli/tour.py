@@ -155,13 +155,14 @@ def section_capstan(ctx: TourContext) -> list[str]:
 def section_hold(ctx: TourContext) -> list[str]:
     """Hold verdicts as ``knotmech hold`` gives them (closed forms and the DER table)."""
     from knotmech.analytic.hitch import FREE_END_STATEMENT
-    from knotmech.cli.hold import decide
+    from knotmech.hold import hold
 
     lines = ["Does it hold? (knotmech hold ...), rod 4 mm on a 30 mm post, mu = mu_rr = 0.3:"]
     for knot, free in (("clove-hitch", 0.0), ("clove-hitch", 0.05), ("two-half-hitches", 0.05)):
-        v, _ = decide(
-            knot, rod_diameter=4e-3, post_diameter=30e-3, mu=0.3, load=1.47, free_end_load=free
-        )
+        v = hold(
+            knot, rod_diameter=4e-3, post_diameter=30e-3, mu=0.3, load=1.47, free_end_load=free,
+            material="vps32",
+        )  # fmt: skip
         m = "unbounded" if math.isinf(v.margin) else f"{v.margin * 100:+.0f} %"
         others = ", ".join(
             f"{a.model} {'holds' if a.holds else 'slips'}"
@@ -170,7 +171,7 @@ def section_hold(ctx: TourContext) -> list[str]:
         )
         lines.append(
             f"  {knot:17s} load 1.47 N, free end {free:4.2f} N: "
-            f"{'HOLDS' if v.holds else 'SLIPS'} (margin {m}, decided by {v.decided_by}; {others})"
+            f"{v.state} (margin {m}, decided by {v.decided_by}; {others})"
         )
     lines.append(f"  {FREE_END_STATEMENT}")
     lines.append(
