@@ -261,8 +261,10 @@ DER_STEPS = 60
 DER_SPEED = 0.01
 DER_EI_FACTOR = 1e-4
 DER_DENSITY = 1000.0
-#: largest wrap the DER baseline runs [rad] (4 turns with DER_ELEMENTS elements)
-DER_MAX_WRAP = 8.0 * np.pi
+#: largest wrap the DER baseline runs [rad]: two loops, the largest the project's DER
+#: capstan is run and checked at (``capstan_two_loops``); beyond it the DER_ELEMENTS
+#: elements span ever more of the post each
+DER_MAX_WRAP = 4.0 * np.pi
 #: most implicit steps one DER baseline simulation may take
 DER_MAX_STEPS = 1000
 
@@ -469,11 +471,10 @@ class DERBaseline:
     def check(self, rec: Recording) -> None:
         """Refuse, before any simulation, a recording this baseline cannot run on.
 
-        Besides the kind: the wrap beyond :data:`DER_MAX_WRAP` (the 40 elements would
-        span more than about 0.7 rad of the post each), displacements below the range
-        of the model's shift (``-0.3`` of the largest), and a pull so short that one
-        run would need more than :data:`DER_MAX_STEPS` implicit steps (the 0.1 s load
-        ramp at the step ``u_max / (60 v)``).
+        Besides the kind: the wrap beyond :data:`DER_MAX_WRAP` (two loops), displacements
+        below the range of the model's shift (``-0.3`` of the largest), and a pull so
+        short that one run would need more than :data:`DER_MAX_STEPS` implicit steps
+        (the 0.1 s load ramp at the step ``u_max / (60 v)``).
         """
         if rec.experiment != "capstan_pull":
             raise InputError(
@@ -483,9 +484,9 @@ class DERBaseline:
         theta = rec.meta("wrap_angle_rad")
         if theta > DER_MAX_WRAP:
             raise InputError(
-                f"{rec.source}: baseline 'der' runs wraps up to {DER_MAX_WRAP:.4g} rad (4 turns; "
-                f"its {DER_ELEMENTS} elements are too coarse beyond), got wrap_angle_rad = "
-                f"{theta:g}; use closed-form"
+                f"{rec.source}: baseline 'der' runs wraps up to {DER_MAX_WRAP:.4g} rad (two "
+                f"loops, the largest its {DER_ELEMENTS}-element capstan is checked at), got "
+                f"wrap_angle_rad = {theta:g}; use closed-form"
             )
         u_max = float(np.max(rec.x))
         if u_max <= 0 or float(np.min(rec.x)) < -0.3 * u_max:

@@ -433,3 +433,22 @@ def test_last_resort_names_the_function(monkeypatch):
     monkeypatch.setattr(engine, "fit_baseline", broken)
     with pytest.raises(DiagnoseError, match=r"failed numerically in .*\(LinAlgError: SVD did not"):
         engine.diagnose(parse_recording(template_text("pinch")))
+
+
+# --- --baseline der: refused before any simulation --------------------------------------
+
+
+@pytest.mark.parametrize(
+    ("edits", "words"),
+    [
+        # the ZeroDivisionError from a numba kernel (huge wrap)
+        ({"meta": {"wrap_angle_rad": "50"}}, "baseline 'der' runs wraps up to 12.57 rad"),
+        # ran past 300 s (negative displacements: a 1e-6 m pull at 60 steps per pull)
+        ({"x": _rows("capstan_pull")[:, 0] - 0.06}, "needs displacements from about 0 up"),
+        ({"x": _rows("capstan_pull")[:, 0] * 1e-3}, "steps per simulation (limit 1000)"),
+    ],
+)
+def test_der_baseline_refuses_before_simulating(edits, words, tmp_path, capsys):
+    _one_line_error(
+        tmp_path, capsys, _text("capstan_pull", **edits), words, extra=("--baseline", "der")
+    )
