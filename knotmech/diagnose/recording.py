@@ -24,7 +24,8 @@ Physical bounds checked at read time (the engine's numbers stay finite inside th
 unit their name ends in), and no nonzero value below ``1e-30`` in magnitude.
 Degenerate data are refused too: a control variable with fewer than three distinct
 values (or a range below ``1e-9`` of its size), a measured column that is constant
-(all zero included), a force or tension negative in most rows, fewer than
+(all zero included), a force or tension negative in more than 3/4 of the rows
+and on average (mean below -3 standard errors), fewer than
 :data:`MIN_ROWS` distinct rows.
 """
 
@@ -515,8 +516,11 @@ def _check_columns(cols, header, xcol, ycol, trial, source, lines_arr, header_li
             "saturated sensor?) cannot be diagnosed",
         )
     if ycol.endswith("_N"):
+        # mostly negative and clearly so on average: noise about zero (a frictionless
+        # control) passes, a reversed sign convention does not
         neg = int(np.sum(y < 0))
-        if neg > n // 2:
+        t_mean = float(np.mean(y)) / (float(np.std(y)) / np.sqrt(n))
+        if neg > 0.75 * n and t_mean < -3.0:
             raise _err(
                 source,
                 header_line,

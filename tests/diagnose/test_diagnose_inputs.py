@@ -452,3 +452,20 @@ def test_der_baseline_refuses_before_simulating(edits, words, tmp_path, capsys):
     _one_line_error(
         tmp_path, capsys, _text("capstan_pull", **edits), words, extra=("--baseline", "der")
     )
+
+
+def test_frictionless_control_is_read_and_diagnosed(tmp_path, capsys):
+    """F_t = noise about 0 (a mu = 0 control): about half the rows negative, not refused;
+    the fitted mu is ~0 (the true value), the verdict is not an effect of nonsense."""
+    rng = np.random.default_rng(5)
+    fn = _rows("pinch")[:, 0]
+    y = 0.01 * rng.standard_normal(fn.size)
+    assert 0.3 < np.mean(y < 0) < 0.7
+    path = tmp_path / "control.csv"
+    path.write_text(_text("pinch", y=y, drop=("mu_nominal", "mu_nominal_sigma")))
+    rc, out, err = _cli(["diagnose", path, "--json", tmp_path / "r.json"], capsys)
+    assert rc == 0, err
+    report = json.loads((tmp_path / "r.json").read_text())
+    # 2 mu F_n with F_n up to ~19 N against 0.01 N noise: mu is pinned near 0
+    assert report["baseline"]["parameters"]["mu"] < 1e-3
+    assert report["verdict"] in ("none", "undetermined"), out
