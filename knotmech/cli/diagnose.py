@@ -19,6 +19,7 @@ from __future__ import annotations
 
 import sys
 from importlib import resources
+from pathlib import Path
 
 from knotmech.cli._paths import check_output_path, plot_formats, writing
 from knotmech.errors import InputError
@@ -106,6 +107,10 @@ def run(args) -> int:
     # every output is checked before any work starts
     json_path = check_output_path(args.json, option="--json")
     plot_path = check_output_path(args.plot, formats=plot_formats(), option="--plot")
+    source = Path(args.recording)
+    for option, out in (("--json", json_path), ("--plot", plot_path)):
+        if out is not None and source.exists() and out.resolve() == source.resolve():
+            raise InputError(f"{option} {out}: is the recording itself; give another file name")
     from knotmech.diagnose import diagnose, plot_report, read_recording
 
     rec = read_recording(args.recording)

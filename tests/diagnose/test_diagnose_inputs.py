@@ -469,3 +469,11 @@ def test_frictionless_control_is_read_and_diagnosed(tmp_path, capsys):
     # 2 mu F_n with F_n up to ~19 N against 0.01 N noise: mu is pinned near 0
     assert report["baseline"]["parameters"]["mu"] < 1e-3
     assert report["verdict"] in ("none", "undetermined"), out
+
+
+def test_report_never_overwrites_the_recording(tmp_path, capsys):
+    path = tmp_path / "rec.csv"
+    path.write_text(template_text("pinch"))
+    rc, _out, err = _cli(["diagnose", path, "--json", path], capsys)
+    assert rc == 2 and "is the recording itself" in err and err.count("\n") == 1
+    assert path.read_text() == template_text("pinch")
