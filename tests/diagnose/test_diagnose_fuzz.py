@@ -18,6 +18,7 @@ import tempfile
 from pathlib import Path
 
 import numpy as np
+import pytest
 from hypothesis import HealthCheck, given, settings
 from hypothesis import strategies as st
 
@@ -350,16 +351,8 @@ def extreme_valid_recordings(draw):
     return "\n".join([*out_meta, header, *body]) + "\n"
 
 
-@settings(
-    max_examples=25,
-    deadline=None,
-    derandomize=True,
-    database=None,
-    suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large],
-)
-@given(text=extreme_valid_recordings())
-def test_engine_on_extreme_recordings_exit_0_or_one_line(text):
-    """Recordings at the edges of the bounds: a report, or one DiagnoseError line."""
+def _engine_answers(text):
+    """A recording at the edges of the bounds: a report, or one DiagnoseError line."""
     with tempfile.TemporaryDirectory() as tmp:
         rec = Path(tmp) / "rec.csv"
         rec.write_text(text)
@@ -376,3 +369,28 @@ def test_engine_on_extreme_recordings_exit_0_or_one_line(text):
             assert err == "", err
             report = json.loads(out_path.read_text())
             assert np.isfinite(report["final"]["rms"]) and np.isfinite(report["baseline"]["rms"])
+
+
+_ENGINE_SETTINGS = dict(
+    deadline=None,
+    derandomize=True,
+    database=None,
+    suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large],
+)
+
+
+# a few examples in CI: a diagnosis of nonsense-but-valid data takes 0.1-40 s (the forward
+# selection's bootstraps), so the bounded run keeps to the cheap end of that
+@settings(max_examples=12, **_ENGINE_SETTINGS)
+@given(text=extreme_valid_recordings())
+def test_engine_on_extreme_recordings_exit_0_or_one_line(text):
+    """Recordings at the edges of the reader's bounds: exit 0 with a report, or one line."""
+    _engine_answers(text)
+
+
+@pytest.mark.slow
+@settings(max_examples=150, **_ENGINE_SETTINGS)
+@given(text=extreme_valid_recordings())
+def test_engine_on_many_extreme_recordings(text):
+    """The same on 150 recordings (several minutes: run with -m slow)."""
+    _engine_answers(text)
