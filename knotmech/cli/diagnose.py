@@ -106,7 +106,9 @@ def run(args) -> int:
         )
     # every output is checked before any work starts
     json_path = check_output_path(args.json, option="--json")
-    plot_path = check_output_path(args.plot, formats=plot_formats(), option="--plot")
+    plot_path = None
+    if args.plot is not None:
+        plot_path = check_output_path(args.plot, formats=plot_formats(), option="--plot")
     source = Path(args.recording)
     for option, out in (("--json", json_path), ("--plot", plot_path)):
         if out is not None and source.exists() and out.resolve() == source.resolve():
