@@ -28,7 +28,7 @@ from knotmech.rod.friction import AnchorFriction
 from knotmech.rod.loads import ViscousDamping
 from knotmech.rod.solver import SolverOptions, simulate
 from knotmech.rod.system import Rod, RodSystem
-from knotmech.scenes._common import equivalent_section
+from knotmech.scenes._common import check_run_size, equivalent_section
 
 __all__ = ["LoadedCylinderContact", "PinchResult", "PinchSweep", "pinch", "pinch_sweep"]
 
@@ -144,6 +144,7 @@ def pinch(
     plateau=0.5,
     options=None,
     progress=False,
+    max_node_steps=None,
 ) -> PinchResult:
     """Pull a rod out from between two crossed cylinders pressed with ``normal_load``.
 
@@ -162,6 +163,8 @@ def pinch(
     ramp_time : float [s]  the normal load is ramped over this time before pulling
     dt : float [s]  (default: element length / (4 v))
     plateau : float  fraction of the pull (at its end) averaged for F_t*
+    max_node_steps : float, optional  bound on (t_end/dt) x nodes, checked before anything
+        is built (default :data:`knotmech.scenes._common.MAX_NODE_STEPS`; ``inf`` lifts it)
 
     Returns
     -------
@@ -185,6 +188,11 @@ def pinch(
     n_el = int(round(L / (0.25 * d))) if n_elements is None else int(n_elements)
     if n_el < 8:
         raise InputError(f"n_elements must be >= 8, got {n_elements}")
+    t_start = ramp_time + 0.05
+    t_final = t_start + dist / v
+    step = (L / n_el) / (4.0 * v) if dt is None else float(check_positive("dt", dt))
+    check_run_size(n_nodes=n_el + 1, t_end=t_final, dt=step, max_node_steps=max_node_steps,
+                   hint="use a larger dt, fewer elements or a lower pull speed")  # fmt: skip
     radius, e_rod, rho_rod = equivalent_section(diameter=d, youngs_modulus=E, density=density)
     # the pinch sits at x = 0, a quarter of the length from the pulled end (x = -L/4 ... )
     x = np.linspace(-0.3 * L, 0.7 * L, n_el + 1)
@@ -209,13 +217,12 @@ def pinch(
     )
     pull_dir = np.array([-1.0, 0.0, 0.0])
     x0 = pts[0].copy()
-    t_start = ramp_time + 0.05
 
     def path(t):
         return x0 + pull_dir * v * max(0.0, t - t_start)
 
-    t_final = t_start + dist / v
-    step = h / (4.0 * v) if dt is None else float(check_positive("dt", dt))
+    if dt is None:
+        step = h / (4.0 * v)
     mpl = rho_rod * np.pi * radius**2
     damping = 1e-3 * 2 * mu * fn / (L * v)
     res = simulate(
