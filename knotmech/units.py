@@ -74,6 +74,40 @@ _BARE = re.compile(r"[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?|[+-]?(nan|inf|infinit
 _COUNT = re.compile(r"[+-]?\d+")
 
 
+_G = 9.80665  # [m/s^2] standard gravity (gram-force, kilogram-force)
+_DEG = math.pi / 180.0
+#: unit text -> (kind, factor to SI) for the common forms, read without pint: building
+#: pint's registry takes about a second, which a command answering from a table should not
+#: pay. Each entry is checked against pint in tests/test_units.py; any other text goes to
+#: pint.
+_FAST_UNITS: dict[str, tuple[str, float]] = {
+    **{u: ("length", f) for u, f in (("m", 1.0), ("mm", 1e-3), ("cm", 1e-2), ("km", 1e3),
+       ("um", 1e-6), ("\u00b5m", 1e-6), ("\u03bcm", 1e-6), ("in", 0.0254))},
+    **{u: ("force", f) for u, f in (("N", 1.0), ("mN", 1e-3), ("kN", 1e3), ("gf", 1e-3 * _G),
+       ("kgf", _G))},
+    **{u: ("angle", f) for u, f in (("rad", 1.0), ("deg", _DEG), ("degree", _DEG),
+       ("degrees", _DEG), ("\u00b0", _DEG), ("turn", 2 * math.pi), ("turns", 2 * math.pi))},
+    **{u: ("pressure", f) for u, f in (("Pa", 1.0), ("kPa", 1e3), ("MPa", 1e6), ("GPa", 1e9))},
+    **{u: ("mass", f) for u, f in (("kg", 1.0), ("g", 1e-3), ("mg", 1e-6))},
+    **{u: ("time", f) for u, f in (("s", 1.0), ("ms", 1e-3), ("us", 1e-6), ("min", 60.0))},
+    **{u: ("velocity", f) for u, f in (("m/s", 1.0), ("mm/s", 1e-3), ("cm/s", 1e-2))},
+    **{u: ("density", f) for u, f in (("kg/m^3", 1.0), ("kg/m**3", 1.0), ("g/cm^3", 1e3))},
+    **{u: ("bending_stiffness", f) for u, f in (("N*m^2", 1.0), ("N*mm^2", 1e-6))},
+}  # fmt: skip
+_NUMBER_UNIT = re.compile(r"([+-]?(?:\d+\.?\d*|\.\d+)(?:[eE][+-]?\d+)?) ?(\S+)")
+
+
+def _fast(s: str, kind: str) -> float | None:
+    """``"4mm"`` -> 0.004 without pint, for the units of :data:`_FAST_UNITS`; else None."""
+    m = _NUMBER_UNIT.fullmatch(s)
+    if m is None:
+        return None
+    entry = _FAST_UNITS.get(m.group(2))
+    if entry is None or entry[0] != kind:
+        return None
+    return float(m.group(1)) * entry[1]
+
+
 @lru_cache(maxsize=1)
 def _registry():
     import pint
@@ -142,7 +176,9 @@ def parse_quantity(text, kind: str, *, name: str = "value", bare_si: bool = Fals
         raise InputError(f"{name} {s}: give a unit, e.g. {s}{HINT_UNITS[kind]}")
     if kind == "dimensionless":
         raise InputError(f"{name}: give a plain number such as 0.3 (no unit), got {s!r}")
-    value = _parse_with_units(s, kind, name, examples)
+    value = _fast(s, kind)
+    if value is None:
+        value = _parse_with_units(s, kind, name, examples)
     if not math.isfinite(value):
         raise InputError(f"{name} must be finite (got {s!r})")
     return value

@@ -137,3 +137,22 @@ def test_bad_counts(text):
     with pytest.raises(InputError, match="--n-nodes") as err:
         parse_count(text, name="--n-nodes")
     assert "\n" not in str(err.value)
+
+
+def test_units_read_without_pint_agree_with_pint():
+    """The common units are read without building pint's registry (start-up time); each
+    must give what pint gives."""
+    from knotmech.units import _FAST_UNITS, _parse_with_units
+
+    for unit, (kind, factor) in _FAST_UNITS.items():
+        for number in ("4", "2.5e-3", "-0.75"):
+            text = f"{number}{unit}"
+            fast = parse_quantity(text, kind)
+            assert fast == pytest.approx(float(number) * factor, rel=1e-15)
+            assert fast == pytest.approx(_parse_with_units(text, kind, "x", ""), rel=1e-12)
+            assert parse_quantity(f"{number} {unit}", kind) == fast
+
+
+def test_a_fast_unit_of_the_wrong_kind_still_says_so():
+    with pytest.raises(InputError, match="not a length"):
+        parse_quantity("4N", "length", name="--d")
