@@ -1,8 +1,6 @@
-"""``python -m knotmech``: the same as the ``knotmech`` command (same exit status)."""
-
-import sys
+"""``python -m knotmech``: the same as the ``knotmech`` command."""
 
 from knotmech.cli.main import main
 
 if __name__ == "__main__":
-    sys.exit(main())
+    raise SystemExit(main())
