@@ -33,8 +33,7 @@ SUMMARIES = {
     "simulate": "run a simulated experiment (capstan, two-loops, pinch, overhand, clove-hitch)",
     "diagnose": "find where a recording differs from its baseline model and name the missing "
     "physics",
-    "validate": "run the validation cases (theory vs simulation), write PNG, JSON and "
-    "index.html",
+    "validate": "run the validation cases (theory vs simulation), write PNG, JSON and index.html",
 }
 
 

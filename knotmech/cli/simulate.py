@@ -177,8 +177,7 @@ _DESCRIPTIONS = {
     "pinch": "a rod pinched between two crossed cylinders and pulled out (F_t* against "
     "Amontons' 2 mu F_n)",
     "overhand": "an overhand knot with n braid turns pulled tight (force against end-to-end)",
-    "clove-hitch": "a clove hitch tied on a post, held by end loads or pulled (clove-hitch "
-    "paper)",
+    "clove-hitch": "a clove hitch tied on a post, held by end loads or pulled (clove-hitch paper)",
 }
 
 
@@ -217,8 +216,12 @@ def register(subparsers) -> None:
                 opt.add_argument(*flags, dest=o.kwarg, default=None, help=text,
                                  metavar=_METAVAR.get(o.kind, o.kind.upper()))  # fmt: skip
         if name in ("capstan", "two-loops"):
-            opt.add_argument("--mode", default="pull", choices=("pull", "hold"),
-                             help="pull the high end, or hold it with --t-high [pull]")
+            opt.add_argument(
+                "--mode",
+                default="pull",
+                choices=("pull", "hold"),
+                help="pull the high end, or hold it with --t-high [pull]",
+            )
             opt.add_argument("--centreline-friction", action="store_true",
                              help="apply the friction at the centreline (gives exp(mu theta)) "
                              "instead of the surface (exp(mu_eff theta))")  # fmt: skip
@@ -235,11 +238,18 @@ def register(subparsers) -> None:
             )  # fmt: skip
         out = sp.add_argument_group("output (checked before the run starts)")
         out.add_argument("--json", metavar="FILE", help="the run's scalars as strict JSON")
-        out.add_argument("--csv", metavar="FILE", help="the curve as CSV in FILE; further "
-                         "tables in FILE-stem_<what>.csv (the files written are listed)")
+        out.add_argument(
+            "--csv",
+            metavar="FILE",
+            help="the curve as CSV in FILE; further "
+            "tables in FILE-stem_<what>.csv (the files written are listed)",
+        )
         out.add_argument("--npz", metavar="FILE", help="every array of the result (.npz)")
-        out.add_argument("--plot", metavar="FILE", help="the curve (png, pdf, svg, ...), "
-                         "against the closed form where one applies")
+        out.add_argument(
+            "--plot",
+            metavar="FILE",
+            help="the curve (png, pdf, svg, ...), against the closed form where one applies",
+        )
         out.add_argument("--no-progress", action="store_true", help="no progress bar")
         sp.set_defaults(func=run, scene=name)  # fmt: skip
     p.set_defaults(func=_no_scene)
@@ -420,7 +430,8 @@ def _write_outputs(scene: str, args, res, kw: dict, paths: dict) -> None:
             written.append(f"{path} ({what}; {rows} rows)")
     scalars, arrays = _scalars_and_arrays(res)
     if paths["json"] is not None:
-        doc = {"scene": scene, "inputs": kw, **scalars}
+        doc = {"scene": scene, "inputs": kw}
+        doc.update((k, v) for k, v in scalars.items() if k not in doc)
         with writing(paths["json"], option="--json"):
             _json.write(paths["json"], doc)
         written.append(f"{paths['json']} (scalars)")
@@ -533,8 +544,7 @@ def _run_capstan(scene, args, kw, progress):
     print(
         f"{scene}: status {res.status}; T_high/T_low = {res.ratio:.4g} (sliding) | "
         f"exp(mu theta) = {res.exp_mu_theta:.4g}, exp(mu_eff theta) = "
-        f"{res.exp_mu_eff_theta:.4g}"
-        + (f"; creep {res.creep:.3g} m" if res.mode == "hold" else "")
+        f"{res.exp_mu_eff_theta:.4g}" + (f"; creep {res.creep:.3g} m" if res.mode == "hold" else "")
     )
     return res
 

@@ -263,3 +263,11 @@ def test_start_up_imports_nothing_heavy(argv, banned):
     modules = set(line.split()[1:])
     for name in banned:
         assert not any(m == name or m.startswith(name + ".") for m in modules), name
+
+
+def test_max_node_steps_default_shown_is_the_library_bound():
+    from knotmech.scenes._common import MAX_NODE_STEPS
+
+    for opts in sim.SCENE_OPTIONS.values():
+        (o,) = [o for o in opts if o.flag == "--max-node-steps"]
+        assert float(o.default) == MAX_NODE_STEPS
