@@ -156,3 +156,32 @@ def test_units_read_without_pint_agree_with_pint():
 def test_a_fast_unit_of_the_wrong_kind_still_says_so():
     with pytest.raises(InputError, match="not a length"):
         parse_quantity("4N", "length", name="--d")
+
+
+_ALPHABET = st.sampled_from(list("0123456789.,_-+eE mMNkgfdrsPa/^*()%°µ\u2212\uff14\u0664x")) | (
+    st.characters()
+)
+
+
+@settings(max_examples=150, deadline=None, derandomize=True)
+@given(text=st.text(_ALPHABET, max_size=12), kind=st.sampled_from(sorted(KINDS)))
+def test_fuzz_any_text_is_a_finite_si_value_or_one_line_input_error(text, kind):
+    """Whatever the user types, the answer is a finite float or a one-line InputError
+    naming the option; never another exception."""
+    try:
+        value = parse_quantity(text, kind, name="--opt")
+    except InputError as exc:
+        assert "--opt" in str(exc) and "\n" not in str(exc)
+    else:
+        assert math.isfinite(value)
+
+
+@settings(max_examples=100, deadline=None, derandomize=True)
+@given(st.text(_ALPHABET, max_size=8))
+def test_fuzz_counts(text):
+    try:
+        value = parse_count(text, name="--n")
+    except InputError as exc:
+        assert "--n" in str(exc) and "\n" not in str(exc)
+    else:
+        assert isinstance(value, int) and str(abs(value)) in text.replace("\u2212", "-")
