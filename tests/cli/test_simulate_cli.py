@@ -11,6 +11,8 @@ import sys
 
 import numpy as np
 import pytest
+from hypothesis import HealthCheck, given, settings
+from hypothesis import strategies as st
 
 from knotmech.cli import simulate as sim
 from knotmech.cli.main import SUBCOMMANDS, SUMMARIES, main
@@ -271,3 +273,45 @@ def test_max_node_steps_default_shown_is_the_library_bound():
     for opts in sim.SCENE_OPTIONS.values():
         (o,) = [o for o in opts if o.flag == "--max-node-steps"]
         assert float(o.default) == MAX_NODE_STEPS
+
+
+_SCENE_FUNCS = {
+    "capstan": ("knotmech.scenes.capstan", "capstan"),
+    "two-loops": ("knotmech.scenes.capstan", "capstan_two_loops"),
+    "pinch": ("knotmech.scenes.pinch", "pinch"),
+    "overhand": ("knotmech.scenes.overhand", "overhand"),
+    "clove-hitch": ("knotmech.scenes.clove_hitch", "clove_hitch"),
+}
+_VALUE = st.text(st.sampled_from(list("0123456789.,_-+e mMNkgs/^*%\u2212\uff14")), max_size=8)
+
+
+@settings(max_examples=80, deadline=None, derandomize=True,
+          suppress_health_check=[HealthCheck.function_scoped_fixture])  # fmt: skip
+@given(data=st.data())
+def test_fuzz_option_values_exit_2_with_one_line(data, monkeypatch, capsys):
+    """Any value for any option of any scene: the scene is called with SI floats, or the
+    command exits 2 with one line on stderr; never a traceback."""
+    scene = data.draw(st.sampled_from(sim.SCENES))
+    module_name, func_name = _SCENE_FUNCS[scene]
+    module = __import__(module_name, fromlist=["x"])
+    seen = {}
+
+    def stub(*args, **kwargs):
+        seen.update(kwargs)
+        raise InputError("stub reached")
+
+    monkeypatch.setattr(module, func_name, stub)
+    opts = sim.SCENE_OPTIONS[scene]
+    argv = ["simulate", scene, "--no-progress"]
+    for o in opts:
+        if o.default == sim.REQUIRED:
+            argv += [o.flag, {"angle": "1rad", "dimensionless": "0.3", "length": "4mm",
+                              "pressure": "1MPa", "force": "1N"}[o.kind]]  # fmt: skip
+    chosen = data.draw(st.lists(st.sampled_from(opts), max_size=3, unique_by=lambda o: o.flag))
+    for o in chosen:
+        argv += [f"{o.flag}={data.draw(_VALUE)}"]
+    code = main(argv)
+    err = capsys.readouterr().err.strip()
+    assert code == 2 and err.count("\n") == 0 and "Traceback" not in err, err
+    if seen:
+        assert all(isinstance(v, (int, float, str, bool)) for v in seen.values())
