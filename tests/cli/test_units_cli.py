@@ -23,7 +23,7 @@ def _argv(knot="clove-hitch", **over):
     ("--mu", "0.3 deg", "--mu: give a plain number"),  # was 0.0052
     ("--mu", "\uff10.3", "non-ASCII digit"),  # fullwidth 0
     ("--load", "1_0N", "'_'"),  # was 10 N
-    ("--rod-diameter", "\u22124mm", "--rod-diameter must be > 0"),  # U+2212: was +4 mm
+    ("--rod-diameter", "\u22124mm", "diameter"),  # U+2212 is a minus (was +4 mm): refused
 ])  # fmt: skip
 def test_hold_refuses_what_was_read_wrongly(option, value, message, capsys):
     assert main(_argv(**{option.lstrip("-"): value})) == 2
