@@ -88,9 +88,10 @@ def split_arrays(obj) -> tuple[dict, dict[str, np.ndarray]]:
     Parameters
     ----------
     obj : dataclass instance or mapping
-        For example a scene result. Scalars (numbers, strings, booleans, None) and
-        mappings or dataclasses of scalars (``stats``, a parameter set) stay; arrays and
-        sequences of numbers go to the second dict (nested names joined with ``.``).
+        For example a scene result. Scalars (numbers, strings, booleans, None), lists of
+        strings (warnings) and mappings or dataclasses of scalars (``stats``, a parameter
+        set) stay; arrays and sequences of numbers go to the second dict (nested names
+        joined with ``.``).
 
     Returns
     -------
@@ -108,6 +109,8 @@ def split_arrays(obj) -> tuple[dict, dict[str, np.ndarray]]:
     for key, value in items.items():
         if _is_scalar(value):
             scalars[key] = value
+        elif isinstance(value, (list, tuple)) and all(isinstance(v, str) for v in value):
+            scalars[key] = list(value)  # messages (e.g. a result's warnings) are not arrays
         elif isinstance(value, Mapping) or (
             dataclasses.is_dataclass(value) and not isinstance(value, type)
         ):

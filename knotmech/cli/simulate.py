@@ -532,6 +532,8 @@ def run(args) -> int:
         res = _run_overhand(kw, args, progress)
     else:
         res = _run_clove_hitch(kw, args, progress)
+    for warning in getattr(res, "warnings", None) or ():  # the scene's own checks, one line each
+        print(f"warning: {warning}", file=sys.stderr)
     _write_outputs(scene, args, res, kw, paths)
     return 0 if res.status == "success" else 1
 
