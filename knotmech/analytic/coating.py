@@ -22,8 +22,9 @@ outside the measured range raise :class:`~knotmech.errors.InputError`.
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
-from scipy.interpolate import PchipInterpolator
 
 from knotmech.errors import InputError, check_finite
 
@@ -46,8 +47,24 @@ COVERAGE_VOLUME_FRACTION = np.array([0.0, 0.01, 0.13])
 #: Surface coverage [-] at those fractions (0 assumed for the uncoated rod; sec. 4, Fig. 7).
 COVERAGE = np.array([0.0, 0.0461, 0.2902])
 
-_MU_OF_PHI = PchipInterpolator(COATING_VOLUME_FRACTION, COATING_MU, extrapolate=False)
-_COVERAGE_OF_PHI = PchipInterpolator(COVERAGE_VOLUME_FRACTION, COVERAGE, extrapolate=False)
+
+@functools.cache
+def _interpolant(name: str):
+    """The monotone PCHIP interpolant ``"mu"`` or ``"coverage"`` of phi, built on first use
+    (importing scipy.interpolate costs about 0.4 s that ``import knotmech`` should not pay)."""
+    from scipy.interpolate import PchipInterpolator
+
+    x, y = {"mu": (COATING_VOLUME_FRACTION, COATING_MU),
+            "coverage": (COVERAGE_VOLUME_FRACTION, COVERAGE)}[name]  # fmt: skip
+    return PchipInterpolator(x, y, extrapolate=False)
+
+
+def _MU_OF_PHI(phi):  # noqa: N802 - keeps the name of the former module-level interpolant
+    return _interpolant("mu")(phi)
+
+
+def _COVERAGE_OF_PHI(phi):  # noqa: N802
+    return _interpolant("coverage")(phi)
 
 
 def _check_in(name, value, low, high, unit_hint=""):

@@ -44,12 +44,35 @@ are not implemented.
 
 from __future__ import annotations
 
+import functools
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.special import ellipe, ellipk, ellipkm1
 
 from knotmech.errors import InputError, check_finite, check_nonnegative, check_positive
+
+
+# scipy.special is imported on first use (about 0.3 s that `import knotmech` should not pay)
+def ellipk(m):
+    """Complete elliptic integral of the first kind K(m) (scipy.special.ellipk)."""
+    from scipy.special import ellipk as f
+
+    return f(m)
+
+
+def ellipe(m):
+    """Complete elliptic integral of the second kind E(m) (scipy.special.ellipe)."""
+    from scipy.special import ellipe as f
+
+    return f(m)
+
+
+def ellipkm1(p):
+    """K(1 - p), accurate near m = 1 (scipy.special.ellipkm1)."""
+    from scipy.special import ellipkm1 as f
+
+    return f(p)
+
 
 __all__ = [
     "JAWED_C",
@@ -215,10 +238,15 @@ def _shortening_ratio(m):
 
 
 _LOGIT_LO, _LOGIT_HI = -60.0, 36.0  # m from 9e-27 to 1 - 2e-16
-#: Smallest e/(n^2 h) the closure can represent (the long-braid limit m -> 1).
-_SHORTENING_MIN = float(_shortening_ratio(1.0 / (1.0 + np.exp(-_LOGIT_HI))))
-#: Largest e/(n^2 h) the bisection brackets (the loose limit m -> 0).
-_SHORTENING_MAX = float(_shortening_ratio(1.0 / (1.0 + np.exp(-_LOGIT_LO))))
+
+
+@functools.cache
+def _shortening_bounds() -> tuple[float, float]:
+    """Smallest e/(n^2 h) the closure can represent (the long-braid limit m -> 1) and the
+    largest the bisection brackets (the loose limit m -> 0); computed on first use."""
+    lo = float(_shortening_ratio(1.0 / (1.0 + np.exp(-_LOGIT_HI))))
+    hi = float(_shortening_ratio(1.0 / (1.0 + np.exp(-_LOGIT_LO))))
+    return lo, hi
 
 
 @dataclass(frozen=True)
@@ -286,6 +314,7 @@ def overhand_knot(*, end_to_end_shortening, turns, mu, rod_radius, bending_stiff
     b = check_positive("bending_stiffness", bending_stiffness)
     e, n, mu, h, b = np.broadcast_arrays(e, n, mu, h, b)
     target = e / (n**2 * h)
+    _SHORTENING_MIN, _SHORTENING_MAX = _shortening_bounds()  # noqa: N806
     if np.any(target <= _SHORTENING_MIN):
         raise InputError(
             f"end_to_end_shortening must exceed {_SHORTENING_MIN:.3g} n^2 h "

@@ -15,9 +15,31 @@ from __future__ import annotations
 from dataclasses import dataclass
 
 import numpy as np
-from scipy.special import ellipe, ellipk, ellipkm1
 
 from knotmech.errors import InputError, check_nonnegative, check_positive, check_range
+
+
+# scipy.special is imported on first use (about 0.3 s that `import knotmech` should not pay)
+def ellipk(m):
+    """Complete elliptic integral of the first kind K(m) (scipy.special.ellipk)."""
+    from scipy.special import ellipk as f
+
+    return f(m)
+
+
+def ellipe(m):
+    """Complete elliptic integral of the second kind E(m) (scipy.special.ellipe)."""
+    from scipy.special import ellipe as f
+
+    return f(m)
+
+
+def ellipkm1(p):
+    """K(1 - p), accurate near m = 1 (scipy.special.ellipkm1)."""
+    from scipy.special import ellipkm1 as f
+
+    return f(p)
+
 
 __all__ = [
     "PINCH_AMONTONS_LIMIT",

@@ -25,18 +25,38 @@ class _Parser(argparse.ArgumentParser):
         self.exit(2, f"{self.prog}: error: {message}\n")
 
 
-def build_parser(only: str | None = None) -> argparse.ArgumentParser:
-    """Build the parser; with ``only``, import just that subcommand's module (fast start-up)."""
+#: one-line summaries for ``knotmech --help``, which lists the commands without importing
+#: their modules (each module's own ``help=`` says the same; tests/cli/test_startup.py checks)
+SUMMARIES = {
+    "tour": "a short tour: closed forms, a hold verdict and a figure",
+    "hold": "does a rope tied to a post hold a load? (closed forms; DER for the clove hitch)",
+    "simulate": "run a simulated experiment (capstan, two-loops, pinch, overhand, clove-hitch)",
+    "diagnose": "find where a recording differs from its baseline model and name the missing "
+    "physics",
+    "validate": "run the validation cases (theory vs simulation), write PNG, JSON and index.html",
+}
+
+
+def build_parser(only: str | None = None, *, listing: bool = False) -> argparse.ArgumentParser:
+    """Build the parser.
+
+    With ``only``, import just that subcommand's module (fast start-up); with ``listing``,
+    import none and list the commands from :data:`SUMMARIES` (``--help``, ``--version``).
+    """
     from knotmech import __version__
 
     parser = _Parser(
         prog="knotmech",
         description="Mechanics of capstans and knots: closed forms, DER simulation, diagnosis.",
+        epilog="`knotmech COMMAND --help` describes a command's options.",
     )
     parser.add_argument("--version", action="version", version=f"knotmech {__version__}")
     sub = parser.add_subparsers(dest="command", metavar="COMMAND", parser_class=_Parser)
     for name in SUBCOMMANDS if only is None else (only,):
-        importlib.import_module(f"knotmech.cli.{name}").register(sub)
+        if listing:
+            sub.add_parser(name, help=SUMMARIES[name], add_help=False)
+        else:
+            importlib.import_module(f"knotmech.cli.{name}").register(sub)
     return parser
 
 
@@ -61,11 +81,16 @@ def _join_negative_values(argv: list[str]) -> list[str]:
 
 
 def main(argv=None) -> int:
+    """Run the command line; return the exit status (0 success, 1 a failed run, 2 bad input)."""
     argv = _join_negative_values(list(sys.argv[1:] if argv is None else argv))
-    # Importing every subcommand costs seconds (numba, scipy); import only the one asked for.
+    # Importing every subcommand costs seconds (numba, scipy); import only the one asked for,
+    # and none for `knotmech`, `knotmech --help` or `knotmech --version`.
     only = argv[0] if argv and argv[0] in SUBCOMMANDS else None
-    parser = build_parser(only)
-    args = parser.parse_args(argv)
+    parser = build_parser(only, listing=only is None)
+    try:
+        args = parser.parse_args(argv)
+    except SystemExit as exc:  # --help, --version, or an argument error (already printed)
+        return exc.code if isinstance(exc.code, int) else 2
     if not getattr(args, "func", None):
         parser.print_help()
         return 2

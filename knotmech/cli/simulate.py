@@ -1,4 +1,4 @@
-"""``knotmech simulate``: run a simulated experiment (scene) and write its curves.
+"""``knotmech simulate SCENE``: run a simulated experiment (scene) and write its curves.
 
 Example::
 
@@ -6,285 +6,577 @@ Example::
         --post-diameter 16mm --youngs-modulus 1.26MPa --t-low 0.16N --json cap.json --csv cap.csv
     knotmech simulate capstan --mode hold --t-high 0.5N ...
     knotmech simulate two-loops --json two_loops.json
-    knotmech simulate pinch --normal-load 0.3N --mu 0.5 --csv pinch.csv
+    knotmech simulate pinch --normal-load 0.3N --mu 0.5 --csv pinch.csv --plot pinch.png
     knotmech simulate overhand --turns 2 --mu 0.3 --n-nodes 151 --pull-time 5s --dt 5ms \\
         --csv knot.csv
     knotmech simulate clove-hitch --loading free --t-high 1.47N --mu 0.3 --json hitch.json
     knotmech simulate clove-hitch --loading pull --speed 20mm/s --t-low 0.069N --mu 0.5 \\
         --mu-kinetic 0.32 --pull-distance 40mm --csv pull.csv
 
-The command parses quantities (``knotmech.units``; bare numbers are SI), calls the scene
-function of :mod:`knotmech.scenes` with a progress bar, prints a summary, and writes the
-scalars as JSON (``--json``) and the recorded curves as CSV (``--csv``).
+Each scene is its own sub-command with only its own options (``knotmech simulate capstan
+--help`` lists them, marks the required ones and shows every default). Quantities need
+units (``knotmech.units``: ``4mm``, ``0.16N``, ``180deg``); dimensionless inputs and
+counts are bare numbers. Output files are checked before the run starts. The command
+calls the scene function of :mod:`knotmech.scenes`, prints a summary and writes:
+
+- ``--json FILE``: the run's scalars (strict JSON, counts as integers, no arrays);
+- ``--csv FILE``: the curve the run produced, in FILE; further tables (the tension
+  profile, the curvature) in ``FILE-stem_<what>.csv``; every file written is named;
+- ``--npz FILE``: every array of the result (NumPy ``.npz``);
+- ``--plot FILE``: the curve, against the closed form where one applies.
 """
 
 from __future__ import annotations
 
-import csv
-import json
-import math
 import sys
+from dataclasses import dataclass
 from pathlib import Path
 
 from knotmech.errors import InputError
-from knotmech.units import parse_quantity
 
 __all__ = ["register", "run"]
 
 SCENES = ("capstan", "two-loops", "pinch", "overhand", "clove-hitch")
 
+REQUIRED = "required"
+
+_METAVAR = {"dimensionless": "X", "count": "N", "bending_stiffness": "EI", "velocity": "SPEED"}
+
+
+@dataclass(frozen=True)
+class Opt:
+    """One quantity option of a scene: the flag, the scene argument it sets, its kind
+    (a :data:`knotmech.units.KINDS` key, or ``"count"``), help text and default (shown in
+    ``--help``; :data:`REQUIRED`, or text, or None when the scene computes it)."""
+
+    flag: str
+    kwarg: str
+    kind: str
+    help: str
+    default: str | None = None
+
+
+_COMMON_TAIL = (
+    Opt("--dt", "dt", "time", "nominal time step, e.g. 5ms"),
+    Opt("--max-node-steps", "max_node_steps", "dimensionless",
+        "refuse a run above this many steps x nodes, estimated before it starts", "2e8"),
+)  # fmt: skip
+
+_CAPSTAN = (
+    Opt("--wrap-angle", "wrap_angle", "angle", "wrap angle theta, e.g. 180deg", REQUIRED),
+    Opt("--mu", "mu", "dimensionless", "static friction coefficient rod-post, e.g. 0.5",
+        REQUIRED),
+    Opt("--rod-diameter", "rod_diameter", "length", "rod diameter d, e.g. 4mm", REQUIRED),
+    Opt("--post-diameter", "post_diameter", "length", "post diameter D, e.g. 16mm", REQUIRED),
+    Opt("--youngs-modulus", "youngs_modulus", "pressure", "Young's modulus E, e.g. 1.26MPa",
+        REQUIRED),
+    Opt("--t-low", "t_low", "force", "dead load on the low-tension end, e.g. 0.16N", REQUIRED),
+    Opt("--t-high", "t_high", "force", "--mode hold: dead load on the high end, e.g. 0.5N",
+        "required with --mode hold"),
+    Opt("--mu-kinetic", "mu_kinetic", "dimensionless", "kinetic coefficient", "--mu"),
+    Opt("--density", "density", "density", "rod density", "1000kg/m^3"),
+    Opt("--bending-stiffness", "bending_stiffness", "bending_stiffness",
+        "EI, e.g. 1e-5N*m^2 (a rope bends more easily than a solid rod)",
+        "solid rod, pi E d^4/64"),
+    Opt("--pull-speed", "pull_speed", "velocity", "--mode pull: speed of the pulled end",
+        "20mm/s"),
+    Opt("--pull-distance", "pull_distance", "length", "--mode pull: how far the end is pulled",
+        "3 x the stretch of the wrapped part + 0.3 R"),
+    Opt("--hold-time", "hold_time", "time", "--mode hold: time under the loads", "2s"),
+    Opt("--n-elements", "n_elements", "count", "rod elements",
+        "about 24 per radian of wrap, plus the leads"),
+    Opt("--dt", "dt", "time", "nominal time step",
+        "pull: element length / (4 x pull speed); hold: 5ms"),
+    _COMMON_TAIL[1],
+)  # fmt: skip
+
+_TWO_LOOPS_DEFAULTS = {  # capstan_two_loops (clove-hitch paper sect. 3, Fig. 1d)
+    "--wrap-angle": "720deg (two loops, 4 pi)",
+    "--mu": "0.32",
+    "--rod-diameter": "4mm",
+    "--post-diameter": "30mm",
+    "--youngs-modulus": "1.26MPa",
+    "--t-low": "0.069N",
+    "--density": "1160kg/m^3",
+}
+_TWO_LOOPS = tuple(
+    Opt(o.flag, o.kwarg, o.kind, o.help, _TWO_LOOPS_DEFAULTS.get(o.flag, o.default))
+    for o in _CAPSTAN
+)
+
+_PINCH = (
+    Opt("--normal-load", "normal_load", "force", "normal load F_n on the upper cylinder, "
+        "e.g. 0.3N", REQUIRED),
+    Opt("--mu", "mu", "dimensionless", "static friction coefficient rod-cylinder", REQUIRED),
+    Opt("--mu-kinetic", "mu_kinetic", "dimensionless", "kinetic coefficient", "--mu"),
+    Opt("--rod-diameter", "rod_diameter", "length", "rod diameter d", "4mm"),
+    Opt("--cylinder-diameter", "cylinder_diameter", "length", "pinching cylinders' D", "8mm"),
+    Opt("--youngs-modulus", "youngs_modulus", "pressure", "Young's modulus E", "1.26MPa"),
+    Opt("--density", "density", "density", "rod density", "1160kg/m^3"),
+    Opt("--rod-length", "rod_length", "length", "rod length", "9cm"),
+    Opt("--pull-speed", "pull_speed", "velocity", "speed of the pulled end", "10mm/s"),
+    Opt("--pull-distance", "pull_distance", "length", "how far the end is pulled",
+        "1.5 x the stretch of the pulled part at 2 mu F_n, plus 2 d"),
+    Opt("--n-elements", "n_elements", "count", "rod elements", "edges of d/8: 180 for 9 cm "
+        "and 4 mm"),
+    *_COMMON_TAIL,
+)  # fmt: skip
+_PINCH = tuple(
+    Opt(o.flag, o.kwarg, o.kind, o.help, "element length / (4 x pull speed)")
+    if o.flag == "--dt"
+    else o
+    for o in _PINCH
+)
+
+_OVERHAND = (
+    Opt("--turns", "turns", "count", "braid turns n = 1..4", "1"),
+    Opt("--mu", "mu", "dimensionless", "rod-rod friction coefficient", REQUIRED),
+    Opt("--n-nodes", "n_nodes", "count", "rod nodes", "from --params (imc: 301)"),
+    Opt("--pull-time", "pull_time", "time", "duration of the pull", "from --params (imc: 60s)"),
+    Opt("--pull-speed", "pull_speed", "velocity", "speed of each end", "from --params"),
+    Opt("--dt", "dt", "time", "nominal time step", "from --params (2.5ms)"),
+    _COMMON_TAIL[1],
+)  # fmt: skip
+
+_CLOVE = (
+    Opt("--t-high", "t_high", "force", "load on end 0 (both ends: symmetric)",
+        "required unless --loading pull"),
+    Opt("--t-low", "t_low", "force", "load on the other end", "asymmetric: required; free: 0; "
+        "pull: 0.069N (the paper's 7 g)"),
+    Opt("--mu", "mu_rod_post", "dimensionless", "rod-post (static) friction coefficient",
+        "0.3"),
+    Opt("--mu-rr", "mu_rod_rod", "dimensionless", "rod-rod friction coefficient", "--mu"),
+    Opt("--mu-kinetic", "mu_kinetic", "dimensionless", "kinetic rod-post coefficient", "--mu"),
+    Opt("--rod-diameter", "rod_diameter", "length", "rod diameter d", "4mm"),
+    Opt("--post-diameter", "post_diameter", "length", "post diameter D", "30mm"),
+    Opt("--rod-length", "rod_length", "length", "rod length", "374mm"),
+    Opt("--youngs-modulus", "youngs_modulus", "pressure", "Young's modulus E", "1.26MPa"),
+    Opt("--density", "density", "density", "rod density", "1150kg/m^3"),
+    Opt("--hold-time", "hold_time", "time", "time under the loads (not with pull)", "1s"),
+    Opt("--n-nodes", "n_nodes", "count", "rod nodes", "150"),
+    Opt("--pull-speed", "pull_speed", "velocity", "--loading pull: speed of end 0", "20mm/s"),
+    Opt("--pull-distance", "pull_distance", "length", "--loading pull: how far end 0 moves",
+        "40mm"),
+    Opt("--dt", "dt", "time", "nominal time step", "2ms"),
+    _COMMON_TAIL[1],
+)  # fmt: skip
+
+SCENE_OPTIONS: dict[str, tuple[Opt, ...]] = {
+    "capstan": _CAPSTAN,
+    "two-loops": _TWO_LOOPS,
+    "pinch": _PINCH,
+    "overhand": _OVERHAND,
+    "clove-hitch": _CLOVE,
+}
+
+_DESCRIPTIONS = {
+    "capstan": "a rod wrapped round a fixed post: pulled against a dead load (T_high/T_low "
+    "against exp(mu_eff theta)) or held by two dead loads (creep)",
+    "two-loops": "the capstan with the clove-hitch paper's two loops (sect. 3): theta = 4 pi, "
+    "d = 4 mm, D = 30 mm, mu = 0.32, T_low = 0.069 N",
+    "pinch": "a rod pinched between two crossed cylinders and pulled out (F_t* against "
+    "Amontons' 2 mu F_n)",
+    "overhand": "an overhand knot with n braid turns pulled tight (force against end-to-end)",
+    "clove-hitch": "a clove hitch tied on a post, held by end loads or pulled (clove-hitch paper)",
+}
+
 
 def register(subparsers) -> None:
+    """Add ``simulate`` and one sub-command per scene (no scene module is imported)."""
+    import argparse
+
     p = subparsers.add_parser(
         "simulate",
         help="run a simulated experiment (capstan, two-loops, pinch, overhand, clove-hitch)",
         description=(
             "Simulate an experiment with the discrete-elastic-rods solver and frictional "
-            "contact. Quantities accept units (4mm, 0.16N, 180deg, 1.26MPa, 10mm/s); bare "
-            "numbers are SI."
+            "contact. Quantities need units (4mm, 0.16N, 180deg, 1.26MPa, 10mm/s, "
+            "1160kg/m^3); friction coefficients and counts are bare numbers. "
+            "`knotmech simulate SCENE --help` lists a scene's options and defaults."
         ),
     )
-    p.add_argument("scene", help=f"one of: {', '.join(SCENES)}")
-    g = p.add_argument_group("capstan / two-loops")
-    g.add_argument("--wrap-angle", default=None, help="wrap angle theta, e.g. 180deg")
-    g.add_argument("--post-diameter", default=None, help="post diameter D, e.g. 16mm")
-    g.add_argument("--t-low", default=None, help="dead load on the low end, e.g. 0.16N")
-    g.add_argument("--mode", default="pull", choices=("pull", "hold"))
-    g.add_argument("--t-high", default=None, help="hold mode: dead load on the high end")
-    g.add_argument("--bending-stiffness", default=None, help="EI in N m^2 (default solid rod)")
-    g.add_argument("--pull-distance", default=None, help="e.g. 10mm")
-    g.add_argument("--hold-time", default=None, help="hold mode: e.g. 2s")
-    g.add_argument("--n-elements", type=int, default=None)
-    g.add_argument(
-        "--centreline-friction",
-        action="store_true",
-        help="apply the friction at the centreline (gives exp(mu theta)) instead of the surface",
-    )
-    g2 = p.add_argument_group("pinch")
-    g2.add_argument("--normal-load", default=None, help="normal load F_n, e.g. 0.3N")
-    g2.add_argument("--cylinder-diameter", default="8mm", help="pinching cylinders' D")
-    g2.add_argument("--rod-length", default=None, help="rod length (pinch default 9cm)")
-    g3 = p.add_argument_group("overhand")
-    g3.add_argument("--turns", type=int, default=1, help="braid turns n = 1..4 (default 1)")
-    g3.add_argument(
-        "--params",
-        default="imc",
-        choices=("imc", "coated"),
-        help="parameter set: implicit-contact-model paper (imc) or coated-rod paper table 1",
-    )
-    g3.add_argument("--n-nodes", type=int, default=None, help="nodes (overhand, clove-hitch)")
-    g3.add_argument("--pull-time", default=None, help="duration of the pull, e.g. 60s")
-    g4 = p.add_argument_group("clove-hitch")
-    g4.add_argument(
-        "--loading",
-        default="free",
-        choices=("symmetric", "asymmetric", "free", "pull"),
-        help="end loads: both --t-high, --t-high/--t-low, or --t-high with a free end; "
-        "pull: dead load --t-low (default 0.069N) on one end, the other pulled at --speed "
-        "for --pull-distance (default 20mm/s, 40mm); --mu-kinetic for the post",
-    )
-    g4.add_argument("--mu-rr", default=None, help="rod-rod friction (default --mu)")
-    c = p.add_argument_group("common")
-    c.add_argument("--mu", default=None, help="(static) friction coefficient, e.g. 0.5")
-    c.add_argument("--mu-kinetic", default=None, help="kinetic coefficient (default --mu)")
-    c.add_argument("--rod-diameter", default=None, help="rod diameter d, e.g. 4mm")
-    c.add_argument("--youngs-modulus", default=None, help="E, e.g. 1.26MPa")
-    c.add_argument("--density", default="1160", help="kg/m^3 (default 1160)")
-    c.add_argument("--pull-speed", "--speed", default=None, help="e.g. 10mm/s")
-    c.add_argument("--dt", default=None, help="nominal time step, e.g. 20ms")
-    c.add_argument("--json", metavar="FILE", default=None, help="write the scalars as JSON")
-    c.add_argument("--csv", metavar="FILE", default=None, help="write the curves as CSV")
-    c.add_argument("--no-progress", action="store_true", help="no progress bar")
-    p.set_defaults(func=run)
+    scenes = p.add_subparsers(dest="scene", metavar="SCENE", parser_class=type(p))
+    for name in SCENES:
+        sp = scenes.add_parser(
+            name,
+            aliases=[name.replace("-", "_")] if "-" in name else [],
+            help=_DESCRIPTIONS[name],
+            description=f"Simulate {_DESCRIPTIONS[name]}.",
+            formatter_class=argparse.RawDescriptionHelpFormatter,
+        )
+        req = sp.add_argument_group("required")
+        opt = sp.add_argument_group("options (default in brackets)")
+        for o in SCENE_OPTIONS[name]:
+            if o.default == REQUIRED:
+                req.add_argument(o.flag, dest=o.kwarg, required=True, help=o.help,
+                                 metavar=_METAVAR.get(o.kind, o.kind.upper()))  # fmt: skip
+            else:
+                flags = (o.flag, "--speed") if o.flag == "--pull-speed" else (o.flag,)
+                text = f"{o.help} [{o.default}]" if o.default else o.help
+                opt.add_argument(*flags, dest=o.kwarg, default=None, help=text,
+                                 metavar=_METAVAR.get(o.kind, o.kind.upper()))  # fmt: skip
+        if name in ("capstan", "two-loops"):
+            opt.add_argument(
+                "--mode",
+                default="pull",
+                choices=("pull", "hold"),
+                help="pull the high end, or hold it with --t-high [pull]",
+            )
+            opt.add_argument("--centreline-friction", action="store_true",
+                             help="apply the friction at the centreline (gives exp(mu theta)) "
+                             "instead of the surface (exp(mu_eff theta))")  # fmt: skip
+        if name == "overhand":
+            opt.add_argument("--params", default="imc", choices=("imc", "coated"),
+                             help="parameter set: implicit-contact-model paper (imc) or "
+                             "coated-rod paper table 1 [imc]")  # fmt: skip
+        if name == "clove-hitch":
+            opt.add_argument(
+                "--loading", default="free", choices=("symmetric", "asymmetric", "free", "pull"),
+                help="end loads: both --t-high (symmetric); --t-high and --t-low "
+                "(asymmetric); --t-high and a free end (free); pull: dead load --t-low on one "
+                "end, the other pulled at --speed for --pull-distance [free]",
+            )  # fmt: skip
+        out = sp.add_argument_group("output (checked before the run starts)")
+        out.add_argument("--json", metavar="FILE", help="the run's scalars as strict JSON")
+        out.add_argument(
+            "--csv",
+            metavar="FILE",
+            help="the curve as CSV in FILE; further "
+            "tables in FILE-stem_<what>.csv (the files written are listed)",
+        )
+        out.add_argument("--npz", metavar="FILE", help="every array of the result (.npz)")
+        out.add_argument(
+            "--plot",
+            metavar="FILE",
+            help="the curve (png, pdf, svg, ...), against the closed form where one applies",
+        )
+        out.add_argument("--no-progress", action="store_true", help="no progress bar")
+        sp.set_defaults(func=run, scene=name)  # fmt: skip
+    p.set_defaults(func=_no_scene)
 
 
-def _q(value, kind, name, required=False):
-    if value is None:
-        if required:
-            raise InputError(f"{name} is required for this scene")
-        return None
-    return parse_quantity(value, kind, name=name)
+def _no_scene(args) -> int:
+    raise InputError(f"choose a scene: {', '.join(SCENES)} (knotmech simulate SCENE --help)")
 
 
-def _write_csv(path, header, columns):
-    try:
-        with open(path, "w", newline="") as fh:
-            w = csv.writer(fh)
-            w.writerow(header)
-            for row in zip(*columns, strict=True):
-                w.writerow([f"{float(x):.10g}" for x in row])
-    except OSError as exc:
-        raise InputError(f"--csv: cannot write {str(path)!r}: {exc.strerror}") from None
+# ----------------------------------------------------------------------------- parsing
 
 
-def _clean(obj):
-    if isinstance(obj, dict):
-        return {k: _clean(v) for k, v in obj.items()}
-    if isinstance(obj, float) and not math.isfinite(obj):
-        return None
-    if hasattr(obj, "item"):
-        return _clean(obj.item())
-    return obj
+def _parse(args, scene: str) -> dict:
+    """Scene keyword arguments in SI from the options given (defaults are the scene's)."""
+    from knotmech.units import parse_count, parse_quantity
+
+    kw = {}
+    for o in SCENE_OPTIONS[scene]:
+        raw = getattr(args, o.kwarg, None)
+        if raw is None:
+            continue
+        if o.kind == "count":
+            kw[o.kwarg] = parse_count(raw, name=o.flag)
+        else:
+            kw[o.kwarg] = parse_quantity(raw, o.kind, name=o.flag)
+    return kw
+
+
+def _refuse(kw: dict, flags: dict[str, str], reason: str) -> None:
+    given = [flag for kwarg, flag in flags.items() if kwarg in kw]
+    if given:
+        raise InputError(f"{', '.join(given)}: not used {reason}")
+
+
+def _check_combination(scene: str, args, kw: dict) -> None:
+    """Options that depend on another option: all missing ones at once; unused ones refused."""
+    missing = []
+    if scene in ("capstan", "two-loops"):
+        if args.mode == "hold":
+            if "t_high" not in kw:
+                missing.append("--t-high")
+            _refuse(kw, {"pull_speed": "--pull-speed", "pull_distance": "--pull-distance"},
+                    "with --mode hold")  # fmt: skip
+        else:
+            _refuse(kw, {"t_high": "--t-high", "hold_time": "--hold-time"},
+                    "with --mode pull (the pulled end's force is measured)")  # fmt: skip
+    elif scene == "clove-hitch":
+        if args.loading == "pull":
+            _refuse(kw, {"t_high": "--t-high", "hold_time": "--hold-time"},
+                    "with --loading pull (the pulled end's force is measured)")  # fmt: skip
+        else:
+            if "t_high" not in kw:
+                missing.append("--t-high")
+            if args.loading == "asymmetric" and "t_low" not in kw:
+                missing.append("--t-low")
+            _refuse(kw, {"pull_speed": "--pull-speed", "pull_distance": "--pull-distance"},
+                    f"with --loading {args.loading} (only with pull)")  # fmt: skip
+            if args.loading == "symmetric":
+                _refuse(kw, {"t_low": "--t-low"}, "with --loading symmetric (both ends carry "
+                        "--t-high)")  # fmt: skip
+    if missing:
+        cond = {"capstan": "--mode hold", "two-loops": "--mode hold"}.get(
+            scene, f"--loading {getattr(args, 'loading', '')}"
+        )
+        raise InputError(
+            f"{', '.join(missing)} {'is' if len(missing) == 1 else 'are'} required with {cond}"
+        )
+
+
+# ----------------------------------------------------------------------------- outputs
+
+
+def _csv_tables(scene: str, args) -> list[tuple[str, str]]:
+    """(suffix, description) of every CSV file ``--csv`` writes, the main one first."""
+    if scene in ("capstan", "two-loops"):
+        return [("", "T_high against time and displacement"),
+                ("_tension_profile", "tension along the rod at the end")]  # fmt: skip
+    if scene == "pinch":
+        return [("", "pull force against time and displacement")]
+    if scene == "overhand":
+        return [("", "pull force, end-to-end distance and loop size against time")]
+    tables = [("_tension_profile", "tension along the rod at the end"),
+              ("_curvature", "Darboux vector (curvatures, twist) along the rod")]  # fmt: skip
+    if args.loading == "pull":
+        return [("", "T_high against the pulled end's displacement"), *tables]
+    return [("", tables[0][1]), tables[1]]
+
+
+def _csv_path(base: Path, suffix: str) -> Path:
+    return base if not suffix else base.with_name(base.stem + suffix + (base.suffix or ".csv"))
+
+
+def _check_outputs(scene: str, args) -> dict:
+    from knotmech.cli._paths import check_output_path, plot_formats
+
+    paths = {
+        "json": check_output_path(args.json, option="--json"),
+        "npz": check_output_path(args.npz, formats=("npz",), option="--npz"),
+        "plot": None,
+        "csv": [],
+    }
+    if args.plot is not None:
+        paths["plot"] = check_output_path(args.plot, formats=plot_formats(), option="--plot")
+    if args.csv is not None:
+        base = check_output_path(args.csv, option="--csv")
+        for suffix, what in _csv_tables(scene, args):
+            paths["csv"].append((check_output_path(_csv_path(base, suffix), option="--csv"), what))
+    return paths
+
+
+def _write_csv(path: Path, header, columns) -> int:
+    import csv
+
+    from knotmech.cli._paths import writing
+
+    rows = 0
+    with writing(path, option="--csv"), open(path, "w", newline="") as fh:
+        w = csv.writer(fh)
+        w.writerow(header)
+        for row in zip(*columns, strict=True):
+            w.writerow([f"{float(x):.10g}" for x in row])
+            rows += 1
+    return rows
+
+
+def _csv_columns(scene: str, res, loading: str | None) -> list[tuple[list[str], list]]:
+    """Header and columns of each table, in the order of :func:`_csv_tables`."""
+    import numpy as np
+
+    if scene in ("capstan", "two-loops"):
+        return [
+            (["time_s", "displacement_m", "t_high_N", "t_high_over_t_low"],
+             [res.times, res.displacement, res.t_high, np.asarray(res.t_high) / res.t_low]),
+            (["s_m", "tension_N"], [res.s, res.tension]),
+        ]  # fmt: skip
+    if scene == "pinch":
+        return [(["time_s", "displacement_m", "pull_force_N"],
+                 [res.times, res.displacement, res.pull_force])]  # fmt: skip
+    if scene == "overhand":
+        return [(["time_s", "end_to_end_m", "pull_force_N", "loop_diameter_m"],
+                 [res.times, res.end_to_end, res.pull_force, res.loop_diameter])]  # fmt: skip
+    tables = [
+        (["s_m", "tension_N", "rod_contact"], [res.s, res.tension, res.rod_contact.astype(int)]),
+        (["s_m", "omega1_per_m", "omega2_per_m", "omega3_per_m"],
+         [res.s_nodes, res.darboux[:, 0], res.darboux[:, 1], res.darboux[:, 2]]),
+    ]  # fmt: skip
+    if loading == "pull":
+        curve = (["displacement_m", "t_high_N", "t_high_over_t_low"],
+                 [res.pull_displacement, res.pull_force, res.ratio_curve])  # fmt: skip
+        return [curve, *tables]
+    return tables
+
+
+def _scalars_and_arrays(res) -> tuple[dict, dict]:
+    """The result's scalars (its fields and its summary's, the solver's integer stats kept)
+    and its arrays."""
+    from knotmech._json import split_arrays
+
+    scalars, arrays = split_arrays(res)
+    summary = res.to_dict() if hasattr(res, "to_dict") else res.summary()
+    extra, _ = split_arrays(summary)
+    for key, value in extra.items():
+        scalars.setdefault(key, value)
+    return scalars, arrays
+
+
+def _write_outputs(scene: str, args, res, kw: dict, paths: dict) -> None:
+    from knotmech import _json
+    from knotmech.cli._paths import writing
+
+    written = []
+    if paths["csv"]:
+        loading = getattr(args, "loading", None)
+        for (path, what), (header, cols) in zip(
+            paths["csv"], _csv_columns(scene, res, loading), strict=True
+        ):
+            rows = _write_csv(path, header, cols)
+            written.append(f"{path} ({what}; {rows} rows)")
+    scalars, arrays = _scalars_and_arrays(res)
+    if paths["json"] is not None:
+        doc = {"scene": scene, "inputs": kw}
+        doc.update((k, v) for k, v in scalars.items() if k not in doc)
+        with writing(paths["json"], option="--json"):
+            _json.write(paths["json"], doc)
+        written.append(f"{paths['json']} (scalars)")
+    if paths["npz"] is not None:
+        import numpy as np
+
+        with writing(paths["npz"], option="--npz"):
+            np.savez(paths["npz"], **arrays)
+        written.append(f"{paths['npz']} (arrays: {', '.join(sorted(arrays))})")
+    if paths["plot"] is not None:
+        what = _plot(paths["plot"], scene, res, kw)
+        written.append(f"{paths['plot']} ({what})")
+    for line in written:
+        print(f"wrote {line}", file=sys.stderr)
+
+
+def _plot(path: Path, scene: str, res, kw: dict) -> str:
+    """Draw the run's curve (and the closed form where one applies); return what it shows."""
+    import numpy as np
+
+    from knotmech.cli._paths import writing
+    from knotmech.plotting import new_axes
+
+    ax = new_axes(figsize=(6.4, 4.4))
+    if scene in ("capstan", "two-loops") and res.mode == "pull":
+        ax.plot(res.displacement * 1e3, np.asarray(res.t_high) / res.t_low, "k-", lw=1.2,
+                label="DER simulation")  # fmt: skip
+        ax.axhline(res.exp_mu_eff_theta, color="C0", ls="--",
+                   label=rf"thick-rod capstan $e^{{\mu_{{eff}}\theta}}$ = "
+                   f"{res.exp_mu_eff_theta:.4g}")  # fmt: skip
+        ax.axhline(res.exp_mu_theta, color="C3", ls=":",
+                   label=rf"ideal rope $e^{{\mu\theta}}$ = {res.exp_mu_theta:.4g}")  # fmt: skip
+        ax.set_xlabel("pulled-end displacement [mm]")
+        ax.set_ylabel(r"$T_{high}/T_{low}$")
+        what = "T_high/T_low against displacement, with exp(mu_eff theta) and exp(mu theta)"
+    elif scene in ("capstan", "two-loops"):
+        ax.plot(res.times, res.displacement * 1e3, "k-", lw=1.2, label="DER simulation")
+        ax.set_xlabel("time [s]")
+        ax.set_ylabel("high-end displacement [mm]")
+        ax.set_title(f"hold: T_high/T_low = {kw['t_high'] / res.t_low:.4g}, limit "
+                     f"exp(mu_eff theta) = {res.exp_mu_eff_theta:.4g}")  # fmt: skip
+        what = "high-end displacement against time (creep)"
+    elif scene == "pinch":
+        ax.plot(res.displacement * 1e3, res.pull_force, "k-", lw=1.2, label="DER simulation")
+        amontons = 2 * res.mu * res.normal_load
+        ax.axhline(amontons, color="C0", ls="--",
+                   label=rf"Amontons $2\mu F_n$ = {amontons:.4g} N")  # fmt: skip
+        ax.set_xlabel("pulled-end displacement [mm]")
+        ax.set_ylabel("pull force [N]")
+        what = "pull force against displacement, with Amontons' 2 mu F_n"
+    elif scene == "overhand":
+        ax.plot(res.end_to_end, res.pull_force, "k-", lw=1.2, label="DER simulation")
+        ax.set_xlabel("end-to-end distance [m]")
+        ax.set_ylabel("pull force [N]")
+        what = "pull force against end-to-end distance (no closed form drawn)"
+    elif res.loading == "pull":
+        ax.plot(res.pull_displacement * 1e3, res.ratio_curve, "k-", lw=1.2,
+                label="DER simulation")  # fmt: skip
+        ax.set_xlabel("pulled-end displacement [mm]")
+        ax.set_ylabel(r"$T_{high}/T_{low}$")
+        what = "T_high/T_low against displacement (no closed form drawn)"
+    else:
+        ax.plot(res.s, res.tension, "k-", lw=1.2, label="DER simulation")
+        ax.axhline(res.t_high, color="C3", ls=":", label=f"T_high = {res.t_high:.4g} N")
+        ax.axhline(res.t_low, color="C0", ls=":", label=f"T_low = {res.t_low:.4g} N")
+        ax.set_xlabel("arc length from end 0 [m]")
+        ax.set_ylabel("tension [N]")
+        what = "tension along the rod, with the end loads"
+    if not ax.get_title():
+        ax.set_title(f"simulate {scene}: status {res.status}")
+    ax.grid(True, alpha=0.3)
+    ax.legend(fontsize=8)
+    with writing(path, option="--plot"):
+        ax.figure.savefig(path, dpi=120, bbox_inches="tight")
+    return what
+
+
+# ----------------------------------------------------------------------------- running
 
 
 def run(args) -> int:
-    scene = str(args.scene).strip().lower().replace("_", "-")
-    if scene not in SCENES:
-        raise InputError(f"scene must be one of {', '.join(SCENES)}, got {args.scene!r}")
+    scene = args.scene
+    paths = _check_outputs(scene, args)  # before any work
+    kw = _parse(args, scene)
+    _check_combination(scene, args, kw)
     progress = not args.no_progress
-    common = {}
-    if args.pull_speed is not None:
-        common["pull_speed"] = _q(args.pull_speed, "velocity", "--pull-speed")
-    if args.dt is not None:
-        common["dt"] = _q(args.dt, "time", "--dt")
-    mu_k = _q(args.mu_kinetic, "dimensionless", "--mu-kinetic")
     if scene in ("capstan", "two-loops"):
-        from knotmech.scenes.capstan import capstan, capstan_two_loops
-
-        kw = dict(common)
-        kw["mode"] = args.mode
-        kw["surface_friction"] = not args.centreline_friction
-        if mu_k is not None:
-            kw["mu_kinetic"] = mu_k
-        opt = {
-            "t_high": _q(args.t_high, "force", "--t-high"),
-            "bending_stiffness": _q(args.bending_stiffness, "dimensionless", "--bending-stiffness"),
-            "pull_distance": _q(args.pull_distance, "length", "--pull-distance"),
-            "hold_time": _q(args.hold_time, "time", "--hold-time"),
-            "n_elements": args.n_elements,
-        }
-        kw.update({k: v for k, v in opt.items() if v is not None})
-        named = {
-            "wrap_angle": _q(args.wrap_angle, "angle", "--wrap-angle", scene == "capstan"),
-            "mu": _q(args.mu, "dimensionless", "--mu", scene == "capstan"),
-            "rod_diameter": _q(args.rod_diameter, "length", "--rod-diameter", scene == "capstan"),
-            "post_diameter": _q(
-                args.post_diameter, "length", "--post-diameter", scene == "capstan"
-            ),
-            "youngs_modulus": _q(
-                args.youngs_modulus, "pressure", "--youngs-modulus", scene == "capstan"
-            ),
-            "t_low": _q(args.t_low, "force", "--t-low", scene == "capstan"),
-            "density": _q(args.density, "dimensionless", "--density"),
-        }
-        kw.update({k: v for k, v in named.items() if v is not None})
-        res = (capstan if scene == "capstan" else capstan_two_loops)(progress=progress, **kw)
-        summary = res.summary()
-        print(
-            f"{scene}: status {res.status}; T_high/T_low = {res.ratio:.4g} (sliding) | "
-            f"exp(mu theta) = {res.exp_mu_theta:.4g}, exp(mu_eff theta) = "
-            f"{res.exp_mu_eff_theta:.4g}"
-            + (f"; creep {res.creep:.3g} m" if res.mode == "hold" else "")
-        )
-        if args.csv:
-            _write_csv(
-                args.csv,
-                ["time_s", "displacement_m", "t_high_N"],
-                [res.times, res.displacement, res.t_high],
-            )
-            prof = Path(args.csv).with_name(Path(args.csv).stem + "_profile.csv")
-            _write_csv(prof, ["s_m", "tension_N"], [res.s, res.tension])
-    elif scene == "overhand":
-        summary = _run_overhand(args, progress)
-    elif scene == "clove-hitch":
-        summary = _run_clove_hitch(args, progress)
-    else:
+        res = _run_capstan(scene, args, kw, progress)
+    elif scene == "pinch":
         from knotmech.scenes.pinch import pinch
 
-        kw = dict(common)
-        if mu_k is not None:
-            kw["mu_kinetic"] = mu_k
-        kw["normal_load"] = _q(args.normal_load, "force", "--normal-load", True)
-        kw["mu"] = _q(args.mu, "dimensionless", "--mu", True)
-        kw["cylinder_diameter"] = _q(args.cylinder_diameter, "length", "--cylinder-diameter")
-        kw["rod_length"] = _q(args.rod_length or "9cm", "length", "--rod-length")
-        kw["density"] = _q(args.density, "dimensionless", "--density")
-        if args.rod_diameter is not None:
-            kw["rod_diameter"] = _q(args.rod_diameter, "length", "--rod-diameter")
-        if args.youngs_modulus is not None:
-            kw["youngs_modulus"] = _q(args.youngs_modulus, "pressure", "--youngs-modulus")
         res = pinch(progress=progress, **kw)
-        summary = res.summary()
         print(
             f"pinch: status {res.status}; F_t* = {res.sliding_force:.4g} N, "
             f"F_t*/(2 mu F_n) = {res.ratio:.4g}, x = 4F_n/(pi E d D) = {res.load_parameter:.3g}"
         )
-        if args.csv:
-            _write_csv(
-                args.csv,
-                ["time_s", "displacement_m", "pull_force_N"],
-                [res.times, res.displacement, res.pull_force],
-            )
-    if args.json:
-        text = json.dumps(_clean(summary), indent=2)
-        try:
-            Path(args.json).write_text(text + "\n")
-        except OSError as exc:
-            raise InputError(f"--json: cannot write {args.json!r}: {exc.strerror}") from None
-        print(f"wrote {args.json}", file=sys.stderr)
-    return 0 if summary.get("status") == "success" else 1
+    elif scene == "overhand":
+        res = _run_overhand(kw, args, progress)
+    else:
+        res = _run_clove_hitch(kw, args, progress)
+    for warning in getattr(res, "warnings", None) or ():  # the scene's own checks, one line each
+        print(f"warning: {warning}", file=sys.stderr)
+    _write_outputs(scene, args, res, kw, paths)
+    return 0 if res.status == "success" else 1
 
 
-def _run_overhand(args, progress) -> dict:
+def _run_capstan(scene, args, kw, progress):
+    from knotmech.scenes.capstan import capstan, capstan_two_loops
+
+    kw = {**kw, "mode": args.mode, "surface_friction": not args.centreline_friction}
+    res = (capstan if scene == "capstan" else capstan_two_loops)(progress=progress, **kw)
+    print(
+        f"{scene}: status {res.status}; T_high/T_low = {res.ratio:.4g} (sliding) | "
+        f"exp(mu theta) = {res.exp_mu_theta:.4g}, exp(mu_eff theta) = "
+        f"{res.exp_mu_eff_theta:.4g}" + (f"; creep {res.creep:.3g} m" if res.mode == "hold" else "")
+    )
+    return res
+
+
+def _run_overhand(kw, args, progress):
     from knotmech.scenes.overhand import overhand
 
-    if not 1 <= args.turns <= 4:
-        raise InputError(f"--turns must be 1, 2, 3 or 4, got {args.turns}")
-    mu = _q(args.mu, "dimensionless", "--mu", True)
-    overrides = {
-        "n_nodes": args.n_nodes,
-        "pull_time": _q(args.pull_time, "time", "--pull-time"),
-        "dt": _q(args.dt, "time", "--dt"),
-        "pull_speed": _q(args.pull_speed, "velocity", "--pull-speed"),
-    }
-    overrides = {k: v for k, v in overrides.items() if v is not None}
-    res = overhand(args.turns, mu, params=args.params, progress=progress, **overrides)
+    kw = dict(kw)
+    turns = kw.pop("turns", 1)
+    if not 1 <= turns <= 4:
+        raise InputError(f"--turns must be 1, 2, 3 or 4, got {turns}")
+    mu = kw.pop("mu")
+    res = overhand(turns, mu, params=args.params, progress=progress, **kw)
     print(
-        f"overhand n = {args.turns}, mu = {mu:g}: status {res.status}; pull force "
+        f"overhand n = {turns}, mu = {mu:g}: status {res.status}; pull force "
         f"{res.pull_force[-1]:.4g} N at end-to-end {res.end_to_end[-1]:.4g} m; knot "
         f"{res.knot_start} -> {res.knot_end}"
         + ("" if res.knot_preserved else " (KNOT TYPE CHANGED: a strand passed through)")
     )
-    if args.csv:
-        _write_csv(
-            args.csv,
-            ["time_s", "end_to_end_m", "pull_force_N", "loop_diameter_m"],
-            [res.times, res.end_to_end, res.pull_force, res.loop_diameter],
-        )
-    return res.to_dict()
+    return res
 
 
-def _run_clove_hitch(args, progress) -> dict:
+def _run_clove_hitch(kw, args, progress):
     from knotmech.scenes.clove_hitch import clove_hitch
 
-    pull = args.loading == "pull"
-    kw = {
-        "loading": args.loading,
-        "t_high": _q(args.t_high, "force", "--t-high", not pull),
-        "t_low": _q(args.t_low, "force", "--t-low", args.loading == "asymmetric"),
-        "rod_diameter": _q(args.rod_diameter, "length", "--rod-diameter"),
-        "post_diameter": _q(args.post_diameter, "length", "--post-diameter"),
-        "rod_length": _q(args.rod_length, "length", "--rod-length"),
-        "youngs_modulus": _q(args.youngs_modulus, "pressure", "--youngs-modulus"),
-        "density": _q(args.density, "dimensionless", "--density"),
-        "mu_rod_post": _q(args.mu, "dimensionless", "--mu"),
-        "mu_rod_rod": _q(
-            args.mu_rr if args.mu_rr is not None else args.mu, "dimensionless", "--mu-rr"
-        ),  # fmt: skip
-        "mu_kinetic": _q(args.mu_kinetic, "dimensionless", "--mu-kinetic"),
-        "hold_time": _q(args.hold_time, "time", "--hold-time"),
-        "n_nodes": args.n_nodes,
-        "dt": _q(args.dt, "time", "--dt"),
-        "pull_speed": _q(args.pull_speed, "velocity", "--speed"),
-        "pull_distance": _q(args.pull_distance, "length", "--pull-distance"),
-    }
-    kw = {k: v for k, v in kw.items() if v is not None}
-    if kw["loading"] in ("symmetric", "free"):
-        kw.pop("t_low", None)
-    if pull:
-        kw.pop("hold_time", None)
+    kw = {**kw, "loading": args.loading}
+    if "mu_rod_post" in kw:
+        kw.setdefault("mu_rod_rod", kw["mu_rod_post"])
     res = clove_hitch(progress=progress, **kw)
-    if pull:
+    if args.loading == "pull":
         print(
             f"clove-hitch (pull at {res.pull_speed * 1e3:.3g} mm/s): status {res.status}; "
             f"T_low = {res.t_low:.4g} N; T_high/T_low = {res.ratio_curve[-1]:.4g} after "
@@ -298,23 +590,4 @@ def _run_clove_hitch(args, progress) -> dict:
             f"clove-hitch ({res.loading}): status {res.status}; T_high = {res.t_high:.4g} N, "
             f"T_low = {res.t_low:.4g} N, creep {res.creep:.3g} m{verdict}"
         )
-    if args.csv:
-        _write_csv(
-            args.csv,
-            ["s_m", "tension_N", "rod_contact"],
-            [res.s, res.tension, res.rod_contact.astype(int)],
-        )
-        prof = Path(args.csv).with_name(Path(args.csv).stem + "_darboux.csv")
-        _write_csv(
-            prof,
-            ["s_m", "omega1_per_m", "omega2_per_m", "omega3_per_m"],
-            [res.s_nodes, res.darboux[:, 0], res.darboux[:, 1], res.darboux[:, 2]],
-        )
-        if pull:
-            curve = Path(args.csv).with_name(Path(args.csv).stem + "_pull.csv")
-            _write_csv(
-                curve,
-                ["displacement_m", "t_high_N", "t_high_over_t_low"],
-                [res.pull_displacement, res.pull_force, res.ratio_curve],
-            )
-    return res.to_dict()
+    return res

@@ -16,6 +16,7 @@ import importlib
 import importlib.util
 import inspect
 import json
+import os
 import shutil
 import sys
 import time
@@ -411,6 +412,7 @@ def _main(args) -> int:
         return 0
     if args.out is None:
         raise InputError("--out DIR is required (the folder for JSON, PNG and index.html)")
+    _make_out_dir(args.out)  # before any case runs
     options = {}
     if args.scheduler:
         options["scheduler"] = args.scheduler
@@ -424,6 +426,20 @@ def _main(args) -> int:
         print(line)
     print(f"index: {Path(args.out) / 'index.html'}")
     return 0 if all(r["verdict"] == "pass" for r in results) else 1
+
+
+def _make_out_dir(text) -> Path:
+    """Create the output folder ``--out`` now (a case may run for minutes before writing)."""
+    path = Path(text)
+    if path.exists() and not path.is_dir():
+        raise InputError(f"--out {text}: exists and is not a folder")
+    try:
+        path.mkdir(parents=True, exist_ok=True)
+    except OSError as exc:
+        raise InputError(f"--out {text}: cannot create the folder ({exc.strerror})") from None
+    if not os.access(path, os.W_OK | os.X_OK):
+        raise InputError(f"--out {text}: the folder is not writable")
+    return path
 
 
 def register(subparsers) -> None:

@@ -9,47 +9,89 @@
 - :mod:`~knotmech.scenes.topology`: knot invariants (Alexander polynomial, determinant),
   winding about a post: the no-pass-through checks.
 - :mod:`~knotmech.scenes.phase_table`: the precomputed clove-hitch hold/slip table.
+
+The names are loaded on first use: the scenes import the DER solver (numba, seconds), which
+``knotmech hold`` answering from :mod:`~knotmech.scenes.phase_table` must not pay. The
+package behaves as if it had imported them all: ``knotmech.scenes.capstan`` is the function
+:func:`~knotmech.scenes.capstan.capstan` (the submodule is ``sys.modules[...]``), whether or
+not the submodule has been imported already.
 """
 
-from knotmech.scenes.capstan import CapstanResult, capstan, capstan_two_loops
-from knotmech.scenes.clove_hitch import CloveHitchResult, clove_hitch, darboux_profile
-from knotmech.scenes.curves import (
-    OVERHAND_COATED_TABLE1,
-    OVERHAND_IMC,
-    KnotCurve,
-    clove_hitch_curve,
-    coil_curve,
-    end_to_end,
-    loop_metrics,
-    min_separation,
-    overhand_coated,
-    overhand_imc,
-    overhand_knot,
-    resample_polyline,
-)
-from knotmech.scenes.overhand import (
-    COATED_MU,
-    OverhandResult,
-    OverhandSetup,
-    coated_setup,
-    imc_setup,
-    inversion_points,
-    overhand,
-)
-from knotmech.scenes.pinch import PinchResult, PinchSweep, pinch, pinch_sweep
-from knotmech.scenes.topology import (
-    Crossings,
-    KnotInvariant,
-    alexander_polynomial,
-    close_curve,
-    identify_knot,
-    knot_determinant,
-    knot_invariant,
-    post_crossing_code,
-    projection_crossings,
-    torus_knot_polynomial,
-    winding_number,
-)
+from __future__ import annotations
+
+import importlib
+import sys
+import types
+
+#: public name -> submodule defining it
+_SUBMODULE = {
+    "CapstanResult": "capstan",
+    "capstan": "capstan",
+    "capstan_two_loops": "capstan",
+    "CloveHitchResult": "clove_hitch",
+    "clove_hitch": "clove_hitch",
+    "darboux_profile": "clove_hitch",
+    "OVERHAND_COATED_TABLE1": "curves",
+    "OVERHAND_IMC": "curves",
+    "KnotCurve": "curves",
+    "clove_hitch_curve": "curves",
+    "coil_curve": "curves",
+    "end_to_end": "curves",
+    "loop_metrics": "curves",
+    "min_separation": "curves",
+    "overhand_coated": "curves",
+    "overhand_imc": "curves",
+    "overhand_knot": "curves",
+    "resample_polyline": "curves",
+    "COATED_MU": "overhand",
+    "OverhandResult": "overhand",
+    "OverhandSetup": "overhand",
+    "coated_setup": "overhand",
+    "imc_setup": "overhand",
+    "inversion_points": "overhand",
+    "overhand": "overhand",
+    "PinchResult": "pinch",
+    "PinchSweep": "pinch",
+    "pinch": "pinch",
+    "pinch_sweep": "pinch",
+    "Crossings": "topology",
+    "KnotInvariant": "topology",
+    "alexander_polynomial": "topology",
+    "close_curve": "topology",
+    "identify_knot": "topology",
+    "knot_determinant": "topology",
+    "knot_invariant": "topology",
+    "post_crossing_code": "topology",
+    "projection_crossings": "topology",
+    "torus_knot_polynomial": "topology",
+    "winding_number": "topology",
+}
+
+
+class _ScenesPackage(types.ModuleType):
+    """Importing submodule ``capstan`` binds ``package.capstan`` to the module; the package
+    exports the function of the same name there (capstan, pinch, clove_hitch, overhand)."""
+
+    def __setattr__(self, name, value):
+        if isinstance(value, types.ModuleType) and _SUBMODULE.get(name) == name:
+            value = getattr(value, name, value)
+        super().__setattr__(name, value)
+
+
+def __getattr__(name: str):
+    module = _SUBMODULE.get(name)
+    if module is None:
+        raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    value = getattr(importlib.import_module(f"{__name__}.{module}"), name)
+    globals()[name] = value
+    return value
+
+
+def __dir__():
+    return sorted(set(globals()) | set(__all__))
+
+
+sys.modules[__name__].__class__ = _ScenesPackage
 
 __all__ = [
     "capstan",

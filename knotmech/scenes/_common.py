@@ -18,6 +18,8 @@ Bounds (one place, used by every scene):
 
 from __future__ import annotations
 
+import math
+
 import numpy as np
 
 from knotmech.errors import InputError, check_positive
@@ -172,3 +174,68 @@ def fail(status: str, message: str, reason: str | None) -> tuple[str, str]:
     if reason and status == "success":
         return "failed", reason
     return status, message
+#: default bound on the work of one scene run: nominal steps x nodes (see check_run_size)
+MAX_NODE_STEPS = 2e8
+
+#: rough cost of one node-step of a scene with frictional contact [s] (1 us per node per
+#: Newton iteration, ``benchmarks/der_step.py``, times 2-4 iterations and contact)
+_SECONDS_PER_NODE_STEP = 3e-6
+
+
+def check_run_size(*, n_nodes, t_end, dt, max_node_steps=None, hint="") -> float:
+    """Refuse, before anything is allocated, a run that could not finish in reasonable time.
+
+    The work of an implicit DER run grows as (nominal steps) x (nodes), steps =
+    ``t_end / dt``. A run above ``max_node_steps`` (default :data:`MAX_NODE_STEPS`,
+    2e8: about 10 minutes at a few microseconds per node-step) is refused with the
+    estimate, so that a mistyped time step (``1e-12 s``), speed or element count gets
+    one line instead of hours (or an out-of-memory error).
+
+    Parameters
+    ----------
+    n_nodes : float
+        Number of nodes the rod(s) will have (may be an estimate, computed before the
+        rod is built).
+    t_end : float [s]
+        Simulated time.
+    dt : float [s]
+        Nominal time step.
+    max_node_steps : float, optional
+        The bound; ``inf`` lifts it.
+    hint : str
+        What to change, appended to the message (e.g. "use a larger dt").
+
+    Returns
+    -------
+    float
+        The estimated node-steps.
+
+    Raises
+    ------
+    InputError
+        The estimate exceeds the bound, or is not finite.
+    """
+    limit = MAX_NODE_STEPS if max_node_steps is None else float(max_node_steps)
+    if not limit > 0:
+        raise InputError(f"max_node_steps must be > 0, got {max_node_steps!r}")
+    steps = float(t_end) / float(dt)
+    work = steps * float(n_nodes)
+    if not math.isfinite(work) or work > limit:
+        secs = work * _SECONDS_PER_NODE_STEP
+        raise InputError(
+            f"this run would take {steps:.3g} steps (t_end {float(t_end):.3g} s / dt "
+            f"{float(dt):.3g} s) x {float(n_nodes):.3g} nodes = {work:.3g} node-steps, about "
+            f"{_duration(secs)}, above the limit of {limit:.3g} (max_node_steps)"
+            + (f"; {hint}" if hint else "")
+        )
+    return work
+
+
+def _duration(seconds: float) -> str:
+    if not math.isfinite(seconds):
+        return "forever"
+    for unit, size in (("years", 3.15e7), ("days", 86400.0), ("hours", 3600.0),
+                       ("minutes", 60.0)):  # fmt: skip
+        if seconds >= 2 * size:
+            return f"{seconds / size:.3g} {unit}"
+    return f"{seconds:.3g} s"

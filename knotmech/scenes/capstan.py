@@ -44,6 +44,7 @@ from knotmech.rod.system import Rod, RodSystem
 from knotmech.scenes._common import (
     check_pull_step,
     check_quasi_static,
+    check_run_size,
     check_strain,
     equivalent_section,
     fail,
@@ -241,6 +242,7 @@ def capstan(
     plateau=0.3,
     options=None,
     progress=False,
+    max_node_steps=None,
 ) -> CapstanResult:
     """Simulate a rod wrapped ``wrap_angle`` around a fixed post.
 
@@ -270,6 +272,8 @@ def capstan(
     plateau : float  fraction of the pull (at the end) averaged for the ratio
     options : SolverOptions or None
     progress : bool
+    max_node_steps : float, optional  bound on (t_end/dt) x nodes, checked before the rod is
+        built (default :data:`knotmech.scenes._common.MAX_NODE_STEPS`; ``inf`` lifts it)
 
     Returns
     -------
@@ -316,6 +320,23 @@ def capstan(
         if n_el < 8:
             raise InputError(f"n_elements must be >= 8, got {n_elements}")
         h = (arc + lead + lead_low) / n_el
+    # the work, estimated before anything is allocated (a huge load or a tiny dt otherwise
+    # asks for petabytes or days)
+    dt_est = None if dt is None else float(check_positive("dt", dt))
+    ramp_est = 0.1 if ramp_time is None else float(check_nonnegative("ramp_time", ramp_time))
+    if mode == "pull":
+        t_est, dt_est = ramp_est + 0.05 + pull_distance / v, dt_est or h / (4.0 * v)
+    else:
+        t_est = ramp_est + (2.0 if hold_time is None else float(hold_time))
+        dt_est = dt_est or 5e-3
+    # a pull faster than the rod's axial wave is refused as such, before the work estimate
+    check_quasi_static(length=arc + lead + lead_low, ea=ea,
+                       mass_per_length=rho_rod * np.pi * radius**2, times={},
+                       speed=v if mode == "pull" else None)  # fmt: skip
+    check_run_size(n_nodes=(arc + lead + lead_low) / h + 1, t_end=t_est, dt=dt_est,
+                   max_node_steps=max_node_steps,
+                   hint="use a larger dt, fewer elements, a lower pull speed or a load "
+                   "the rod can carry (T/EA well below 1)")  # fmt: skip
     pts, t_end_dir = _centreline(theta, R, rise, lead, lead_low, h)
     rod = Rod(
         positions=pts,

@@ -45,7 +45,13 @@ from knotmech.errors import InputError, check_nonnegative, check_positive
 from knotmech.rod.constraints import Clamp, MovingNodes
 from knotmech.rod.contact import Cylinder, CylinderContact, RodContact
 from knotmech.rod.friction import AnchorFriction, SmoothFriction
-from knotmech.scenes._common import check_pull_step, check_strain, fail, measured_strain
+from knotmech.scenes._common import (
+    check_pull_step,
+    check_run_size,
+    check_strain,
+    fail,
+    measured_strain,
+)
 from knotmech.scenes.curves import _edge_distances, clove_hitch_curve
 from knotmech.scenes.topology import post_crossing_code, winding_number
 
@@ -326,6 +332,7 @@ def clove_hitch(
     pull_distance: float = 0.04,
     mu_kinetic: float | None = None,
     pull_dt: float | None = None,
+    max_node_steps: float | None = None,
 ) -> CloveHitchResult:
     r"""Tie a clove hitch on a post and load it.
 
@@ -374,6 +381,9 @@ def clove_hitch(
     pull_dt : float [s], optional
         ``"pull"``: nominal step of the pull (default: end 0 moves 1/4 of an edge per step,
         at most 0.2 rod radii).
+    max_node_steps : float, optional
+        Bound on (t_end/dt) x nodes, checked before the rod is built (default
+        :data:`knotmech.scenes._common.MAX_NODE_STEPS`; ``inf`` lifts it).
 
     Returns
     -------
@@ -426,6 +436,14 @@ def clove_hitch(
         raise InputError(
             f"rod_length must exceed about 4 pi R + 8 d = {wraps + 8 * d:.3g} m, got {L:g}"
         )
+    if loading == "pull":  # the pull phase's step (below): edge/4 or d/10 per step
+        t_work = settle_time + load_time + dist / v
+        dt_work = min(0.25 * L / int(n_nodes), 0.1 * d) / v if pull_dt is None else pull_dt
+    else:
+        t_work, dt_work = settle_time + load_time + hold_time, dt
+    check_run_size(n_nodes=int(n_nodes), t_end=t_work, dt=float(check_positive("dt", dt_work)),
+                   max_node_steps=max_node_steps,
+                   hint="use a larger dt, fewer nodes or a lower pull speed")  # fmt: skip
     curve = clove_hitch_curve(
         post_diameter=D, rod_diameter=d, tail_length=tail, n_nodes=int(n_nodes)
     )

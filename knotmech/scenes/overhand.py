@@ -34,7 +34,7 @@ from knotmech import rod
 from knotmech.errors import InputError, check_nonnegative, check_positive
 from knotmech.rod.contact import RodContact
 from knotmech.rod.friction import SmoothFriction
-from knotmech.scenes._common import check_pull_step, fail, measured_strain
+from knotmech.scenes._common import check_pull_step, check_run_size, fail, measured_strain
 from knotmech.scenes.curves import (
     OVERHAND_COATED_TABLE1,
     OVERHAND_IMC,
@@ -267,6 +267,7 @@ def overhand(
     n_snapshots: int = 6,
     progress: bool = False,
     options: rod.SolverOptions | None = None,
+    max_node_steps: float | None = None,
     **overrides,
 ) -> OverhandResult:
     r"""Pull an overhand knot with ``turns`` braid turns tight at constant speed.
@@ -289,6 +290,9 @@ def overhand(
     options : knotmech.rod.SolverOptions, optional
         Solver options (``save_every`` is set from ``n_frames``; ``throw`` defaults to False
         so that a failed run returns what it recorded, with ``status = "failed"``).
+    max_node_steps : float, optional
+        Bound on (t_end/dt) x nodes, checked before the rod is built (default
+        :data:`knotmech.scenes._common.MAX_NODE_STEPS`; ``inf`` lifts it).
 
     Returns
     -------
@@ -321,6 +325,9 @@ def overhand(
         check_nonnegative(name, getattr(setup, name))
     if int(n_frames) < 2 or int(n_snapshots) < 1:
         raise InputError("n_frames must be >= 2 and n_snapshots >= 1")
+    check_run_size(n_nodes=setup.n_nodes, t_end=setup.wait_time + setup.pull_time,
+                   dt=setup.dt, max_node_steps=max_node_steps,
+                   hint="use a larger dt, fewer nodes or a shorter pull")  # fmt: skip
 
     check_pull_step(setup.dt, speed=setup.pull_speed,
                     edge_length=setup.rod_length / (int(setup.n_nodes) - 1))  # fmt: skip

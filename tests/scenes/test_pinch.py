@@ -50,3 +50,42 @@ def test_cli_simulate_pinch(tmp_path):
     rows = cs.read_text().splitlines()
     assert rows[0] == "time_s,displacement_m,pull_force_N" and len(rows) > 10
     assert main(["simulate", "pinch", "--mu", "0.4"]) == 2  # missing --normal-load
+
+
+# F_n for the load parameter x = 4 F_n/(pi E d D) of the default rod (d = 4 mm, D = 8 mm,
+# E = 1.26 MPa)
+def _normal_load(x):
+    return x * np.pi * 1.26e6 * 4e-3 * 8e-3 / 4
+
+
+@pytest.mark.parametrize("x", [0.019, 0.044])
+def test_default_mesh_meets_amontons_within_0p3_percent(x):
+    """The default mesh (edge d/8): F_t*/(2 mu F_n) within 0.997-1.003 (the README's
+    accuracy) where the old default (d/4) read 1.014 and 1.047 (cogging of the nodes
+    passing the cylinders)."""
+    fn = _normal_load(x)
+    r = pinch(normal_load=fn, mu=0.32)
+    assert r.status == "success", r.message
+    assert 0.997 <= r.ratio <= 1.003
+    coarse = pinch(normal_load=fn, mu=0.32, n_elements=90)  # the old default, d/4
+    assert abs(coarse.ratio - 1) > 0.01  # the option is honoured, and the mesh matters
+
+
+def test_frictionless_control_has_no_sliding_force():
+    """mu = 0: no friction, so the mean pull force over the plateau is ~0; with the default
+    mesh below 0.5 % of 2 mu F_n for mu = 0.32 (measured 0.03 %)."""
+    fn = _normal_load(0.019)
+    r = pinch(normal_load=fn, mu=0.0)
+    assert r.status == "success", r.message
+    assert abs(r.sliding_force) < 0.005 * 2 * 0.32 * fn
+
+
+def test_run_size_is_checked_before_the_run():
+    # dt = 1e-15 s: about 1e15 steps x 181 nodes; refused at once, with the estimate
+    with pytest.raises(InputError, match=r"node-steps.*max_node_steps"):
+        pinch(normal_load=0.3, mu=0.3, dt=1e-15)
+    # the ramp alone would be 1e9 steps (or the speed beats the wave speed: refused too)
+    with pytest.raises(InputError, match="node-steps|wave speed"):
+        pinch(normal_load=0.3, mu=0.3, pull_speed=1e6)
+    with pytest.raises(InputError, match="node-steps"):
+        pinch(normal_load=0.3, mu=0.3, n_elements=100000)
