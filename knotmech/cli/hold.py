@@ -112,12 +112,9 @@ def register(subparsers) -> None:
 def _json_path(text) -> Path | None:
     if text is None or text == "-":
         return None
-    p = Path(text)
-    if p.is_dir():
-        raise InputError(f"--json: {text!r} is a folder, not a file")
-    if not p.parent.is_dir():
-        raise InputError(f"--json: folder {str(p.parent)!r} does not exist")
-    return p
+    from knotmech.cli._paths import check_output_path
+
+    return check_output_path(text, option="--json")
 
 
 def run(args) -> int:
