@@ -5,7 +5,8 @@ hard-coded here): every line of its ```bash blocks, and inline code spans that r
 script of ``examples/`` or ``benchmarks/`` (``python examples/cantilever.py``,
 ``OPENBLAS_NUM_THREADS=1 python benchmarks/overhand.py --turns 1``). Each one runs in a
 fresh temporary directory with ``knotmech ...`` replaced by ``sys.executable -m knotmech
-...`` and ``python`` by ``sys.executable`` (the package is imported from this checkout),
+...`` and ``python`` by ``sys.executable`` (the package is imported from this checkout;
+scripts run from a copy of their folder there, so nothing in the checkout is written),
 and must exit 0 within its timeout; the files it names with ``--json``, ``--csv``,
 ``--plot`` and ``--out`` must exist afterwards.
 
@@ -25,6 +26,7 @@ from __future__ import annotations
 import os
 import re
 import shlex
+import shutil
 import subprocess
 import sys
 from pathlib import Path
@@ -83,10 +85,12 @@ def readme_commands() -> list[str]:
     return out
 
 
-def _argv(cmd: str) -> tuple[dict, list[str]]:
+def _argv(cmd: str, workdir: Path | None = None) -> tuple[dict, list[str]]:
     """(extra environment, argv) of one command: leading VAR=value assignments, then
-    ``knotmech`` -> ``sys.executable -m knotmech`` and ``python`` -> ``sys.executable``
-    (scripts of examples/ and benchmarks/ are taken from the checkout)."""
+    ``knotmech`` -> ``sys.executable -m knotmech`` and ``python`` -> ``sys.executable``.
+    A script of examples/ or benchmarks/ runs from a copy of its folder in ``workdir``
+    (some write next to themselves, e.g. the cantilever example's docs/img figure, and
+    the checkout must stay clean)."""
     words = shlex.split(cmd)
     env = {}
     while words and re.fullmatch(r"[A-Z_][A-Z0-9_]*=.*", words[0]):
@@ -97,7 +101,11 @@ def _argv(cmd: str) -> tuple[dict, list[str]]:
     elif words[0] in ("python", "python3"):
         words = [sys.executable, *words[1:]]
         if len(words) > 1 and re.match(r"(examples|benchmarks)/", words[1]):
-            words[1] = str(ROOT / words[1])
+            base = workdir if workdir is not None else ROOT
+            folder = words[1].split("/", 1)[0]
+            if workdir is not None and not (workdir / folder).exists():
+                shutil.copytree(ROOT / folder, workdir / folder)
+            words[1] = str(base / words[1])
     return env, words
 
 
@@ -139,7 +147,7 @@ def test_the_readme_has_commands():
 
 @pytest.mark.parametrize(("cmd", "timeout"), _params())
 def test_readme_command_runs(cmd, timeout, tmp_path):
-    env_extra, argv = _argv(cmd)
+    env_extra, argv = _argv(cmd, tmp_path)
     if argv[1:3] == ["-m", "knotmech"] and len(argv) > 4 and argv[3] == "diagnose":
         rec = tmp_path / argv[4]
         if not rec.exists():
@@ -158,3 +166,5 @@ def test_readme_command_runs(cmd, timeout, tmp_path):
     assert proc.returncode == 0, f"{cmd}\nexit {proc.returncode}\n{tail}"
     for name in _outputs(argv):
         assert (tmp_path / name).exists(), f"{cmd}: {name} was not written\n{tail}"
+    if "examples/cantilever.py" in cmd:  # its figure, written next to the copied script
+        assert (tmp_path / "docs" / "img" / "cantilever.png").exists()
