@@ -38,7 +38,7 @@ README = ROOT / "README.md"
 
 # seconds; a README command that needs longer has stalled (or the README must say so)
 QUICK_TIMEOUT = 240
-SLOW_TIMEOUT = 900
+SLOW_TIMEOUT = 1200
 # a command containing one of these runs for minutes: marked slow
 SLOW_MARKERS = (
     "knotmech simulate clove-hitch",
