@@ -94,6 +94,17 @@ class SolverOptions:
     jacobian_reuse_steps : float  likewise across steps: the next step (same dt) starts
         with the last factors if their last iteration cut the residual by at least this
         factor (default 0.03; 0: every step starts with a fresh Jacobian)
+    stall_fraction, stall_steps : float, int  stall guard: the run stops with status
+        "failed" (last good state kept) when the step stays below ``stall_fraction`` times
+        the nominal dt for ``stall_steps`` consecutive attempts (default 1e-3 and 500:
+        ten halvings, then 500 attempts that together advance at most half a nominal step;
+        a step cut by a transient recovers within ~4 steps per halving, see
+        ``grow_after``); ``stall_steps=None`` turns it off
+    max_wall_per_sim_second : float or None [s/s]  stall guard on the wall clock: the run
+        stops with status "failed" when, over a window of ``stall_wall_window`` seconds
+        of wall time, it spent more than this many wall seconds per simulated second
+        (default 3600: less than 1/60 s simulated in a minute; None: off)
+    stall_wall_window : float [s]  wall-clock window of that rate (default 60)
     """
 
     dt_min: float = 1e-9
@@ -109,6 +120,10 @@ class SolverOptions:
     predictor: str = "quadratic"
     jacobian_reuse: float = 0.1
     jacobian_reuse_steps: float = 0.03
+    stall_fraction: float = 1e-3
+    stall_steps: int | None = 500
+    max_wall_per_sim_second: float | None = 3600.0
+    stall_wall_window: float = 60.0
 
     def __post_init__(self):
         check_positive("dt_min", self.dt_min)
@@ -122,6 +137,16 @@ class SolverOptions:
                 raise InputError(f"{name} must be an integer >= 1, got {v!r}")
         if self.save_every is not None:
             check_positive("save_every", self.save_every)
+        check_range("stall_fraction", self.stall_fraction, 0.0, 1.0)
+        if self.stall_steps is not None and (
+            int(self.stall_steps) != self.stall_steps or self.stall_steps < 1
+        ):
+            raise InputError(
+                f"stall_steps must be an integer >= 1 or None, got {self.stall_steps!r}"
+            )
+        if self.max_wall_per_sim_second is not None:
+            check_positive("max_wall_per_sim_second", self.max_wall_per_sim_second)
+        check_positive("stall_wall_window", self.stall_wall_window)
         if self.predictor not in ("quadratic", "linear"):
             raise InputError(f"predictor must be 'quadratic' or 'linear', got {self.predictor!r}")
         if self.linear_solver not in ("auto", "banded", "sparse"):
@@ -605,6 +630,49 @@ class Stepper:
         )
 
 
+class _StallGuard:
+    """The stall guards of :func:`simulate` (``SolverOptions.stall_fraction``,
+    ``stall_steps``, ``max_wall_per_sim_second``): :meth:`check` is called before every
+    step attempt and returns the failure message once the run crawls, else ""."""
+
+    def __init__(self, opt: SolverOptions, dt: float, t0: float, wall0: float):
+        self.opt = opt
+        self.dt = dt
+        self.small_dt = opt.stall_fraction * dt
+        self.n_small = 0
+        self.win_wall = wall0
+        self.win_t = t0
+        self.last_reason = ""
+
+    def check(self, dt_cur: float, t: float) -> str:
+        opt = self.opt
+        self.n_small = self.n_small + 1 if dt_cur < self.small_dt else 0
+        why = ""
+        if opt.stall_steps is not None and self.n_small >= opt.stall_steps:
+            why = (
+                f"the step stayed below {opt.stall_fraction:g} of the nominal dt "
+                f"({self.small_dt:.3g} s) for {self.n_small} attempts (now {dt_cur:.3g} s)"
+            )
+        elif opt.max_wall_per_sim_second is not None:
+            now = time.perf_counter()
+            if now - self.win_wall >= opt.stall_wall_window:
+                rate = (now - self.win_wall) / max(t - self.win_t, 1e-300)
+                if rate > opt.max_wall_per_sim_second:
+                    why = (
+                        f"{rate:.3g} s of wall time per simulated second over the last "
+                        f"{now - self.win_wall:.3g} s (bound max_wall_per_sim_second = "
+                        f"{opt.max_wall_per_sim_second:g}; step now {dt_cur:.3g} s)"
+                    )
+                self.win_wall, self.win_t = now, t
+        if not why:
+            return ""
+        last = f"; last rejection: {self.last_reason}" if self.last_reason else ""
+        return (
+            f"stalled at t = {t:.6g} s: {why}{last}. Try more nodes (a finer mesh) or a "
+            f"smaller nominal dt; last good state kept"
+        )
+
+
 def _as_tuple(x, name):
     if x is None:
         return ()
@@ -708,6 +776,7 @@ def simulate(
     n_good = st.n_good
     k_save = int(np.floor(st.t / save_every + 1e-9)) + 1
     status, message = "success", f"reached t_end = {t_end:g} s"
+    stall = _StallGuard(opt, dt, st.t, wall0)
     bar = None
     if progress:
         from tqdm.auto import tqdm
@@ -720,9 +789,14 @@ def simulate(
             gap = target - st.t
             hit = gap <= dt_cur * (1.0 + 1e-6)
             h = gap if hit else dt_cur
+            why = stall.check(dt_cur, st.t)
+            if why:
+                status, message = "failed", why
+                break
             try:
                 q_new, iters = stepper.step(st, h)
             except _StepFailed as exc:
+                stall.last_reason = str(exc)
                 stats["rejected_steps"] += 1
                 dt_cur = 0.5 * min(dt_cur, h)
                 n_good = 0

@@ -2,18 +2,23 @@
 
 Envelope LU (no pivoting) against a dense solve and against the pivoted/SuperLU paths,
 pruning of distant contact pairs, the second-order predictor, Jacobian reuse (chord
-iterations) and the tunnelling-guard kernel (issue #4, overhand benchmark speed).
+iterations) and the tunnelling-guard kernel (issue #4, overhand benchmark speed); the
+continuity of near-parallel contact forces and the stall guards (issue 11).
 """
 
 import numpy as np
 import pytest
 
 from knotmech import rod
-from knotmech.errors import InputError
+from knotmech.errors import InputError, SolverError
 from knotmech.rod import contact as contact_mod
 from knotmech.rod import solver as solver_mod
 from knotmech.rod._kernels import envelope as env
-from knotmech.rod._kernels.contact_rodrod import max_pair_displacement
+from knotmech.rod._kernels.contact_rodrod import (
+    edge_distance_hessian,
+    max_pair_displacement,
+    segment_params,
+)
 from knotmech.rod.constraints import Clamp, MovingNodes
 from knotmech.rod.contact import RodContact
 from knotmech.rod.friction import SmoothFriction
@@ -246,5 +251,157 @@ def test_second_order_predictor_is_exact_in_free_fall():
     ],
 )
 def test_solver_option_errors(kw):
+    with pytest.raises(InputError):
+        rod.SolverOptions(**kw)
+
+
+# --- issue 11: the crawl's cause (near-parallel edge pairs) and the stall guards -----------
+
+
+def _gap_gradient(theta):
+    """Gradient of the edge-edge distance for edge i = (0,0,0)-(1,0,0) and an edge j of
+    the same length 0.2 above it, shifted by 0.3 along x and turned by ``theta`` about z
+    (about its middle): the configuration of two strands lying side by side in a nip."""
+    c, s = np.cos(theta), np.sin(theta)
+    mid = np.array([0.8, 0.0, 0.2])
+    half = 0.5 * np.array([c, s, 0.0])
+    x = np.concatenate([[0, 0, 0], [1, 0, 0], mid - half, mid + half])
+    g = np.empty(12)
+    d = edge_distance_hessian(x, g, np.empty((12, 12)))
+    return d, g
+
+
+@pytest.mark.parametrize("theta0", [1e-5, 1e-7, 0.0])
+def test_near_parallel_edge_forces_are_continuous(theta0):
+    """The nodal distribution of the contact force (the gradient of Delta) is continuous
+    when a pair of overlapping edges turns through parallel. Here the projections cross at
+    s = 0.8 on edge i for any theta != 0; the former rule (s = 0, then clamping, once
+    sin^2 theta <= 1e-10) put the contact at the start of the overlap, s = 0.7, below
+    theta = 1e-5: node 1 of edge i carried 0.8 of the force on one side of that surface
+    and 0.7 on the other, and a settling clove hitch stayed on it (Newton 2-cycles at any
+    dt). Now s moves continuously (steeply near theta ~ 1e-5) from 0.8 to 0.7."""
+    d0, g0 = _gap_gradient(theta0 * (1 - 1e-3))
+    d1, g1 = _gap_gradient(theta0 * (1 + 1e-3) + 1e-15)
+    assert d0 == pytest.approx(0.2, abs=1e-10)  # 0.2 + (theta l)^2 / (2 * 0.2) at most
+    assert abs(d1 - d0) < 1e-12
+    assert np.abs(g1 - g0).max() < 0.01
+    # each edge carries the unit normal force (+z on j, -z on i) split over its nodes
+    assert g0[[2, 5]].sum() == pytest.approx(-1.0, abs=1e-9)
+    assert g0[[8, 11]].sum() == pytest.approx(1.0, abs=1e-9)
+    # far from parallel the contact is at the crossing, s = 0.8
+    _, g = _gap_gradient(0.1)
+    assert g[5] == pytest.approx(-0.8, abs=1e-6)
+
+
+def test_parallel_edges_meet_at_the_overlap_point_nearest_the_middle_of_edge_i():
+    """For exactly parallel edges the regularised closest-point problem is strictly convex:
+    s is the point of the overlap [0.7, 1] nearest s = 1/2, i.e. s = 0.7, t = 0."""
+    s, t, free_s, free_t = segment_params(
+        np.zeros(3), np.array([1.0, 0, 0]), np.array([0.7, 0, 0.2]), np.array([0.9, 0, 0.2])
+    )
+    assert (s, t) == pytest.approx((0.7, 0.0), abs=1e-9)
+    assert free_s and not free_t
+
+
+class _Rejector:
+    """An interaction that exerts no force and rejects any converged step longer than
+    ``max_dt`` (while ``t_from <= t < t_to``), as a tunnelling guard would."""
+
+    def __init__(self, max_dt, t_from=0.0, t_to=np.inf):
+        self.max_dt, self.t_from, self.t_to = max_dt, t_from, t_to
+        self.t = 0.0
+
+    def begin_step(self, system, q_old, v_old, dt):
+        pass
+
+    def assemble(self, system, q, q_old, dt, force, triplets):
+        pass
+
+    def end_step(self, system, q_new, q_old, dt):
+        self.t += dt
+
+    def energy(self, system, q):
+        return 0.0
+
+    def check_step(self, system, q_new, q_old, dt):
+        if self.t_from <= self.t < self.t_to and dt > self.max_dt:
+            return f"test guard: dt {dt:.3g} s > {self.max_dt:g} s"
+        return None
+
+
+def _falling_rod():
+    r = rod.Rod.straight(length=0.1, n_nodes=11, radius=1e-3, youngs_modulus=1e6,
+                         density=1000.0)  # fmt: skip
+    return rod.RodSystem([r])
+
+
+def test_stalled_step_fails_with_a_message_and_the_last_good_state():
+    """A guard that only accepts steps of 1e-7 s (nominal 1e-3 s) drives dt below
+    stall_fraction dt = 1e-6 s for good: after stall_steps attempts the run stops, status
+    failed, saying why and what to try, with the last accepted state (not 22 minutes of
+    crawling)."""
+    system = _falling_rod()
+    opts = rod.SolverOptions(throw=False, stall_steps=200)
+    res = rod.simulate(system, t_end=1.0, dt=1e-3, loads=rod.Gravity(),
+                       interactions=[_Rejector(1e-7)], options=opts)  # fmt: skip
+    assert res.status == "failed"
+    assert "stalled at t = " in res.message
+    assert "stayed below 0.001 of the nominal dt (1e-06 s) for 200 attempts" in res.message
+    assert "last rejection: test guard" in res.message
+    assert "more nodes" in res.message and "smaller nominal dt" in res.message
+    st = res.final_state
+    # the last good state: the accepted steps add up to its time, which is far from t_end
+    assert 0.0 < st.t < 200 * 1e-7
+    assert np.all(np.isfinite(st.q))
+    # an accepted implicit-Euler state of a rigidly falling rod (all nodes at one height)
+    z = system.positions(st.q)[:, 2]
+    assert np.ptp(z) < 1e-12 and z[0] < 0.0
+    with pytest.raises(SolverError, match="stalled") as info:
+        rod.simulate(system, t_end=1.0, dt=1e-3, loads=rod.Gravity(),
+                     interactions=[_Rejector(1e-7)],
+                     options=rod.SolverOptions(stall_steps=200))  # fmt: skip
+    assert info.value.state.t == pytest.approx(st.t, rel=1e-12)
+
+
+def test_a_transient_drop_of_the_step_does_not_trip_the_stall_guard():
+    """The same guard active only for 2e-6 s of simulated time: dt falls to ~1e-7 s, then
+    grows back (doubling every grow_after = 4 steps), within far fewer than the default
+    500 attempts below 1e-3 dt: the run succeeds."""
+    system = _falling_rod()
+    res = rod.simulate(system, t_end=0.02, dt=1e-3, loads=rod.Gravity(),
+                       interactions=[_Rejector(1e-7, 0.005, 0.005 + 2e-6)],
+                       options=rod.SolverOptions(throw=False))  # fmt: skip
+    assert res.status == "success", res.message
+    assert res.stats["rejected_steps"] >= 13  # 1e-3 / 2^13 < 1.3e-7: it did fall
+    assert res.final_state.t == pytest.approx(0.02, rel=1e-12)
+
+
+def test_wall_time_per_simulated_second_guard():
+    """max_wall_per_sim_second: a bound no run can meet (1 ms of wall per simulated
+    second) over a 0.05 s window stops the run with a message naming the rate."""
+    system = _falling_rod()
+    opts = rod.SolverOptions(throw=False, max_wall_per_sim_second=1e-3, stall_wall_window=0.05)
+    res = rod.simulate(system, t_end=1e3, dt=1e-3, loads=rod.Gravity(), options=opts)
+    assert res.status == "failed"
+    assert "s of wall time per simulated second" in res.message
+    assert "max_wall_per_sim_second = 0.001" in res.message
+    assert 0.0 < res.final_state.t < 1e3
+    # off by default for this run's rate: the same run with the defaults succeeds
+    ok = rod.simulate(system, t_end=0.05, dt=1e-3, loads=rod.Gravity())
+    assert ok.status == "success"
+
+
+@pytest.mark.parametrize(
+    "kw",
+    [
+        {"stall_fraction": -0.1},
+        {"stall_fraction": 1.5},
+        {"stall_steps": 0},
+        {"stall_steps": 2.5},
+        {"max_wall_per_sim_second": 0.0},
+        {"stall_wall_window": -1.0},
+    ],
+)
+def test_stall_option_errors(kw):
     with pytest.raises(InputError):
         rod.SolverOptions(**kw)
