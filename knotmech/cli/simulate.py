@@ -534,6 +534,8 @@ def run(args) -> int:
         res = _run_clove_hitch(kw, args, progress)
     for warning in getattr(res, "warnings", None) or ():  # the scene's own checks, one line each
         print(f"warning: {warning}", file=sys.stderr)
+    if res.status != "success" and getattr(res, "message", ""):  # why it failed, in one line
+        print(f"{scene}: {res.status}: {res.message}", file=sys.stderr)
     _write_outputs(scene, args, res, kw, paths)
     return 0 if res.status == "success" else 1
 
