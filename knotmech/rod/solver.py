@@ -105,6 +105,10 @@ class SolverOptions:
         of wall time, it spent more than this many wall seconds per simulated second
         (default 3600: less than 1/60 s simulated in a minute; None: off)
     stall_wall_window : float [s]  wall-clock window of that rate (default 60)
+    max_strain : float or None  an accepted step whose largest edge strain |l/l0 - 1|
+        exceeds this ends the run with status "failed" (last good state kept): a rod
+        stretched to many times its length, or crushed to a point, is no longer a result of
+        the model (default 1.0; None turns the check off)
     """
 
     dt_min: float = 1e-9
@@ -124,6 +128,7 @@ class SolverOptions:
     stall_steps: int | None = 500
     max_wall_per_sim_second: float | None = 3600.0
     stall_wall_window: float = 60.0
+    max_strain: float | None = 1.0
 
     def __post_init__(self):
         check_positive("dt_min", self.dt_min)
@@ -147,6 +152,8 @@ class SolverOptions:
         if self.max_wall_per_sim_second is not None:
             check_positive("max_wall_per_sim_second", self.max_wall_per_sim_second)
         check_positive("stall_wall_window", self.stall_wall_window)
+        if self.max_strain is not None:
+            check_positive("max_strain", self.max_strain)
         if self.predictor not in ("quadratic", "linear"):
             raise InputError(f"predictor must be 'quadratic' or 'linear', got {self.predictor!r}")
         if self.linear_solver not in ("auto", "banded", "sparse"):
@@ -808,6 +815,20 @@ def simulate(
                     )
                     break
                 continue
+            if opt.max_strain is not None:
+                x_new = q_new[system.node_dofs]
+                ends = x_new[system.edge_nodes]
+                strain = np.linalg.norm(ends[:, 1] - ends[:, 0], axis=1) / system.rest_length
+                k_max = int(np.argmax(np.abs(strain - 1.0)))
+                if not abs(strain[k_max] - 1.0) <= opt.max_strain:
+                    status = "failed"
+                    message = (
+                        f"edge {k_max} would reach a strain of {strain[k_max] - 1.0:.3g} at "
+                        f"t = {st.t + h:.6g} s, beyond max_strain = {opt.max_strain:g}: the "
+                        "loads are too large for the rod (a rod model result no longer); "
+                        "last good state kept"
+                    )
+                    break
             stats["steps"] += 1
             stats["newton_iterations"] += iters
             t_new = target if hit else st.t + h

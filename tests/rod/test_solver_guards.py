@@ -25,7 +25,19 @@ def _compressed_cantilever(**kw):
     system, cons, _ = clamped_rod(21, length=0.1, radius=1e-3, youngs_modulus=1e9)
     tip = system.n_nodes - 1
     load = rod.NodeForce([tip], (-1e9, 0.0, 0.0))  # axial, toward the clamp
-    return system, rod.simulate(system, t_end=0.01, dt=1e-3, loads=[load], constraints=cons, **kw)
+    # max_strain off: this exercises the evaluation-error path (with the strain check on,
+    # the run fails sooner, on the strain the first attempt would reach: tested below)
+    opts = rod.SolverOptions(max_strain=None, throw=kw.pop("throw"))
+    return system, rod.simulate(system, t_end=0.01, dt=1e-3, loads=[load], constraints=cons,
+                                options=opts, **kw)  # fmt: skip
+
+
+def test_huge_compression_fails_on_the_strain_check_first():
+    system, cons, _ = clamped_rod(21, length=0.1, radius=1e-3, youngs_modulus=1e9)
+    load = rod.NodeForce([system.n_nodes - 1], (-1e9, 0.0, 0.0))
+    res = rod.simulate(system, t_end=0.01, dt=1e-3, loads=[load], constraints=cons, throw=False)
+    assert res.status == "failed" and "max_strain" in res.message
+    assert np.all(np.isfinite(res.final_state.q)) and res.final_state.t == 0.0
 
 
 def test_evaluation_error_fails_the_run_with_the_last_good_state():
@@ -51,15 +63,33 @@ def test_evaluation_error_raises_solver_error_only_when_asked():
     assert info.value.result.status == "failed"
 
 
-def test_huge_tip_load_returns_a_result():
-    """1e12 N on the tip (EA = 3.1 kN): the first attempts divide by zero; the run returns a
-    Result (no exception escapes) whatever it ends with."""
+def test_huge_tip_load_fails_with_the_strain_it_would_reach():
+    """1e12 N on the tip (EA = 3.1 kN, T/EA = 3e8): no exception escapes, and the run does not
+    report success with the rod stretched to 3e7 m: it fails on ``max_strain`` and keeps the
+    last good state (finite, the rest shape at t = 0)."""
     system, cons, _ = clamped_rod(21, length=0.1, radius=1e-3, youngs_modulus=1e9)
     load = rod.NodeForce([system.n_nodes - 1], (0.0, 0.0, -1e12))
     res = rod.simulate(system, t_end=0.01, dt=1e-3, loads=[load], constraints=cons, throw=False)
-    assert res.status in ("success", "failed")
-    assert res.stats["rejected_steps"] >= 1
+    assert res.status == "failed"
+    assert "max_strain" in res.message
     assert np.all(np.isfinite(res.final_state.q))
+    x = system.positions(res.final_state.q)
+    stretch = np.linalg.norm(np.diff(x, axis=0), axis=1) / system.rest_length - 1.0
+    assert np.max(np.abs(stretch)) <= 1.0
+    with pytest.raises(SolverError, match="max_strain"):
+        rod.simulate(system, t_end=0.01, dt=1e-3, loads=[load], constraints=cons)
+
+
+def test_max_strain_off_lets_the_model_run():
+    """With ``max_strain=None`` the same run is the model's to finish (the check is the only
+    thing that made it fail): it ends success, with a strain far above 1."""
+    system, cons, _ = clamped_rod(21, length=0.1, radius=1e-3, youngs_modulus=1e9)
+    load = rod.NodeForce([system.n_nodes - 1], (0.0, 0.0, -1e12))
+    res = rod.simulate(system, t_end=0.01, dt=1e-3, loads=[load], constraints=cons,
+                       options=rod.SolverOptions(max_strain=None, throw=False))  # fmt: skip
+    x = system.positions(res.final_state.q)
+    stretch = np.linalg.norm(np.diff(x, axis=0), axis=1) / system.rest_length - 1.0
+    assert np.max(np.abs(stretch)) > 1.0
 
 
 class _UnguardedCylinderContact(CylinderContact):
