@@ -2,7 +2,7 @@
 
 Run once (from the repository root) when a kind is added::
 
-    python -m validation.make_templates
+    python -m validation._make_templates
 
 Each template is a baseline recording of its kind (no effect, white noise of 0.4 %
 of the signal) from :func:`knotmech.diagnose.synth.make_recording`, 40 rows, values
