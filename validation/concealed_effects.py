@@ -36,6 +36,7 @@ from concurrent.futures import ProcessPoolExecutor
 import numpy as np
 from scipy import stats
 
+from knotmech.diagnose.effects import CATALOGUE
 from knotmech.diagnose.engine import diagnose
 from knotmech.diagnose.locate import smooth_mismatch
 from knotmech.diagnose.stats import trial_starts, wilson_interval
@@ -45,16 +46,8 @@ from ._common import finish, output_dir, save_figure, to_jsonable
 
 NAME = "concealed_effects"
 
-#: key parameter per effect: (report name, truth name, "abs" or "rel")
-KEY_PARAMETER = {
-    "static_friction": ("mu_static", "mu_static", "abs"),
-    "displacement_offset": ("offset_m", "offset_m", "rel"),
-    "adhesion": ("adhesion_force_N", "adhesion_force_N", "rel"),
-    "contact_flattening": ("onset_load_parameter", "onset_load_parameter", "abs"),
-    "self_contact_nip": ("positions_m", "positions_m", "abs"),
-    "finite_thickness": ("mu_eff", "mu_eff", "abs"),
-    "rate_dependent_friction": ("dmu_dlnv", "dmu_dlnv", "rel"),
-}
+#: key parameter per effect: (report name, truth name, "abs" or "rel"), from the catalogue
+KEY_PARAMETER = {n: e.key_parameter for n, e in CATALOGUE.items() if e.key_parameter}
 
 SETTINGS = {
     True: {  # quick
@@ -190,7 +183,7 @@ def _param_error(rec) -> float | None:
     _, tname, kind = KEY_PARAMETER[eff]
     true = rec["truth"].get(tname)
     est = rec["estimate"]
-    if eff == "self_contact_nip":  # nearest estimated position to the first true one
+    if isinstance(true, list):  # positions: nearest estimated one to the first true one
         est = min(est, key=lambda v: abs(v - true[0]))
         true = true[0]
     if true is None:
