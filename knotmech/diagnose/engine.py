@@ -49,6 +49,7 @@ import numpy as np
 from knotmech.diagnose.baselines import get_baseline
 from knotmech.diagnose.der import fit_der_baseline, select_der
 from knotmech.diagnose.effects import CATALOGUE, applicable_effects, get_effect
+from knotmech.diagnose.experiments import get_experiment
 from knotmech.diagnose.fitting import (
     Data,
     fit_baseline,
@@ -142,6 +143,7 @@ def diagnose(
         recording, experiment, x, y, metadata, sigma=sigma, trial=trial, speed=speed
     )
     get_baseline(baseline).check(rec)
+    rec, reduced = get_experiment(rec.experiment).reduce(rec)
     only = _resolve_effects(effects)
     if not 0 < alpha < 1:
         raise InputError(f"alpha must lie in (0, 1), got {alpha!r}")
@@ -238,6 +240,7 @@ def diagnose(
         "selection_steps": steps,
         "confusable_with": {a[0].name: list(a[0].confusable_with) for a in accepted},
         "skipped_effects": skipped,
+        **({"reduced": reduced} if reduced else {}),
         "alpha": alpha,
         "seed": seed,
         **({"der": der[0].settings()} if der is not None else {}),

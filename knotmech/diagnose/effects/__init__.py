@@ -12,11 +12,15 @@ from __future__ import annotations
 
 from knotmech.diagnose.effects.adhesion import Adhesion
 from knotmech.diagnose.effects.base import Effect, PlantContext
+from knotmech.diagnose.effects.bending_resistance import BendingResistance
+from knotmech.diagnose.effects.bending_stiffness import BendingStiffness
 from knotmech.diagnose.effects.contact_flattening import ContactFlattening
 from knotmech.diagnose.effects.displacement_offset import DisplacementOffset
 from knotmech.diagnose.effects.finite_thickness import FiniteThickness
+from knotmech.diagnose.effects.pressure_dependent_friction import PressureDependentFriction
 from knotmech.diagnose.effects.rate_dependent_friction import RateDependentFriction
 from knotmech.diagnose.effects.self_contact_nip import SelfContactNip
+from knotmech.diagnose.effects.sensor_offset import SensorOffset
 from knotmech.diagnose.effects.static_friction import StaticFriction
 from knotmech.errors import InputError
 
@@ -47,6 +51,11 @@ _register(ContactFlattening())
 _register(SelfContactNip())
 _register(DisplacementOffset())
 _register(RateDependentFriction())
+# capstan_hold (spec section 5); a log_ratio stage that recomputes comes first
+_register(PressureDependentFriction())
+_register(BendingResistance())
+_register(BendingStiffness())
+_register(SensorOffset())
 
 
 def get_effect(name: str) -> Effect:

@@ -25,7 +25,7 @@ def _d_over_d(rec) -> float:
 
 class FiniteThickness(Effect):
     name = "finite_thickness"
-    experiments = ("capstan_pull", "tension_profile")
+    experiments = ("capstan_pull", "tension_profile", "capstan_hold")
     parameters = {
         "mu": ("mu_nominal", "material friction coefficient (prior mu_nominal)"),
         "mu_eff": ("= mu", "effective coefficient mu_eff(mu, D/d) seen by the capstan"),

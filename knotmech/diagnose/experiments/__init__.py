@@ -7,6 +7,7 @@ subclass and one line below. :func:`get_experiment` is the one lookup by name.
 from __future__ import annotations
 
 from knotmech.diagnose.experiments.base import Experiment, Stages
+from knotmech.diagnose.experiments.capstan_hold import CapstanHold
 from knotmech.diagnose.experiments.capstan_pull import CapstanPull
 from knotmech.diagnose.experiments.pinch import Pinch
 from knotmech.diagnose.experiments.tension_profile import TensionProfile
@@ -27,6 +28,7 @@ def _register(exp: Experiment) -> None:
 _register(CapstanPull())
 _register(Pinch())
 _register(TensionProfile())
+_register(CapstanHold())
 
 
 def get_experiment(name: str) -> Experiment:

@@ -80,6 +80,15 @@ class Experiment:
         """A problem with ``rec`` beyond the per-column checks (a message), or None."""
         return None
 
+    def reduce(self, rec):
+        """The recording the engine diagnoses, and a note of what was done (or None).
+
+        The default is the recording itself; a kind whose rows may be repeated readings
+        of one state (``capstan_hold``: a sensor read many times during one hold)
+        reduces them to one row per state.
+        """
+        return rec, None
+
     # --- baseline ------------------------------------------------------------------
     def parameters(self, rec):
         """Free baseline parameters of ``rec``: (names, lower bounds, upper bounds)."""
