@@ -212,12 +212,24 @@ def diagnose(
                 "parameters": effect_parameters(eff, fin_public),
                 "evidence": {
                     k: ev[k]
-                    for k in ("delta_bic", "p_value", "likelihood_ratio", "p_value_method")
+                    for k in (
+                        "delta_bic",
+                        "p_value",
+                        "likelihood_ratio",
+                        "p_value_method",
+                        "p_value_counted_bound",
+                        "bootstrap_draws",
+                    )
                     if k in ev
                 },
             }
         )
     rms_base = float(np.sqrt(np.mean((rec.y - base.mean) ** 2)))
+    # the baseline drawn next to the final fit: refitted under the final model's noise, so
+    # that the picture compares means under one noise model (a baseline fitted under its
+    # own noise estimate, a lag-one correlation near 1, may run below every point)
+    shown = base if final is base else _null_under(base, final, data, starts, gs)
+    rms_shown = float(np.sqrt(np.mean((rec.y - shown.mean) ** 2)))
     rms_final = float(np.sqrt(np.mean((rec.y - final.mean) ** 2)))
     details = {
         "baseline_model": baseline,
@@ -233,6 +245,11 @@ def diagnose(
                 "regions": [{"start": a, "end": b} for a, b in fin_mis.regions],
                 "shape": fin_mis.shape,
             },
+        },
+        "baseline_under_final_noise": {
+            "parameters": public_parameters(shown.params, (), rec),
+            "rms": float(f"{rms_shown:.6g}"),
+            "note": "the baseline of the plot: refitted under the final model's noise",
         },
         "candidates": tested,
         # delta BIC of every applicable effect at each forward step (confusable ones
@@ -258,7 +275,7 @@ def diagnose(
         details=details,
         x=rec.x,
         y=rec.y,
-        baseline_mean=base.mean,
+        baseline_mean=shown.mean,
         final_mean=final.mean,
         columns=rec.columns,
     )
@@ -325,6 +342,7 @@ def _select_closed_form(base, rec, data, starts, gs, rng, alpha, effects, max_ef
                 "likelihood_ratio": float(f"{lr:.4g}"),
                 "p_value": float(f"{p:.3g}"),
                 "bootstrap_draws": b,
+                **_p_provenance(p, b, lr),
                 "heldout_rms": float(f"{held_alt:.4g}"),
                 "heldout_innovation_rms": [float(f"{inn_cur:.4g}"), float(f"{inn_alt:.4g}")],
                 "accepted": bool(p < alpha_each and held_ok),
@@ -339,6 +357,37 @@ def _select_closed_form(base, rec, data, starts, gs, rng, alpha, effects, max_ef
         accepted.append((eff, ev, lr_gain(current, alt)))
         current, held_cur = alt, held_alt
     return current, accepted, tested, steps, skipped, held_before, held_cur
+
+
+def _p_provenance(p, draws, lr) -> dict:
+    """Where a bootstrap p-value comes from, and what the draws alone can claim.
+
+    With ``k`` of ``B`` simulated statistics at or above the observed one the counted
+    p-value is ``(1 + k)/(B + 1)`` (Davison & Hinkley 1997, eq. 4.11); with none the
+    draws only show ``p < 1/(B + 1)`` and a smaller ``p`` is the fitted tail's.
+    """
+    bound = 1.0 / (draws + 1)
+    if p < bound * (1 - 1e-9):
+        return {
+            "p_value_method": (
+                f"scaled chi-square tail fitted to {draws} parametric-bootstrap draws "
+                f"(none reached the observed likelihood ratio {lr:.4g})"
+            ),
+            "p_value_counted_bound": float(f"{bound:.3g}"),
+        }
+    return {"p_value_method": f"counted: (1 + exceedances) / ({draws} + 1) bootstrap draws"}
+
+
+def _p_text(ev) -> str:
+    """``p = ...`` with its provenance, never claiming more than the draws show."""
+    if ev.get("bootstrap_draws", 0) == 0:
+        return f"p = {ev['p_value']} (asymptotic LR, no bootstrap)"
+    if "p_value_counted_bound" in ev:
+        return (
+            f"p = {ev['p_value']} (tail fit; by count p < {ev['p_value_counted_bound']} "
+            f"from {ev['bootstrap_draws']} draws)"
+        )
+    return f"p = {ev['p_value']} ({ev['bootstrap_draws']} draws)"
 
 
 def _rms(err) -> float:
@@ -427,8 +476,7 @@ def _summary(report: Report, rec, fin_mis, base_mis, effect) -> str:
     )
     for ev in report.details["candidates"]:
         lines.append(
-            f"  tested {ev['effect']}: delta BIC {ev['delta_bic']}, p = {ev['p_value']}"
-            f"{' (asymptotic LR, no bootstrap)' if 'p_value_method' in ev else ''}, "
+            f"  tested {ev['effect']}: delta BIC {ev['delta_bic']}, {_p_text(ev)}, "
             f"held-out rms {ev['heldout_rms']} -> {'accepted' if ev['accepted'] else 'rejected'}"
         )
     for name, why in report.details["skipped_effects"].items():
