@@ -7,9 +7,11 @@ subpackages: :mod:`knotmech.analytic` (closed forms, importable alone),
 :mod:`knotmech.diagnose` (the mismatch engine), :mod:`knotmech.sweep` (parallel,
 cached parameter sweeps) and :mod:`knotmech.plotting`.
 
-Only the closed forms are imported eagerly; ``knotmech.rod``, ``knotmech.scenes``
-and ``knotmech.diagnose`` load on first attribute access (numba compilation and
-SciPy imports cost seconds that a classroom using ``mu_eff`` should not pay).
+``knotmech.hold(knot, ...)`` is the hold verdict (:mod:`knotmech.hold`, loaded on first
+use; the module is callable). Only the closed forms are imported eagerly;
+``knotmech.rod``, ``knotmech.scenes`` and ``knotmech.diagnose`` load on first attribute
+access (numba compilation and SciPy imports cost seconds that a classroom using
+``mu_eff`` should not pay).
 """
 
 from __future__ import annotations
@@ -22,7 +24,16 @@ from knotmech.analytic import *  # noqa: F403  (explicit list in analytic.__all_
 from knotmech.analytic import __all__ as _analytic_all
 from knotmech.errors import InputError, KnotmechError, RecordingError, SolverError
 
-_LAZY_SUBPACKAGES = ("rod", "scenes", "diagnose", "sweep", "plotting", "units")
+_LAZY_SUBPACKAGES = (
+    "rod",
+    "scenes",
+    "diagnose",
+    "sweep",
+    "plotting",
+    "units",
+    "materials",
+    "hold",  # callable: knotmech.hold(knot, ...) is knotmech.hold.hold
+)
 _LAZY_NAMES = {
     # name: (module, attribute)
     "simulate": ("knotmech.rod", "simulate"),
@@ -30,6 +41,8 @@ _LAZY_NAMES = {
     "read_recording": ("knotmech.diagnose", "read_recording"),
     "sweep_parameters": ("knotmech.sweep", "sweep"),
     "parse_quantity": ("knotmech.units", "parse_quantity"),
+    "Verdict": ("knotmech.hold", "Verdict"),
+    "material": ("knotmech.materials", "material"),
 }
 
 __all__ = [
@@ -42,6 +55,37 @@ __all__ = [
     *_LAZY_NAMES,
     *_LAZY_SUBPACKAGES,
 ]
+
+
+def hold_verdict(
+    knot,
+    *,
+    rod_diameter,
+    post_diameter,
+    mu,
+    load,
+    free_end_load=0.0,
+    mu_rr=None,
+    wrap_angle=None,
+):
+    """Deprecated: use :func:`knotmech.hold` (this returns its :class:`~knotmech.hold.Verdict`).
+
+    ``knotmech.hold_verdict`` used to be the closed forms' answer
+    (:func:`knotmech.analytic.hitch.hold_verdict`), whose rule could disagree with
+    ``knotmech hold``; it now gives the same verdict as the command.
+    """
+    from knotmech.hold import hold_verdict as _deprecated
+
+    return _deprecated(
+        knot,
+        rod_diameter=rod_diameter,
+        post_diameter=post_diameter,
+        mu=mu,
+        load=load,
+        free_end_load=free_end_load,
+        mu_rr=mu_rr,
+        wrap_angle=wrap_angle,
+    )
 
 
 def __getattr__(name: str):

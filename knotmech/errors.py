@@ -15,6 +15,7 @@ __all__ = [
     "InputError",
     "SolverError",
     "RecordingError",
+    "DiagnoseError",
     "check_positive",
     "check_nonnegative",
     "check_finite",
@@ -40,6 +41,15 @@ class SolverError(KnotmechError, RuntimeError):
 
 class RecordingError(InputError):
     """A recording file is malformed (the message names file and line)."""
+
+
+class DiagnoseError(KnotmechError, ArithmeticError):
+    """The mismatch engine cannot complete a step on this recording (the message names it).
+
+    Raised when the numbers of a recording that passed the reader's checks still make
+    a fit or a factorisation meaningless (NaN or infinity in a design matrix, a
+    likelihood that is not finite); never a silent answer.
+    """
 
 
 def _as_array(name: str, value) -> np.ndarray:

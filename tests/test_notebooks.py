@@ -5,7 +5,10 @@ number it computes is checked against a value worked out by hand.
 """
 
 import math
+import re
 import runpy
+import shutil
+import subprocess
 from pathlib import Path
 
 import matplotlib
@@ -14,7 +17,8 @@ import pytest
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402
 
-NOTEBOOKS = Path(__file__).resolve().parents[1] / "notebooks"
+ROOT = Path(__file__).resolve().parents[1]
+NOTEBOOKS = ROOT / "notebooks"
 
 
 def _check_capstan(ns):
@@ -112,3 +116,49 @@ def test_notebook_is_jupytext_percent_with_markdown(name):
     assert kinds[0] == "markdown" and kinds.count("markdown") >= 3 and "code" in kinds
     text = "".join(cell.source for cell in nb.cells if cell.cell_type == "markdown")
     assert "DOI" in text or "et al." in text  # the physics comes with references
+
+
+def test_notebooks_extra_installs_what_opening_them_needs():
+    """``pip install -e ".[notebooks]"`` brings jupyter, nbconvert, ipykernel and jupytext."""
+    text = (ROOT / "pyproject.toml").read_text()
+    line = re.search(r"^notebooks = \[(.*)\]$", text, re.M)
+    assert line, "no notebooks extra in pyproject.toml"
+    names = {re.split(r"[<>=!~\[ ]", s.strip().strip('"'))[0] for s in line.group(1).split(",")}
+    assert {"jupyter", "nbconvert", "ipykernel", "jupytext"} <= names
+
+
+def test_generated_ipynb_are_gitignored_and_the_scripts_are_not():
+    if shutil.which("git") is None or not (ROOT / ".git").exists():
+        pytest.skip("not a git checkout")
+
+    def ignored(path):
+        out = subprocess.run(
+            ["git", "check-ignore", "-q", path], cwd=ROOT, capture_output=True, timeout=30
+        )
+        return out.returncode == 0
+
+    assert ignored("notebooks/first_der_simulation.ipynb")
+    assert ignored("notebooks/.ipynb_checkpoints/first_der_simulation-checkpoint.ipynb")
+    assert not ignored("notebooks/first_der_simulation.py")
+
+
+@pytest.mark.slow
+def test_a_notebook_opened_as_the_readme_says_runs_in_a_jupyter_kernel(tmp_path, monkeypatch):
+    """jupytext -> .ipynb -> executed by a real IPython kernel (what nbconvert --execute and
+    Jupyter do), with the number it computes checked (about 25 s: kernel start + imports)."""
+    jupytext = pytest.importorskip("jupytext")
+    nbclient = pytest.importorskip("nbclient")
+    pytest.importorskip("ipykernel")
+    nb = jupytext.read(NOTEBOOKS / "will_this_knot_hold.py")
+    nb.cells.append(jupytext.reads("print(f'K_clove = {K_clove:.3f}')", fmt="py:percent").cells[0])
+    monkeypatch.setenv("KNOTMECH_QUICK", "1")
+    monkeypatch.setenv("MPLBACKEND", "Agg")
+    monkeypatch.setenv("PYTHONPATH", str(ROOT))
+    client = nbclient.NotebookClient(
+        nb, timeout=300, kernel_name="python3", resources={"metadata": {"path": str(tmp_path)}}
+    )
+    client.execute()
+    outputs = [o for c in nb.cells if c.cell_type == "code" for o in c.get("outputs", [])]
+    assert not [o for o in outputs if o.get("output_type") == "error"]
+    text = "".join(o.get("text", "") for o in outputs if o.get("output_type") == "stream")
+    assert "K_clove = 43.376" in text  # exp(0.3 * 4 pi), as in _check_hold

@@ -16,6 +16,8 @@ PASSING = """
 import matplotlib.figure
 from ._common import finish, save_figure
 
+SUMMARY = "A line from y = 0 to 1 against the identity (made up)."
+
 def run(quick=True, out_dir=".", scheduler=None):
     fig = matplotlib.figure.Figure()
     fig.add_subplot().plot([0, 1], [0, 1])
@@ -26,6 +28,10 @@ def run(quick=True, out_dir=".", scheduler=None):
 """
 
 FAILING = """
+\"\"\"Two is three, against arithmetic.
+
+More text that is not the summary.
+\"\"\"
 from ._common import finish
 
 def run(quick=True, out_dir="."):
@@ -76,6 +82,13 @@ def test_run_all_writes_json_png_index_and_exit_1(cases, tmp_path, capsys):
     page = (out / "index.html").read_text()
     assert '<img src="good_line.png"' in page
     assert "1 of 3 cases pass" in page
+    # what each case checks: its SUMMARY, else the first paragraph of its docstring
+    assert good["summary"] == "A line from y = 0 to 1 against the identity (made up)."
+    assert json.loads((out / "bad.json").read_text())["summary"] == (
+        "Two is three, against arithmetic."
+    )
+    assert page.count("A line from y = 0 to 1 against the identity (made up).") == 2
+    assert '<a href="good_line.png" title="open full size">' in page
     for word in ("PASS", "FAIL", "ERROR"):
         assert word in page
     text = capsys.readouterr().out

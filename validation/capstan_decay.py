@@ -39,6 +39,12 @@ from knotmech.sweep import TaskFailure
 from ._common import finish, save_figure
 
 NAME = "capstan_decay"
+#: one sentence for the validation page: what this case checks, and against what
+SUMMARY = (
+    "DER tension along a rod sliding on a post: its fitted decay rate against the thick-rod "
+    "closed form mu_eff(D/d) (clove-hitch paper, eq. 3) for several D/d, and against mu "
+    "itself (Euler-Eytelwein) for a control run whose friction acts at the centreline."
+)
 MU = 0.3  #: rod-post friction coefficient (a mid value of the clove-hitch paper's mu_rc)
 D_OVER_D_QUICK = (1.0, 2.0, 7.5, 30.0)  #: 7.5 = the clove-hitch paper's D/d = 30 mm / 4 mm
 D_OVER_D_FULL = (1.0, 2.0, 4.0, 7.5, 15.0, 30.0, 100.0)

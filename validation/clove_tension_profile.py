@@ -45,6 +45,13 @@ from ._common import finish, save_figure
 from .capstan_decay import fit_decay_rate
 
 NAME = "clove_tension_profile"
+#: one sentence for the validation page: what this case checks, and against what
+SUMMARY = (
+    "DER tension profile T(s) along a free-end clove hitch against the clove-hitch paper's "
+    "FEM (sec. 7, Fig. 3b): exponential decay at mu_eff on the wraps for mu_rc = 0.2, 0.3, "
+    "0.4, and the nip regions at the knot's entry, middle and exit, found from the profile "
+    "alone."
+)
 ROD_DIAMETER = 4e-3  #: d [m]
 POST_DIAMETER = 30e-3  #: D [m]
 ROD_LENGTH = 0.374  #: L [m]

@@ -43,6 +43,13 @@ from knotmech.plotting import new_axes
 from ._common import finish, save_figure
 
 NAME = "coating"
+#: one sentence for the validation page: what this case checks, and against what
+SUMMARY = (
+    "Dip-coating film thickness against the Landau-Levich-Derjaguin laws for a fibre and a "
+    "plate and the coated-rod paper's measured 5.85 um layer, and the friction-versus-"
+    "particle-fraction interpolation against the paper's five measured points (exact fit, "
+    "monotonic, invertible)."
+)
 
 ROD_DIAMETER = 1.59e-3  #: [m] 1/16 in natural-rubber rod (paper sec. 3.1)
 WITHDRAWAL_SPEED = 5e-3  #: [m/s] (paper sec. 3.2)

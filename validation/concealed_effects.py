@@ -45,6 +45,12 @@ from knotmech.diagnose.synth import SYNTH_EFFECTS, make_recording
 from ._common import finish, output_dir, save_figure, to_jsonable
 
 NAME = "concealed_effects"
+#: one sentence for the validation page: what this case checks, and against what
+SUMMARY = (
+    "knotmech diagnose on randomized synthetic recordings, its verdict against the effect "
+    "planted in each: recovery at >= 3 noise sd (target >= 90 %) and false positives on "
+    "effect-free recordings with white and AR(1) noise (target <= 5 %)."
+)
 
 #: key parameter per effect: (report name, truth name, "abs" or "rel"), from the catalogue
 KEY_PARAMETER = {n: e.key_parameter for n, e in CATALOGUE.items() if e.key_parameter}

@@ -36,6 +36,12 @@ from knotmech.sweep import TaskFailure, sweep
 from ._common import finish, save_figure
 
 NAME = "pinch_amontons"
+#: one sentence for the validation page: what this case checks, and against what
+SUMMARY = (
+    "DER sliding force of a rod pinched between two crossed cylinders against Amontons-"
+    "Coulomb, F_t* = 2 mu F_n, over the load parameter x = 4 F_n/(pi E d D) (clove-hitch "
+    "paper, sec. 9 and Fig. 5d: within 3 % for x < 0.05)."
+)
 MU = 0.32  #: rod-cylinder friction coefficient (the clove-hitch paper's VPS32 value)
 ROD_DIAMETER = 4e-3  #: [m] d
 CYLINDER_DIAMETER = 8e-3  #: [m] D (clove-hitch paper, sec. 9)

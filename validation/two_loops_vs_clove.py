@@ -56,6 +56,12 @@ from knotmech.sweep import TaskFailure, sweep
 from ._common import finish, save_figure
 
 NAME = "two_loops_vs_clove"
+#: one sentence for the validation page: what this case checks, and against what
+SUMMARY = (
+    "DER T_high/T_low against pulled displacement for a rod wound twice round a post and "
+    "for the clove hitch, against the thick-rod capstan plateau exp(mu_eff 4 pi) (clove-"
+    "hitch paper, eq. 3 and Fig. 1d), with kinetic and with static friction."
+)
 THETA = 4 * np.pi  #: two loops
 ROD_DIAMETER = 4e-3  #: [m] d
 POST_DIAMETER = 30e-3  #: [m] D

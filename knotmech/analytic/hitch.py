@@ -29,7 +29,8 @@ Two models are implemented (``derivations/hitches.py`` derives every ``K``):
     Maddocks & Keller quoted by the clove-hitch paper (Sec. 8): at slip
     :math:`T_\mathrm{high}` is proportional to :math:`T_\mathrm{low}`, so **with a
     free end (:math:`T_\mathrm{low}=0`) the ideal-rope clove hitch slips at any load,
-    whatever d and D** (:data:`FREE_END_STATEMENT`). This model decides the verdict.
+    whatever d and D** (:data:`FREE_END_STATEMENT`). This model decides the
+    closed-form verdict; its validity is d/D <= 0.1 and no half hitches.
 ``thick-nip``
     Finite rod diameter d (derived here, not taken from the papers): a rider
     lifted over a strand of diameter d lying on a support of diameter
@@ -579,7 +580,8 @@ def _hitch_answers(g: HitchGeometry, mu, mrr, d, D, load, free):
         capacity=cap,
         critical_mu=crit,
         decides=True,
-        inside_validity=bool(d / D <= THIN_ROPE_LIMIT),
+        # half hitches wrap the standing part, of the rope's own diameter: never thin
+        inside_validity=bool(d / D <= THIN_ROPE_LIMIT and g.half_hitches == 0),
         assumptions=_COMMON_ASSUMPTIONS
         + (
             "zero-thickness, perfectly flexible rope: crossings carry no point force",
@@ -588,7 +590,12 @@ def _hitch_answers(g: HitchGeometry, mu, mrr, d, D, load, free):
             f"holds iff T_high <= K T_low with K = exp(mu*{g.post_wrap:.4g} + "
             f"mu_rr*{g.rope_wrap:.4g}) = {K:.4g}",
         ),
-        validity=(_THIN_ROPE_VALIDITY,),
+        validity=(_THIN_ROPE_VALIDITY,)
+        + (
+            ("not for half hitches: they wrap the standing part, whose diameter is the rope's",)
+            if g.half_hitches
+            else ()
+        ),
         reference=(
             "Bayman, Am. J. Phys. 45 (1977) 185; Maddocks & Keller, SIAM J. Appl. Math. 47 "
             "(1987) 1185 (as summarised in the clove-hitch paper, Sec. 8); derivations/hitches.py"
@@ -664,10 +671,17 @@ def hold_verdict(
     Returns
     -------
     HoldVerdict
-        ``holds``, ``margin``, ``decided_by`` and ``answers`` (the deciding model
-        first). For ``capstan`` the finite-thickness capstan decides and the
-        ideal capstan is reported; for hitches the ideal-rope theory decides and
-        the thick-nip model is reported.
+        ``holds``, ``margin``, ``decided_by`` and ``answers``. For ``capstan`` the
+        finite-thickness capstan decides and the ideal capstan is reported; for
+        hitches the ideal-rope theory (the reference theory of the papers) decides and
+        the thick-nip model is reported, each with ``inside_validity``.
+
+    Notes
+    -----
+    Closed forms only, each model's answer. The verdict of knotmech, which lets no
+    model outside its validity decide and adds the DER phase diagram, materials and
+    warnings, is :func:`knotmech.hold` (``knotmech.hold_verdict`` is its deprecated
+    alias).
     """
     key = str(knot).strip().lower().replace("_", "-").replace(" ", "-")
     d = float(check_positive("rod_diameter", rod_diameter))

@@ -3,20 +3,47 @@
 Example::
 
     knotmech diagnose pull.csv --json report.json --plot report.png
+    knotmech diagnose --template pinch > my_pinch.csv
 
-Reads and validates the recording (``shared/spec/recordings.md``), runs
+Reads and validates the recording (``docs/recordings.md``), runs
 :func:`knotmech.diagnose.diagnose`, writes the JSON report, prints the one-line
 verdict and a short summary. ``--baseline der`` (capstan_pull) uses the DER capstan
-as the baseline, see :class:`knotmech.diagnose.baselines.DERCurves`. Exit status 0 once
-the report is written (whatever the verdict); 2 on a bad recording or bad options
-(one line, no traceback).
+as the baseline, see :class:`knotmech.diagnose.baselines.DERCurves`. ``--template
+KIND`` prints a valid example recording of that kind (``knotmech/data/templates``).
+The output paths (``--json``, ``--plot`` and its format) are checked before any work
+starts. Exit status 0 once the report is written (whatever the verdict); 2 on a bad
+recording or bad options (one line, no traceback).
 """
 
 from __future__ import annotations
 
-from knotmech.diagnose import diagnose, plot_report, read_recording
+import sys
+from importlib import resources
+from pathlib import Path
 
-__all__ = ["register", "run"]
+from knotmech.cli._paths import check_output_path, plot_formats, writing
+from knotmech.errors import InputError
+
+__all__ = ["register", "run", "template_kinds", "template_text"]
+
+
+def template_kinds() -> tuple[str, ...]:
+    """Experiment kinds with an example recording in ``knotmech/data/templates``."""
+    folder = resources.files("knotmech") / "data" / "templates"
+    if not folder.is_dir():
+        return ()
+    return tuple(
+        sorted(p.name[: -len(".csv")] for p in folder.iterdir() if p.name.endswith(".csv"))
+    )
+
+
+def template_text(kind: str) -> str:
+    """The example recording of ``kind`` (raises InputError for a kind without one)."""
+    kinds = template_kinds()
+    if kind not in kinds:
+        raise InputError(f"--template: no template for {kind!r}; kinds: {', '.join(kinds)}")
+    path = resources.files("knotmech") / "data" / "templates" / f"{kind}.csv"
+    return path.read_text(encoding="utf-8")
 
 
 def register(subparsers) -> None:
@@ -26,12 +53,27 @@ def register(subparsers) -> None:
         description=(
             "Fit the closed-form baseline of the recording's experiment, locate systematic "
             "residuals, add catalogue effects one at a time while they are significant "
-            "(parametric bootstrap) and improve the held-out error, and report the verdict."
+            "(parametric bootstrap) and improve the held-out error, and report the verdict. "
+            "The recording format: docs/recordings.md; an example of each kind: --template KIND."
         ),
     )
-    p.add_argument("recording", metavar="REC.csv", help="recording file (CSV with # metadata)")
-    p.add_argument("--json", metavar="OUT.json", required=True, help="write the report here")
-    p.add_argument("--plot", metavar="FILE", default=None, help="also draw the fit (PNG, PDF...)")
+    p.add_argument(
+        "recording", metavar="REC.csv", nargs="?", help="recording file (CSV with # metadata)"
+    )
+    p.add_argument("--json", metavar="OUT.json", help="write the report here (required)")
+    p.add_argument(
+        "--plot", metavar="FILE", default=None, help="also draw the fit (PNG, PDF, SVG...)"
+    )
+    p.add_argument(
+        "--template",
+        metavar="KIND",
+        default=None,
+        help=(
+            "print a valid example recording of this experiment kind and exit "
+            f"({', '.join(template_kinds()) or 'none installed'}); e.g. "
+            "knotmech diagnose --template pinch > pinch.csv"
+        ),
+    )
     p.add_argument(
         "--baseline",
         choices=("closed-form", "der"),
@@ -43,7 +85,7 @@ def register(subparsers) -> None:
             "likelihood ratio (no bootstrap), BIC and the held-out check"
         ),
     )
-    p.add_argument("--seed", type=int, default=0, help="seed of the bootstrap (default 0)")
+    p.add_argument("--seed", type=int, default=0, help="seed of the bootstrap, >= 0 (default 0)")
     p.add_argument(
         "--alpha", type=float, default=0.01, help="family-wise significance level (default 0.01)"
     )
@@ -51,11 +93,35 @@ def register(subparsers) -> None:
 
 
 def run(args) -> int:
+    if args.template is not None:
+        if args.recording or args.json or args.plot:
+            raise InputError("--template KIND prints an example recording; give it alone")
+        sys.stdout.write(template_text(args.template))
+        return 0
+    if not args.recording or not args.json:
+        missing = [n for n, v in (("REC.csv", args.recording), ("--json", args.json)) if not v]
+        raise InputError(
+            f"missing {' and '.join(missing)}: knotmech diagnose REC.csv --json OUT.json "
+            "(or --template KIND for an example recording)"
+        )
+    # every output is checked before any work starts
+    json_path = check_output_path(args.json, option="--json")
+    plot_path = None
+    if args.plot is not None:
+        plot_path = check_output_path(args.plot, formats=plot_formats(), option="--plot")
+    source = Path(args.recording)
+    for option, out in (("--json", json_path), ("--plot", plot_path)):
+        if out is not None and source.exists() and out.resolve() == source.resolve():
+            raise InputError(f"{option} {out}: is the recording itself; give another file name")
+    from knotmech.diagnose import diagnose, plot_report, read_recording
+
     rec = read_recording(args.recording)
     report = diagnose(rec, baseline=args.baseline, seed=args.seed, alpha=args.alpha)
-    report.write_json(args.json)
-    if args.plot:
-        plot_report(report, args.plot)
+    with writing(json_path, option="--json"):
+        report.write_json(json_path)
+    if plot_path is not None:
+        with writing(plot_path, option="--plot"):
+            plot_report(report, plot_path)
     print(report.summary)
     print(f"  report: {args.json}" + (f", plot: {args.plot}" if args.plot else ""))
     return 0

@@ -33,6 +33,7 @@ __all__ = [
     "run_case",
     "run_cases",
     "write_index",
+    "format_number",
 ]
 
 
@@ -132,12 +133,14 @@ def run_case(name: str, *, quick: bool = True, out_dir, root=None, **options) ->
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     start = time.perf_counter()
+    module = None
     try:
         module = load_case(name, root)
         params = inspect.signature(module.run).parameters
         accepts_all = any(p.kind is p.VAR_KEYWORD for p in params.values())
         kwargs = {k: v for k, v in options.items() if accepts_all or k in params}
         result = dict(module.run(quick=quick, out_dir=out, **kwargs))
+        result.setdefault("summary", _summary_of(module))
         missing = {"name", "verdict", "figures", "numbers"} - set(result)
         if missing:
             raise InputError(f"case {name!r} returned no {', '.join(sorted(missing))}")
@@ -153,6 +156,7 @@ def run_case(name: str, *, quick: bool = True, out_dir, root=None, **options) ->
             "checks": {},
             "notes": [f"{type(exc).__name__}: {exc}"],
             "traceback": traceback.format_exc(),
+            "summary": _summary_of(module) if module is not None else "",
         }
     result["seconds"] = round(time.perf_counter() - start, 3)
     # figures outside the output folder are copied in, so the index is self-contained
@@ -191,62 +195,211 @@ def run_cases(
     return results
 
 
-_COLOURS = {"pass": "#1a7f37", "fail": "#cf222e", "error": "#8250df"}
+_BADGE_CLASS = {"pass": "pass", "fail": "fail", "error": "error"}
+
+#: at most this many items of a list are shown; the rest are in the case's JSON
+_MAX_ITEMS = 8
+#: at most this many rows of a table of rows (a list of equal-length lists)
+_MAX_ROWS = 12
+
+
+def format_number(x, digits: int = 4) -> str:
+    """A number as a reviewer reads it: ``digits`` significant digits, integers exact.
+
+    ``1091.0`` -> ``"1091"``, ``0.262278431`` -> ``"0.2623"``, ``3.1e-06`` -> ``"3.1e-6"``,
+    booleans as ``yes``/``no``; anything else is returned as ``str(x)``.
+    """
+    if isinstance(x, bool):
+        return "yes" if x else "no"
+    if isinstance(x, int):
+        return str(x)
+    if isinstance(x, float):
+        if x != x or x in (float("inf"), float("-inf")):
+            return str(x)
+        if x.is_integer() and abs(x) < 1e6:
+            return str(int(x))
+        text = f"{x:.{digits}g}"
+        if "e" in text:
+            mant, exp = text.split("e")
+            text = f"{mant}e{int(exp)}"
+        return text
+    return str(x)
+
+
+def _is_scalar(v) -> bool:
+    return v is None or isinstance(v, bool | int | float | str)
+
+
+def _cell(v, depth: int = 0) -> str:
+    """HTML of one value of ``numbers``: scalars formatted, lists and dicts as tables."""
+    esc = html.escape
+    if v is None:
+        return '<span class="none">&mdash;</span>'
+    if _is_scalar(v):
+        return esc(format_number(v))
+    if isinstance(v, dict):
+        if not v:
+            return '<span class="none">(none)</span>'
+        if depth >= 3:
+            return esc(f"({len(v)} entries, see the JSON)")
+        rows = "".join(
+            f"<tr><th>{esc(str(k))}</th><td>{_cell(x, depth + 1)}</td></tr>" for k, x in v.items()
+        )
+        return f'<table class="sub">{rows}</table>'
+    if isinstance(v, list | tuple):
+        if not v:
+            return '<span class="none">(none)</span>'
+        if all(_is_scalar(x) for x in v):
+            shown = [format_number(x) if x is not None else "\u2014" for x in v[:_MAX_ITEMS]]
+            more = (
+                f' <span class="more">&hellip; {len(v)} values in all</span>'
+                if len(v) > _MAX_ITEMS
+                else ""
+            )
+            return esc(", ".join(shown)) + more
+        rowlike = all(isinstance(x, list | tuple) and all(_is_scalar(y) for y in x) for x in v)
+        if rowlike and len({len(x) for x in v}) == 1 and len(v[0]) <= 8:
+            rows = "".join(
+                "<tr>" + "".join(f"<td>{_cell(y)}</td>" for y in x) + "</tr>" for x in v[:_MAX_ROWS]
+            )
+            more = (
+                f'<tr><td colspan="{len(v[0])}" class="more">&hellip; {len(v)} rows in all</td>'
+                "</tr>"
+                if len(v) > _MAX_ROWS
+                else ""
+            )
+            return f'<table class="sub">{rows}{more}</table>'
+        if depth >= 3:
+            return esc(f"({len(v)} items, see the JSON)")
+        rows = "".join(f"<tr><td>{_cell(x, depth + 1)}</td></tr>" for x in v[:_MAX_ROWS])
+        more = (
+            f'<tr><td class="more">&hellip; {len(v)} items in all</td></tr>'
+            if len(v) > _MAX_ROWS
+            else ""
+        )
+        return f'<table class="sub">{rows}{more}</table>'
+    return esc(str(v))
+
+
+def _badge(verdict: str) -> str:
+    cls = _BADGE_CLASS.get(verdict, "error")
+    return f'<span class="badge {cls}">{html.escape(str(verdict).upper())}</span>'
+
+
+def _summary_of(module) -> str:
+    """The case's one-sentence summary: ``SUMMARY``, else its docstring's first line."""
+    text = getattr(module, "SUMMARY", None)
+    if not text:
+        text = (inspect.getdoc(module) or "").strip().split("\n\n")[0].replace("\n", " ")
+    return str(text).strip()
+
+
+_CSS = """
+body { font-family: system-ui, sans-serif; max-width: 1200px; margin: 1.5em auto;
+       padding: 0 1em; line-height: 1.4; color: #1f2328; }
+h1 { margin-bottom: 0.2em; } h2 { margin-top: 2em; border-bottom: 1px solid #d0d7de; }
+table { border-collapse: collapse; } td, th { border: 1px solid #d0d7de; padding: 3px 8px;
+  vertical-align: top; text-align: left; }
+th { background: #f6f8fa; font-weight: 600; }
+table.summary td.what { max-width: 640px; }
+table.numbers th { font-family: ui-monospace, monospace; font-weight: normal; }
+table.numbers td { font-family: ui-monospace, monospace; }
+table.sub { margin: 0; font-size: 0.92em; } table.sub th, table.sub td { padding: 1px 5px; }
+.badge { display: inline-block; padding: 1px 9px; border-radius: 10px; color: white;
+  font-weight: 700; font-size: 0.85em; letter-spacing: 0.03em; }
+.badge.pass { background: #1a7f37; } .badge.fail { background: #cf222e; }
+.badge.error { background: #8250df; }
+.what { margin: 0.3em 0 0.8em; } p.lead { font-size: 1.05em; }
+figure { margin: 0.8em 0; } figure img { max-width: 100%; height: auto;
+  border: 1px solid #d0d7de; } figcaption { font-size: 0.9em; color: #57606a; }
+ul.checks { list-style: none; padding-left: 0.3em; } .ok { color: #1a7f37; font-weight: 700; }
+.no { color: #cf222e; font-weight: 700; } .none, .more { color: #57606a; }
+details { margin: 0.6em 0; } pre { background: #f6f8fa; padding: 0.6em; overflow-x: auto; }
+"""
 
 
 def write_index(out_dir, results, *, quick: bool = True) -> Path:
-    """Write ``<out_dir>/index.html``: a summary table, then every figure with its verdict."""
+    """Write ``<out_dir>/index.html``, the page a reviewer reads.
+
+    A summary table (case, pass/fail badge, the sentence saying what the case checks and
+    against what, checks passed, time), then one section per case: the sentence, its
+    checks, its figures (each a link to the full-size PNG), its numbers as tables with 4
+    significant digits (the full values are in ``<name>.json``) and its notes.
+    """
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
     esc = html.escape
     rows, sections = [], []
     for r in results:
-        colour = _COLOURS.get(r["verdict"], "#57606a")
-        badge = f'<b style="color:{colour}">{esc(r["verdict"].upper())}</b>'
+        name = str(r["name"])
+        badge = _badge(r["verdict"])
+        what = str(r.get("summary") or "")
+        checks = r.get("checks", {}) or {}
+        n_ok = sum(bool(ok) for ok in checks.values())
+        seconds = r.get("seconds")
+        sec = f"{float(seconds):.1f}" if isinstance(seconds, int | float) else ""
         rows.append(
-            f'<tr><td><a href="#{esc(r["name"])}">{esc(r["name"])}</a></td><td>{badge}</td>'
-            f"<td>{r.get('seconds', '')}</td><td>{len(r.get('figures', []))}</td></tr>"
+            f'<tr><td><a href="#{esc(name)}">{esc(name)}</a></td><td>{badge}</td>'
+            f'<td class="what">{esc(what)}</td><td>{n_ok} of {len(checks)}</td>'
+            f"<td>{sec}</td></tr>"
         )
-        nums = "".join(
-            f"<tr><td>{esc(str(k))}</td><td>{esc(json.dumps(v))}</td></tr>"
-            for k, v in r.get("numbers", {}).items()
+        check_items = "".join(
+            f'<li><span class="{"ok" if ok else "no"}">{"&#10003;" if ok else "&#10007;"}'
+            f"</span> {esc(str(k))}</li>"
+            for k, ok in checks.items()
         )
-        checks = "".join(
-            f"<li>{'&#10003;' if ok else '&#10007;'} {esc(str(k))}</li>"
-            for k, ok in r.get("checks", {}).items()
-        )
-        notes = "".join(f"<li>{esc(str(n))}</li>" for n in r.get("notes", []))
         figs = "".join(
-            f'<figure><img src="{esc(Path(f).name)}" alt="{esc(Path(f).name)}">'
-            f"<figcaption>{esc(Path(f).name)} &mdash; {badge}</figcaption></figure>"
+            f'<figure><a href="{esc(Path(f).name)}" title="open full size">'
+            f'<img src="{esc(Path(f).name)}" alt="{esc(Path(f).stem)}" loading="lazy"></a>'
+            f"<figcaption>{esc(Path(f).name)} (click for full size)</figcaption></figure>"
             for f in r.get("figures", [])
         )
-        tb = f"<pre>{esc(r['traceback'])}</pre>" if r.get("traceback") else ""
-        sections.append(
-            f'<section id="{esc(r["name"])}"><h2>{esc(r["name"])}: {badge}</h2>'
-            f'{figs}<h3>Numbers</h3><table class="n">{nums}</table>'
-            f"<h3>Checks</h3><ul>{checks}</ul><h3>Notes</h3><ul>{notes}</ul>{tb}"
-            f'<p><a href="{esc(r["name"])}.json">{esc(r["name"])}.json</a></p></section>'
+        nums = "".join(
+            f"<tr><th>{esc(str(k))}</th><td>{_cell(v)}</td></tr>"
+            for k, v in (r.get("numbers", {}) or {}).items()
         )
+        notes = "".join(f"<li>{esc(str(n))}</li>" for n in r.get("notes", []))
+        tb = (
+            f"<details><summary>traceback</summary><pre>{esc(r['traceback'])}</pre></details>"
+            if r.get("traceback")
+            else ""
+        )
+        parts = [
+            f'<section id="{esc(name)}"><h2>{esc(name)} {badge}</h2>',
+            f'<p class="what">{esc(what)}</p>' if what else "",
+            f'<h3>Checks ({n_ok} of {len(checks)} hold)</h3><ul class="checks">{check_items}</ul>'
+            if checks
+            else "",
+            figs,
+            f'<h3>Numbers</h3><table class="numbers">{nums}</table>' if nums else "",
+            f"<h3>Notes</h3><ul>{notes}</ul>" if notes else "",
+            tb,
+            f'<p>All values, unrounded: <a href="{esc(name)}.json">{esc(name)}.json</a></p>'
+            "</section>",
+        ]
+        sections.append("".join(parts))
     n_pass = sum(r["verdict"] == "pass" for r in results)
     mode = "quick" if quick else "full"
+    overall = _badge("pass" if n_pass == len(results) and results else "fail")
     page = f"""<!doctype html>
-<html lang="en"><head><meta charset="utf-8"><title>knotmech validation</title>
-<style>
-body {{ font-family: sans-serif; max-width: 1100px; margin: 2em auto; }}
-table {{ border-collapse: collapse; }} td, th {{ border: 1px solid #ccc; padding: 3px 8px; }}
-figure {{ display: inline-block; margin: 0.5em; }} img {{ max-width: 520px; }}
-table.n td:last-child {{ font-family: monospace; }}
-</style></head><body>
-<h1>knotmech validation ({mode})</h1>
-<p>{n_pass} of {len(results)} cases pass.</p>
-<table><tr><th>case</th><th>verdict</th><th>seconds</th><th>figures</th></tr>
+<html lang="en"><head><meta charset="utf-8">
+<meta name="viewport" content="width=device-width, initial-scale=1">
+<title>knotmech validation ({mode})</title>
+<link rel="icon" href="data:,">
+<style>{_CSS}</style></head><body>
+<h1>knotmech validation ({mode}) {overall}</h1>
+<p class="lead">{n_pass} of {len(results)} cases pass. Each case puts a simulation or a
+computation beside a reference (a closed form, a paper's measurement or figure) and passes
+when every one of its checks holds. Figures open full size when clicked; numbers are shown
+to 4 significant digits, the full values are in each case's JSON.</p>
+<table class="summary"><tr><th>case</th><th>verdict</th><th>what it checks, against what</th>
+<th>checks</th><th>seconds</th></tr>
 {"".join(rows)}</table>
 {"".join(sections)}
 </body></html>
 """
     path = out / "index.html"
-    path.write_text(page)
+    path.write_text(page, encoding="utf-8")
     return path
 
 

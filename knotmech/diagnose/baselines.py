@@ -161,11 +161,13 @@ class DERBaseline:
     name: str = "der"
 
     def check(self, rec: Recording) -> None:
-        if rec.experiment != "capstan_pull":
-            raise InputError(
-                f"baseline 'der' is not available for {rec.experiment} recordings "
-                "(capstan_pull only); use closed-form"
-            )
+        """Refuse, before any simulation, a recording this baseline cannot run on.
+
+        See :func:`knotmech.diagnose.der.check_der_recording`.
+        """
+        from knotmech.diagnose.der import check_der_recording
+
+        check_der_recording(rec)
 
 
 BASELINES = {"closed-form": ClosedFormBaseline(), "der": DERBaseline()}

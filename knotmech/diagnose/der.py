@@ -22,7 +22,7 @@ from knotmech.diagnose.experiments import get_experiment
 from knotmech.diagnose.fitting import fit_model, heldout_rms
 from knotmech.diagnose.recording import Recording
 from knotmech.diagnose.stats import estimate_noise
-from knotmech.errors import SolverError
+from knotmech.errors import InputError, SolverError
 
 __all__ = [
     "DERCurves",
@@ -32,6 +32,9 @@ __all__ = [
     "select_der",
     "DER_DMU_GRID",
     "DER_EFFECTS",
+    "DER_MAX_STEPS",
+    "DER_MAX_WRAP",
+    "check_der_recording",
 ]
 
 #: the effects modelled under the DER baseline (the scene re-run with mu_s > mu_k)
@@ -43,6 +46,55 @@ DER_STEPS = 60
 DER_SPEED = 0.01
 DER_EI_FACTOR = 1e-4
 DER_DENSITY = 1000.0
+#: largest wrap the DER baseline runs [rad]: two loops, the largest the project's DER
+#: capstan is run and checked at (``capstan_two_loops``); beyond it the DER_ELEMENTS
+#: elements span ever more of the post each
+DER_MAX_WRAP = 4.0 * np.pi
+#: most implicit steps one DER baseline simulation may take
+DER_MAX_STEPS = 1000
+
+
+def check_der_recording(rec: Recording) -> None:
+    """Refuse, before any simulation, a recording the DER baseline cannot run on.
+
+    Besides the kind (``capstan_pull`` only): the wrap beyond :data:`DER_MAX_WRAP` (two
+    loops), displacements below the range of the model's shift (``-0.3`` of the
+    largest), and a pull so short that one run would need more than
+    :data:`DER_MAX_STEPS` implicit steps (the 0.1 s load ramp at the step
+    ``u_max / (60 v)``).
+
+    Raises
+    ------
+    InputError
+        One line naming what is wrong.
+    """
+    if rec.experiment != "capstan_pull":
+        raise InputError(
+            f"baseline 'der' is not available for {rec.experiment} recordings "
+            "(capstan_pull only); use closed-form"
+        )
+    theta = rec.meta("wrap_angle_rad")
+    if theta > DER_MAX_WRAP:
+        raise InputError(
+            f"{rec.source}: baseline 'der' runs wraps up to {DER_MAX_WRAP:.4g} rad (two "
+            f"loops, the largest its {DER_ELEMENTS}-element capstan is checked at), got "
+            f"wrap_angle_rad = {theta:g}; use closed-form"
+        )
+    u_max = float(np.max(rec.x))
+    if u_max <= 0 or float(np.min(rec.x)) < -0.3 * u_max:
+        raise InputError(
+            f"{rec.source}: baseline 'der' needs displacements from about 0 up (the "
+            f"simulated pull starts at 0; shifts down to -0.3 x the largest), got "
+            f"[{float(np.min(rec.x)):g}, {u_max:g}] m; re-zero them or use closed-form"
+        )
+    curves = DERCurves(rec)
+    steps = (0.15 + 1.05 * curves.u_max / curves.v) / curves.dt
+    if steps > DER_MAX_STEPS:
+        raise InputError(
+            f"{rec.source}: baseline 'der' would need {steps:.3g} steps per simulation "
+            f"(limit {DER_MAX_STEPS}): the pull ({u_max:g} m at {curves.v:g} m/s) is too "
+            "short for the 0.1 s load ramp; use closed-form"
+        )
 
 
 class DERCurves:

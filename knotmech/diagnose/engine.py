@@ -42,6 +42,7 @@ new simulations for every draw. BIC and the (raw) held-out RMS check apply.
 
 from __future__ import annotations
 
+import functools
 from pathlib import Path
 
 import numpy as np
@@ -62,7 +63,7 @@ from knotmech.diagnose.locate import flexible_mismatch, regions_from_mask
 from knotmech.diagnose.recording import Recording, read_recording, recording_from_arrays
 from knotmech.diagnose.report import Report, effect_parameters, public_parameters
 from knotmech.diagnose.stats import monte_carlo_pvalue, trial_starts
-from knotmech.errors import InputError
+from knotmech.errors import DiagnoseError, InputError, KnotmechError
 
 __all__ = ["diagnose"]
 
@@ -96,6 +97,39 @@ def _resolve_effects(names) -> list | None:
     return [get_effect(n) for n in names]
 
 
+def _numerical_failure_named(func):
+    """Last resort: a numerical exception escaping the engine becomes one DiagnoseError.
+
+    The targeted checks (the reader's bounds, ``stats.require_finite`` before every
+    factorisation, ``fitting._least_squares``) name the step themselves; anything else
+    from numpy/scipy/numba (LinAlgError, ValueError, FloatingPointError, ZeroDivisionError)
+    is named by the innermost knotmech function it came from.
+    """
+
+    @functools.wraps(func)
+    def wrapper(*args, **kwargs):
+        try:
+            return func(*args, **kwargs)
+        except KnotmechError:
+            raise
+        except (ArithmeticError, ValueError, np.linalg.LinAlgError) as exc:
+            tb, where = exc.__traceback__, func.__name__
+            while tb is not None:
+                mod = tb.tb_frame.f_globals.get("__name__", "")
+                if mod.startswith("knotmech."):
+                    where = f"{mod.removeprefix('knotmech.')}.{tb.tb_frame.f_code.co_name}"
+                tb = tb.tb_next
+            msg = str(exc).strip().splitlines()[0] if str(exc).strip() else ""
+            raise DiagnoseError(
+                f"the diagnosis failed numerically in {where} ({type(exc).__name__}"
+                f"{': ' + msg if msg else ''}); the recording's values are too extreme or "
+                "degenerate for it"
+            ) from exc
+
+    return wrapper
+
+
+@_numerical_failure_named
 def diagnose(
     recording=None,
     *,
@@ -147,6 +181,8 @@ def diagnose(
     only = _resolve_effects(effects)
     if not 0 < alpha < 1:
         raise InputError(f"alpha must lie in (0, 1), got {alpha!r}")
+    if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
+        raise InputError(f"seed must be an integer >= 0, got {seed!r}")
     rng = np.random.default_rng(seed)
     starts = trial_starts(rec.trial)
     gs = rec.sigma

@@ -16,7 +16,8 @@ from scipy.optimize import least_squares
 
 from knotmech.diagnose.baselines import Model, build_model
 from knotmech.diagnose.experiments import get_experiment
-from knotmech.diagnose.stats import NoiseModel, estimate_noise
+from knotmech.diagnose.stats import NoiseModel, estimate_noise, require_finite
+from knotmech.errors import DiagnoseError
 
 #: above this lag-one correlation, effects are also fitted from a moderate-noise first pass
 _RHO_SECOND_PASS = 0.95
@@ -29,6 +30,7 @@ __all__ = [
     "fit_with_effect",
     "param_vector",
     "whiten_columns",
+    "fit_step_name",
     "baseline_start",
     "heldout_errors",
     "heldout_rms",
@@ -89,10 +91,11 @@ def _ls(model, data, p0, noise, starts):
 
     sd_holder["sd"] = noise.sd(model.mean(p0))
     del rec
-    res = least_squares(
+    res = _least_squares(
         fun,
         p0,
-        bounds=(model.lower, model.upper),
+        model,
+        fit_step_name(model),
         method="trf",
         x_scale="jac",
         ftol=1e-8,
@@ -101,6 +104,38 @@ def _ls(model, data, p0, noise, starts):
         max_nfev=100,
     )
     return res.x, float(res.cost)
+
+
+def fit_step_name(model) -> str:
+    """What fitting ``model`` is called in error messages (``fitting the pinch model with ...``)."""
+    effects = " + ".join(model.effects)
+    return f"fitting the {model.rec.experiment} model" + (f" with {effects}" if effects else "")
+
+
+def _least_squares(fun, p0, model, step, **kw):
+    """``scipy.optimize.least_squares`` within ``model``'s bounds, after checking its inputs.
+
+    The bounds, the start and the residuals at the start must be finite (bounds
+    ordered, start inside): otherwise :class:`~knotmech.errors.DiagnoseError` naming
+    ``step``, instead of a ValueError or a LinAlgError from inside scipy.
+    """
+    lo, hi = model.lower, model.upper
+    bad = ~(lo < hi) | np.isnan(lo) | np.isnan(hi)
+    if np.any(bad):
+        j = int(np.argmax(bad))
+        raise DiagnoseError(
+            f"{step}: parameter {model.names[j]} has an empty range [{lo[j]:g}, {hi[j]:g}] "
+            "(the recording's values leave it no room)"
+        )
+    require_finite(f"{step} (start)", p0)
+    if np.any(p0 < lo) or np.any(p0 > hi):
+        raise DiagnoseError(f"{step}: the starting point is outside the parameter bounds")
+    with np.errstate(all="ignore"):
+        f0 = fun(p0)
+    require_finite(f"{step} (residuals at the start)", f0)
+    res = least_squares(fun, p0, bounds=(lo, hi), **kw)
+    require_finite(f"{step} (result)", res.x, res.fun)
+    return res
 
 
 def _loglik(model, data, p, noise, starts):
@@ -237,10 +272,11 @@ def heldout_errors(fit: Fit, data: Data, trial: np.ndarray, *, n_folds=5):
                 e = np.append(e, (p[mu_idx] - data.mu_nominal) / data.mu_sigma)
             return e
 
-        res = least_squares(
+        res = _least_squares(
             fun,
             _clip(model, fit.p),
-            bounds=(model.lower, model.upper),
+            model,
+            "held-out validation: " + fit_step_name(model),
             method="trf",
             x_scale="jac",
             max_nfev=100,

@@ -23,7 +23,10 @@ from knotmech.diagnose.stats import (
     hat_basis,
     ls_solve,
     monte_carlo_pvalue,
+    require_finite,
 )
+
+_STEP = "locating the mismatch (smooth-basis regression of the residuals)"
 
 __all__ = [
     "Mismatch",
@@ -85,7 +88,7 @@ def _augment(resid, mean, noise: NoiseModel, starts, design, given_sigma):
     sd = nz.sd(mean)
     xw = _whiten_cols(nz, sd, starts, design)
     rw = nz.whiten(resid, sd, starts)
-    coef = ls_solve(xw, rw)
+    coef = ls_solve(xw, rw, step=_STEP)
     nz = estimate_noise(resid - design @ coef, mean, starts, given_sigma=given_sigma)
     ll1 = nz.loglik(resid - design @ coef, mean, starts)
     return 2.0 * (ll1 - ll0), coef, nz
@@ -139,7 +142,10 @@ def _located(x, design, coef, xw, stat, p) -> Mismatch:
     """The fitted mismatch curve ``design @ coef``, its pointwise z-scores under the
     whitened design ``xw``, and the regions where |z| > 3."""
     curve = design @ coef
-    cov = np.linalg.pinv(xw.T @ xw)
+    require_finite(_STEP, xw, curve)
+    gram = xw.T @ xw
+    require_finite(_STEP, gram)
+    cov = np.linalg.pinv(gram)
     se = np.sqrt(np.maximum(np.einsum("ij,jk,ik->i", design, cov, design), 1e-300))
     z = curve / se
     mask = np.abs(z) > 3.0
@@ -151,12 +157,12 @@ def _gls_basis(resid, mean, noise, starts, design):
     sd = noise.sd(mean)
     xw = _whiten_cols(noise, sd, starts, design)
     rw = noise.whiten(resid, sd, starts)
-    return ls_solve(xw, rw), xw
+    return ls_solve(xw, rw, step=_STEP), xw
 
 
 def _smooth_fit(resid, mean, starts, design, given_sigma):
     """Basis coefficients and the noise model estimated with the basis in the mean."""
-    coef = ls_solve(design, resid)
+    coef = ls_solve(design, resid, step=_STEP)
     nz = estimate_noise(resid - design @ coef, mean, starts, given_sigma=given_sigma)
     for _ in range(2):
         coef, _ = _gls_basis(resid, mean, nz, starts, design)

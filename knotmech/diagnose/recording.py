@@ -13,6 +13,20 @@ single-trial file, ``speed_m_per_s: <value>``.
 
 Every validation failure raises :class:`knotmech.errors.RecordingError` with a
 one-line message ``<file>, line <n>: <problem>``.
+
+Reading (beyond the contract, which says UTF-8): a UTF-8 byte-order mark (Excel's
+"CSV UTF-8") is accepted; a file that is not UTF-8 is refused naming the line and
+byte; numbers are ASCII only (``[+-]digits[.digits][e[+-]digits]``: no fullwidth or
+Arabic-Indic digits, no ``1_0``, no Unicode minus), a metadata key may be given once.
+
+Physical bounds checked at read time (the engine's numbers stay finite inside them):
+:data:`METADATA_BOUNDS` for metadata keys, :data:`COLUMN_MAX` for the columns (by the
+unit their name ends in), and no nonzero value below ``1e-30`` in magnitude.
+Degenerate data are refused too: a control variable with fewer than three distinct
+values (or a range below ``1e-9`` of its size), a measured column that is constant
+(all zero included), a force or tension negative in more than 3/4 of the rows
+and on average (mean below -3 standard errors), fewer than
+:data:`MIN_ROWS` distinct rows.
 """
 
 from __future__ import annotations
@@ -20,6 +34,7 @@ from __future__ import annotations
 import csv
 import io
 import math
+import re
 from dataclasses import dataclass, field
 from pathlib import Path
 
@@ -41,6 +56,42 @@ EXPERIMENTS: dict[str, tuple[str, str, tuple[str, ...]]] = {
 
 #: optional columns accepted after the two required ones
 OPTIONAL_COLUMNS = ("sigma", "trial", "speed_m_per_s")
+
+#: physical bounds (SI, inclusive) of metadata keys, checked whenever the key is present;
+#: wide enough for any bench (a 0.1 um fibre to a 10 m cable, a gel to diamond, a pN to
+#: a GN), narrow enough that exp(mu theta), E d D and the prior stay finite
+METADATA_BOUNDS: dict[str, tuple[float, float]] = {
+    "rod_diameter_m": (1e-7, 10.0),
+    "post_diameter_m": (1e-7, 100.0),
+    "pinch_diameter_m": (1e-7, 100.0),
+    "rod_radius_m": (5e-8, 5.0),
+    "rod_length_m": (1e-6, 1e4),
+    "youngs_modulus_Pa": (1e2, 1e13),
+    "T_low_N": (1e-12, 1e9),
+    "T_high_N": (1e-12, 1e9),
+    "load_N": (1e-12, 1e9),
+    # 0.06 degree to 16 turns: T_low exp(mu theta) stays finite for every mu the fits allow
+    "wrap_angle_rad": (1e-3, 100.0),
+    # the fits bound mu to [0, 5]
+    "mu_nominal": (0.0, 5.0),
+    # a friction coefficient is never known to better than 1e-4
+    "mu_nominal_sigma": (1e-4, 5.0),
+    "speed_m_per_s": (1e-12, 1e3),
+    "pull_speed_m_per_s": (1e-12, 1e3),
+    "density_kg_m3": (1e-3, 1e5),
+    "poisson_ratio": (-1.0, 0.5),
+}
+
+#: largest magnitude of a column's values, by the unit its name ends in (``sigma``
+#: takes the bound of the measured column); 10 km, 1 GN, 16 turns, 1 km/s
+COLUMN_MAX: dict[str, float] = {"_m_per_s": 1e3, "_m": 1e4, "_N": 1e9, "_rad": 100.0}
+
+#: nonzero values smaller than this in magnitude are not measurements (write 0)
+TINY = 1e-30
+
+#: a plain ASCII number: sign, digits, optional fraction, optional exponent
+_NUMBER = re.compile(r"[+-]?(?:[0-9]+\.?[0-9]*|\.[0-9]+)(?:[eE][+-]?[0-9]+)?")
+_NONFINITE = re.compile(r"[+-]?(?:nan|inf|infinity)", re.IGNORECASE)
 
 #: metadata keys that must be > 0 when present (sizes, moduli, loads)
 _POSITIVE_KEYS = (
@@ -120,12 +171,49 @@ def _err(source: str, line: int | None, msg: str) -> RecordingError:
     return RecordingError(f"{where}: {msg}")
 
 
+def _number(text: str) -> float | None:
+    """``text`` as a float when it is a plain ASCII number (or nan/inf), else None.
+
+    Python's ``float`` also reads fullwidth and Arabic-Indic digits and ``1_0``; a
+    recording must not.
+    """
+    t = text.strip()
+    if _NUMBER.fullmatch(t) or _NONFINITE.fullmatch(t):
+        return float(t)
+    return None
+
+
+def _not_ascii(text: str) -> str:
+    """`` (character U+XXXX is not ASCII ...)`` for the first non-ASCII character, or ''."""
+    for c in text:
+        if ord(c) > 127:
+            return (
+                f" (character U+{ord(c):04X} is not ASCII: write numbers with ASCII digits, "
+                "'.', 'e' and '-')"
+            )
+    return ""
+
+
 def _parse_value(text: str):
+    v = _number(text)
+    return text if v is None else v
+
+
+def _decode(data: bytes, source: str) -> str:
+    """UTF-8 text of a file (a leading byte-order mark dropped); bad bytes named by line."""
     try:
-        v = float(text)
-    except ValueError:
-        return text
-    return v
+        return data.decode("utf-8-sig")
+    except UnicodeDecodeError as exc:
+        bom = 3 if data.startswith(b"\xef\xbb\xbf") else 0
+        start = exc.start
+        line = data.count(b"\n", 0, start) + 1
+        col = start - (data.rfind(b"\n", 0, start) + 1) + 1 - (bom if line == 1 else 0)
+        raise _err(
+            source,
+            line,
+            f"byte {col} (0x{data[start]:02x}) is not UTF-8; save the file as UTF-8 "
+            "(Excel: 'CSV UTF-8')",
+        ) from None
 
 
 def read_recording(path) -> Recording:
@@ -148,17 +236,23 @@ def read_recording(path) -> Recording:
     path = Path(path)
     source = path.name
     try:
-        text = path.read_text(encoding="utf-8")
+        data = path.read_bytes()
     except FileNotFoundError:
         raise _err(str(path), None, "file not found") from None
-    except (OSError, UnicodeDecodeError) as exc:
-        raise _err(str(path), None, f"cannot read the file ({exc.__class__.__name__})") from None
-    return parse_recording(text, source=source)
+    except OSError as exc:
+        why = exc.strerror or exc.__class__.__name__
+        raise _err(str(path), None, f"cannot read the file ({why})") from None
+    return parse_recording(_decode(data, source), source=source)
 
 
 def parse_recording(text: str, *, source: str = "<string>") -> Recording:
     """Parse the text of a recording (see :func:`read_recording`)."""
-    lines = text.splitlines()
+    # split on line ends only (str.splitlines also splits on form feeds, U+2028...,
+    # and the line numbers of the messages would drift)
+    lines = text.removeprefix("\ufeff").replace("\r\n", "\n").replace("\r", "\n").split("\n")
+    if "\x00" in text:
+        j = text.index("\x00")
+        raise _err(source, text.count("\n", 0, j) + 1, "NUL byte: this is not a text file")
     metadata: dict = {}
     meta_lines: dict = {}
     i = 0
@@ -173,6 +267,14 @@ def parse_recording(text: str, *, source: str = "<string>") -> Recording:
                     )
                 key, value = body.split(":", 1)
                 key, value = key.strip(), value.strip()
+                if not key:
+                    raise _err(source, i + 1, f"empty metadata key in {raw!r}")
+                if key in metadata:
+                    raise _err(
+                        source,
+                        i + 1,
+                        f"metadata key {key!r} given twice (lines {meta_lines[key]} and {i + 1})",
+                    )
                 metadata[key] = _parse_value(value)
                 meta_lines[key] = i + 1
         i += 1
@@ -197,15 +299,29 @@ def parse_recording(text: str, *, source: str = "<string>") -> Recording:
                 source, i + 1, f"missing metadata '# {key}: ...' for a {experiment} recording"
             )
     for key, value in metadata.items():
-        if key in _POSITIVE_KEYS or key == "mu_nominal" or key.startswith("speed_m_per_s"):
+        if (
+            key in _POSITIVE_KEYS
+            or key in METADATA_BOUNDS
+            or key == "mu_nominal"
+            or key.startswith("speed_m_per_s")
+        ):
             if not isinstance(value, float) or not math.isfinite(value):
                 raise _err(
-                    source, meta_lines[key], f"metadata {key} must be a number, got {value!r}"
+                    source,
+                    meta_lines[key],
+                    f"metadata {key} must be a number, got {value!r}{_not_ascii(str(value))}",
                 )
             if key == "mu_nominal" and value < 0:
                 raise _err(source, meta_lines[key], f"mu_nominal must be >= 0, got {value:g}")
-            if key != "mu_nominal" and value <= 0:
+            if key in _POSITIVE_KEYS and value <= 0:
                 raise _err(source, meta_lines[key], f"metadata {key} must be > 0, got {value:g}")
+            _check_bounds(key, value, source, meta_lines[key])
+    if metadata.get("mu_nominal") == 0.0 and "mu_nominal_sigma" not in metadata:
+        raise _err(
+            source,
+            meta_lines["mu_nominal"],
+            "mu_nominal: 0 needs a mu_nominal_sigma (the default, 5 % of mu_nominal, is 0)",
+        )
     if i >= len(lines):
         raise _err(source, i, "no CSV header after the metadata")
     header_line = i + 1
@@ -214,6 +330,8 @@ def parse_recording(text: str, *, source: str = "<string>") -> Recording:
         header = [h.strip() for h in next(reader)]
     except StopIteration:
         raise _err(source, header_line, "no CSV header after the metadata") from None
+    except csv.Error as exc:
+        raise _err(source, header_line, _csv_problem(exc)) from None
     if header[:2] != [xcol, ycol]:
         raise _err(
             source,
@@ -235,8 +353,14 @@ def parse_recording(text: str, *, source: str = "<string>") -> Recording:
         raise _err(source, header_line, "repeated column name in the header")
     rows = []
     row_lines = []
-    for k, row in enumerate(reader):
-        lineno = header_line + 1 + k
+    while True:
+        try:
+            row = next(reader)
+        except StopIteration:
+            break
+        except csv.Error as exc:
+            raise _err(source, header_line + reader.line_num - 1, _csv_problem(exc)) from None
+        lineno = header_line + reader.line_num - 1
         if not row or all(not c.strip() for c in row):
             continue
         if len(row) != len(header):
@@ -253,12 +377,14 @@ def parse_recording(text: str, *, source: str = "<string>") -> Recording:
                     )
                 vals.append(words[cell.strip().lower()])
                 continue
-            try:
-                v = float(cell)
-            except ValueError:
+            v = _number(cell)
+            if v is None:
+                shown = cell.strip() if len(cell) <= 40 else cell.strip()[:37] + "..."
                 raise _err(
-                    source, lineno, f"non-numeric cell {cell.strip()!r} in column {name}"
-                ) from None
+                    source,
+                    lineno,
+                    f"non-numeric cell {shown!r} in column {name}{_not_ascii(cell)}",
+                )
             if not math.isfinite(v):
                 raise _err(source, lineno, f"NaN or infinite value in column {name}")
             vals.append(v)
@@ -278,6 +404,9 @@ def parse_recording(text: str, *, source: str = "<string>") -> Recording:
         j = int(np.argmax(sigma <= 0))
         raise _err(source, int(lines_arr[j]), f"sigma must be > 0, got {sigma[j]:g}")
     trial = cols.get("trial")
+    if trial is not None and np.any(np.abs(trial) > 1e9):
+        j = int(np.argmax(np.abs(trial) > 1e9))
+        raise _err(source, int(lines_arr[j]), f"trial id {trial[j]:g} is beyond |id| <= 1e9")
     if trial is not None:
         if np.any(trial != np.round(trial)):
             j = int(np.argmax(trial != np.round(trial)))
@@ -295,6 +424,9 @@ def parse_recording(text: str, *, source: str = "<string>") -> Recording:
     if kind.control_nonnegative and np.any(x < 0):
         j = int(np.argmax(x < 0))
         raise _err(source, int(lines_arr[j]), f"{xcol} must be >= 0, got {x[j]:g}")
+    _check_columns(
+        cols, header, xcol, ycol, trial, source, lines_arr, header_line, kind.min_rows
+    )
     rec = Recording(
         experiment=experiment,
         x=x,
@@ -313,6 +445,114 @@ def parse_recording(text: str, *, source: str = "<string>") -> Recording:
     return rec
 
 
+def _csv_problem(exc: csv.Error) -> str:
+    text = str(exc)
+    m = re.search(r"field larger than field limit \((\d+)\)", text)
+    if m:
+        return f"a cell longer than {m.group(1)} characters (the CSV field limit)"
+    return f"not readable as CSV ({text})"
+
+
+def _check_bounds(key, value, source, line):
+    """Refuse a metadata value outside :data:`METADATA_BOUNDS` (one line, with the bounds)."""
+    bounds = METADATA_BOUNDS.get(key)
+    if bounds is None and key.startswith("speed_m_per_s"):
+        bounds = METADATA_BOUNDS["speed_m_per_s"]
+    if bounds is None:
+        return
+    lo, hi = bounds
+    if not lo <= value <= hi:
+        raise _err(
+            source,
+            line,
+            f"metadata {key} = {value:g} is outside its physical range [{lo:g}, {hi:g}]",
+        )
+
+
+def _unit_max(name: str) -> float | None:
+    for suffix, vmax in COLUMN_MAX.items():
+        if name.endswith(suffix):
+            return vmax
+    return None
+
+
+def _check_columns(
+    cols, header, xcol, ycol, trial, source, lines_arr, header_line, min_rows=MIN_ROWS
+):
+    """Magnitude bounds of every column, then degenerate data (see the module docstring)."""
+    for name in header:
+        v = cols[name]
+        vmax = _unit_max(ycol if name == "sigma" else name)
+        if name == "trial":
+            vmax = 1e9
+        if vmax is not None and np.any(np.abs(v) > vmax):
+            j = int(np.argmax(np.abs(v) > vmax))
+            raise _err(
+                source,
+                int(lines_arr[j]),
+                f"{name} = {v[j]:g} is beyond the physical range (|value| <= {vmax:g})",
+            )
+        tiny = (v != 0) & (np.abs(v) < TINY)
+        if np.any(tiny):
+            j = int(np.argmax(tiny))
+            raise _err(
+                source,
+                int(lines_arr[j]),
+                f"{name} = {v[j]:g} is not a measurement (nonzero below {TINY:g}); write 0",
+            )
+    x, y, n = cols[xcol], cols[ycol], cols[xcol].size
+    distinct = np.unique(x)
+    if distinct.size == 1:
+        raise _err(
+            source,
+            header_line,
+            f"all {n} rows have {xcol} = {x[0]:g}: the control variable must vary",
+        )
+    size = float(np.max(np.abs(x)))
+    if float(np.ptp(x)) <= 1e-9 * size:
+        raise _err(
+            source,
+            header_line,
+            f"{xcol} varies by only {float(np.ptp(x)):g} over values of {size:g} "
+            "(below 1e-9 of its size): the control variable must vary",
+        )
+    if distinct.size < 3:
+        raise _err(
+            source,
+            header_line,
+            f"only {distinct.size} distinct values of {xcol}; a diagnosis needs at least 3",
+        )
+    if np.all(y == 0):
+        raise _err(source, header_line, f"every {ycol} value is 0: nothing was measured")
+    if np.all(y == y[0]):
+        raise _err(
+            source,
+            header_line,
+            f"all {n} values of {ycol} are {y[0]:g}: a constant reading (a stuck or "
+            "saturated sensor?) cannot be diagnosed",
+        )
+    if ycol.endswith("_N"):
+        # mostly negative and clearly so on average: noise about zero (a frictionless
+        # control) passes, a reversed sign convention does not
+        neg = int(np.sum(y < 0))
+        t_mean = float(np.mean(y)) / (float(np.std(y)) / np.sqrt(n))
+        if neg > 0.75 * n and t_mean < -3.0:
+            raise _err(
+                source,
+                header_line,
+                f"{ycol} is negative in {neg} of {n} rows: a measured tension or friction "
+                "force is >= 0 (is the sign convention reversed?)",
+            )
+    rows = np.unique(np.column_stack([x, y, trial]), axis=0).shape[0]
+    if rows < min_rows:
+        raise _err(
+            source,
+            header_line,
+            f"only {rows} distinct rows among {n} (rows repeated); a recording needs at "
+            f"least {min_rows}",
+        )
+
+
 def _speed_from_metadata(metadata, trial, source, meta_lines):
     per_trial = {k: v for k, v in metadata.items() if k.startswith("speed_m_per_s_trial_")}
     if per_trial:
@@ -320,6 +560,8 @@ def _speed_from_metadata(metadata, trial, source, meta_lines):
         for key, v in per_trial.items():
             tail = key[len("speed_m_per_s_trial_") :]
             try:
+                if not re.fullmatch(r"[0-9]+", tail):
+                    raise ValueError(tail)
                 speeds[int(tail)] = float(v)
             except ValueError:
                 raise _err(

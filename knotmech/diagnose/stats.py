@@ -26,7 +26,10 @@ from dataclasses import dataclass
 import numpy as np
 from scipy import signal, stats
 
+from knotmech.errors import DiagnoseError
+
 __all__ = [
+    "require_finite",
     "NoiseModel",
     "estimate_noise",
     "trial_starts",
@@ -280,16 +283,48 @@ def hat_basis(x: np.ndarray, n_knots: int) -> np.ndarray:
     return np.clip(1.0 - np.abs(x[:, None] - knots[None, :]) / h, 0.0, None)
 
 
-def ls_solve(design: np.ndarray, target: np.ndarray) -> np.ndarray:
+def require_finite(step: str, *arrays) -> None:
+    """Raise :class:`~knotmech.errors.DiagnoseError` unless every array is finite.
+
+    Called before every factorisation (``pinv``, ``lstsq``, ``least_squares``): LAPACK
+    on NaN or infinity returns garbage, raises ``LinAlgError`` or, in some OpenBLAS
+    builds, never returns (``pinv`` of a matrix holding one ``inf``).
+
+    Parameters
+    ----------
+    step : str
+        What the engine was doing, for the message (``"locating the mismatch"``).
+    *arrays : array_like
+        The matrices and vectors about to be factorised or solved with.
+    """
+    for a in arrays:
+        if not np.all(np.isfinite(a)):
+            raise DiagnoseError(
+                f"{step}: the numbers overflow (NaN or infinity in the system to solve); "
+                "the recording's values or metadata are too extreme for this diagnosis"
+            )
+
+
+def ls_solve(design: np.ndarray, target: np.ndarray, *, step: str = "least squares") -> np.ndarray:
     """Least-squares coefficients of a tall, narrow system via scaled normal equations.
 
     LAPACK's tall least-squares drivers are slow in some OpenBLAS builds; a
     column-scaled normal-equation solve with a pseudo-inverse of the small Gram
     matrix is accurate enough for the well-conditioned bases used here.
+
+    Raises
+    ------
+    DiagnoseError
+        NaN or infinity in ``design``, ``target`` or the Gram matrix (``step`` names
+        the caller's step in the message).
     """
-    norms = np.sqrt(np.sum(design * design, axis=0))
+    require_finite(step, design, target)
+    with np.errstate(over="ignore", invalid="ignore"):
+        norms = np.sqrt(np.sum(design * design, axis=0))
+    require_finite(step, norms)
     norms = np.where(norms > 0, norms, 1.0)
     xs = design / norms
     gram = xs.T @ xs
+    require_finite(step, gram)
     coef = np.linalg.pinv(gram, rcond=1e-12, hermitian=True) @ (xs.T @ target)
     return coef / norms

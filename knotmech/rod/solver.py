@@ -525,21 +525,28 @@ class Stepper:
         opt = self.opt
         for c, dofs in zip(self.constraints, self._cdof_list, strict=True):
             q[dofs] = c.values(self.system, t_new, dt, st.q)
-        scales = self.evaluate(q, st, dt, t_new)
-        # the last factors of the previous step start this one if their last iteration
-        # still cut the residual by jacobian_reuse_steps (and dt is the same)
-        cross = (
-            self._factors_valid
-            and self._factors_dt == dt
-            and self._last_ratio <= opt.jacobian_reuse_steps
-        )
-        if not cross:
-            self._factors_valid = False
         try:
+            scales = self.evaluate(q, st, dt, t_new)
+            # the last factors of the previous step start this one if their last iteration
+            # still cut the residual by jacobian_reuse_steps (and dt is the same)
+            cross = (
+                self._factors_valid
+                and self._factors_dt == dt
+                and self._last_ratio <= opt.jacobian_reuse_steps
+            )
+            if not cross:
+                self._factors_valid = False
             return self._iterate(q, st, dt, t_new, scales, cross)
         except _StepFailed:
             self._factors_valid = False
             raise
+        except ArithmeticError as exc:
+            # an iterate the energy is not defined at (a kernel's division by zero on a
+            # collapsed edge or a folded-back stencil, an overflow, numpy errors raised
+            # under np.errstate): the attempt failed like a non-finite residual, and the
+            # step is retried with dt/2
+            self._factors_valid = False
+            raise _StepFailed(f"evaluation failed ({type(exc).__name__}: {exc})") from None
 
     def _iterate(self, q, st, dt, t_new, scales, cross):
         opt = self.opt

@@ -1,10 +1,35 @@
-"""Helpers shared by the simulated experiments (scenes): section parameters, tensions."""
+"""Helpers shared by the simulated experiments (scenes): section parameters, tensions, and
+the checks every scene makes of its own set-up (up front) and of its result (after the run).
+
+A scene refuses (InputError) a set-up its rod model cannot represent, warns (the result's
+``warnings``) when a number is outside where the model was meant to be used, and reports
+``status = "failed"`` with the reason when its own result contradicts what it simulates.
+
+Bounds (one place, used by every scene):
+
+- strain T/EA: the rod's tension law is Hookean, EA (|e|/|e_bar| - 1), with a cross-section
+  (contact diameter, EI) that does not thin as it stretches: a warning above
+  :data:`STRAIN_WARN` = 10 %, refused above :data:`STRAIN_MAX` = 50 %;
+- the pulled end moves at most one edge per step (default steps: a quarter of an edge);
+- quasi-static loading: the axial wave crosses the rod (L/c, c = sqrt(EA/(rho A))) in a
+  tenth of the shortest loading time (ramp or pull) or less, else a warning; slower than
+  that loading time itself, refused (the measured force is the rod's inertia).
+"""
 
 from __future__ import annotations
 
 import numpy as np
 
-from knotmech.errors import check_positive
+from knotmech.errors import InputError, check_positive
+
+#: strain T/EA above which a scene warns that its rod model (Hookean stretching, a fixed
+#: cross-section) is used outside its range
+STRAIN_WARN = 0.10
+#: strain T/EA above which a scene refuses the set-up (or fails a run that reached it)
+STRAIN_MAX = 0.50
+#: the wave-crossing time L/c may be this fraction of the shortest loading time before a
+#: scene warns that the loading is not quasi-static
+QUASI_STATIC = 0.1
 
 
 def equivalent_section(*, diameter, youngs_modulus, density, bending_stiffness=None):
@@ -29,6 +54,14 @@ def equivalent_section(*, diameter, youngs_modulus, density, bending_stiffness=N
     b = float(check_positive("bending_stiffness", bending_stiffness))
     area = np.pi * d**2 / 4
     ea = e * area
+    # a section of area A inside the diameter d has a radius of gyration of at most d/(2
+    # sqrt(2)) (a thin-walled tube): EI <= EA d^2/8, twice the solid value
+    if b > ea * d * d / 8:
+        raise InputError(
+            f"bending_stiffness must be <= EA d^2/8 = {ea * d * d / 8:.3g} N m^2 (a thin-walled "
+            f"tube of diameter d, twice the solid rod's pi E d^4/64; a rope is below the solid "
+            f"value), got {b:g}"
+        )
     r2 = 2.0 * np.sqrt(b / ea)
     return r2, ea / (np.pi * r2**2), rho * area / (np.pi * r2**2)
 
@@ -39,3 +72,103 @@ def edge_tension(system, positions) -> np.ndarray:
     en = system.edge_nodes
     e = pos[..., en[:, 1], :] - pos[..., en[:, 0], :]
     return system.ea * (np.linalg.norm(e, axis=-1) / system.rest_length - 1.0)
+
+
+def check_strain(tension, ea, *, what="the largest tension") -> list[str]:
+    """Up-front strain check of a scene's expected tension [N] on a rod of axial stiffness
+    ``ea`` [N]: InputError above :data:`STRAIN_MAX`, a warning (returned in a list) above
+    :data:`STRAIN_WARN`, else an empty list."""
+    strain = float(tension) / float(ea)
+    if strain > STRAIN_MAX:
+        raise InputError(
+            f"{what} ({float(tension):.3g} N) would stretch the rod by T/EA = {strain:.3g} "
+            f"(EA = {float(ea):.3g} N), beyond the {STRAIN_MAX:.0%} its model covers (Hookean "
+            "stretching, a cross-section that does not thin); lower the loads or use a "
+            "stiffer rod (youngs_modulus, rod_diameter)"
+        )
+    if strain > STRAIN_WARN:
+        return [
+            f"strain: {what} stretches the rod by T/EA = {strain:.1%}, above the "
+            f"{STRAIN_WARN:.0%} the rod model is meant for (Hookean stretching, fixed "
+            "cross-section): the numbers are the model's, not a real rod's"
+        ]
+    return []
+
+
+def measured_strain(tension, ea, *, warned: bool) -> tuple[str | None, list[str]]:
+    """After a run: the largest |T|/EA of the recorded ``tension`` [N] (any shape).
+
+    Returns (reason to fail or None, warnings): fails above :data:`STRAIN_MAX`, warns above
+    :data:`STRAIN_WARN` unless the set-up was already ``warned`` about."""
+    t = np.asarray(tension, dtype=float)
+    t = t[np.isfinite(t)]
+    if t.size == 0:
+        return None, []
+    strain = float(np.max(np.abs(t))) / float(np.min(np.atleast_1d(ea)))
+    if strain > STRAIN_MAX:
+        return (
+            f"the rod reached a strain T/EA = {strain:.3g}, beyond the {STRAIN_MAX:.0%} its "
+            "model covers; no result"
+        ), []
+    if strain > STRAIN_WARN and not warned:
+        return None, [
+            f"strain: the rod reached T/EA = {strain:.1%}, above the {STRAIN_WARN:.0%} the "
+            "rod model is meant for: the numbers are the model's, not a real rod's"
+        ]
+    return None, []
+
+
+def check_pull_step(dt, *, speed, edge_length, name="dt") -> None:
+    """InputError unless the pulled end moves at most one edge per step (speed * dt <=
+    edge_length): a coarser step does not resolve the pull (the friction anchors, the
+    contacts and the recorded force curve all live on the edge scale)."""
+    move = float(speed) * float(dt)
+    if move > float(edge_length):
+        raise InputError(
+            f"{name} = {float(dt):.3g} s moves the pulled end {move:.3g} m per step, more "
+            f"than an edge ({float(edge_length):.3g} m): the pull is not resolved; use "
+            f"{name} <= {float(edge_length) / float(speed):.3g} s (default: a quarter of that)"
+        )
+
+
+def check_quasi_static(*, length, ea, mass_per_length, times, speed=None) -> list[str]:
+    """Up-front check that the loading is slow for the rod: an axial wave crosses it in
+    L/c, c = sqrt(EA/(rho A)) [m/s]; ``times`` maps a loading time's name to its value [s]
+    (a ramp, the pull duration; zeros are skipped). InputError when L/c exceeds the
+    shortest of them (or the pull ``speed`` exceeds c): the force the scene measures would
+    be the rod's inertia; a warning when L/c exceeds :data:`QUASI_STATIC` of it."""
+    c = float(np.sqrt(float(ea) / float(mass_per_length)))
+    cross = float(length) / c
+    if speed is not None and float(speed) >= c:
+        raise InputError(
+            f"pull_speed = {float(speed):.3g} m/s is not below the rod's axial wave speed "
+            f"c = sqrt(EA/(rho A)) = {c:.3g} m/s: the pull is an impact, not a quasi-static "
+            "test"
+        )
+    named = {k: float(v) for k, v in times.items() if float(v) > 0}
+    if not named:
+        return []
+    key = min(named, key=named.get)
+    tau = named[key]
+    if cross > tau:
+        raise InputError(
+            f"an axial wave takes L/c = {cross:.3g} s to cross the rod (c = sqrt(EA/(rho A)) "
+            f"= {c:.3g} m/s), longer than the {key} ({tau:.3g} s): the measured force would "
+            "be the rod's inertia; slow the loading (ramp_time, pull_speed) or lower the density"
+        )
+    if cross > QUASI_STATIC * tau:
+        return [
+            f"inertia: an axial wave takes L/c = {cross:.3g} s to cross the rod, "
+            f"{cross / tau:.0%} of the {key} ({tau:.3g} s; quasi-static needs "
+            f"<= {QUASI_STATIC:.0%}): the forces include the rod's inertia"
+        ]
+    return []
+
+
+def fail(status: str, message: str, reason: str | None) -> tuple[str, str]:
+    """(status, message) of a scene: a successful run whose result contradicts what the
+    scene simulates becomes "failed" with ``reason``; a run the solver failed keeps its
+    message."""
+    if reason and status == "success":
+        return "failed", reason
+    return status, message

@@ -32,6 +32,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
+from knotmech.analytic.capstan import capstan_ratio_bending
 from knotmech.analytic.capstan import mu_eff as _mu_eff
 from knotmech.errors import InputError, check_nonnegative, check_positive
 from knotmech.rod.constraints import Clamp, MovingNodes
@@ -40,7 +41,14 @@ from knotmech.rod.friction import AnchorFriction
 from knotmech.rod.loads import NodeForce, ViscousDamping
 from knotmech.rod.solver import SolverOptions, simulate
 from knotmech.rod.system import Rod, RodSystem
-from knotmech.scenes._common import equivalent_section
+from knotmech.scenes._common import (
+    check_pull_step,
+    check_quasi_static,
+    check_strain,
+    equivalent_section,
+    fail,
+    measured_strain,
+)
 
 __all__ = ["CapstanResult", "capstan", "capstan_two_loops"]
 
@@ -66,8 +74,16 @@ class CapstanResult:
     contact_angle : float [rad]  angle swept by the contact nodes around the post
     exp_mu_theta, exp_mu_eff_theta : float  the ideal and thick-rod capstan ratios
     mu_eff : float
-    status, message : str ; stats : dict (from the solver)
+    status, message : str  from the solver; "failed" also when the result contradicts a
+        capstan (a pull ratio below 1 or above 1.1 exp(mu theta), the rod off the post, a
+        strain above 50 %), with the reason
+    stats : dict  from the solver
     positions : (n_frames, n_nodes, 3) [m]  trajectory (saved frames)
+    bending_group : float  EI/(T_low R^2), the capstan law's small parameter
+    ratio_bending : float  :func:`knotmech.analytic.capstan_ratio_bending` with mu_eff (the
+        kinetic coefficient in pull mode) for these end loads; nan outside its validity
+    warnings : list of str  one line each: where the run leaves the range of the closed form
+        or of the rod model (bending lift-off, strain above 10 %, inertia)
     """
 
     mode: str
@@ -92,15 +108,96 @@ class CapstanResult:
     message: str
     stats: dict
     positions: np.ndarray = field(repr=False, default=None)
+    bending_group: float = float("nan")
+    ratio_bending: float = float("nan")
+    warnings: list = field(default_factory=list)
 
     def summary(self) -> dict:
         """Scalars as a JSON-ready dict."""
         keys = ("mode", "wrap_angle", "mu", "rod_diameter", "post_diameter", "t_low", "ratio",
                 "creep", "contact_angle", "mu_eff", "exp_mu_theta", "exp_mu_eff_theta",
-                "status", "message")  # fmt: skip
+                "bending_group", "ratio_bending", "status", "message")  # fmt: skip
         out = {k: getattr(self, k) for k in keys}
+        out["warnings"] = list(self.warnings)
         out["stats"] = dict(self.stats)
         return {k: (float(v) if isinstance(v, (np.floating, float)) else v) for k, v in out.items()}
+
+
+#: a pull ratio above this factor times exp(mu theta) is not friction (end layers of a thick
+#: rod add at most +5.5 % to exp(mu_eff theta) < exp(mu theta), see the module docstring)
+_FRICTION_BOUND = 1.1
+#: a pull ratio below this is not a capstan pull (friction only resists the pull; 2 % slack
+#: for the drag and the plateau average)
+_RATIO_FLOOR = 0.98
+#: the bending note appears when capstan_ratio_bending differs from exp(mu_eff theta) by more
+_BENDING_NOTE = 0.02
+
+
+def _ratio_reason(ratio: float, exp_mu_theta: float) -> str | None:
+    """Why a pull's sliding ratio cannot be a capstan ratio, or None: below
+    :data:`_RATIO_FLOOR` (friction only resists a pull) or above :data:`_FRICTION_BOUND`
+    exp(mu theta) (more than friction can carry)."""
+    if not np.isfinite(ratio):
+        return None
+    if ratio < _RATIO_FLOOR:
+        return (
+            f"T_high/T_low = {ratio:.4g} < 1: impossible for a pull (friction only resists "
+            "it); the run did not resolve the sliding (step, loads); no ratio"
+        )
+    if ratio > _FRICTION_BOUND * exp_mu_theta:
+        return (
+            f"T_high/T_low = {ratio:.4g} exceeds friction's bound exp(mu theta) = "
+            f"{exp_mu_theta:.4g}: the pull force is not friction (bending the rod round the "
+            "post, or inertia, carries it); no capstan ratio"
+        )
+    return None
+
+
+def _bending_check(*, mu, theta, bending_stiffness, t_low, radius):
+    """(EI/(T_low R^2), capstan_ratio_bending or nan, reason it does not apply or None) for
+    a rod sliding with coefficient ``mu`` (mu_eff for a thick rod); T_high is the ratio
+    itself times T_low (a fixed point: the ratio depends on T_high only through the
+    high-end lift-off)."""
+    eps2 = bending_stiffness / (t_low * radius**2)
+    ratio = float(np.exp(mu * theta))
+    try:
+        for _ in range(30):
+            new = float(
+                capstan_ratio_bending(
+                    mu,
+                    theta,
+                    bending_stiffness=bending_stiffness,
+                    low_tension=t_low,
+                    high_tension=ratio * t_low,
+                    radius=radius,
+                )
+            )
+            if abs(new - ratio) <= 1e-12 * ratio:
+                break
+            ratio = new
+    except InputError as exc:
+        return eps2, float("nan"), str(exc)
+    return eps2, ratio, None
+
+
+def _bending_note(
+    *, eps2, ratio_bending, why, closed_form, contact_angle, theta, measured, mu_name="mu_eff"
+):
+    """One line when the capstan law's assumption EI/(T_low R^2) << 1 fails, else None."""
+    if why is None and abs(ratio_bending / closed_form - 1.0) <= _BENDING_NOTE:
+        return None
+    head = (
+        f"bending: EI/(T_low R^2) = {eps2:.3g} is not << 1, so the rod lifts off the post "
+        f"(contact {contact_angle:.2f} of {theta:.2f} rad) and exp({mu_name} theta) = "
+        f"{closed_form:.4g} does not apply"
+    )
+    got = f" (measured {measured:.4g})" if np.isfinite(measured) else ""
+    if why is not None:
+        return f"{head}; knotmech.analytic.capstan_ratio_bending does not either: {why}"
+    return (
+        f"{head}; the model that applies is knotmech.analytic.capstan_ratio_bending "
+        f"(with {mu_name}) = {ratio_bending:.4g}{got}"
+    )
 
 
 def _centreline(wrap_angle, radius, rise, lead_high, lead_low, h):
@@ -200,6 +297,8 @@ def capstan(
         diameter=d, youngs_modulus=E, density=density, bending_stiffness=bending_stiffness
     )
     ea = E * np.pi * d**2 / 4
+    what = "the expected T_high = T_low exp(mu theta)" if mode == "pull" else "the largest load"
+    warnings = check_strain(t_max, ea, what=what)
     R = 0.5 * (D + d)
     rise = 0.0 if theta <= np.pi + 1e-9 else max(1.5 * d * theta / (2 * np.pi), 1.5 * d)
     lead = 2.0 * R if lead_length is None else float(check_positive("lead_length", lead_length))
@@ -265,6 +364,16 @@ def capstan(
         damping = 2.0 * mass_per_length / max(ramp, 1e-3)
         step = 5e-3 if dt is None else float(check_positive("dt", dt))
     loads.append(ViscousDamping(coefficient=damping))
+    if mode == "pull":
+        check_pull_step(step, speed=v, edge_length=h_mean)
+    warnings += check_quasi_static(
+        length=total_len,
+        ea=ea,
+        mass_per_length=mass_per_length,
+        times={"ramp_time": ramp, "pull": pull_distance / v} if mode == "pull" else
+              {"ramp_time": ramp, "hold_time": t_final - ramp},
+        speed=v if mode == "pull" else None,
+    )  # fmt: skip
     opts = options or SolverOptions(throw=False, save_every=max(step, (t_final) / 400.0))
     callback = None
     if mode == "hold":
@@ -303,16 +412,33 @@ def capstan(
     ang = np.unwrap(np.arctan2(last[in_contact, 1], last[in_contact, 0]))
     contact_angle = float(ang.max() - ang.min()) if ang.size > 1 else 0.0
     s_mid = np.cumsum(system.rest_length) - 0.5 * system.rest_length
-    status, message = res.status, res.message
-    if mode == "pull" and status == "success" and contact_angle < 0.5 * theta:
+    # the result checked against what a capstan is: a failure reason or warnings
+    reason, more = measured_strain(res.tension, ea, warned=bool(warnings))
+    warnings += more
+    if reason is None and mode == "pull" and contact_angle < 0.5 * theta:
         # the solver converged, but the rod is no longer wrapped: no capstan ratio to report
-        status = "failed"
-        message = (
+        reason = (
             f"the rod left the post: its contact spans {contact_angle:.2f} rad of the "
             f"{theta:.2f} rad wrap at the end (an unstable set-up, e.g. a thick rod wrapped "
             "more than once round a thin post); no sliding ratio"
         )
+    if reason is None and mode == "pull":
+        reason = _ratio_reason(ratio, exp_mu)
+    if reason is not None:
         ratio = float("nan")
+    status, message = fail(res.status, res.message, reason)
+    mu_slide = (mu if mu_kinetic is None else float(mu_kinetic)) if mode == "pull" else mu
+    mu_slide = float(_mu_eff(mu_slide, D / d)) if surface_friction else mu_slide
+    ei = float(rod.bending_stiffness)
+    eps2, ratio_b, why = _bending_check(
+        mu=mu_slide, theta=theta, bending_stiffness=ei, t_low=t_low, radius=R
+    )
+    note = _bending_note(eps2=eps2, ratio_bending=ratio_b, why=why,
+                         closed_form=float(np.exp(mu_slide * theta)),
+                         contact_angle=contact_angle, theta=theta, measured=ratio,
+                         mu_name="mu_eff" if surface_friction else "mu")  # fmt: skip
+    if note is not None:
+        warnings.append(note)
     return CapstanResult(
         mode=mode,
         wrap_angle=theta,
@@ -336,6 +462,9 @@ def capstan(
         message=message,
         stats=dict(res.stats),
         positions=pos,
+        bending_group=float(eps2),
+        ratio_bending=float(ratio_b),
+        warnings=warnings,
     )
 
 

@@ -45,6 +45,7 @@ from knotmech.errors import InputError, check_nonnegative, check_positive
 from knotmech.rod.constraints import Clamp, MovingNodes
 from knotmech.rod.contact import Cylinder, CylinderContact, RodContact
 from knotmech.rod.friction import AnchorFriction, SmoothFriction
+from knotmech.scenes._common import check_pull_step, check_strain, fail, measured_strain
 from knotmech.scenes.curves import _edge_distances, clove_hitch_curve
 from knotmech.scenes.topology import post_crossing_code, winding_number
 
@@ -165,6 +166,8 @@ class CloveHitchResult:
     pull_force : (m,) [N]  ``"pull"``: T_high, the force the moving clamp applies to end 0
         along the pull (its reaction), at each saved frame of the pull
     mu_kinetic : float  kinetic rod-post coefficient (= ``mu_rod_post`` unless given)
+    warnings : list of str  one line each (a strain above 10 %); ``status`` is "failed"
+        also when the strain exceeded 50 %
     """
 
     loading: str
@@ -197,6 +200,7 @@ class CloveHitchResult:
     pull_displacement: np.ndarray = field(default_factory=lambda: np.zeros(0))
     pull_force: np.ndarray = field(default_factory=lambda: np.zeros(0))
     mu_kinetic: float = float("nan")
+    warnings: list = field(default_factory=list)
 
     @property
     def ratio_curve(self) -> np.ndarray:
@@ -240,6 +244,7 @@ class CloveHitchResult:
             "creep": self.creep,
             "status": self.status,
             "message": self.message,
+            "warnings": list(self.warnings),
             "stats": {k: float(v) for k, v in self.stats.items()},
             "winding": [self.winding_start, self.winding_end],
             "code": [self.code_start, self.code_end],
@@ -411,6 +416,9 @@ def clove_hitch(
     for name, val in (("settle_time", settle_time), ("load_time", load_time)):
         check_positive(name, val)
     check_nonnegative("hold_time", hold_time)
+    ea = E * np.pi * d * d / 4
+    warnings = check_strain(max(th if loading != "pull" else 0.0, tl, pre), ea,
+                            what="the largest end load")  # fmt: skip
     R = 0.5 * (D + d)
     wraps = 4 * np.pi * R * 1.15
     tail = 0.5 * (L - wraps)
@@ -530,6 +538,7 @@ def clove_hitch(
             h = L / (N - 1)
             pstep = min(0.25 * h, 0.1 * d) / v if pull_dt is None else pull_dt
             pstep = float(check_positive("pull_dt", pstep))
+            check_pull_step(pstep, speed=v, edge_length=h, name="pull_dt")
             xs = system.positions(st.q)
             pull_dir = (xs[0] - xs[1]) / np.linalg.norm(xs[0] - xs[1])
             x_clamp = xs[0].copy()
@@ -596,6 +605,10 @@ def clove_hitch(
         th = float(pull_force[-1]) if pull_force.size else float("nan")
     le = system.rest_length
     s_mid = np.cumsum(le) - 0.5 * le
+    reason, more = measured_strain(np.concatenate([tension_last, pull_force]), ea,
+                                   warned=bool(warnings))  # fmt: skip
+    warnings += more
+    status, message = fail(status, message, reason)
     return CloveHitchResult(
         loading=loading,
         t_high=th,
@@ -627,4 +640,5 @@ def clove_hitch(
         pull_displacement=pull_disp,
         pull_force=pull_force,
         mu_kinetic=mk,
+        warnings=warnings,
     )

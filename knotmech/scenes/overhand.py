@@ -34,6 +34,7 @@ from knotmech import rod
 from knotmech.errors import InputError, check_nonnegative, check_positive
 from knotmech.rod.contact import RodContact
 from knotmech.rod.friction import SmoothFriction
+from knotmech.scenes._common import check_pull_step, fail, measured_strain
 from knotmech.scenes.curves import (
     OVERHAND_COATED_TABLE1,
     OVERHAND_IMC,
@@ -186,7 +187,9 @@ class OverhandResult:
     snapshot_times : (k,) [s]; snapshots : (k, n_nodes, 3) [m]
     knot_start, knot_end : str  knot names of the closed centreline (e.g. "3_1")
     alexander_start, alexander_end : tuple of int
-    status, message : str  solver outcome; stats : dict (steps, newton_iterations, wall_s)
+    status, message : str  solver outcome ("failed" also when the rod's strain exceeded
+        50 %); stats : dict (steps, newton_iterations, wall_s)
+    warnings : list of str  one line each (a strain above 10 %)
     """
 
     turns: int
@@ -207,6 +210,7 @@ class OverhandResult:
     status: str
     message: str
     stats: dict = field(default_factory=dict)
+    warnings: list = field(default_factory=list)
 
     @property
     def knot_preserved(self) -> bool:
@@ -232,6 +236,7 @@ class OverhandResult:
             "setup": asdict(self.setup),
             "status": self.status,
             "message": self.message,
+            "warnings": list(self.warnings),
             "stats": {k: float(v) for k, v in self.stats.items()},
             "knot_start": self.knot_start,
             "knot_end": self.knot_end,
@@ -317,6 +322,8 @@ def overhand(
     if int(n_frames) < 2 or int(n_snapshots) < 1:
         raise InputError("n_frames must be >= 2 and n_snapshots >= 1")
 
+    check_pull_step(setup.dt, speed=setup.pull_speed,
+                    edge_length=setup.rod_length / (int(setup.n_nodes) - 1))  # fmt: skip
     curve = _start_curve(setup, n)
     x0 = curve.nodes
     N = len(x0)
@@ -379,6 +386,10 @@ def overhand(
     e2e = np.linalg.norm(pos[:, -1] - pos[:, 0], axis=1)
     metrics = [loop_metrics(p, rod_radius=h) for p in pos]
     k_snap = np.unique(np.linspace(0, len(times) - 1, int(n_snapshots)).round().astype(int))
+    reason, warnings = measured_strain(
+        res.tension, setup.youngs_modulus * np.pi * h * h, warned=False
+    )
+    status, message = fail(res.status, res.message, reason)
     inv0 = knot_invariant(x0)
     try:
         inv1 = knot_invariant(pos[-1])
@@ -400,9 +411,10 @@ def overhand(
         knot_end=inv1.name if inv1 is not None else "?",
         alexander_start=inv0.alexander,
         alexander_end=inv1.alexander if inv1 is not None else (),
-        status=res.status,
-        message=res.message,
+        status=status,
+        message=message,
         stats=dict(res.stats),
+        warnings=warnings,
     )
 
 

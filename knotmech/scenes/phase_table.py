@@ -105,6 +105,7 @@ def simulate_point(
     youngs_modulus: float = YOUNGS_MODULUS,
     density: float = DENSITY,
     progress: bool = False,
+    keep_result: bool = False,
 ) -> dict:
     r"""One DER run of a clove hitch with a free end: does it hold :math:`T_\mathrm{high}`?
 
@@ -118,7 +119,8 @@ def simulate_point(
     dict
         ``d_over_2R, t_over_EA, t_high [N], post_diameter [m], verdict ("hold"/"slip"),
         holds (bool), creep [m], status, topology_preserved, wall_s``. A run whose solver
-        failed has ``holds = None``.
+        failed has ``holds = None``. With ``keep_result``, also ``result``: the scene's
+        :class:`~knotmech.scenes.clove_hitch.CloveHitchResult` (positions, tension).
     """
     d = float(check_positive("rod_diameter", rod_diameter))
     E = float(check_positive("youngs_modulus", youngs_modulus))
@@ -142,7 +144,7 @@ def simulate_point(
         **PROTOCOL,
     )
     ok = r.status == "success" or r.verdict == "slip"
-    return {
+    out = {
         "d_over_2R": float(d_over_2R),
         "t_over_EA": tea,
         "t_high": float(t_high),
@@ -157,6 +159,9 @@ def simulate_point(
         "topology_preserved": bool(r.topology_preserved),
         "wall_s": float(r.stats.get("wall_s", float("nan"))),
     }
+    if keep_result:
+        out["result"] = r
+    return out
 
 
 simulate_point.__sweep_version__ = "1"

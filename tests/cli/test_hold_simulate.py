@@ -1,8 +1,8 @@
 """``knotmech hold`` with the DER phase diagram: table lookup, --simulate, disagreement.
 
-The DER answer is informational: ``holds`` stays the ideal-rope verdict (clove-hitch
-paper, sec. 8: with a free end the ideal rope slips at any load), the DER answer is in
-the JSON key ``der`` and in ``answers``. Tables here are written by the tests, so the
+The DER answer needs the rope's E (here ``--material vps32``, the tables' rod, or
+``--youngs-modulus``); it is in the JSON key ``der`` and in ``answers``, and decides when
+inside its table (knotmech.hold's rule). Tables here are written by the tests, so the
 numbers do not depend on the shipped table (except in test_shipped_table_*).
 """
 
@@ -38,6 +38,8 @@ def table_file(tmp_path):
 
 def _hold(d, D, load, *extra, mu="0.3"):
     args = ["hold", "clove-hitch", "--rod-diameter", d, "--post-diameter", D, "--mu", mu]
+    if "--youngs-modulus" not in extra:
+        args += ["--material", "vps32"]
     return args + ["--load", load, *extra]
 
 
@@ -99,11 +101,10 @@ def test_cli_table_answer_disagrees_with_ideal_rope(table_file, capsys, tmp_path
     args = _hold(
         "4mm", "36mm", f"{0.15 * EA!r}N", "--phase-table", str(table_file), "--json", str(out_json)
     )
-    assert main(args) == 0
+    assert main(args + ["--verbose"]) == 0
     text = capsys.readouterr().out
     # d/D = 0.11 is outside the ideal rope's validity (d/D <= 0.1): the DER table decides
-    assert "verdict: HOLDS" in text
-    assert "HOLDS (DER phase table)" in text
+    assert text.startswith("verdict: HOLDS") and "DER-table" in text.splitlines()[0]
     assert "disagreement: ideal-rope theory says it slips" in text
     data = json.loads(out_json.read_text())
     assert data["holds"] is True and data["decided_by"] == "DER-table"
@@ -196,9 +197,11 @@ def test_simulate_wiring(monkeypatch, capsys):
         return {"holds": True, "verdict": "hold", "creep": 1e-5, "wall_s": 1.0, "message": ""}
 
     monkeypatch.setattr(phase_table, "simulate_point", fake)
-    assert main(_hold("4mm", "36mm", "2N", "--simulate", "--mu-rr", "0.25")) == 0
+    assert main(_hold("4mm", "36mm", "2N", "--simulate", "--mu-rr", "0.25", "--verbose")) == 0
     out = capsys.readouterr().out
-    assert "HOLDS (DER simulation)" in out and "disagreement" in out
+    assert out.startswith("verdict: HOLDS") and "DER-simulation" in out.splitlines()[0]
+    assert "disagreement" in out
+    assert "creep: 0.01 mm over 0.2 s" in out  # 1e-5 m over the last half of the 0.4 s hold
     assert seen["d_over_2R"] == pytest.approx(0.1) and seen["t_over_EA"] == pytest.approx(2 / EA)
     assert seen["mu"] == 0.3 and seen["mu_rr"] == 0.25 and seen["progress"] is True
 
@@ -247,3 +250,53 @@ def test_shipped_tables_answer_other_friction(capsys):
     # above the tables: the mu = 0.5 hold stands (more friction keeps a hold)
     assert der["holds"] is True and der["mu_tables"] == [0.5] and by == "DER-table" and holds
     assert "lies above the tables" in der["message"]
+
+
+def test_simulate_plot_draws_the_knot_coloured_by_tension(monkeypatch, tmp_path, capsys):
+    """--simulate --plot draws the simulated centreline (stubbed run: a helix of 40 nodes
+    around the 36 mm post, tension falling from 2 N to 0)."""
+    from types import SimpleNamespace
+
+    import numpy as np
+
+    from knotmech.scenes import phase_table
+
+    s = np.linspace(0, 4 * np.pi, 40)
+    helix = np.c_[0.02 * np.cos(s), 0.02 * np.sin(s), 0.002 * s]
+    result = SimpleNamespace(positions=helix[None], tension=np.linspace(2.0, 0.0, 39))
+
+    def fake(**kw):
+        assert kw["keep_result"] is True
+        return {"holds": True, "verdict": "hold", "creep": 1e-5, "wall_s": 1.0, "message": "",
+                "result": result}  # fmt: skip
+
+    monkeypatch.setattr(phase_table, "simulate_point", fake)
+    out = tmp_path / "knot.png"
+    assert main(_hold("4mm", "36mm", "2N", "--simulate", "--plot", str(out))) == 0
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and out.stat().st_size > 10000
+    # the verdict's JSON does not carry the arrays
+    assert main(_hold("4mm", "36mm", "2N", "--simulate", "--json", "-")) == 0
+    assert "positions" not in capsys.readouterr().out
+
+
+def test_plot_without_a_der_answer_fails_in_one_line(capsys, tmp_path):
+    # d/2R = 4/104 = 0.038 is below the tables' 0.06: no DER answer to draw
+    assert main(_hold("4mm", "100mm", "1N", "--plot", str(tmp_path / "p.png"))) == 2
+    err = capsys.readouterr().err
+    assert "--plot" in err and len(err.strip().splitlines()) == 1
+
+
+def test_simulated_slip_reports_no_creep(monkeypatch, capsys):
+    """A run that slipped before the hold's measuring window has no creep (NaN): the
+    verdict says so and the JSON has ``creep: null``, not a NaN."""
+    from knotmech.scenes import phase_table
+
+    def fake(**kw):
+        return {"holds": False, "verdict": "slip", "creep": float("nan"), "wall_s": 9.0,
+                "message": ""}  # fmt: skip
+
+    monkeypatch.setattr(phase_table, "simulate_point", fake)
+    assert main(_hold("4mm", "9.3333mm", "0.47N", "--simulate", "--json", "-")) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["holds"] is False and data["decided_by"] == "DER-simulation"
+    assert data["creep"] is None and "ran off" in data["der"]["message"]

@@ -1,6 +1,10 @@
 """``knotmech tour``: prints real numbers, writes the figure, sections are extensible."""
 
+import os
 import re
+import subprocess
+import sys
+from pathlib import Path
 
 import pytest
 
@@ -28,6 +32,37 @@ def test_tour_prints_results_and_saves_figure(tmp_path, capsys):
     png = out / "capstan_tension_decay.png"
     assert png.is_file() and png.stat().st_size > 10_000
     assert png.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    # the compiling notice, when shown, comes first; after this run every kernel the notice
+    # watches is cached (so TOUR_KERNELS names kernels the tour really compiles) and a
+    # second tour would be quiet
+    if tour.COMPILING_NOTICE in text:
+        assert text.splitlines()[2] == tour.COMPILING_NOTICE
+        assert "(including compiling the kernels)" in text
+    assert tour.kernels_cold() is False
+
+
+def test_kernels_are_cold_with_an_empty_numba_cache(tmp_path):
+    """A fresh cache folder (a first run): the tour's kernels would compile."""
+    root = Path(__file__).resolve().parents[2]
+    code = "from knotmech.cli import tour; print(tour.kernels_cold())"
+    env = {**os.environ, "NUMBA_CACHE_DIR": str(tmp_path / "numba"), "PYTHONPATH": str(root)}
+    env.pop("NUMBA_DISABLE_JIT", None)
+    out = subprocess.run(
+        [sys.executable, "-c", code], capture_output=True, text=True, env=env, timeout=120
+    )
+    assert out.returncode == 0, out.stderr
+    assert out.stdout.strip() == "True"
+
+
+@pytest.mark.parametrize("cold", [True, False])
+def test_compiling_notice_only_when_the_cache_is_cold(cold, tmp_path, capsys, monkeypatch):
+    monkeypatch.setattr(tour, "SECTIONS", list(tour.SECTIONS[:1]))
+    monkeypatch.setattr(tour, "kernels_cold", lambda: cold)
+    assert main(["tour", "--out", str(tmp_path / "t")]) == 0
+    lines = capsys.readouterr().out.splitlines()
+    assert (lines[2] == tour.COMPILING_NOTICE) is cold
+    assert (tour.COMPILING_NOTICE in lines) is cold
+    assert "first run only" in tour.COMPILING_NOTICE
 
 
 def test_sections_can_be_added_and_failures_are_reported(tmp_path, capsys, monkeypatch):

@@ -35,7 +35,10 @@ SHIFT = 5e-4
 
 
 def _der_recording(mu_s, mu_k, seed):
-    curves = DERCurves(recording_from_arrays("capstan_pull", X, np.ones_like(X), metadata=META))
+    # the curves need only the metadata and x; y is a placeholder (not constant: the reader
+    # refuses a constant reading)
+    dummy = recording_from_arrays("capstan_pull", X, 1.0 + X, metadata=META)
+    curves = DERCurves(dummy)
     y = curves.at(X - SHIFT, mu_s, mu_k)
     y = y + 0.01 * META["T_low_N"] * np.random.default_rng(seed).standard_normal(X.size)
     return recording_from_arrays("capstan_pull", X, y, metadata=META), curves

@@ -130,3 +130,34 @@ def test_full_mode_simulates_every_friction(tmp_path):
         # bracket of the two simulated loads, as the shipped table's points predict it
         assert b["lower_t_over_EA"][0] == (0.3 if heavy else 0.03 if light else 0.0)
         assert float(b["upper_t_over_EA"][0]) == (np.inf if heavy else 0.3 if light else 0.03)
+
+
+def test_figure_shows_every_mu_line_clear_of_the_legend(tmp_path, monkeypatch):
+    """The legend sits in its own panel, every mu table's line lies inside the plot (the
+    mu = 0.5 line used to be hidden under the legend) and no two lines coincide."""
+    captured = []
+    real_save = case.save_figure
+
+    def keep(fig, out_dir, name, **kw):
+        captured.append(fig)
+        return real_save(fig, out_dir, name, **kw)
+
+    monkeypatch.setattr(case, "save_figure", keep)
+    result = case.run(quick=True, out_dir=tmp_path, der=False)
+    (fig,) = captured
+    ax = fig.axes[0]
+    assert ax.get_legend() is None  # not drawn over the data
+    legends = [a.get_legend() for a in fig.axes[1:] if a.get_legend() is not None]
+    assert len(legends) == 1
+    labels = [t.get_text() for t in legends[0].get_texts()]
+    mus = result["numbers"]["mu_tables"]
+    lines = [ln for ln in ax.get_lines() if ln.get_label().startswith("mu = ")]
+    assert len(lines) == len(mus) >= 2
+    lo, hi = ax.get_ylim()
+    for ln in lines:
+        y = np.asarray(ln.get_ydata(), dtype=float)
+        assert np.all((y > lo) & (y < hi)), (ln.get_label(), y, (lo, hi))
+        assert ln.get_label() in labels
+    ys = [tuple(np.round(np.asarray(ln.get_ydata(), dtype=float), 6)) for ln in lines]
+    assert len(set(ys)) == len(ys)  # none hidden under another
+    assert any(lab.startswith("mu = 0.5:") for lab in labels)

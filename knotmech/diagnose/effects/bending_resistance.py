@@ -32,7 +32,7 @@ import numpy as np
 from knotmech.diagnose.effects._common import amplitude_for_size, fmt
 from knotmech.diagnose.effects.base import Effect
 from knotmech.diagnose.experiments.capstan_hold import hold_load, hold_sign
-from knotmech.diagnose.fitting import param_vector
+from knotmech.diagnose.fitting import fit_step_name, param_vector
 from knotmech.diagnose.stats import ls_solve
 
 __all__ = ["BendingResistance"]
@@ -72,7 +72,7 @@ class BendingResistance(Effect):
         ok = data.y > 0
         if np.sum(ok) >= 3:
             design = np.column_stack([s[ok] * rec.x[ok], s[ok]])
-            mu, beta = ls_solve(design, np.log(data.y[ok] / w[ok]))
+            mu, beta = ls_solve(design, np.log(data.y[ok] / w[ok]), step=fit_step_name(model))
             out.append(param_vector(model, dict(v, mu=max(mu, 1e-3), bending_loss=max(beta, 0.0))))
         return out
 

@@ -14,7 +14,7 @@ import numpy as np
 from knotmech.analytic.pinch import pinch_load_parameter
 from knotmech.diagnose.effects._common import CLOVE, fmt
 from knotmech.diagnose.effects.base import Effect
-from knotmech.diagnose.fitting import param_vector, whiten_columns
+from knotmech.diagnose.fitting import fit_step_name, param_vector, whiten_columns
 from knotmech.diagnose.stats import ls_solve
 
 __all__ = ["ContactFlattening"]
@@ -75,7 +75,7 @@ class ContactFlattening(Effect):
             if adh:
                 cols.append(np.ones_like(rec.x))
             xw = whiten_columns(current.noise, sd, starts, np.column_stack(cols))
-            coef = ls_solve(xw, yw)
+            coef = ls_solve(xw, yw, step=fit_step_name(model))
             ss = float(np.sum((yw - xw @ coef) ** 2))
             a, b = coef[0], coef[1]
             ratio = float(np.clip(1 - b / a, 0.0, 1.0)) if a > 0 else 1.0

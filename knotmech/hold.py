@@ -1,0 +1,906 @@
+r"""Does a rope tied to a post hold a load? The verdict of knotmech, in one place.
+
+:func:`hold` is the one entry point (``knotmech.hold(knot, ...)``; the command
+``knotmech hold`` and the tour call it and only print). It collects every model's
+answer and decides by one rule (:data:`RULE`):
+
+- the closed forms of :mod:`knotmech.analytic.hitch` (ideal rope, thick nip;
+  ideal and finite-thickness capstan), always;
+- for the clove hitch with a free end, the DER phase diagram of the clove-hitch
+  paper (Extreme Mech. Lett., DOI 10.1016/j.eml.2022.101788, sec. 8 and Fig. 4):
+  the shipped tables (:mod:`knotmech.scenes.phase_table`), a table the user names,
+  or with ``simulate=True`` one DER run of the user's geometry. The tables are in
+  :math:`T_\mathrm{high}/EA`, so they need the rope's Young's modulus: from
+  ``youngs_modulus`` or ``material`` (:mod:`knotmech.materials`); with neither, the
+  DER is not consulted and the verdict says so (nothing is assumed silently).
+
+**The rule.** The most faithful model whose inputs lie inside its validity and that
+gives a definite answer decides, in the order DER simulation, DER table, then the
+closed forms (hitches: ideal rope, then thick nip; capstan: finite-thickness, then
+ideal capstan). A model outside its validity never decides; when no model inside its
+validity answers, the verdict is undecided (``holds is None``) and ``next_step``
+names what decides it (``--simulate`` for the clove hitch with a free end).
+
+Validity used by the rule (beyond each closed form's own statement):
+
+- ideal rope: d/D <= 0.1, and never for hitches with half hitches (they wrap the
+  standing part, of diameter d itself);
+- thick nip: a rope no thicker than its post, and a strain :math:`T_\mathrm{high}/EA
+  \le 10\,\%` (the model's inextensible rope) when E is known;
+- DER table: inside the table's grid (d/2R, T_high/EA) and friction range, decided
+  only where the surrounding grid points agree.
+
+Implausible inputs (mu or mu_rr > 2, strain above 10 %, a wrap beyond 20 turns, a
+rope thicker than its post) give an :class:`InputWarning` naming the input.
+
+The module is callable: ``knotmech.hold(...)`` is :func:`hold` whether ``knotmech.hold``
+was reached as the module or as the function.
+"""
+
+from __future__ import annotations
+
+import functools
+import inspect
+import json
+import math
+import sys
+import types
+import warnings
+from dataclasses import dataclass, field, replace
+from pathlib import Path
+
+from knotmech.errors import InputError
+
+__all__ = [
+    "hold",
+    "Verdict",
+    "InputWarning",
+    "KNOT_NAMES",
+    "RULE",
+    "knot_key",
+    "hold_verdict",
+    "plot_verdict",
+    "STRAIN_LIMIT",
+    "MU_PLAUSIBLE",
+    "WRAP_TURNS_PLAUSIBLE",
+]
+
+#: the order in which models decide (the first inside its validity with an answer)
+RULE = (
+    "DER-simulation",
+    "DER-table",
+    "ideal-rope",
+    "thick-nip",
+    "thick-capstan",
+    "ideal-capstan",
+)
+STRAIN_LIMIT = 0.10  #: T_high/EA above this is implausible and outside the thick-nip model
+MU_PLAUSIBLE = 2.0  #: a friction coefficient above this is implausible for rope
+WRAP_TURNS_PLAUSIBLE = 20.0  #: a capstan wrap beyond this many turns is implausible
+
+_HITCHES = ("clove-hitch", "two-half-hitches", "round-turn", "round-turn-two-half-hitches")
+#: knots :func:`hold` answers
+KNOT_NAMES = ("capstan",) + _HITCHES
+_ALIASES = {
+    "clove": "clove-hitch",
+    "round-turn-and-two-half-hitches": "round-turn-two-half-hitches",
+    "round-turn-&-two-half-hitches": "round-turn-two-half-hitches",
+    "rt2hh": "round-turn-two-half-hitches",
+    "2hh": "two-half-hitches",
+}
+#: knots people ask about that hold does not answer, and what they are
+_NOT_ANSWERED = {
+    "bowline": "a loop knot (no post, no closed form or DER table here)",
+    "figure-eight": "a stopper / loop knot (no post, no closed form or DER table here)",
+    "figure-8": "a stopper / loop knot (no post, no closed form or DER table here)",
+    "sheet-bend": "a bend joining two ropes (no post, no closed form or DER table here)",
+    "reef": "a bend joining two ropes (no closed form or DER table here)",
+    "reef-knot": "a bend joining two ropes (no closed form or DER table here)",
+    "square-knot": "a bend joining two ropes (no closed form or DER table here)",
+    "granny": "a bend joining two ropes (no closed form or DER table here)",
+    "granny-knot": "a bend joining two ropes (no closed form or DER table here)",
+    "cow-hitch": "a hitch (girth hitch) with no closed form or DER table here yet",
+    "girth-hitch": "a hitch (cow hitch) with no closed form or DER table here yet",
+    "overhand": "a stopper knot (see `knotmech simulate overhand`), not a hitch on a post",
+}
+
+
+def knot_key(knot) -> str:
+    """Canonical knot name, or a one-line :class:`InputError` listing what is answered."""
+    key = str(knot).strip().lower().replace("_", "-").replace(" ", "-")
+    key = _ALIASES.get(key, key)
+    if key in KNOT_NAMES:
+        return key
+    supported = ", ".join(KNOT_NAMES)
+    if key in _NOT_ANSWERED:
+        raise InputError(f"{knot!r} is {_NOT_ANSWERED[key]}; hold answers: {supported}")
+    raise InputError(f"unknown knot {str(knot)!r}; hold answers: {supported}")
+
+
+@dataclass(frozen=True)
+class InputWarning:
+    """An implausible input: ``name`` (the parameter) and what is implausible about it."""
+
+    name: str
+    message: str
+
+    def __str__(self) -> str:
+        return f"{self.name}: {self.message}"
+
+
+@dataclass(frozen=True)
+class Verdict:
+    r"""Answer of :func:`hold`.
+
+    Attributes
+    ----------
+    knot : str
+    holds : bool or None
+        None when no model inside its validity answers (undecided).
+    margin : float
+        Load margin of the deciding model, ``capacity/load - 1`` (>= 0 holds; ``inf``
+        when self-locking; NaN when undecided or not computed, e.g. a DER slip).
+    decided_by : str or None
+        The deciding model (one of :data:`RULE`), None when undecided.
+    inside_validity : bool
+        Whether the deciding model's inputs lie inside its validity (always True when
+        decided: the rule lets no model outside its validity decide).
+    answers : tuple of ModelAnswer
+        Every model's answer (:class:`knotmech.analytic.hitch.ModelAnswer`); the
+        deciding one has ``decides=True``.
+    validity : tuple of str
+        The deciding model's validity statements.
+    assumptions : tuple of str
+        What the verdict assumed (the material and where E came from; the deciding
+        model's own assumptions are in its answer).
+    warnings : tuple of InputWarning
+        Implausible inputs.
+    next_step : str
+        What to do next (e.g. the command that decides an undecided case).
+    creep : dict or None
+        Creep of the loaded end measured by the DER (simulation, or the nearest grid
+        point that held): ``creep_m`` over ``window_s``, ``speed_m_per_s``,
+        ``speed_d_per_s`` and ``source``.
+    inputs : dict
+        The inputs in SI units.
+    der : dict or None
+        The DER answer's details (clove hitch), None for other knots.
+    notes : tuple of str
+    """
+
+    knot: str
+    holds: bool | None
+    margin: float
+    decided_by: str | None
+    inside_validity: bool
+    answers: tuple
+    validity: tuple = ()
+    assumptions: tuple = ()
+    warnings: tuple = ()
+    next_step: str = ""
+    creep: dict | None = None
+    inputs: dict = field(default_factory=dict)
+    der: dict | None = None
+    notes: tuple = ()
+    #: the simulated knot (``positions`` (n, 3) [m], ``tension`` (n - 1,) [N], ``rod_diameter``,
+    #: ``post_diameter``) when a DER simulation answered; not part of :meth:`to_dict`
+    shape: dict | None = field(default=None, repr=False, compare=False)
+
+    @property
+    def deciding(self):
+        """The deciding :class:`~knotmech.analytic.hitch.ModelAnswer`, None when undecided."""
+        return next((a for a in self.answers if a.decides), None)
+
+    @property
+    def state(self) -> str:
+        """``"HOLDS"``, ``"SLIPS"`` or ``"UNDECIDED"``."""
+        return {True: "HOLDS", False: "SLIPS", None: "UNDECIDED"}[self.holds]
+
+    def summary(self) -> str:
+        """The answer in one line: verdict, margin, deciding model."""
+        if self.holds is None:
+            return f"verdict: UNDECIDED (no model inside its validity answers); {self.next_step}"
+        return (
+            f"verdict: {self.state}  margin {format_margin(self.margin)}; decided by the "
+            f"{self.decided_by} model (inputs inside its validity)"
+        )
+
+    def to_dict(self) -> dict:
+        """Strict JSON-ready dict: non-finite numbers are null (with a flag where it matters)."""
+        return _strict(
+            {
+                "knot": self.knot,
+                "holds": self.holds,
+                "verdict": self.state.lower(),
+                "margin": self.margin,
+                "margin_unbounded": bool(math.isinf(self.margin) and self.margin > 0),
+                "decided_by": self.decided_by,
+                "inside_validity": self.inside_validity,
+                "validity": list(self.validity),
+                "assumptions": list(self.assumptions),
+                "warnings": [{"input": w.name, "message": w.message} for w in self.warnings],
+                "next_step": self.next_step,
+                "creep": self.creep,
+                "inputs": dict(self.inputs),
+                "answers": [_answer_dict(a) for a in self.answers],
+                "der": self.der,
+                "notes": list(self.notes),
+            }
+        )
+
+    def to_json(self) -> str:
+        """:meth:`to_dict` as strict JSON text (``allow_nan=False``)."""
+        return json.dumps(self.to_dict(), indent=2, allow_nan=False)
+
+
+def format_margin(margin: float) -> str:
+    """``+12.3 %``, ``unbounded (self-locking)`` or ``not computed``."""
+    if math.isnan(margin):
+        return "not computed"
+    if math.isinf(margin):
+        return "unbounded (self-locking)" if margin > 0 else "-inf"
+    pct = margin * 100
+    return f"{pct:+.1f} %" if abs(pct) < 1e5 else f"{pct:+.3g} %"
+
+
+def _answer_dict(a) -> dict:
+    return {
+        "model": a.model,
+        "holds": a.holds,
+        "decides": a.decides,
+        "inside_validity": a.inside_validity,
+        "margin": a.margin,
+        "margin_unbounded": bool(math.isinf(a.margin) and a.margin > 0),
+        "capacity": a.capacity,
+        "capacity_unbounded": bool(math.isinf(a.capacity)),
+        "critical_mu": a.critical_mu,
+        "critical_mu_none": bool(math.isinf(a.critical_mu)),
+        "assumptions": list(a.assumptions),
+        "validity": list(a.validity),
+        "reference": a.reference,
+        "notes": list(a.notes),
+    }
+
+
+def _strict(obj):
+    """Recursively: non-finite floats -> None, tuples -> lists, numpy scalars -> Python."""
+    if isinstance(obj, dict):
+        return {str(k): _strict(v) for k, v in obj.items()}
+    if isinstance(obj, list | tuple):
+        return [_strict(v) for v in obj]
+    if isinstance(obj, bool) or obj is None or isinstance(obj, str):
+        return obj
+    if hasattr(obj, "item") and not isinstance(obj, int | float):
+        obj = obj.item()  # numpy scalar
+    if isinstance(obj, bool):
+        return obj
+    if isinstance(obj, int):
+        return obj
+    if isinstance(obj, float):
+        if not math.isfinite(obj):
+            return None
+        return float(obj)
+    return obj
+
+
+# --------------------------------------------------------------------------- inputs
+def _youngs_modulus(material, youngs_modulus):
+    """(E [Pa] or None, material or None, what was assumed)."""
+    from knotmech.materials import format_modulus as fm
+    from knotmech.materials import material as get_material
+
+    mat = None if material is None else get_material(material)
+    if youngs_modulus is not None:
+        E = float(youngs_modulus)
+        if not (math.isfinite(E) and E > 0):
+            raise InputError(f"youngs_modulus must be > 0, got {E:g}")
+        src = f"Young's modulus E = {fm(E)}, as given"
+        if mat is not None:
+            src += f" (instead of the {mat.key} preset's {fm(mat.youngs_modulus)})"
+        return E, mat, src
+    if mat is not None:
+        lo, hi = mat.youngs_modulus_range
+        rng = "" if lo == hi else f" (range {fm(lo)} to {fm(hi)} over constructions)"
+        return (
+            mat.youngs_modulus,
+            mat,
+            f"{mat.description}: effective axial modulus E = {fm(mat.youngs_modulus)}{rng}; "
+            f"source: {mat.source}",
+        )
+    return None, None, ""
+
+
+def _warnings(mu, mu_rr, d, D, load, E, theta):
+    out = []
+    for name, v in (("mu", mu), ("mu_rr", mu_rr)):
+        if v is not None and v > MU_PLAUSIBLE:
+            out.append(
+                InputWarning(
+                    name,
+                    f"{v:g} is implausible for rope (> {MU_PLAUSIBLE:g}; rope on a post is "
+                    "typically 0.1-0.8)",
+                )
+            )
+    if d > D:
+        out.append(
+            InputWarning(
+                "rod_diameter",
+                f"the rope (d = {d * 1e3:.4g} mm) is thicker than its post "
+                f"(D = {D * 1e3:.4g} mm): the models here assume a rope wrapped on a post",
+            )
+        )
+    if E is not None:
+        strain = load / (E * math.pi * d * d / 4)
+        if strain > STRAIN_LIMIT:
+            out.append(
+                InputWarning(
+                    "load",
+                    f"strain T_high/EA = {strain:.3g} ({strain * 100:.3g} %) with "
+                    f"E = {E:.3g} Pa is implausible (> {STRAIN_LIMIT * 100:g} %): check the "
+                    "load, the diameter and the material",
+                )
+            )
+    if theta is not None and theta > WRAP_TURNS_PLAUSIBLE * 2 * math.pi:
+        out.append(
+            InputWarning(
+                "wrap_angle",
+                f"{theta / (2 * math.pi):.4g} turns is implausible (> "
+                f"{WRAP_TURNS_PLAUSIBLE:g}); an angle without a unit is in radians",
+            )
+        )
+    return tuple(out)
+
+
+# --------------------------------------------------------------------------- DER
+def _load_user_table(path):
+    from knotmech.scenes import phase_table as pt
+
+    t = pt.load_table(path)  # InputError when missing or not a table
+    pts = t.points
+    if not pts:
+        raise InputError(f"phase table {str(path)!r} has no points")
+    for p in pts:
+        if not (0 < p.d_over_2R < 0.5 and math.isfinite(p.t_over_EA) and p.t_over_EA > 0):
+            raise InputError(
+                f"phase table {str(path)!r}: point ({p.d_over_2R:g}, {p.t_over_EA:g}) is "
+                "outside 0 < d/2R < 0.5, T_high/EA > 0"
+            )
+    if not (math.isfinite(t.mu) and t.mu >= 0 and math.isfinite(t.mu_rr) and t.mu_rr >= 0):
+        raise InputError(f"phase table {str(path)!r}: mu and mu_rr must be finite, >= 0")
+    return pt.PhaseTableSet([t])
+
+
+def _shape(result, *, d, D):
+    """The last frame's centreline and tension of a DER result, or None."""
+    try:
+        pos = result.positions[-1]
+        tension = result.tension
+    except (AttributeError, IndexError, TypeError):
+        return None
+    return {"positions": pos, "tension": tension, "rod_diameter": d, "post_diameter": D}
+
+
+@functools.lru_cache(maxsize=1)
+def _shipped_tables():
+    """The shipped DER tables, read once per process (they are package data)."""
+    from knotmech.scenes import phase_table as pt
+
+    return pt.load_tables()
+
+
+def _nearest_hold_creep(table, x, y):
+    """Creep [m] of the grid point that held nearest to (x, y), from the table's meta."""
+    rows = table.meta.get("creep_m_of_holds") or []
+    best = None
+    for row in rows:
+        try:
+            px, py, c = (float(v) for v in row)
+        except (TypeError, ValueError):
+            continue
+        if not (px > 0 and py > 0 and math.isfinite(c)):
+            continue
+        dist = ((px - x) / 0.1) ** 2 + math.log(py / y) ** 2
+        if best is None or dist < best[0]:
+            best = (dist, px, py, c)
+    return None if best is None else best[1:]
+
+
+def _der(*, d, D, mu, mu_rr, load, E, simulate, phase_table, progress, ideal_holds):
+    """The DER answer for a clove hitch with a free end: (details dict, ModelAnswer or None,
+    creep dict or None)."""
+    from knotmech.analytic.hitch import ModelAnswer
+    from knotmech.scenes import phase_table as pt
+
+    x = d / (D + d)  # d/2R with R = (D + d)/2
+    EA = E * math.pi * d * d / 4
+    y = load / EA
+    out = {
+        "source": "none",
+        "holds": None,
+        "d_over_2R": x,
+        "t_over_EA": y,
+        "youngs_modulus": E,
+        "inside_table": False,
+        "critical_t_over_EA": None,
+        "mu_tables": [],
+        "message": "",
+        "agrees_with_ideal_rope": None,
+    }
+    creep = None
+    shape = None
+    capacity = math.nan
+    if simulate:
+        p = pt.simulate_point(
+            d_over_2R=x, t_over_EA=y, mu=mu, mu_rr=mu_rr, rod_diameter=d, youngs_modulus=E,
+            progress=progress, keep_result=True,
+        )  # fmt: skip
+        shape = _shape(p.get("result"), d=d, D=D)
+        if p["holds"] is None:
+            out["message"] = f"the DER simulation failed: {p['message']}"
+            return out, None, None, shape
+        window = pt.PROTOCOL["hold_time"] / 2
+        if math.isfinite(float(p["creep"])):  # a run that slipped early measured none
+            creep = {
+                "source": "DER simulation of this geometry",
+                "creep_m": float(p["creep"]),
+                "window_s": window,
+                "speed_m_per_s": float(p["creep"]) / window,
+                "speed_d_per_s": float(p["creep"]) / window / d,
+            }
+        crept = (
+            f"end creep {p['creep'] * 1e3:.3g} mm over the last {window:g} s of the hold"
+            if creep is not None
+            else "the end ran off before the hold's measuring window"
+        )
+        out.update(
+            source="simulation",
+            holds=bool(p["holds"]),
+            message=(
+                f"DER simulation at d/2R = {x:.4g}, T_high/EA = {y:.4g}: {p['verdict']} "
+                f"({crept}; {p['wall_s']:.0f} s)"
+            ),
+        )
+        run_s = sum(pt.PROTOCOL[k] for k in ("settle_time", "load_time", "hold_time"))
+        validity = f"one run of the user's geometry ({run_s:g} s of simulated time)"
+    else:
+        tables = _shipped_tables() if phase_table is None else _load_user_table(phase_table)
+        a = tables.lookup(x, y, mu=mu, mu_rr=mu_rr)
+        out.update(
+            source="table",
+            holds=a.holds,
+            inside_table=bool(a.inside),
+            message=a.message,
+            critical_t_over_EA=a.critical if math.isfinite(a.critical) else None,
+            mu_tables=[float(m) for m in a.mu_tables],
+            mu_tables_available=[float(m) for m in tables.mus],
+            table=("shipped" if phase_table is None else str(phase_table)),
+        )
+        if a.inside and a.bracket[0] > 0:
+            capacity = a.bracket[0] * EA  # the largest load that held (interpolated)
+        if a.holds is None:
+            return out, None, None, shape
+        used = [tables.table(m) for m in a.mu_tables]
+        xs, ys = used[0].d_over_2R, used[0].t_over_EA
+        validity = (
+            f"table grid d/2R {xs[0]:.3g}-{xs[-1]:.3g}, T_high/EA {ys[0]:.3g}-{ys[-1]:.3g}, "
+            f"mu = mu_rr = {' and '.join(f'{t.mu:g}' for t in used)}"
+            + (" (bracketing the user's friction)" if len(used) > 1 else "")
+            + "; boundary resolved to one grid step"
+        )
+        if a.holds:
+            near = _nearest_hold_creep(used[0], x, y)
+            if near is not None:
+                px, py, c = near
+                proto = used[0].meta.get("protocol", pt.PROTOCOL)
+                window = float(proto.get("hold_time", pt.PROTOCOL["hold_time"])) / 2
+                d_table = float(used[0].meta.get("rod", {}).get("d_m", pt.ROD_DIAMETER))
+                creep = {
+                    "source": f"DER table grid point d/2R = {px:g}, T_high/EA = {py:g} "
+                    f"(mu = {used[0].mu:g})",
+                    "creep_m": c,
+                    "window_s": window,
+                    "speed_m_per_s": c / window,
+                    "speed_d_per_s": c / window / d_table,
+                }
+    holds = bool(out["holds"])
+    if ideal_holds is not None:
+        out["agrees_with_ideal_rope"] = holds == bool(ideal_holds)
+    answer = ModelAnswer(
+        model=f"DER-{out['source']}",
+        holds=holds,
+        margin=(capacity / load - 1) if math.isfinite(capacity) else math.nan,
+        capacity=capacity,
+        critical_mu=math.nan,
+        decides=False,
+        inside_validity=True,
+        assumptions=(
+            "discrete elastic rod (centreline, circular cross-section, no flattening in "
+            "the nips), rigid post, Coulomb-type friction at the rod surface",
+            "solid-rod bending stiffness EI = E pi d^4/64 (a fibre rope bends far more easily)",
+            "free end: T_high hung on one end, held if the end creeps less than d over "
+            "the last half of the hold after the load is applied",
+        ),
+        validity=(validity,),
+        reference=(
+            "clove-hitch paper (Extreme Mech. Lett., DOI 10.1016/j.eml.2022.101788), "
+            "sec. 8 and Fig. 4; knotmech.scenes.phase_table"
+        ),
+        notes=(out["message"],),
+    )
+    return out, answer, creep, shape
+
+
+# --------------------------------------------------------------------------- policy
+def _with_validity(answer, inside: bool, extra: str):
+    return replace(
+        answer,
+        inside_validity=bool(answer.inside_validity and inside),
+        validity=tuple(answer.validity) + ((extra,) if extra else ()),
+    )
+
+
+def _decide(answers):
+    """Index of the deciding answer by :data:`RULE`, None when none qualifies."""
+    for model in RULE:
+        for i, a in enumerate(answers):
+            if a.model == model and a.inside_validity and a.holds is not None:
+                return i
+    return None
+
+
+def hold(
+    knot,
+    *,
+    rod_diameter,
+    post_diameter,
+    mu,
+    load,
+    free_end_load=0.0,
+    mu_rr=None,
+    wrap_angle=None,
+    material=None,
+    youngs_modulus=None,
+    simulate=False,
+    phase_table=None,
+    progress=False,
+) -> Verdict:
+    r"""Does a rope tied to a post hold a load? The verdict, every model's answer and why.
+
+    Parameters
+    ----------
+    knot : str
+        One of :data:`KNOT_NAMES` (``capstan``, ``clove-hitch``, ``two-half-hitches``,
+        ``round-turn``, ``round-turn-two-half-hitches``). Other knots (bowline,
+        figure-eight, sheet bend, reef, cow hitch, ...) raise a one-line
+        :class:`~knotmech.errors.InputError` listing these.
+    rod_diameter, post_diameter : float
+        Rope diameter d and post diameter D [m], > 0.
+    mu : float
+        Rope-post friction coefficient [-], >= 0.
+    load : float
+        Tension on the loaded end :math:`T_\mathrm{high}` [N], > 0.
+    free_end_load : float
+        Tension on the other end :math:`T_\mathrm{low}` [N], 0 (free end) to ``load``.
+    mu_rr : float, optional
+        Rope-rope friction coefficient [-] (hitches; default ``mu``). Refused for capstan.
+    wrap_angle : float, optional
+        Wrap angle [rad], > 0: required for capstan, refused for hitches.
+    material : str or Material, optional
+        A preset of :mod:`knotmech.materials` (``nylon``, ``polyester``, ``hmpe``,
+        ``manila``, ``polypropylene``, ``steel-wire``, ``vps32``): gives E.
+    youngs_modulus : float, optional
+        The rope's effective axial modulus E [Pa] (overrides the material's).
+    simulate : bool
+        Clove hitch with a free end: one DER run of this geometry (about a minute)
+        instead of the tables; needs E.
+    phase_table : path, optional
+        Clove hitch: read the DER table from this file (it must exist and parse).
+    progress : bool
+        Progress bar on stderr for ``simulate``.
+
+    Returns
+    -------
+    Verdict
+
+    Raises
+    ------
+    InputError
+        Bad or inconsistent inputs, an unknown knot or material, a phase table that
+        does not read.
+
+    Examples
+    --------
+    >>> v = hold("clove-hitch", rod_diameter=6e-3, post_diameter=40e-3, mu=0.4,
+    ...          load=200.0, material="nylon")
+    >>> v.holds, v.decided_by
+    (True, 'thick-nip')
+    """
+    from knotmech.analytic.hitch import hold_verdict as closed_forms
+    from knotmech.errors import check_nonnegative, check_positive
+
+    key = knot_key(knot)
+    d = float(check_positive("rod_diameter", rod_diameter))
+    D = float(check_positive("post_diameter", post_diameter))
+    mu = float(check_nonnegative("mu", mu))
+    load = float(check_positive("load", load))
+    free = float(check_nonnegative("free_end_load", free_end_load))
+    if key == "capstan" and mu_rr is not None:
+        raise InputError("mu_rr (rope-on-rope friction) applies to hitches, not to capstan")
+    if simulate and key != "clove-hitch":
+        raise InputError(f"simulate is available for clove-hitch only, not for {key}")
+    if simulate and free > 0:
+        raise InputError("simulate covers the clove hitch with a free end only (free_end_load 0)")
+    if simulate and phase_table is not None:
+        raise InputError("give either simulate or phase_table, not both")
+    if phase_table is not None and key != "clove-hitch":
+        raise InputError(f"phase_table applies to clove-hitch only, not to {key}")
+    E, mat, e_source = _youngs_modulus(material, youngs_modulus)
+    if simulate and E is None:
+        from knotmech.materials import material_names
+
+        raise InputError(
+            "simulate needs the rope's stiffness: give material (one of "
+            f"{', '.join(material_names())}) or youngs_modulus"
+        )
+    if phase_table is not None and E is None:
+        raise InputError(
+            "phase_table is read in T_high/EA: give material or youngs_modulus as well"
+        )
+    base = closed_forms(
+        key,
+        rod_diameter=d,
+        post_diameter=D,
+        mu=mu,
+        load=load,
+        free_end_load=free,
+        mu_rr=mu_rr,
+        wrap_angle=wrap_angle,
+    )
+    inputs = dict(base.inputs)
+    if key == "capstan":
+        inputs.pop("mu_rr", None)
+    theta = inputs.get("wrap_angle")
+    if mat is not None:
+        inputs["material"] = mat.key
+    if E is not None:
+        inputs["youngs_modulus"] = E
+    strain = None if E is None else load / (E * math.pi * d * d / 4)
+    answers = []
+    for a in base.answers:
+        a = replace(a, decides=False)
+        if a.model == "thick-nip":
+            ok = d <= D and (strain is None or strain <= STRAIN_LIMIT)
+            a = _with_validity(
+                a,
+                ok,
+                f"rope no thicker than the post; strain T_high/EA <= {STRAIN_LIMIT * 100:g} % "
+                "(inextensible rope)"
+                + ("" if strain is None else f": here {strain:.3g}")
+                + ("" if strain is not None else " (not checked: E not given)"),
+            )
+        answers.append(a)
+    assumptions = [e_source] if e_source else []
+    notes = list(base.notes)
+    der = None
+    creep = None
+    shape = None
+    next_step = ""
+    if key == "clove-hitch":
+        ideal = next(a.holds for a in answers if a.model == "ideal-rope")
+        if free > 0:
+            der = {
+                "source": "none",
+                "holds": None,
+                "message": "the DER phase diagram covers the free end only (T_low = 0)",
+            }
+        elif E is None:
+            der = {
+                "source": "none",
+                "holds": None,
+                "message": "not consulted: the DER tables are in T_high/EA and E was not given",
+            }
+            assumptions.append(
+                "nothing about the rope's stiffness: E was not given, so the DER phase table "
+                "(in T_high/EA) was not consulted"
+            )
+        else:
+            der, der_answer, creep, shape = _der(
+                d=d, D=D, mu=mu, mu_rr=mu if mu_rr is None else float(mu_rr), load=load, E=E,
+                simulate=bool(simulate), phase_table=phase_table, progress=progress,
+                ideal_holds=ideal,
+            )  # fmt: skip
+            if der_answer is not None:
+                answers.append(der_answer)
+    i = _decide(answers)
+    if i is not None:
+        answers[i] = replace(answers[i], decides=True)
+    dec = None if i is None else answers[i]
+    # next step
+    der_silent = der is not None and der.get("holds") is None and free == 0
+    if dec is None:
+        if key == "clove-hitch" and free == 0:
+            next_step = (
+                "next: --simulate (simulate=True: one DER run of this geometry, about a "
+                "minute) decides it"
+                + ("" if E is not None else "; give --material or --youngs-modulus with it")
+            )
+        else:
+            next_step = "next: no model here applies inside its validity; test the knot"
+    elif key == "clove-hitch" and free == 0 and E is None:
+        next_step = (
+            "next: give --material or --youngs-modulus (material=, youngs_modulus=) to "
+            "check against the DER phase table"
+        )
+    elif key == "clove-hitch" and der_silent and not simulate and dec.model != "DER-table":
+        next_step = "next: --simulate (simulate=True) checks it with one DER run of this geometry"
+    warns = _warnings(mu, mu_rr, d, D, load, E, theta)
+    return Verdict(
+        knot=key,
+        holds=None if dec is None else bool(dec.holds),
+        margin=math.nan if dec is None else float(dec.margin),
+        decided_by=None if dec is None else dec.model,
+        inside_validity=dec is not None,
+        answers=tuple(answers),
+        validity=() if dec is None else tuple(dec.validity),
+        assumptions=tuple(assumptions),
+        warnings=warns,
+        next_step=next_step,
+        creep=creep,
+        inputs=inputs,
+        der=der,
+        notes=tuple(notes),
+        shape=shape,
+    )
+
+
+def hold_verdict(
+    knot,
+    *,
+    rod_diameter,
+    post_diameter,
+    mu,
+    load,
+    free_end_load=0.0,
+    mu_rr=None,
+    wrap_angle=None,
+) -> Verdict:
+    """Deprecated alias of :func:`hold` (same verdict; use ``knotmech.hold``)."""
+    warnings.warn(
+        "knotmech.hold_verdict is deprecated; use knotmech.hold (same verdict, more answers)",
+        DeprecationWarning,
+        stacklevel=2,
+    )
+    return hold(
+        knot,
+        rod_diameter=rod_diameter,
+        post_diameter=post_diameter,
+        mu=mu,
+        load=load,
+        free_end_load=free_end_load,
+        mu_rr=mu_rr,
+        wrap_angle=wrap_angle,
+    )
+
+
+# --------------------------------------------------------------------------- plot
+PLOT_FORMATS = ("png", "pdf", "svg")
+
+
+def check_plot_path(path) -> Path:
+    """Refuse a plot path whose folder is missing or whose format is not png/pdf/svg."""
+    p = Path(path)
+    fmt = p.suffix.lower().lstrip(".")
+    if fmt not in PLOT_FORMATS:
+        raise InputError(
+            f"plot {str(path)!r}: the format must be one of {', '.join(PLOT_FORMATS)} "
+            "(from the file name)"
+        )
+    if not p.parent.is_dir():
+        raise InputError(f"plot {str(path)!r}: folder {str(p.parent)!r} does not exist")
+    return p
+
+
+def plot_verdict(verdict: Verdict, path, *, phase_table=None) -> Path:
+    """Draw the DER answer: the query on the phase diagram, or the simulated knot.
+
+    Table answer: one panel per friction table used, grid points held (dots) and
+    slipped (crosses), the interpolated upper boundary and the query (star, labelled with
+    the verdict). Simulation: the knot's centreline at the end of the hold in 3-D,
+    coloured by the tension T(s), with the post (axis z through the origin).
+
+    Raises
+    ------
+    InputError
+        The verdict has neither a table answer nor a simulated knot, or a bad path.
+    """
+    p = check_plot_path(path)
+    if verdict.shape is not None:
+        return _plot_knot(verdict, p)
+    der = verdict.der or {}
+    if der.get("source") != "table" or not der.get("mu_tables"):
+        raise InputError(
+            "plot: there is no DER answer to draw (clove hitch, free end, E given, inside "
+            "the tables, or simulate)"
+        )
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+    import numpy as np
+
+    tables = _shipped_tables() if phase_table is None else _load_user_table(phase_table)
+    used = [tables.table(m) for m in der["mu_tables"]]
+    fig, axes = plt.subplots(1, len(used), figsize=(5.2 * len(used), 4.2), squeeze=False)
+    for ax, t in zip(axes[0], used, strict=True):
+        held = [(q.d_over_2R, q.t_over_EA) for q in t.points if q.holds]
+        slip = [(q.d_over_2R, q.t_over_EA) for q in t.points if not q.holds]
+        if held:
+            ax.scatter(*zip(*held, strict=True), marker="o", color="tab:green", label="held")
+        if slip:
+            ax.scatter(*zip(*slip, strict=True), marker="x", color="tab:red", label="slipped")
+        xs, lo, hi, _ = t.boundary()
+        ok = np.isfinite(hi)
+        if ok.any():
+            ax.plot(xs[ok], 0.5 * (lo[ok] + hi[ok]), "k--", lw=1, label="upper boundary")
+        ax.scatter([der["d_over_2R"]], [der["t_over_EA"]], marker="*", s=220,
+                   color="tab:blue", zorder=5, label=f"query: {verdict.state}")  # fmt: skip
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("d/2R")
+        ax.set_ylabel("T_high/EA")
+        ax.set_title(f"clove hitch, free end, mu = mu_rr = {t.mu:g}")
+        ax.legend(loc="lower left", fontsize=8)
+    fig.tight_layout()
+    fig.savefig(p)
+    plt.close(fig)
+    return p
+
+
+def _plot_knot(verdict: Verdict, p: Path) -> Path:
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+    import numpy as np
+    from mpl_toolkits.mplot3d.art3d import Line3DCollection
+
+    sh = verdict.shape
+    x = np.asarray(sh["positions"], dtype=float)
+    t = np.asarray(sh["tension"], dtype=float)
+    segs = np.stack([x[:-1], x[1:]], axis=1) * 1e3  # mm
+    fig = plt.figure(figsize=(6.4, 5.6))
+    ax = fig.add_subplot(projection="3d")
+    lc = Line3DCollection(segs, cmap="viridis", linewidths=3)
+    lc.set_array(t[: len(segs)])
+    ax.add_collection3d(lc)
+    R = 0.5 * float(sh["post_diameter"]) * 1e3
+    zlo, zhi = segs[..., 2].min(), segs[..., 2].max()
+    phi = np.linspace(0, 2 * np.pi, 41)
+    for z in np.linspace(zlo, zhi, 5):
+        ax.plot(R * np.cos(phi), R * np.sin(phi), np.full_like(phi, z), color="0.7", lw=0.6)
+    lim = np.abs(segs[..., :2]).max() * 1.05
+    ax.set_xlim(-lim, lim)
+    ax.set_ylim(-lim, lim)
+    ax.set_zlim(zlo, zhi)
+    ax.set_box_aspect((1.0, 1.0, max(0.25, min(1.0, (zhi - zlo) / (2 * lim)))))
+    ax.set_xlabel("x [mm]")
+    ax.set_ylabel("y [mm]")
+    ax.set_zlabel("z [mm] (post axis)")
+    fig.colorbar(lc, ax=ax, shrink=0.7, pad=0.12, label="tension T(s) [N]")
+    ax.set_title(f"{verdict.knot}: {verdict.state} (DER simulation, last frame)")
+    fig.tight_layout()
+    fig.savefig(p)
+    plt.close(fig)
+    return p
+
+
+# ``knotmech.hold(...)``: the module itself is callable (the package attribute
+# ``knotmech.hold`` is this module once it is imported, so the call must work on it).
+class _CallableModule(types.ModuleType):
+    def __call__(self, *args, **kwargs):
+        return hold(*args, **kwargs)
+
+
+_module = sys.modules[__name__]
+_module.__class__ = _CallableModule
+_module.__signature__ = inspect.signature(hold)

@@ -1,0 +1,120 @@
+"""Failures inside an evaluation and rod-post tunnelling end in a rejected step, never in an
+escaped exception or a silently wrong success (issue 13).
+
+- A load the discrete energy cannot follow (a 1e9 N compression of a 0.1 m cantilever with
+  EA = 3.1 kN folds stencils back on themselves: the bending kernel divides by
+  1 + t^e.t^f = 0) makes the step fail like a non-finite residual: halved down to dt_min,
+  then status "failed" with the message and the last good state (SolverError only with
+  throw=True).
+- A rod dropped at 100 m/s onto a 10 mm post with dt = 1 ms moves 10 cm per step, ten post
+  diameters: without a guard the penalty, sampled only at the step ends, never sees the
+  post. The cylinder contact's tunnelling guard rejects the step and the solver retries it
+  smaller until the rod lands on the post.
+"""
+
+import numpy as np
+import pytest
+from _rodtools import clamped_rod
+
+from knotmech import rod
+from knotmech.errors import SolverError
+from knotmech.rod.contact import Cylinder, CylinderContact
+
+
+def _compressed_cantilever(**kw):
+    system, cons, _ = clamped_rod(21, length=0.1, radius=1e-3, youngs_modulus=1e9)
+    tip = system.n_nodes - 1
+    load = rod.NodeForce([tip], (-1e9, 0.0, 0.0))  # axial, toward the clamp
+    return system, rod.simulate(system, t_end=0.01, dt=1e-3, loads=[load], constraints=cons, **kw)
+
+
+def test_evaluation_error_fails_the_run_with_the_last_good_state():
+    system, res = _compressed_cantilever(throw=False)
+    assert res.status == "failed"
+    assert "evaluation failed (ZeroDivisionError" in res.message
+    assert "last good state kept" in res.message
+    # halved from 1 ms to below dt_min = 1e-9 s: 20 halvings at least
+    assert res.stats["rejected_steps"] >= 20
+    st = res.final_state
+    assert np.all(np.isfinite(st.q))
+    assert 0.0 <= st.t < 1e-6  # it failed in the first microsecond of the load
+    # the last good state is the last recorded frame's, and a real rod configuration:
+    # every edge keeps a positive length
+    x = system.positions(st.q)
+    assert np.all(np.linalg.norm(np.diff(x, axis=0), axis=1) > 0)
+
+
+def test_evaluation_error_raises_solver_error_only_when_asked():
+    with pytest.raises(SolverError, match="ZeroDivisionError") as info:
+        _compressed_cantilever(throw=True)
+    assert info.value.state is not None and np.all(np.isfinite(info.value.state.q))
+    assert info.value.result.status == "failed"
+
+
+def test_huge_tip_load_returns_a_result():
+    """1e12 N on the tip (EA = 3.1 kN): the first attempts divide by zero; the run returns a
+    Result (no exception escapes) whatever it ends with."""
+    system, cons, _ = clamped_rod(21, length=0.1, radius=1e-3, youngs_modulus=1e9)
+    load = rod.NodeForce([system.n_nodes - 1], (0.0, 0.0, -1e12))
+    res = rod.simulate(system, t_end=0.01, dt=1e-3, loads=[load], constraints=cons, throw=False)
+    assert res.status in ("success", "failed")
+    assert res.stats["rejected_steps"] >= 1
+    assert np.all(np.isfinite(res.final_state.q))
+
+
+class _UnguardedCylinderContact(CylinderContact):
+    check_step = None  # the solver skips an interaction without a step check
+
+
+def _drop_on_post(contact_class):
+    """A 0.1 m rod (r = 1 mm) 20 mm above a post (R = 5 mm, axis y) falling at 100 m/s."""
+    n = 41
+    x = np.linspace(-0.05, 0.05, n)
+    pos = np.stack([x, np.zeros(n), np.full(n, 0.02)], 1)
+    vel = np.tile([0.0, 0.0, -100.0], (n, 1))
+    r = rod.Rod(positions=pos, radius=1e-3, youngs_modulus=1e7, density=1000.0, velocities=vel)
+    system = rod.RodSystem([r])
+    post = Cylinder(point=(0.0, 0.0, 0.0), axis=(0.0, 1.0, 0.0), radius=5e-3)
+    contact = contact_class((post,), stiffness=1e9, sharpness=400 / 2e-3)
+    res = rod.simulate(system, t_end=2e-3, dt=1e-3, interactions=[contact], throw=False)
+    return res, res.positions[-1]
+
+
+def test_fast_rod_passes_through_a_post_without_the_guard():
+    res, last = _drop_on_post(_UnguardedCylinderContact)
+    assert res.status == "success" and res.stats["rejected_steps"] == 0
+    # two free-flight steps of 0.1 m: straight through the post, 0.18 m below its axis
+    np.testing.assert_allclose(last[:, 2], 0.02 - 100.0 * 2e-3, atol=1e-12)
+
+
+def test_cylinder_tunnelling_guard_lands_the_rod_on_the_post():
+    res, last = _drop_on_post(CylinderContact)
+    assert res.status == "success", res.message
+    assert res.stats["rejected_steps"] >= 3  # 1 ms -> 0.125 ms at least (1.2 R per step)
+    # the middle node rests on the post: centreline at R + r = 6 mm above the axis
+    # (measured 6.004 mm: the penalty's stand-off of a few 1/k = 5 um)
+    mid = last[last.shape[0] // 2]
+    assert mid[2] == pytest.approx(6e-3, abs=2e-5)
+    # no node is inside the post
+    assert np.hypot(last[:, 0], last[:, 2]).min() > 5e-3 + 0.9e-3
+
+
+def test_cylinder_guard_reason_names_the_node():
+    """check_step's own criterion, on a hand-made step: a node crossing the core from one
+    side to the other (both ends outside) is rejected; one passing beside it is not."""
+    r = rod.Rod.straight(length=0.02, n_nodes=3, radius=1e-3, youngs_modulus=1e7,
+                         density=1000.0, start=(-0.01, 0.0, 0.02))  # fmt: skip
+    system = rod.RodSystem([r])
+    post = Cylinder(point=(0.0, 0.0, 0.0), axis=(0.0, 1.0, 0.0), radius=5e-3)
+    c = CylinderContact((post,), stiffness=1e9, sharpness=2e5)
+    q0 = system.initial_state().q
+    q1 = q0.copy()
+    nd = system.node_dofs
+    q1[nd[1, 2]] = -0.02  # the middle node jumps from 20 mm above the axis to 20 mm below
+    why = c.check_step(system, q1, q0, 1e-3)
+    assert why is not None and "node 1" in why and "cylinder 0" in why
+    q0[nd[1, 0]] = q1[nd[1, 0]] = 0.0061  # the same jump 6.1 mm off the axis: beside the
+    assert c.check_step(system, q1, q0, 1e-3) is None  # core (R = 5 mm), not through it
+    q2 = system.initial_state().q
+    q2[nd[:, 0]] += 0.04  # the whole rod slides 40 mm along x, 20 mm above the axis
+    assert c.check_step(system, q2, system.initial_state().q, 1e-3) is None

@@ -1,0 +1,166 @@
+"""``knotmech.hold``: the library's verdict, identical to the command line's, its rule
+(a model outside its validity never decides), materials and the deprecated alias."""
+
+import itertools
+import json
+import math
+import warnings
+
+import pytest
+
+import knotmech
+from knotmech.cli.main import main
+from knotmech.errors import InputError
+from knotmech.materials import MATERIALS, material
+
+# knot, (d, D) [mm], mu, load [N], free end [N], material
+GRID = list(
+    itertools.product(
+        ["clove-hitch", "two-half-hitches", "round-turn-two-half-hitches", "capstan"],
+        [(4, 30), (2, 50), (8, 16)],
+        [0.15, 0.3],
+        [1.47, 200.0],
+        [0.0, 0.5],
+        [None, "vps32"],
+    )
+) + [
+    ("clove-hitch", (6, 40), 0.4, 200.0, 0.0, "nylon"),
+    ("capstan", (4, 30), 0.3, 6.0, 1.0, "hmpe"),
+]
+
+
+def _cli(knot, dD, mu, load, free, mat, capsys):
+    args = ["hold", knot, "--rod-diameter", f"{dD[0]}mm", "--post-diameter", f"{dD[1]}mm",
+            "--mu", repr(mu), "--load", f"{load!r}N", "--free-end-load", f"{free!r}N"]  # fmt: skip
+    if knot == "capstan":
+        args += ["--wrap-angle", "540deg"]
+    if mat:
+        args += ["--material", mat]
+    assert main(args + ["--json", "-"]) == 0
+    return json.loads(capsys.readouterr().out)
+
+
+def test_api_and_cli_give_the_same_verdict_on_a_grid(capsys):
+    """Every point of a 4 x 3 x 2 x 2 x 2 x 2 grid and two more materials (194 queries):
+    the same verdict, deciding model, margin and every other field from ``knotmech.hold``
+    and ``knotmech hold --json -``."""
+    seen = set()
+    for knot, dD, mu, load, free, mat in GRID:
+        v = knotmech.hold(
+            knot,
+            rod_diameter=dD[0] * 1e-3,
+            post_diameter=dD[1] * 1e-3,
+            mu=mu,
+            load=load,
+            free_end_load=free,
+            wrap_angle=3 * math.pi if knot == "capstan" else None,
+            material=mat,
+        )
+        c = _cli(knot, dD, mu, load, free, mat, capsys)
+        where = (knot, dD, mu, load, free, mat)
+        assert c["holds"] is v.holds, where
+        assert c["decided_by"] == v.decided_by, where
+        assert c == v.to_dict(), where
+        seen.add((v.decided_by, v.holds))
+    # the grid exercises every kind of answer
+    assert {"DER-table", "ideal-rope", "thick-nip", "thick-capstan"} <= {s[0] for s in seen}
+    assert {True, False, None} <= {s[1] for s in seen}
+
+
+@pytest.mark.parametrize(("knot", "dD", "mu", "load", "free", "mat"), GRID[::4])
+def test_rule_outside_validity_never_decides(knot, dD, mu, load, free, mat):
+    v = knotmech.hold(
+        knot, rod_diameter=dD[0] * 1e-3, post_diameter=dD[1] * 1e-3, mu=mu, load=load,
+        free_end_load=free, wrap_angle=3 * math.pi if knot == "capstan" else None, material=mat,
+    )  # fmt: skip
+    deciding = [a for a in v.answers if a.decides]
+    valid = [a for a in v.answers if a.inside_validity and a.holds is not None]
+    if v.holds is None:
+        assert not deciding and not valid and v.next_step
+    else:
+        assert len(deciding) == 1 and deciding[0].inside_validity
+        assert deciding[0].model == v.decided_by and deciding[0].holds is v.holds
+        # the first valid answer in the rule's order decides
+        order = [m for m in knotmech.hold.RULE if any(a.model == m for a in valid)]
+        assert v.decided_by == order[0]
+
+
+def test_papers_case_api_equals_cli_and_the_deprecated_alias():
+    """Issue 10: ``knotmech.hold_verdict`` said SLIPS for the clove-hitch paper's case
+    (d = 4 mm, D = 30 mm, mu = 0.3, 1.47 N, free end) where the command said HOLDS."""
+    kw = dict(rod_diameter=4e-3, post_diameter=30e-3, mu=0.3, load=1.47, free_end_load=0.0)
+    v = knotmech.hold("clove-hitch", **kw)
+    assert v.holds is True and v.decided_by == "thick-nip"
+    with warnings.catch_warnings(record=True) as w:
+        warnings.simplefilter("always")
+        old = knotmech.hold_verdict("clove-hitch", **kw)
+    assert any(issubclass(x.category, DeprecationWarning) for x in w)
+    assert old.holds is v.holds and old.decided_by == v.decided_by
+    # the closed forms' own answer (knotmech.analytic) keeps the ideal rope as reference,
+    # and says it is outside its validity here
+    cf = knotmech.analytic.hold_verdict("clove-hitch", **kw)
+    assert cf.decided_by == "ideal-rope" and not cf.deciding.inside_validity
+    # with the paper's rod the DER table decides, as the paper's Fig. 4 does
+    der = knotmech.hold("clove-hitch", material="vps32", **kw)
+    assert der.holds is True and der.decided_by == "DER-table"
+    assert der.der["t_over_EA"] == pytest.approx(0.0928, abs=5e-4)
+
+
+def test_callable_module_and_verdict_fields():
+    import knotmech.hold as module
+
+    assert knotmech.hold is module and callable(module)
+    v = module.hold(
+        "capstan", rod_diameter=4e-3, post_diameter=30e-3, mu=0.3, load=6.0,
+        free_end_load=1.0, wrap_angle=2 * math.pi,
+    )  # fmt: skip
+    assert isinstance(v, knotmech.Verdict)
+    # finite-thickness capstan: e^(mu_eff 2 pi) = 5.196 N held for 1 N, so 6 N slips
+    assert v.holds is False and v.decided_by == "thick-capstan"
+    assert v.margin == pytest.approx(5.196 / 6 - 1, abs=5e-4)
+    assert v.summary().startswith("verdict: SLIPS") and "thick-capstan" in v.summary()
+    json.loads(v.to_json())
+
+
+def test_youngs_modulus_overrides_the_material_and_says_so():
+    v = knotmech.hold(
+        "clove-hitch", rod_diameter=4e-3, post_diameter=30e-3, mu=0.3, load=1.47,
+        material="nylon", youngs_modulus=1.26e6,
+    )  # fmt: skip
+    assert v.inputs["youngs_modulus"] == 1.26e6 and v.decided_by == "DER-table"
+    assert "instead of the nylon preset" in v.assumptions[0]
+
+
+def test_materials_have_sources_and_consistent_numbers():
+    assert set(MATERIALS) == {
+        "nylon", "polyester", "hmpe", "manila", "polypropylene", "steel-wire", "vps32",
+    }  # fmt: skip
+    for m in MATERIALS.values():
+        lo, hi = m.youngs_modulus_range
+        assert 0 < lo <= m.youngs_modulus <= hi
+        assert 300 < m.density < 8000 and m.source and m.key in knotmech.materials.__doc__
+    assert material("VPS32").youngs_modulus == 1.26e6  # clove-hitch paper, sec. 2
+    assert material("Dyneema") is MATERIALS["hmpe"] and material("steel") is MATERIALS["steel-wire"]
+    # 16 mm 6x19 wire: 1 tonne-f stretches it 0.1 %: E = 9806.65 N / 0.001 / (pi 8 mm^2)
+    assert MATERIALS["steel-wire"].youngs_modulus == pytest.approx(
+        9806.65 / 1e-3 / (math.pi * 0.008**2), rel=0.01
+    )
+    # EN 1891 type A: <= 5 % between 50 and 150 kg at 10 mm: E >= 0.25 GPa
+    assert MATERIALS["nylon"].youngs_modulus == pytest.approx(
+        100 * 9.80665 / 0.05 / (math.pi * 0.005**2), rel=0.02
+    )
+    with pytest.raises(InputError, match="known: nylon, polyester"):
+        material("kevlar")
+
+
+def test_bad_inputs_raise_input_error():
+    kw = dict(rod_diameter=4e-3, post_diameter=30e-3, mu=0.3, load=1.47)
+    for knot in ("bowline", "figure-eight", "sheet bend", "reef", "cow hitch"):
+        with pytest.raises(InputError, match="hold answers: capstan, clove-hitch"):
+            knotmech.hold(knot, **kw)
+    with pytest.raises(InputError, match="simulate needs the rope's stiffness"):
+        knotmech.hold("clove-hitch", simulate=True, **kw)
+    with pytest.raises(InputError, match="mu_rr"):
+        knotmech.hold("capstan", wrap_angle=1.0, mu_rr=0.2, **kw)
+    with pytest.raises(InputError, match="cannot read phase table"):
+        knotmech.hold("clove-hitch", phase_table="/nonexistent.json", material="vps32", **kw)
