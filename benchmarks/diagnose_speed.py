@@ -28,6 +28,9 @@ CASES = [
     # AR(1) rho = 0.9 noise (second fitting pass when the estimated rho is near 1)
     ("pinch", "contact_flattening", "ar1"),
     ("capstan_pull", None, "ar1"),
+    # capstan_hold (issue 12): readings reduced to 48 holds before the fit
+    ("capstan_hold", "bending_resistance", "white"),
+    ("capstan_hold", None, "ar1"),
 ]
 
 
@@ -49,7 +52,7 @@ def main(argv=None) -> dict:
         verdicts = set()
         for r in range(args.repeats):
             rec, _ = make_recording(exp, eff, size=6.0, noise=noise, seed=100 + r, n=args.rows)
-            assert rec.n >= args.rows - 2
+            assert rec.n >= 0.95 * args.rows
             t0 = time.perf_counter()
             rep = diagnose(rec, seed=r)
             times.append(time.perf_counter() - t0)
@@ -60,6 +63,19 @@ def main(argv=None) -> dict:
             "max_seconds": float(np.max(times)),
             "verdicts": sorted(verdicts),
         }
+    from pathlib import Path
+
+    from knotmech.diagnose import read_recording
+
+    yarn = Path(__file__).parents[1] / "knotmech" / "data" / "recordings" / "capstan_yarn_rig.csv"
+    rec = read_recording(yarn)
+    t0 = time.perf_counter()
+    rep = diagnose(rec, seed=0)
+    out["cases"]["capstan_yarn_rig.csv"] = {
+        "median_seconds": time.perf_counter() - t0,
+        "max_seconds": time.perf_counter() - t0,
+        "verdicts": [rep.verdict],
+    }
     worst = max(c["median_seconds"] for c in out["cases"].values())
     out["median_seconds"] = float(np.median([c["median_seconds"] for c in out["cases"].values()]))
     out["worst_case_median_seconds"] = worst

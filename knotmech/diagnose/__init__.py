@@ -9,10 +9,16 @@ Public API::
     report = diagnose(read_recording("pull.csv"))          # or diagnose("pull.csv")
     report = diagnose(experiment="pinch", x=fn, y=ft, metadata={...})  # arrays
     print(report.summary); report.write_json("out.json"); plot_report(report, "fit.png")
+
+Layout: one module per experiment kind in :mod:`knotmech.diagnose.experiments`
+(:class:`Experiment`) and one per effect in :mod:`knotmech.diagnose.effects`
+(:class:`Effect`), each registered once; :func:`get_experiment` and :func:`get_effect`
+are the lookups by name; :mod:`knotmech.diagnose.der` holds the DER baseline.
 """
 
-from knotmech.diagnose.effects import CATALOGUE, Effect, applicable_effects
+from knotmech.diagnose.effects import CATALOGUE, Effect, applicable_effects, get_effect
 from knotmech.diagnose.engine import diagnose
+from knotmech.diagnose.experiments import EXPERIMENT_KINDS, Experiment, get_experiment
 from knotmech.diagnose.plot import plot_report
 from knotmech.diagnose.recording import (
     EXPERIMENTS,
@@ -34,6 +40,10 @@ __all__ = [
     "EXPERIMENTS",
     "CATALOGUE",
     "Effect",
+    "get_effect",
+    "EXPERIMENT_KINDS",
+    "Experiment",
+    "get_experiment",
     "applicable_effects",
     "plot_report",
     "make_recording",

@@ -27,13 +27,17 @@ Procedure (one recording):
    gives the verdict ``unexplained``; otherwise the verdict is the accepted
    effect with the largest likelihood gain, or ``none``.
 
-Under ``baseline="der"`` (capstan_pull only) step 1 fits the DER capstan with kinetic
-friction only (``mu``, a signed shift ``delta0_m``, a displacement scale ``u_scale``;
-:class:`DERCurves`), and step 3
-tests ``static_friction`` only (a re-run with ``mu_s > mu_k``). Its p-value is the
-asymptotic one, ``0.5 * P(chi2_1 > LR)`` (``dmu_static = 0`` on the boundary),
-with the whitened residuals of the fitted noise model: a parametric bootstrap would
-need new simulations for every draw. BIC and the (raw) held-out RMS check apply.
+Experiment kinds and effects are objects of the registries
+(:mod:`knotmech.diagnose.experiments`, :mod:`knotmech.diagnose.effects`): the engine
+turns effect names into objects once (:func:`_resolve_effects`) and loops over them.
+
+Under ``baseline="der"`` (capstan_pull only; :mod:`knotmech.diagnose.der`) step 1
+fits the DER capstan with kinetic friction only (``mu``, a signed shift ``delta0_m``,
+a displacement scale ``u_scale``; :class:`DERCurves`), and step 3 tests
+``static_friction`` only (a re-run with ``mu_s > mu_k``). Its p-value is the
+asymptotic one, ``0.5 * P(chi2_1 > LR)`` (``dmu_static = 0`` on the boundary), with
+the whitened residuals of the fitted noise model: a parametric bootstrap would need
+new simulations for every draw. BIC and the (raw) held-out RMS check apply.
 """
 
 from __future__ import annotations
@@ -42,29 +46,29 @@ import functools
 from pathlib import Path
 
 import numpy as np
-from scipy.stats import chi2
 
-from knotmech.diagnose.baselines import DER_DMU_GRID, DERCurves, build_der_model, get_baseline
-from knotmech.diagnose.effects import CATALOGUE, applicable_effects
+from knotmech.diagnose.baselines import get_baseline
+from knotmech.diagnose.der import fit_der_baseline, select_der
+from knotmech.diagnose.effects import CATALOGUE, applicable_effects, get_effect
+from knotmech.diagnose.experiments import get_experiment
 from knotmech.diagnose.fitting import (
     Data,
-    baseline_start,
     fit_baseline,
     fit_model,
     fit_with_effect,
     heldout_errors,
     heldout_innovation_rms,
-    heldout_rms,
 )
 from knotmech.diagnose.locate import flexible_mismatch, regions_from_mask
 from knotmech.diagnose.recording import Recording, read_recording, recording_from_arrays
 from knotmech.diagnose.report import Report, effect_parameters, public_parameters
-from knotmech.diagnose.stats import estimate_noise, monte_carlo_pvalue, trial_starts
+from knotmech.diagnose.stats import monte_carlo_pvalue, trial_starts
 from knotmech.errors import DiagnoseError, InputError, KnotmechError
 
 __all__ = ["diagnose"]
 
-_MAX_NIPS = 6
+#: most additions of one repeatable effect (nips)
+_MAX_REPEATS = 6
 
 
 def _as_recording(recording, experiment, x, y, metadata, **cols) -> Recording:
@@ -79,13 +83,18 @@ def _as_recording(recording, experiment, x, y, metadata, **cols) -> Recording:
     return recording_from_arrays(experiment, x, y, metadata=metadata, **cols)
 
 
-def _n_new(current, alt, name) -> int:
-    k = alt.model.n_free - current.model.n_free
-    if name == "self_contact_nip":
-        k += 1  # the position
-    if name == "displacement_offset":
-        k += 1  # offset_m replaces delta0_m: one inequality relaxed
-    return max(k, 0)
+def _n_new(current, alt, effect) -> int:
+    """Degrees of freedom ``effect`` adds: its free parameters plus its ``extra_dof``
+    (a searched position, a relaxed inequality)."""
+    return max(alt.model.n_free - current.model.n_free + effect.extra_dof, 0)
+
+
+def _resolve_effects(names) -> list | None:
+    """The Effect objects of ``names`` (None: the whole catalogue); the one place the
+    engine turns effect names into objects."""
+    if names is None:
+        return None
+    return [get_effect(n) for n in names]
 
 
 def _numerical_failure_named(func):
@@ -148,7 +157,7 @@ def diagnose(
         ``metadata`` and optional ``sigma``, ``trial``, ``speed``).
     baseline : {"closed-form", "der"}
         Baseline model family. ``der`` (capstan_pull only): the DER capstan with kinetic
-        friction only (:class:`knotmech.diagnose.baselines.DERCurves`); only
+        friction only (:class:`knotmech.diagnose.der.DERCurves`); only
         ``static_friction`` is tested against it, by the asymptotic likelihood ratio
         (no parametric bootstrap), BIC and the held-out check.
     seed : int
@@ -168,6 +177,8 @@ def diagnose(
         recording, experiment, x, y, metadata, sigma=sigma, trial=trial, speed=speed
     )
     get_baseline(baseline).check(rec)
+    rec, reduced = get_experiment(rec.experiment).reduce(rec)
+    only = _resolve_effects(effects)
     if not 0 < alpha < 1:
         raise InputError(f"alpha must lie in (0, 1), got {alpha!r}")
     if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
@@ -178,7 +189,7 @@ def diagnose(
     data = Data(rec.y, rec.mu_nominal, rec.mu_nominal_sigma)
     der = None
     if baseline == "der":
-        der, base = _der_baseline(rec, data, starts, gs)
+        der, base = fit_der_baseline(rec, data, starts, gs)
     else:
         base = fit_baseline(rec, data, starts, given_sigma=gs)
     base_mis = flexible_mismatch(
@@ -193,9 +204,9 @@ def diagnose(
         decide_at=alpha,
     )
     if der is not None:
-        sel = _select_der(der, base, rec, data, starts, gs, alpha, effects)
+        sel = select_der(der, base, rec, data, starts, gs, alpha, only)
     else:
-        sel = _select_closed_form(base, rec, data, starts, gs, rng, alpha, effects, max_effects)
+        sel = _select_closed_form(base, rec, data, starts, gs, rng, alpha, only, max_effects)
     current, accepted, tested, steps, skipped, held_before, held_cur = sel
     final = current
     if final is base:
@@ -213,37 +224,48 @@ def diagnose(
             decide_at=alpha,
         )
     remaining = fin_mis.p_value < alpha and bool(fin_mis.regions)
-    names = [a[0] for a in accepted]
     if remaining:
         verdict = "unexplained"
         regions = fin_mis.regions
     elif accepted:
         gains = {}
-        for nm, _, g in accepted:
-            gains[nm] = gains.get(nm, 0.0) + g
+        for eff, _, g in accepted:
+            gains[eff.name] = gains.get(eff.name, 0.0) + g
         verdict = max(gains, key=gains.get)
-        regions = _effect_regions(rec, base, final, names)
+        regions = _effect_regions(rec, base, final, [a[0] for a in accepted])
     else:
         verdict = "none"
         regions = []
-    fin_public = public_parameters(final.params, final.model.effects, rec)
+    fin_public = public_parameters(final.params, final.model.effect_objects, rec)
     base_public = public_parameters(base.params, (), rec)
     effects_out = []
-    for nm, ev, _ in accepted:
-        if nm in [e["name"] for e in effects_out]:
+    for eff, ev, _ in accepted:
+        if eff.name in [e["name"] for e in effects_out]:
             continue
         effects_out.append(
             {
-                "name": nm,
-                "parameters": effect_parameters(nm, fin_public),
+                "name": eff.name,
+                "parameters": effect_parameters(eff, fin_public),
                 "evidence": {
                     k: ev[k]
-                    for k in ("delta_bic", "p_value", "likelihood_ratio", "p_value_method")
+                    for k in (
+                        "delta_bic",
+                        "p_value",
+                        "likelihood_ratio",
+                        "p_value_method",
+                        "p_value_counted_bound",
+                        "bootstrap_draws",
+                    )
                     if k in ev
                 },
             }
         )
     rms_base = float(np.sqrt(np.mean((rec.y - base.mean) ** 2)))
+    # the baseline drawn next to the final fit: refitted under the final model's noise, so
+    # that the picture compares means under one noise model (a baseline fitted under its
+    # own noise estimate, a lag-one correlation near 1, may run below every point)
+    shown = base if final is base else _null_under(base, final, data, starts, gs)
+    rms_shown = float(np.sqrt(np.mean((rec.y - shown.mean) ** 2)))
     rms_final = float(np.sqrt(np.mean((rec.y - final.mean) ** 2)))
     details = {
         "baseline_model": baseline,
@@ -260,12 +282,18 @@ def diagnose(
                 "shape": fin_mis.shape,
             },
         },
+        "baseline_under_final_noise": {
+            "parameters": public_parameters(shown.params, (), rec),
+            "rms": float(f"{rms_shown:.6g}"),
+            "note": "the baseline of the plot: refitted under the final model's noise",
+        },
         "candidates": tested,
         # delta BIC of every applicable effect at each forward step (confusable ones
         # show here next to the accepted one)
         "selection_steps": steps,
-        "confusable_with": {nm: list(CATALOGUE[nm].confusable_with) for nm in names},
+        "confusable_with": {a[0].name: list(a[0].confusable_with) for a in accepted},
         "skipped_effects": skipped,
+        **({"reduced": reduced} if reduced else {}),
         "alpha": alpha,
         "seed": seed,
         **({"der": der[0].settings()} if der is not None else {}),
@@ -283,11 +311,12 @@ def diagnose(
         details=details,
         x=rec.x,
         y=rec.y,
-        baseline_mean=base.mean,
+        baseline_mean=shown.mean,
         final_mean=final.mean,
         columns=rec.columns,
     )
-    report.summary = _summary(report, rec, fin_mis, base_mis)
+    verdict_effect = CATALOGUE.get(verdict)
+    report.summary = _summary(report, rec, fin_mis, base_mis, verdict_effect)
     return report
 
 
@@ -296,12 +325,7 @@ def _select_closed_form(base, rec, data, starts, gs, rng, alpha, effects, max_ef
     n = rec.n
     ok, skipped = applicable_effects(rec)
     if effects is not None:
-        unknown = set(effects) - set(CATALOGUE)
-        if unknown:
-            raise InputError(
-                f"unknown effect {sorted(unknown)[0]!r}; known: {', '.join(CATALOGUE)}"
-            )
-        ok = [e for e in ok if e in set(effects)]
+        ok = [e for e in ok if e in effects]
     alpha_each = alpha / max(len(ok), 1)
     err_cur, block = heldout_errors(base, data, rec.trial)
     held_before = _rms(err_cur)
@@ -312,28 +336,28 @@ def _select_closed_form(base, rec, data, starts, gs, rng, alpha, effects, max_ef
     steps = []
     for _ in range(max_effects):
         cands = []
-        for name in ok:
-            count = current.model.effects.count(name)
-            if count and not CATALOGUE[name].repeatable:
+        for eff in ok:
+            count = current.model.effects.count(eff.name)
+            if count and not eff.repeatable:
                 continue
-            if count >= _MAX_NIPS:
+            if count >= _MAX_REPEATS:
                 continue
-            alt = fit_with_effect(current, name, data, starts, given_sigma=gs)
+            alt = fit_with_effect(current, eff, data, starts, given_sigma=gs)
             null_c = _null_under(current, alt, data, starts, gs)
             lr = 2.0 * (alt.loglik - null_c.loglik)
-            k = _n_new(current, alt, name)
+            k = _n_new(current, alt, eff)
             # rank by each augmented model's own BIC (its likelihood at its own noise
             # estimate): the common-noise ratios differ in their noise from candidate
             # to candidate and do not compare across candidates
             rank = 2.0 * alt.loglik - k * np.log(n)
-            cands.append((lr - k * np.log(n), name, alt, lr, null_c, rank))
+            cands.append((lr - k * np.log(n), eff, alt, lr, null_c, rank))
         cands.sort(key=lambda c: -c[5])
-        steps.append({c[1]: float(f"{c[0]:.4g}") for c in cands})
+        steps.append({c[1].name: float(f"{c[0]:.4g}") for c in cands})
         step = None
-        for dbic, name, alt, lr, null_c, _ in cands[:2]:
+        for dbic, eff, alt, lr, null_c, _ in cands[:2]:
             if dbic <= 0:
                 continue
-            p, b = _bootstrap_p(null_c, name, lr, data, starts, gs, rng, alpha_each)
+            p, b = _bootstrap_p(null_c, eff, lr, data, starts, gs, rng, alpha_each)
             err_alt, _ = heldout_errors(alt, data, rec.trial)
             held_alt = _rms(err_alt)
             # the held-out criterion on whitened one-step-ahead prediction errors (both
@@ -346,107 +370,60 @@ def _select_closed_form(base, rec, data, starts, gs, rng, alpha, effects, max_ef
             # either held-out measure may show it: a block holding a sharp peak is
             # predicted badly by both models, which can raise the innovations while
             # the raw RMS falls
-            tol = 1.01 if _n_new(current, alt, name) == 0 else 1.0
+            tol = 1.01 if _n_new(current, alt, eff) == 0 else 1.0
             held_ok = inn_alt < inn_cur * tol or held_alt < held_cur * tol
             ev = {
-                "effect": name,
+                "effect": eff.name,
                 "delta_bic": float(f"{dbic:.4g}"),
                 "likelihood_ratio": float(f"{lr:.4g}"),
                 "p_value": float(f"{p:.3g}"),
                 "bootstrap_draws": b,
+                **_p_provenance(p, b, lr),
                 "heldout_rms": float(f"{held_alt:.4g}"),
                 "heldout_innovation_rms": [float(f"{inn_cur:.4g}"), float(f"{inn_alt:.4g}")],
                 "accepted": bool(p < alpha_each and held_ok),
             }
             tested.append(ev)
             if ev["accepted"]:
-                step = (name, alt, ev, held_alt, err_alt)
+                step = (eff, alt, ev, held_alt, err_alt)
                 break
         if step is None:
             break
-        name, alt, ev, held_alt, err_cur = step
-        accepted.append((name, ev, lr_gain(current, alt)))
+        eff, alt, ev, held_alt, err_cur = step
+        accepted.append((eff, ev, lr_gain(current, alt)))
         current, held_cur = alt, held_alt
     return current, accepted, tested, steps, skipped, held_before, held_cur
 
 
-_DER_P_METHOD = (
-    "asymptotic: 0.5 * chi2_1 tail of the likelihood ratio of the whitened residuals "
-    "(dmu_static = 0 on the boundary); no parametric bootstrap under the DER baseline "
-    "(each bootstrap draw would need new simulations); the held-out check still applies"
-)
+def _p_provenance(p, draws, lr) -> dict:
+    """Where a bootstrap p-value comes from, and what the draws alone can claim.
+
+    With ``k`` of ``B`` simulated statistics at or above the observed one the counted
+    p-value is ``(1 + k)/(B + 1)`` (Davison & Hinkley 1997, eq. 4.11); with none the
+    draws only show ``p < 1/(B + 1)`` and a smaller ``p`` is the fitted tail's.
+    """
+    bound = 1.0 / (draws + 1)
+    if p < bound * (1 - 1e-9):
+        return {
+            "p_value_method": (
+                f"scaled chi-square tail fitted to {draws} parametric-bootstrap draws "
+                f"(none reached the observed likelihood ratio {lr:.4g})"
+            ),
+            "p_value_counted_bound": float(f"{bound:.3g}"),
+        }
+    return {"p_value_method": f"counted: (1 + exceedances) / ({draws} + 1) bootstrap draws"}
 
 
-def _der_baseline(rec, data, starts, gs):
-    """Kinetic-only DER baseline: grid scan, then GLS on (mu, delta0_m, u_scale)."""
-    curves = DERCurves(rec)
-    mu_app = baseline_start(rec, data.y)["mu"]
-    grid = curves.kinetic_grid(mu_app)
-    model = build_der_model(rec, curves, grid)
-    x = rec.x
-    shifts = np.linspace(model.lower[1], model.upper[1], 41)
-    best = None
-    for mu in grid:
-        for d0 in shifts:
-            for sc in (0.25, 0.5, 1.0, 2.0, 4.0):
-                ss = float(np.sum((data.y - curves.at((x - d0) / sc, mu, mu)) ** 2))
-                if best is None or ss < best[0]:
-                    best = (ss, mu, d0, sc)
-    p0 = np.array(best[1:])
-    f0 = model.mean(p0)
-    noise = estimate_noise(data.y - f0, f0, starts, given_sigma=gs)
-    fit = fit_model(model, data, [p0], noise, starts, given_sigma=gs)
-    return (curves, grid), fit
-
-
-def _select_der(der, base, rec, data, starts, gs, alpha, effects):
-    """static_friction against the DER baseline (LR / BIC / held-out; see _DER_P_METHOD)."""
-    curves, grid = der
-    ok, skipped = applicable_effects(rec)
-    for name in ok:
-        if name != "static_friction":
-            skipped[name] = "not modelled under the DER baseline (only static_friction is)"
-    if effects is not None:
-        unknown = set(effects) - set(CATALOGUE)
-        if unknown:
-            raise InputError(
-                f"unknown effect {sorted(unknown)[0]!r}; known: {', '.join(CATALOGUE)}"
-            )
-    held_before = heldout_rms(base, data, rec.trial)
-    if effects is not None and "static_friction" not in set(effects):
-        return base, [], [], [], skipped, held_before, held_before
-    mu_k0 = float(base.params["mu"])
-    d0 = float(base.params["delta0_m"])
-    sc = float(base.params["u_scale"])
-    model = build_der_model(rec, curves, grid, ("static_friction",), mu_k0=mu_k0)
-    sd = base.noise.sd(base.mean)
-    scores = []
-    for dm in DER_DMU_GRID[1:]:
-        p = np.array([mu_k0, d0, sc, dm])
-        e = base.noise.whiten(data.y - model.mean(p), sd, starts)
-        scores.append((float(e @ e), dm))
-    scores.sort()
-    p_starts = [np.array([mu_k0, d0, sc, dm]) for _, dm in scores[:2]]
-    alt = fit_model(model, data, p_starts, base.noise, starts, given_sigma=gs)
-    lr = max(2.0 * (alt.loglik - base.loglik), 0.0)
-    dbic = lr - np.log(rec.n)
-    p = 0.5 * float(chi2.sf(lr, 1)) if lr > 0 else 1.0
-    held_alt = heldout_rms(alt, data, rec.trial)
-    ev = {
-        "effect": "static_friction",
-        "delta_bic": float(f"{dbic:.4g}"),
-        "likelihood_ratio": float(f"{lr:.4g}"),
-        "p_value": float(f"{p:.3g}"),
-        "bootstrap_draws": 0,
-        "p_value_method": _DER_P_METHOD,
-        "heldout_rms": float(f"{held_alt:.4g}"),
-        "accepted": bool(p < alpha and dbic > 0 and held_alt < held_before),
-    }
-    steps = [{"static_friction": ev["delta_bic"]}]
-    if not ev["accepted"]:
-        return base, [], [ev], steps, skipped, held_before, held_before
-    accepted = [("static_friction", ev, lr)]
-    return alt, accepted, [ev], steps, skipped, held_before, held_alt
+def _p_text(ev) -> str:
+    """``p = ...`` with its provenance, never claiming more than the draws show."""
+    if ev.get("bootstrap_draws", 0) == 0:
+        return f"p = {ev['p_value']} (asymptotic LR, no bootstrap)"
+    if "p_value_counted_bound" in ev:
+        return (
+            f"p = {ev['p_value']} (tail fit; by count p < {ev['p_value_counted_bound']} "
+            f"from {ev['bootstrap_draws']} draws)"
+        )
+    return f"p = {ev['p_value']} ({ev['bootstrap_draws']} draws)"
 
 
 def _rms(err) -> float:
@@ -468,7 +445,7 @@ def _null_under(null, alt, data, starts, gs):
     return fit_model(null.model, data, [null.p], alt.noise, starts, given_sigma=gs, rounds=0)
 
 
-def _bootstrap_p(current, name, lr, data, starts, gs, rng, decide_at):
+def _bootstrap_p(current, effect, lr, data, starts, gs, rng, decide_at):
     rec = current.model.rec
     mu0 = current.params["mu"]
 
@@ -481,7 +458,7 @@ def _bootstrap_p(current, name, lr, data, starts, gs, rng, decide_at):
                 mu_nom = mu0 + data.mu_sigma * rng.standard_normal()
             d = Data(ystar, mu_nom, data.mu_sigma)
             null = fit_model(current.model, d, [current.p], current.noise, starts, given_sigma=gs)
-            alt = fit_with_effect(null, name, d, starts, given_sigma=gs)
+            alt = fit_with_effect(null, effect, d, starts, given_sigma=gs)
             out[i] = 2.0 * (alt.loglik - _null_under(null, alt, d, starts, gs).loglik)
         return out
 
@@ -489,9 +466,9 @@ def _bootstrap_p(current, name, lr, data, starts, gs, rng, decide_at):
     return monte_carlo_pvalue(lr, draw, decide_at=decide_at)
 
 
-def _effect_regions(rec, base, final, names):
+def _effect_regions(rec, base, final, effects):
     lo, hi = float(np.min(rec.x)), float(np.max(rec.x))
-    if any(CATALOGUE[nm].acts_everywhere for nm in names):
+    if any(e.acts_everywhere for e in effects):
         return [(lo, hi)]
     diff = final.mean - base.mean
     sd = final.noise.sd(final.mean)
@@ -505,7 +482,7 @@ def _fmt(v, digits=3):
     return f"{v:.{digits}g}"
 
 
-def _verdict_line(report: Report, rec, fin_mis) -> str:
+def _verdict_line(report: Report, rec, fin_mis, effect) -> str:
     v = report.verdict
     held = ""
     if report.heldout_rms_before > 0:
@@ -523,42 +500,11 @@ def _verdict_line(report: Report, rec, fin_mis) -> str:
             f"unexplained: a real mismatch at {rec.columns[0]} in {where} ({fin_mis.shape}, "
             f"p = {_fmt(fin_mis.p_value, 2)}) that no catalogue effect explains"
         )
-    if v == "static_friction":
-        text = (
-            f"static friction at the onset of sliding: mu_s = {_fmt(p['mu_static'])} vs "
-            f"mu_k = {_fmt(p['mu_kinetic'])}"
-        )
-    elif v == "finite_thickness":
-        dd = rec.meta("post_diameter_m") / rec.meta("rod_diameter_m")
-        text = (
-            f"finite thickness on the post: mu_eff = {_fmt(p['mu_eff'])} for material "
-            f"mu = {_fmt(p['mu'])} (D/d = {_fmt(dd)}, mu_nominal = {_fmt(rec.mu_nominal)})"
-        )
-    elif v == "contact_flattening":
-        text = (
-            f"contact flattening at high load: Amontons up to 4F_n/(pi E d D) = "
-            f"{_fmt(p['onset_load_parameter'])}, slope x{_fmt(p['slope_ratio'])} beyond"
-        )
-    elif v == "adhesion":
-        text = f"adhesion: F_t = {_fmt(p['adhesion_force_N'])} N at zero normal load"
-    elif v == "self_contact_nip":
-        pos = ", ".join(_fmt(s) for s in p["positions_m"])
-        drops = ", ".join(f"{100 * f:.0f} %" for f in p["drop_fractions"])
-        text = f"self-contact nips: tension drops of {drops} at s = {pos} m"
-    elif v == "displacement_offset":
-        text = f"displacement offset: the curve is shifted by {_fmt(1e3 * p['offset_m'])} mm"
-    elif v == "rate_dependent_friction":
-        text = (
-            f"rate-dependent friction: dmu/dln(v) = {_fmt(p['dmu_dlnv'])} (mu = {_fmt(p['mu'])} "
-            f"at {_fmt(p['reference_speed_m_per_s'])} m/s)"
-        )
-    else:  # pragma: no cover - every catalogue name is handled above
-        text = v
-    return text + held
+    return effect.sentence(p, rec) + held
 
 
-def _summary(report: Report, rec, fin_mis, base_mis) -> str:
-    lines = [_verdict_line(report, rec, fin_mis)]
+def _summary(report: Report, rec, fin_mis, base_mis, effect) -> str:
+    lines = [_verdict_line(report, rec, fin_mis, effect)]
     lines.append(
         f"  baseline: rms {_fmt(report.baseline['rms'])}, residual structure p = "
         f"{_fmt(base_mis.p_value, 2)} ({base_mis.shape}); noise rho = "
@@ -566,8 +512,7 @@ def _summary(report: Report, rec, fin_mis, base_mis) -> str:
     )
     for ev in report.details["candidates"]:
         lines.append(
-            f"  tested {ev['effect']}: delta BIC {ev['delta_bic']}, p = {ev['p_value']}"
-            f"{' (asymptotic LR, no bootstrap)' if 'p_value_method' in ev else ''}, "
+            f"  tested {ev['effect']}: delta BIC {ev['delta_bic']}, {_p_text(ev)}, "
             f"held-out rms {ev['heldout_rms']} -> {'accepted' if ev['accepted'] else 'rejected'}"
         )
     for name, why in report.details["skipped_effects"].items():

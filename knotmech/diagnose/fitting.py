@@ -14,9 +14,9 @@ from dataclasses import dataclass, replace
 import numpy as np
 from scipy.optimize import least_squares
 
-from knotmech.analytic.capstan import mu_from_mu_eff
-from knotmech.diagnose.baselines import Model, build_model, pinch_load_parameter
-from knotmech.diagnose.stats import NoiseModel, estimate_noise, ls_solve, require_finite
+from knotmech.diagnose.baselines import Model, build_model
+from knotmech.diagnose.experiments import get_experiment
+from knotmech.diagnose.stats import NoiseModel, estimate_noise, require_finite
 from knotmech.errors import DiagnoseError
 
 #: above this lag-one correlation, effects are also fitted from a moderate-noise first pass
@@ -28,6 +28,10 @@ __all__ = [
     "fit_model",
     "fit_baseline",
     "fit_with_effect",
+    "param_vector",
+    "whiten_columns",
+    "fit_step_name",
+    "baseline_start",
     "heldout_errors",
     "heldout_rms",
     "heldout_innovation_rms",
@@ -91,7 +95,7 @@ def _ls(model, data, p0, noise, starts):
         fun,
         p0,
         model,
-        _step(model),
+        fit_step_name(model),
         method="trf",
         x_scale="jac",
         ftol=1e-8,
@@ -102,7 +106,8 @@ def _ls(model, data, p0, noise, starts):
     return res.x, float(res.cost)
 
 
-def _step(model) -> str:
+def fit_step_name(model) -> str:
+    """What fitting ``model`` is called in error messages (``fitting the pinch model with ...``)."""
     effects = " + ".join(model.effects)
     return f"fitting the {model.rec.experiment} model" + (f" with {effects}" if effects else "")
 
@@ -171,46 +176,21 @@ def fit_model(model, data, p_starts, noise, starts, *, given_sigma=None, rounds=
     return Fit(model, p, mean, noise, _loglik(model, data, p, noise, starts))
 
 
-def _vector(model: Model, values: dict, defaults: dict) -> np.ndarray:
+def param_vector(model: Model, values: dict, defaults: dict | None = None) -> np.ndarray:
+    """Parameter vector of ``model`` from ``values`` by name (else ``defaults``, else 0)."""
+    defaults = defaults or {}
     return np.array([values.get(n, defaults.get(n, 0.0)) for n in model.names], dtype=float)
 
 
 def baseline_start(rec, y) -> dict:
-    """Heuristic starting values of the baseline parameters."""
-    exp = rec.experiment
-    x = rec.x
-    if exp == "capstan_pull":
-        t_low, theta = rec.meta("T_low_N"), rec.meta("wrap_angle_rad")
-        top = np.quantile(y, 0.8)
-        plateau = float(np.median(y[y >= top]))
-        mu = max(np.log(max(plateau, t_low * 1.0001) / t_low) / theta, 1e-3)
-        rise = plateau - t_low
-        sel = (y > t_low + 0.05 * rise) & (y < t_low + 0.6 * rise)
-        span = float(np.ptp(x)) or 1.0
-        if sel.sum() >= 3 and np.ptp(x[sel]) > 0:
-            b, a = np.polyfit(x[sel], y[sel], 1)
-        else:
-            b, a = rise / (0.3 * span), t_low
-        b = max(b, rise / span * 0.1, 1e-9)
-        zero = (t_low - a) / b
-        return {"mu": mu, "k_N_per_m": b, "delta0_m": max(zero, 0.0), "offset_m": max(-zero, 0.0)}
-    if exp == "pinch":
-        mu = max(np.dot(x, y) / (2 * np.dot(x, x)), 1e-3)
-        return {"mu": mu}
-    r = 0.5 * (rec.meta("post_diameter_m") + rec.meta("rod_diameter_m"))
-    pos = y > 0
-    if pos.sum() >= 2 and np.ptp(x[pos]) > 0:
-        slope = np.polyfit(x[pos], np.log(y[pos] / rec.meta("T_high_N")), 1)[0]
-        mu = max(-slope * r, 1e-3)
-    else:
-        mu = 0.3
-    return {"mu": mu}
+    """Heuristic starting values of the baseline parameters (the experiment's ``start``)."""
+    return get_experiment(rec.experiment).start(rec, y)
 
 
 def fit_baseline(rec, data, starts, *, given_sigma=None, noise=None) -> Fit:
     """Fit the experiment's baseline."""
     model = build_model(rec, ())
-    p0 = _vector(model, baseline_start(rec, data.y), {})
+    p0 = param_vector(model, baseline_start(rec, data.y))
     if noise is None:
         f0 = model.mean(_clip(model, p0))
         noise = estimate_noise(data.y - f0, f0, starts, given_sigma=given_sigma)
@@ -231,222 +211,33 @@ def _second_pass(fit, model, data, p_starts, noise, starts, given_sigma):
     return alt if alt.loglik > fit.loglik else fit
 
 
-def _material_mu(rec, mu_app):
-    d = rec.meta("rod_diameter_m")
-    D = rec.meta("post_diameter_m")
-    dt = D / d
-    mu_app = min(mu_app, 0.95 * np.sqrt(dt))
-    return float(mu_from_mu_eff(max(mu_app, 1e-6), dt))
+def fit_with_effect(current: Fit, effect, data: Data, starts, *, given_sigma=None) -> Fit:
+    """Fit ``current``'s model with ``effect`` (an Effect object) added.
 
-
-def fit_with_effect(current: Fit, effect: str, data: Data, starts, *, given_sigma=None) -> Fit:
-    """Fit ``current``'s model with ``effect`` added (heuristic starts and grids).
-
-    Returns the best fit found; the same routine runs on simulated recordings in
-    the bootstrap, so the maximisation over onsets and positions is calibrated.
+    The effect's own ``fit`` when it has one (searched positions), else a fit from the
+    effect's starting vectors (and the moderate-correlation second pass). Returns the
+    best fit found; the same routine runs on simulated recordings in the bootstrap, so
+    the maximisation over onsets and positions is calibrated.
     """
-    rec = current.model.rec
-    values = current.params
-    effects = current.model.effects + (effect,)
-    fixed = dict(current.model.fixed)
-    y = data.y
-    span = float(np.ptp(rec.x)) or 1.0
-    starts_p = []
-    if effect == "finite_thickness":
-        values = dict(values)
-        values["mu"] = _material_mu(rec, values["mu"])
-        if "dmu_static" in values:
-            values["dmu_static"] = values["dmu_static"] * 1.2
-    if effect == "static_friction":
-        model = build_model(rec, effects, fixed)
-        t_low, theta = rec.meta("T_low_N"), rec.meta("wrap_angle_rad")
-        mu_peak = np.log(max(np.max(y), t_low * 1.0001) / t_low) / theta
-        base = dict(values)
-        base["dmu_static"] = max(mu_peak - values["mu"], 1e-3)
-        for frac in (0.01, 0.05, 0.2):
-            base["decay_length_m"] = frac * span
-            starts_p.append(_vector(model, base, {}))
-    elif effect == "displacement_offset":
-        model = build_model(rec, effects, fixed)
-        b = baseline_start(rec, y)
-        v = dict(values)
-        v["offset_m"] = b["offset_m"] if b["offset_m"] > 0 else -values["delta0_m"]
-        starts_p.append(_vector(model, v, {}))
-        starts_p.append(_vector(model, dict(v, offset_m=-values["delta0_m"]), {}))
-    elif effect == "adhesion":
-        model = build_model(rec, effects, fixed)
-        slope, icpt = np.polyfit(rec.x, y, 1)
-        v = dict(values)
-        v["adhesion_force_N"] = max(icpt, 0.0)
-        starts_p.append(_vector(model, v, {}))
-        v2 = dict(v)
-        v2["mu"] = max(slope / 2, 1e-3)
-        starts_p.append(_vector(model, v2, {}))
-    elif effect == "contact_flattening":
-        model = build_model(rec, effects, fixed)
-        starts_p = _flattening_starts(current, model, data, starts)
-    elif effect == "rate_dependent_friction":
-        model = build_model(rec, effects, fixed)
-        starts_p.append(_vector(model, values, {"dmu_dlnv": 0.0}))
-    elif effect == "self_contact_nip":
-        return _fit_nip(current, data, starts, given_sigma=given_sigma)
-    else:  # finite_thickness
-        model = build_model(rec, effects, fixed)
-        starts_p.append(_vector(model, values, {}))
-    fit = fit_model(model, data, starts_p, current.noise, starts, given_sigma=given_sigma)
-    return _second_pass(fit, model, data, starts_p, current.noise, starts, given_sigma)
+    own = effect.fit(current, data, starts, given_sigma=given_sigma)
+    if own is not None:
+        return own
+    model = build_model(
+        current.model.rec, current.model.effect_objects_added + (effect,), current.model.fixed
+    )
+    p_starts = effect.starts(current, model, data, starts)
+    fit = fit_model(model, data, p_starts, current.noise, starts, given_sigma=given_sigma)
+    return _second_pass(fit, model, data, p_starts, current.noise, starts, given_sigma)
 
 
-def _whiten_cols(noise, sd, starts, cols):
+def whiten_columns(noise: NoiseModel, sd: np.ndarray, starts, cols: np.ndarray) -> np.ndarray:
+    """Whitened columns of a design ``cols`` (n, k) under ``noise`` (see NoiseModel.whiten)."""
     u = cols / sd[:, None]
     e = np.empty_like(u)
     c = np.sqrt(1.0 - noise.rho**2)
     e[1:] = (u[1:] - noise.rho * u[:-1]) / c
     e[starts] = u[starts]
     return e
-
-
-def _flattening_starts(current, model, data, starts):
-    rec = model.rec
-    xl = pinch_load_parameter(
-        rec.x,
-        youngs_modulus=rec.meta("youngs_modulus_Pa"),
-        rod_diameter=rec.meta("rod_diameter_m"),
-        pinch_diameter=rec.meta("pinch_diameter_m"),
-    )
-    scale = rec.x / np.where(xl > 0, xl, 1.0)
-    scale = float(np.median(scale[xl > 0])) if np.any(xl > 0) else 1.0
-    sd = current.noise.sd(current.mean)
-    yw = current.noise.whiten(data.y, sd, starts)
-    cands = np.quantile(xl, np.linspace(0.1, 0.9, 17))
-    adh = "adhesion" in model.effects
-    best = []
-    for xc in cands:
-        fc = xc * scale
-        cols = [rec.x, -np.maximum(rec.x - fc, 0.0)]
-        if adh:
-            cols.append(np.ones_like(rec.x))
-        xw = _whiten_cols(current.noise, sd, starts, np.column_stack(cols))
-        coef = ls_solve(xw, yw, step=_step(model))
-        ss = float(np.sum((yw - xw @ coef) ** 2))
-        a, b = coef[0], coef[1]
-        ratio = float(np.clip(1 - b / a, 0.0, 1.0)) if a > 0 else 1.0
-        best.append((ss, xc, max(a / 2, 1e-4), ratio, coef[2] if adh else 0.0))
-    best.sort(key=lambda t: t[0])
-    out = []
-    for _ss, xc, mu, ratio, fa in best[:2]:
-        v = dict(current.params)
-        v.update({"onset_load_parameter": xc, "slope_ratio": min(ratio, 0.98), "mu": mu})
-        if adh:
-            v["adhesion_force_N"] = max(fa, 0.0)
-        out.append(_vector(model, v, {}))
-    return out
-
-
-def _fit_nip(current, data, starts, *, given_sigma=None):
-    rec = current.model.rec
-    s = rec.x
-    fixed = dict(current.model.fixed)
-    j = 0
-    while f"nip_position_{j}" in fixed:
-        j += 1
-    order = np.unique(s)
-    mids = 0.5 * (order[1:] + order[:-1])
-    if mids.size > 4:
-        mids = mids[1:-1]
-    taken = [fixed[f"nip_position_{i}"] for i in range(j)]
-    if taken:
-        gap = max(1.5 * float(np.median(np.diff(order))), 0.01 * float(np.ptp(s)))
-        keep = np.min(np.abs(mids[:, None] - np.array(taken)[None, :]), axis=1) > gap
-        mids = mids[keep]
-    if mids.size > 120:
-        mids = mids[np.linspace(0, mids.size - 1, 120).astype(int)]
-    f = current.mean
-    r = 0.5 * (rec.meta("post_diameter_m") + rec.meta("rod_diameter_m"))
-    sd = current.noise.sd(f)
-    ew = current.noise.whiten(data.y - f, sd, starts)
-    jmu = _whiten_cols(current.noise, sd, starts, (-f * s / r)[:, None])[:, 0]
-    steps = -f[:, None] * (s[:, None] > mids[None, :])
-    sw = _whiten_cols(current.noise, sd, starts, steps)
-    # score = reduction of whitened SS when regressing on [d/dmu, step_j], per candidate
-    a11 = jmu @ jmu
-    a12 = jmu @ sw
-    a22 = np.sum(sw * sw, axis=0)
-    b1 = jmu @ ew
-    b2 = sw.T @ ew
-    det = a11 * a22 - a12**2
-    det = np.where(det > 1e-300, det, np.inf)
-    c2 = (a11 * b2 - a12 * b1) / det
-    score = (b1**2 * a22 - 2 * a12 * b1 * b2 + b2**2 * a11) / det
-    score = np.where(c2 > 0, score, -np.inf)
-    best = None
-    for idx in np.argsort(score)[::-1][:2]:
-        if not np.isfinite(score[idx]):
-            break
-        fx = dict(fixed)
-        fx[f"nip_position_{j}"] = float(mids[idx])
-        model = build_model(rec, current.model.effects + ("self_contact_nip",), fx)
-        v = dict(current.params)
-        v[f"nip_drop_{j}"] = float(np.clip(c2[idx], 0.01, 0.9))
-        v.update(fx)
-        fit = fit_model(
-            model, data, [_vector(model, v, {})], current.noise, starts, given_sigma=given_sigma
-        )
-        if best is None or fit.loglik > best.loglik:
-            best = fit
-    if best is None:  # no drop-shaped candidate: a null step at the middle
-        fx = dict(fixed)
-        fx[f"nip_position_{j}"] = float(np.median(s))
-        model = build_model(rec, current.model.effects + ("self_contact_nip",), fx)
-        v = dict(current.params)
-        v[f"nip_drop_{j}"] = 0.0
-        best = fit_model(
-            model, data, [_vector(model, v, {})], current.noise, starts, given_sigma=given_sigma
-        )
-        return best
-    return _refine_nip(best, j, data, starts, given_sigma=given_sigma)
-
-
-def _refine_nip(fit, j, data, starts, *, given_sigma=None, window=60):
-    """Move nip ``j`` to the best sample gap near it (exact model, other values fixed).
-
-    The candidate grid of :func:`_fit_nip` is coarse for long recordings; here every
-    gap between consecutive arc lengths within ``window`` gaps of the current
-    position (and not beyond a neighbouring nip) is scored with the exact mean,
-    whitened; the model is refitted when the position moves.
-    """
-    rec = fit.model.rec
-    s = rec.x
-    p = fit.params
-    pos = p[f"nip_position_{j}"]
-    drop = p[f"nip_drop_{j}"]
-    if drop <= 0:
-        return fit
-    order = np.unique(s)
-    mids = 0.5 * (order[1:] + order[:-1])
-    others = [p[f"nip_position_{i}"] for i in range(j + 10) if f"nip_position_{i}" in p and i != j]
-    lo = max([o for o in others if o < pos], default=-np.inf)
-    hi = min([o for o in others if o > pos], default=np.inf)
-    k = int(np.searchsorted(mids, pos))
-    cand = mids[max(0, k - window) : k + window + 1]
-    cand = cand[(cand > lo) & (cand < hi)]
-    if cand.size < 2:
-        return fit
-    without = fit.mean / np.where(s > pos, 1.0 - drop, 1.0)
-    means = without[:, None] * np.where(s[:, None] > cand[None, :], 1.0 - drop, 1.0)
-    sd = fit.noise.sd(fit.mean)
-    ew = _whiten_cols(fit.noise, sd, starts, data.y[:, None] - means)
-    best = float(cand[int(np.argmin(np.sum(ew * ew, axis=0)))])
-    if best == pos:
-        return fit
-    fx = dict(fit.model.fixed)
-    fx[f"nip_position_{j}"] = best
-    model = build_model(rec, fit.model.effects, fx)
-    v = dict(p)
-    v.update(fx)
-    return fit_model(
-        model, data, [_vector(model, v, {})], fit.noise, starts, given_sigma=given_sigma
-    )
 
 
 def heldout_errors(fit: Fit, data: Data, trial: np.ndarray, *, n_folds=5):
@@ -485,7 +276,7 @@ def heldout_errors(fit: Fit, data: Data, trial: np.ndarray, *, n_folds=5):
             fun,
             _clip(model, fit.p),
             model,
-            "held-out validation: " + _step(model),
+            "held-out validation: " + fit_step_name(model),
             method="trf",
             x_scale="jac",
             max_nfev=100,

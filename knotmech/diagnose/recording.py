@@ -40,6 +40,7 @@ from pathlib import Path
 
 import numpy as np
 
+from knotmech.diagnose.experiments import EXPERIMENT_KINDS
 from knotmech.errors import RecordingError
 
 __all__ = ["EXPERIMENTS", "Recording", "read_recording", "recording_from_arrays", "MIN_ROWS"]
@@ -47,23 +48,10 @@ __all__ = ["EXPERIMENTS", "Recording", "read_recording", "recording_from_arrays"
 #: fewest data rows a recording may have
 MIN_ROWS = 8
 
-#: experiment kind -> (control column, measured column, required metadata keys)
+#: experiment kind -> (control column, measured column, required metadata keys), read
+#: from the registry of experiment kinds (:mod:`knotmech.diagnose.experiments`)
 EXPERIMENTS: dict[str, tuple[str, str, tuple[str, ...]]] = {
-    "capstan_pull": (
-        "displacement_m",
-        "T_high_N",
-        ("wrap_angle_rad", "T_low_N", "rod_diameter_m", "post_diameter_m", "youngs_modulus_Pa"),
-    ),
-    "pinch": (
-        "normal_force_N",
-        "tangential_force_N",
-        ("rod_diameter_m", "pinch_diameter_m", "youngs_modulus_Pa"),
-    ),
-    "tension_profile": (
-        "arclength_m",
-        "tension_N",
-        ("T_high_N", "rod_diameter_m", "post_diameter_m"),
-    ),
+    k: (e.columns[0], e.columns[1], tuple(e.required_metadata)) for k, e in EXPERIMENT_KINDS.items()
 }
 
 #: optional columns accepted after the two required ones
@@ -115,6 +103,7 @@ _POSITIVE_KEYS = (
     "T_high_N",
     "wrap_angle_rad",
     "mu_nominal_sigma",
+    "load_N",
 )
 
 
@@ -140,6 +129,9 @@ class Recording:
         File name (or ``"<arrays>"``) used in messages.
     columns : tuple of str
         The two required column names.
+    extra : dict
+        Columns of the experiment kind beyond the standard ones (``load_N``,
+        ``direction`` of ``capstan_hold``; word columns as numbers), name -> (n,) array.
     """
 
     experiment: str
@@ -151,6 +143,7 @@ class Recording:
     speed: np.ndarray | None = None
     source: str = "<arrays>"
     columns: tuple[str, str] = ("x", "y")
+    extra: dict = field(default_factory=dict)
 
     @property
     def n(self) -> int:
@@ -346,13 +339,15 @@ def parse_recording(text: str, *, source: str = "<string>") -> Recording:
             f"a {experiment} recording needs columns '{xcol},{ycol}' first, "
             f"got {','.join(header)!r}",
         )
+    kind = EXPERIMENT_KINDS[experiment]
+    allowed = OPTIONAL_COLUMNS + tuple(kind.optional_columns)
     extra = header[2:]
     for name in extra:
-        if name not in OPTIONAL_COLUMNS:
+        if name not in allowed:
             raise _err(
                 source,
                 header_line,
-                f"unknown column {name!r} (optional columns: {', '.join(OPTIONAL_COLUMNS)})",
+                f"unknown column {name!r} (optional columns: {', '.join(allowed)})",
             )
     if len(set(header)) != len(header):
         raise _err(source, header_line, "repeated column name in the header")
@@ -372,6 +367,16 @@ def parse_recording(text: str, *, source: str = "<string>") -> Recording:
             raise _err(source, lineno, f"expected {len(header)} cells, got {len(row)}")
         vals = []
         for name, cell in zip(header, row, strict=True):
+            words = kind.word_columns.get(name)
+            if words is not None:  # a column of words (direction: raise / lower)
+                if cell.strip().lower() not in words:
+                    raise _err(
+                        source,
+                        lineno,
+                        f"column {name} must read {' or '.join(words)}, got {cell.strip()!r}",
+                    )
+                vals.append(words[cell.strip().lower()])
+                continue
             v = _number(cell)
             if v is None:
                 shown = cell.strip() if len(cell) <= 40 else cell.strip()[:37] + "..."
@@ -385,9 +390,11 @@ def parse_recording(text: str, *, source: str = "<string>") -> Recording:
             vals.append(v)
         rows.append(vals)
         row_lines.append(lineno)
-    if len(rows) < MIN_ROWS:
+    if len(rows) < kind.min_rows:
         raise _err(
-            source, header_line, f"{len(rows)} data rows; a recording needs at least {MIN_ROWS}"
+            source,
+            header_line,
+            f"{len(rows)} data rows; a recording needs at least {kind.min_rows}",
         )
     table = np.array(rows, dtype=float)
     cols = {name: table[:, j] for j, name in enumerate(header)}
@@ -414,11 +421,13 @@ def parse_recording(text: str, *, source: str = "<string>") -> Recording:
     if speed is None:
         speed = _speed_from_metadata(metadata, trial, source, meta_lines)
     x = cols[xcol]
-    if experiment in ("pinch", "tension_profile") and np.any(x < 0):
+    if kind.control_nonnegative and np.any(x < 0):
         j = int(np.argmax(x < 0))
         raise _err(source, int(lines_arr[j]), f"{xcol} must be >= 0, got {x[j]:g}")
-    _check_columns(cols, header, xcol, ycol, trial, source, lines_arr, header_line)
-    return Recording(
+    _check_columns(
+        cols, header, xcol, ycol, trial, source, lines_arr, header_line, kind.min_rows
+    )
+    rec = Recording(
         experiment=experiment,
         x=x,
         y=cols[ycol],
@@ -428,7 +437,12 @@ def parse_recording(text: str, *, source: str = "<string>") -> Recording:
         speed=speed,
         source=source,
         columns=(xcol, ycol),
+        extra={k: cols[k] for k in kind.optional_columns if k in cols},
     )
+    problem = kind.check(rec)
+    if problem:
+        raise _err(source, None, problem)
+    return rec
 
 
 def _csv_problem(exc: csv.Error) -> str:
@@ -462,7 +476,9 @@ def _unit_max(name: str) -> float | None:
     return None
 
 
-def _check_columns(cols, header, xcol, ycol, trial, source, lines_arr, header_line):
+def _check_columns(
+    cols, header, xcol, ycol, trial, source, lines_arr, header_line, min_rows=MIN_ROWS
+):
     """Magnitude bounds of every column, then degenerate data (see the module docstring)."""
     for name in header:
         v = cols[name]
@@ -528,12 +544,12 @@ def _check_columns(cols, header, xcol, ycol, trial, source, lines_arr, header_li
                 "force is >= 0 (is the sign convention reversed?)",
             )
     rows = np.unique(np.column_stack([x, y, trial]), axis=0).shape[0]
-    if rows < MIN_ROWS:
+    if rows < min_rows:
         raise _err(
             source,
             header_line,
             f"only {rows} distinct rows among {n} (rows repeated); a recording needs at "
-            f"least {MIN_ROWS}",
+            f"least {min_rows}",
         )
 
 
@@ -571,6 +587,7 @@ def recording_from_arrays(
     sigma=None,
     trial=None,
     speed=None,
+    columns=None,
 ) -> Recording:
     """Build a validated :class:`Recording` from arrays (notebook use).
 
@@ -585,6 +602,9 @@ def recording_from_arrays(
         optional ``mu_nominal`` / ``mu_nominal_sigma``.
     sigma, trial, speed : array_like, optional
         Per-row standard deviation, trial id, sliding speed [m/s].
+    columns : dict, optional
+        Columns of the experiment kind (``load_N``, ``direction`` of ``capstan_hold``;
+        words as strings), name -> array.
     """
     lines = ["# knotmech-recording: 1", f"# experiment: {experiment}"]
     for k, v in metadata.items():
@@ -606,16 +626,19 @@ def recording_from_arrays(
         cols["trial"] = trial
     if speed is not None:
         cols["speed_m_per_s"] = speed
+    cols.update(columns or {})
     arrays = {}
     for k, v in cols.items():
-        arr = np.atleast_1d(np.asarray(v, dtype=float)).ravel()
-        arrays[k] = arr
+        arr = np.atleast_1d(np.asarray(v)).ravel()
+        arrays[k] = arr if arr.dtype.kind in "USO" else arr.astype(float)
     n = arrays[xcol].size
     for k, arr in arrays.items():
         if arr.size != n:
             raise RecordingError(f"<arrays>: column {k} has {arr.size} values, {xcol} has {n}")
     lines.append(",".join(arrays))
-    table = np.column_stack(list(arrays.values()))
-    for row in table:
-        lines.append(",".join(repr(float(v)) for v in row))
+    for i in range(n):
+        cells = (
+            arr[i] if arr.dtype.kind in "USO" else repr(float(arr[i])) for arr in arrays.values()
+        )
+        lines.append(",".join(str(c) for c in cells))
     return parse_recording("\n".join(lines) + "\n", source="<arrays>")

@@ -10,9 +10,6 @@ import numpy as np
 
 __all__ = ["Report", "public_parameters", "effect_parameters"]
 
-#: internal parameter names -> report names (others are reported as they are)
-_INTERNAL = {"dmu_static"}
-
 
 def _round(v):
     if isinstance(v, (float, np.floating)):
@@ -24,50 +21,20 @@ def _round(v):
 
 
 def public_parameters(params: dict, effects: tuple, rec) -> dict:
-    """Fitted parameters under their report names (``mu_static``, ``positions_m``...)."""
-    from knotmech.analytic.capstan import mu_eff
-    from knotmech.diagnose.baselines import reference_speed
+    """Fitted parameters under their report names (``mu_static``, ``positions_m``...).
 
-    out = {}
-    for k, v in params.items():
-        if k in _INTERNAL or k.startswith("nip_"):
-            continue
-        out[k] = v
-    if "static_friction" in effects:
-        out["mu_static"] = params["mu"] + params["dmu_static"]
-        out["mu_kinetic"] = params["mu"]
-    if "finite_thickness" in effects:
-        dd = rec.meta("post_diameter_m") / rec.meta("rod_diameter_m")
-        out["mu_eff"] = float(mu_eff(params["mu"], dd))
-    if "self_contact_nip" in effects:
-        j, pos, drops = 0, [], []
-        while f"nip_position_{j}" in params:
-            pos.append(params[f"nip_position_{j}"])
-            drops.append(params[f"nip_drop_{j}"])
-            j += 1
-        order = np.argsort(pos)
-        out["positions_m"] = [float(pos[i]) for i in order]
-        out["drop_fractions"] = [float(drops[i]) for i in order]
-    if "rate_dependent_friction" in effects:
-        out["reference_speed_m_per_s"] = reference_speed(rec)
+    ``effects`` are the model's Effect objects: each hides its internal parameters and
+    adds its public ones.
+    """
+    out = {k: v for k, v in params.items() if not any(e.is_internal(k) for e in effects)}
+    for e in effects:
+        e.public(params, rec, out)
     return {k: _round(v) for k, v in out.items()}
 
 
-#: report parameters that belong to each effect
-_EFFECT_KEYS = {
-    "static_friction": ("mu_static", "mu_kinetic", "decay_length_m"),
-    "finite_thickness": ("mu", "mu_eff"),
-    "contact_flattening": ("onset_load_parameter", "slope_ratio"),
-    "adhesion": ("adhesion_force_N",),
-    "self_contact_nip": ("positions_m", "drop_fractions"),
-    "displacement_offset": ("offset_m",),
-    "rate_dependent_friction": ("dmu_dlnv", "reference_speed_m_per_s"),
-}
-
-
-def effect_parameters(name: str, public: dict) -> dict:
-    """The subset of ``public`` parameters that belongs to effect ``name``."""
-    return {k: public[k] for k in _EFFECT_KEYS[name] if k in public}
+def effect_parameters(effect, public: dict) -> dict:
+    """The subset of ``public`` parameters that belongs to ``effect`` (an Effect)."""
+    return {k: public[k] for k in effect.report_keys if k in public}
 
 
 @dataclass

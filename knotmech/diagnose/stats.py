@@ -202,14 +202,15 @@ def monte_carlo_pvalue(observed: float, draw, *, batches=(9, 30, 60, 100), decid
     batches; after each batch we stop when the answer is clear: at least 5
     simulated statistics exceed ``observed`` (p clearly large), or the
     scaled-chi-square tail fitted to the draws puts ``p`` below ``decide_at/20``
-    or above ``20*decide_at`` (after the first, small batch: below
-    ``decide_at/1e6`` or above ``50*decide_at``). With no exceedance the p-value is the fitted tail
-    (a ``a chi2_nu`` matched to the mean and variance of the positive part of the
-    draws, Satterthwaite 1946; a normal tail when many draws are < 0, as for the
-    non-nested ``finite_thickness`` comparison; when most draws sit on the boundary
-    (likelihood ratio 0), the share of positive draws times a scaled chi-square fitted
-    to them), never above ``1/(B+1)``;
-    otherwise ``(1 + #exceed) / (B + 1)`` (Davison & Hinkley 1997, eq. 4.11).
+    or above ``20*decide_at`` (after the first, small batch: only above
+    ``50*decide_at``; a tail fitted to nine draws is not trusted on the small side).
+    With no exceedance the p-value is the fitted tail (a ``a chi2_nu`` matched to
+    the mean and variance of the positive part of the draws, Satterthwaite 1946; a
+    normal tail when many draws are < 0, as for the non-nested ``finite_thickness``
+    comparison; when most draws sit on the boundary (likelihood ratio 0), the share
+    of positive draws times a scaled chi-square fitted to them, chi2_2 with fewer
+    than ten), never above ``1/(B+1)``; otherwise ``(1 + #exceed) / (B + 1)``
+    (Davison & Hinkley 1997, eq. 4.11).
 
     Returns
     -------
@@ -223,10 +224,13 @@ def monte_carlo_pvalue(observed: float, draw, *, batches=(9, 30, 60, 100), decid
         p_tail = _tail_p(observed, sims)
         if n_exceed >= 5:
             break
-        # the first, small batch decides only far from decide_at: a tail fitted to
-        # nine draws may be badly off
-        low, high = (1e6, 50.0) if i == 0 else (20.0, 20.0)
-        if p_tail < decide_at / low or p_tail > high * decide_at:
+        # the first, small batch decides only that p is large: a tail fitted to nine
+        # draws may be off by many orders of magnitude on the small side (four positive
+        # draws of 0.1-0.5 gave p = 1e-15 for a likelihood ratio of 8)
+        if i == 0:
+            if p_tail > 50.0 * decide_at:
+                break
+        elif p_tail < decide_at / 20.0 or p_tail > 20.0 * decide_at:
             break
     b = sims.size
     if n_exceed == 0:
@@ -246,12 +250,12 @@ def _tail_p(observed: float, sims: np.ndarray) -> float:
             return float(stats.norm.sf((observed - float(np.mean(sims))) / sd))
         # nested, most draws on the boundary (likelihood ratio 0): a mixture, the share
         # of positive draws (plus one) times a scaled chi-square fitted to them (chi2_2
-        # when fewer than three: a normal tail of a few nonzero draws would be far too
+        # when fewer than ten: a tail fitted to a few nonzero draws would be far too
         # liberal)
         p_pos = sims[sims > 0]
         w = (p_pos.size + 1) / (sims.size + 1)
         a, nu = 1.0, 2.0
-        if p_pos.size >= 3 and np.var(p_pos) > 0:
+        if p_pos.size >= 10 and np.var(p_pos) > 0:
             a = float(np.var(p_pos)) / (2 * float(np.mean(p_pos)))
             nu = max(float(np.mean(p_pos)) / a, 1.0)
         return float(min(w * stats.chi2.sf(observed / a, nu), 1.0))

@@ -17,7 +17,7 @@ import pytest
 from knotmech.analytic.capstan import mu_eff
 from knotmech.cli.main import main
 from knotmech.diagnose import diagnose
-from knotmech.diagnose.baselines import DERCurves
+from knotmech.diagnose.der import DERCurves
 from knotmech.diagnose.recording import recording_from_arrays
 from knotmech.errors import InputError
 

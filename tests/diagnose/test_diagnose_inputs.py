@@ -345,7 +345,7 @@ def test_template_is_a_valid_baseline_recording(kind, tmp_path, capsys):
 
 def test_unknown_template(capsys):
     rc, _out, err = _cli(["diagnose", "--template", "knot"], capsys)
-    assert rc == 2 and "no template for 'knot'; kinds: capstan_pull" in err
+    assert rc == 2 and "no template for 'knot'; kinds: capstan_hold, capstan_pull" in err
 
 
 def test_templates_are_package_data():

@@ -1,0 +1,201 @@
+r"""``self_contact_nip``: rod-rod pinch regions on the post (tension_profile).
+
+Each nip is a discrete tension drop, :math:`T \to T\prod_j (1 - f_j H(s - s_j))`.
+The position :math:`s_j` is searched (a scan of sample gaps scored by GLS, then a
+local refinement with the exact mean) and held fixed; the drop fraction
+:math:`f_j \in [0, 0.95]` is free. Repeatable, one nip per addition; the searched
+position counts as one degree of freedom. Clove-hitch paper, sec. 7 and Fig. 3(b).
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from knotmech.diagnose.baselines import build_model
+from knotmech.diagnose.effects._common import CLOVE
+from knotmech.diagnose.effects.base import Effect
+from knotmech.diagnose.fitting import fit_model, param_vector, whiten_columns
+
+__all__ = ["SelfContactNip"]
+
+
+def _count(params) -> int:
+    j = 0
+    while f"nip_position_{j}" in params:
+        j += 1
+    return j
+
+
+class SelfContactNip(Effect):
+    name = "self_contact_nip"
+    experiments = ("tension_profile",)
+    parameters = {
+        "positions_m": ([], "arc lengths of the tension drops [m]"),
+        "drop_fractions": ([], "fraction of the tension lost at each drop"),
+    }
+    signature = "discrete tension drops at certain arc lengths (steps)"
+    reference = CLOVE + ", sec. 7 and Fig. 3(b): nip regions"
+    repeatable = True
+    extra_dof = 1
+    report_keys = ("positions_m", "drop_fractions")
+    key_parameter = ("positions_m", "positions_m", "abs")
+
+    def add_parameters(self, rec, names, lower, upper, fixed):
+        for j in range(_count(fixed)):
+            names += [f"nip_drop_{j}"]
+            lower += [0.0]
+            upper += [0.95]
+
+    def is_internal(self, key):
+        return key.startswith("nip_")
+
+    def output(self, rec, p, value):
+        s = rec.x
+        for j in range(_count(p)):
+            value = value * np.where(s > p[f"nip_position_{j}"], 1.0 - p[f"nip_drop_{j}"], 1.0)
+        return value
+
+    def fit(self, current, data, starts, *, given_sigma=None):
+        """Score every sample gap for one more drop (GLS on [d/dmu, step]); fit the best
+        two, refine the better one locally (:meth:`_refine`)."""
+        rec = current.model.rec
+        s = rec.x
+        fixed = dict(current.model.fixed)
+        j = _count(fixed)
+        effects = current.model.effect_objects_added + (self,)
+        order = np.unique(s)
+        mids = 0.5 * (order[1:] + order[:-1])
+        if mids.size > 4:
+            mids = mids[1:-1]
+        taken = [fixed[f"nip_position_{i}"] for i in range(j)]
+        if taken:
+            gap = max(1.5 * float(np.median(np.diff(order))), 0.01 * float(np.ptp(s)))
+            keep = np.min(np.abs(mids[:, None] - np.array(taken)[None, :]), axis=1) > gap
+            mids = mids[keep]
+        if mids.size > 120:
+            mids = mids[np.linspace(0, mids.size - 1, 120).astype(int)]
+        f = current.mean
+        r = 0.5 * (rec.meta("post_diameter_m") + rec.meta("rod_diameter_m"))
+        sd = current.noise.sd(f)
+        ew = current.noise.whiten(data.y - f, sd, starts)
+        jmu = whiten_columns(current.noise, sd, starts, (-f * s / r)[:, None])[:, 0]
+        steps = -f[:, None] * (s[:, None] > mids[None, :])
+        sw = whiten_columns(current.noise, sd, starts, steps)
+        # score = reduction of whitened SS when regressing on [d/dmu, step_j], per candidate
+        a11 = jmu @ jmu
+        a12 = jmu @ sw
+        a22 = np.sum(sw * sw, axis=0)
+        b1 = jmu @ ew
+        b2 = sw.T @ ew
+        det = a11 * a22 - a12**2
+        det = np.where(det > 1e-300, det, np.inf)
+        c2 = (a11 * b2 - a12 * b1) / det
+        score = (b1**2 * a22 - 2 * a12 * b1 * b2 + b2**2 * a11) / det
+        score = np.where(c2 > 0, score, -np.inf)
+        best = None
+        for idx in np.argsort(score)[::-1][:2]:
+            if not np.isfinite(score[idx]):
+                break
+            fx = dict(fixed)
+            fx[f"nip_position_{j}"] = float(mids[idx])
+            model = build_model(rec, effects, fx)
+            v = dict(current.params)
+            v[f"nip_drop_{j}"] = float(np.clip(c2[idx], 0.01, 0.9))
+            v.update(fx)
+            fit = fit_model(
+                model,
+                data,
+                [param_vector(model, v)],
+                current.noise,
+                starts,
+                given_sigma=given_sigma,
+            )
+            if best is None or fit.loglik > best.loglik:
+                best = fit
+        if best is None:  # no drop-shaped candidate: a null step at the middle
+            fx = dict(fixed)
+            fx[f"nip_position_{j}"] = float(np.median(s))
+            model = build_model(rec, effects, fx)
+            v = dict(current.params)
+            v[f"nip_drop_{j}"] = 0.0
+            return fit_model(
+                model,
+                data,
+                [param_vector(model, v)],
+                current.noise,
+                starts,
+                given_sigma=given_sigma,
+            )
+        return self._refine(best, j, data, starts, given_sigma=given_sigma)
+
+    def _refine(self, fit, j, data, starts, *, given_sigma=None, window=60):
+        """Move nip ``j`` to the best sample gap near it (exact model, other values fixed).
+
+        The candidate grid of :meth:`fit` is coarse for long recordings; here every
+        gap between consecutive arc lengths within ``window`` gaps of the current
+        position (and not beyond a neighbouring nip) is scored with the exact mean,
+        whitened; the model is refitted when the position moves.
+        """
+        rec = fit.model.rec
+        s = rec.x
+        p = fit.params
+        pos = p[f"nip_position_{j}"]
+        drop = p[f"nip_drop_{j}"]
+        if drop <= 0:
+            return fit
+        order = np.unique(s)
+        mids = 0.5 * (order[1:] + order[:-1])
+        others = [
+            p[f"nip_position_{i}"] for i in range(j + 10) if f"nip_position_{i}" in p and i != j
+        ]
+        lo = max([o for o in others if o < pos], default=-np.inf)
+        hi = min([o for o in others if o > pos], default=np.inf)
+        k = int(np.searchsorted(mids, pos))
+        cand = mids[max(0, k - window) : k + window + 1]
+        cand = cand[(cand > lo) & (cand < hi)]
+        if cand.size < 2:
+            return fit
+        without = fit.mean / np.where(s > pos, 1.0 - drop, 1.0)
+        means = without[:, None] * np.where(s[:, None] > cand[None, :], 1.0 - drop, 1.0)
+        sd = fit.noise.sd(fit.mean)
+        ew = whiten_columns(fit.noise, sd, starts, data.y[:, None] - means)
+        best = float(cand[int(np.argmin(np.sum(ew * ew, axis=0)))])
+        if best == pos:
+            return fit
+        fx = dict(fit.model.fixed)
+        fx[f"nip_position_{j}"] = best
+        model = build_model(rec, fit.model.effect_objects_added, fx)
+        v = dict(p)
+        v.update(fx)
+        return fit_model(
+            model, data, [param_vector(model, v)], fit.noise, starts, given_sigma=given_sigma
+        )
+
+    def public(self, params, rec, out):
+        n = _count(params)
+        pos = [params[f"nip_position_{j}"] for j in range(n)]
+        drops = [params[f"nip_drop_{j}"] for j in range(n)]
+        order = np.argsort(pos)
+        out["positions_m"] = [float(pos[i]) for i in order]
+        out["drop_fractions"] = [float(drops[i]) for i in order]
+
+    def sentence(self, p, rec):
+        pos = ", ".join(f"{v:.3g}" for v in p["positions_m"])
+        drops = ", ".join(f"{100 * f:.0f} %" for f in p["drop_fractions"])
+        return f"self-contact nips: tension drops of {drops} at s = {pos} m"
+
+    def plant(self, kind, s):
+        rng, x = s.rng, s.x
+        n_nips = int(rng.integers(1, 3))
+        span = x[-1] - x[0]
+        pos = np.sort(rng.uniform(0.2, 0.8, n_nips)) * span + x[0]
+        if n_nips == 2 and pos[1] - pos[0] < 0.15 * span:
+            pos[1] = min(pos[0] + 0.15 * span, x[0] + 0.9 * span)
+        cur = dict(s.p)
+        for j, s_j in enumerate(pos):
+            level = s.experiment.mean(s.rec, cur, (self,))
+            i = int(np.searchsorted(x, s_j, side="right"))
+            drop = float(min(s.size * s.sd[i] / level[i], 0.9))
+            cur[f"nip_position_{j}"] = float(s_j)
+            cur[f"nip_drop_{j}"] = drop
+        return cur, {"positions_m": [float(v) for v in pos]}
