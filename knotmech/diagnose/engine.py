@@ -261,11 +261,6 @@ def diagnose(
             }
         )
     rms_base = float(np.sqrt(np.mean((rec.y - base.mean) ** 2)))
-    # the baseline drawn next to the final fit: refitted under the final model's noise, so
-    # that the picture compares means under one noise model (a baseline fitted under its
-    # own noise estimate, a lag-one correlation near 1, may run below every point)
-    shown = base if final is base else _null_under(base, final, data, starts, gs)
-    rms_shown = float(np.sqrt(np.mean((rec.y - shown.mean) ** 2)))
     rms_final = float(np.sqrt(np.mean((rec.y - final.mean) ** 2)))
     details = {
         "baseline_model": baseline,
@@ -281,11 +276,6 @@ def diagnose(
                 "regions": [{"start": a, "end": b} for a, b in fin_mis.regions],
                 "shape": fin_mis.shape,
             },
-        },
-        "baseline_under_final_noise": {
-            "parameters": public_parameters(shown.params, (), rec),
-            "rms": float(f"{rms_shown:.6g}"),
-            "note": "the baseline of the plot: refitted under the final model's noise",
         },
         "candidates": tested,
         # delta BIC of every applicable effect at each forward step (confusable ones
@@ -311,7 +301,7 @@ def diagnose(
         details=details,
         x=rec.x,
         y=rec.y,
-        baseline_mean=shown.mean,
+        baseline_mean=base.mean,
         final_mean=final.mean,
         columns=rec.columns,
     )

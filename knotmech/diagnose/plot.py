@@ -28,8 +28,9 @@ def axis_label(column: str) -> str:
 def plot_report(report, path=None):
     """Draw ``report`` (two panels) and save it to ``path`` when given.
 
-    Top: data (dots), baseline fit (dashed; refitted under the final model's noise, so
-    that both curves are fits under one noise model), final fit (solid). Bottom: residuals
+    Top: data (dots), baseline fit (dashed: the report's baseline, the GLS fit under the
+    noise model the report states for it, ``noise.baseline``), final fit (solid). Bottom:
+    residuals
     of the baseline and of the final model; the regions where the baseline misses
     shaded in both (and named in the legend). Axes carry the columns' names and
     units. Returns the matplotlib Figure (pyplot-free, no display needed).
@@ -48,10 +49,7 @@ def plot_report(report, path=None):
             label = "mismatch region" if (a is ax and k == 0) else None
             a.axvspan(lo, hi, color="orange", alpha=0.18, lw=0, label=label)
     ax.plot(x, y, ".", ms=2.5 if x.size > 60 else 5, color="0.35", label="recording")
-    label = "baseline"
-    if report.effects:
-        label = "baseline (refitted under the final noise model)"
-    ax.plot(x[order], report.baseline_mean[order], "--", color="C0", lw=1.2, label=label)
+    ax.plot(x[order], report.baseline_mean[order], "--", color="C0", lw=1.2, label="baseline")
     ax.plot(
         x[order],
         report.final_mean[order],

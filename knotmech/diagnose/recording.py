@@ -45,7 +45,8 @@ from knotmech.errors import RecordingError
 
 __all__ = ["EXPERIMENTS", "Recording", "read_recording", "recording_from_arrays", "MIN_ROWS"]
 
-#: fewest data rows a recording may have
+#: fewest data rows of a recording by default (an experiment kind may set its own,
+#: ``Experiment.min_rows``: capstan_hold 5)
 MIN_ROWS = 8
 
 #: experiment kind -> (control column, measured column, required metadata keys), read

@@ -8,7 +8,10 @@ deviation at that point. Noise is white or AR(1) (lag-one correlation ``rho``),
 with a standard deviation constant or growing with the signal.
 
 For ``finite_thickness`` the data alone cannot show the effect (it is a smaller
-mu); its size is the prior's pull ``(mu - mu_eff)/mu_nominal_sigma`` instead.
+mu); its size is the prior's pull ``(mu - mu_eff)/mu_nominal_sigma`` instead. The
+capstan_hold effects that mu can partly mimic (``bending_resistance``,
+``bending_stiffness``, ``pressure_dependent_friction``) are sized by the largest change
+left after the baseline's mu is refitted (each effect's ``plant``).
 
 Effects outside the catalogue (``out_of_catalogue``): a plateau that keeps
 rising (capstan_pull), a stiffening, super-linear F_t (pinch), a local tension

@@ -17,7 +17,7 @@ from knotmech.diagnose import diagnose, make_recording, parse_recording, read_re
 from knotmech.diagnose.baselines import MEANS
 from knotmech.diagnose.recording import Recording, recording_from_arrays
 from knotmech.diagnose.rigs import capstan_yarn_rig, plateau_windows
-from knotmech.errors import RecordingError
+from knotmech.errors import InputError, RecordingError
 
 RIG = Path("/work/shared/reference/capstan-yarn-rig")
 SHIPPED = Path(__file__).parents[2] / "knotmech" / "data" / "recordings" / "capstan_yarn_rig.csv"
@@ -124,6 +124,15 @@ def test_recording_columns_words_and_metadata():
         columns={"direction": ["lower"] * 5},
     )
     assert np.all(rec.extra["direction"] == -1)
+    rec = recording_from_arrays(
+        "capstan_hold",
+        [1, 1, 1, 2, 2, 2],
+        [3, 3.1, 3, 2.5, 2.4, 2.5],
+        metadata={"load_N": 4.0},
+        columns={"direction": ["lower"] * 6},
+    )
+    with pytest.raises(InputError, match="6 readings of 2 holds .* at least 5 holds"):
+        diagnose(rec)
 
 
 @pytest.mark.parametrize(

@@ -26,13 +26,31 @@ def reference_speed(rec) -> float:
     return float(np.exp(np.mean(np.log(rec.speed))))
 
 
-def amplitude_for_size(mean_of, mean0, sd, size, a0) -> float:
-    """Amplitude ``a`` of an effect whose largest change ``max |mean_of(a) - mean0| / sd``
-    equals ``size`` (two secant steps from ``a0``; the change is nearly linear in ``a``)."""
+def amplitude_beyond_mu(mean_of, baseline_of_mu, mu0, sd, size, a0) -> float:
+    """Amplitude ``a`` whose change *beyond what a refitted mu absorbs* is ``size`` sd.
+
+    For an effect that mu can partly mimic (a curvature of ln T in the wrap angle, a
+    level at zero wrap), the size that the data can show is the largest
+    ``|mean_of(a) - baseline_of_mu(mu*)| / sd`` with ``mu*`` the least-squares mu (in
+    units of sd) of the baseline fitted to ``mean_of(a)``; the change is nearly linear in
+    ``a``, so three secant steps from ``a0`` find it.
+    """
+    from scipy.optimize import minimize_scalar
+
+    def change(a):
+        target = mean_of(a)
+        res = minimize_scalar(
+            lambda mu: float(np.sum(((target - baseline_of_mu(mu)) / sd) ** 2)),
+            bounds=(max(mu0 - 0.5, 0.0), mu0 + 0.5),
+            method="bounded",
+            options={"xatol": 1e-10},
+        )
+        return float(np.max(np.abs(target - baseline_of_mu(res.x)) / sd))
+
     a = float(a0)
     for _ in range(3):
-        change = float(np.max(np.abs(mean_of(a) - mean0) / sd))
-        if change <= 0:
+        c = change(a)
+        if c <= 0:
             return a
-        a = a * size / change
+        a = a * size / c
     return a

@@ -29,7 +29,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from knotmech.diagnose.effects._common import amplitude_for_size, fmt
+from knotmech.diagnose.effects._common import amplitude_beyond_mu, fmt
 from knotmech.diagnose.effects.base import Effect
 from knotmech.diagnose.experiments.capstan_hold import hold_load, hold_radius, hold_sign
 from knotmech.diagnose.fitting import param_vector
@@ -100,5 +100,9 @@ class BendingStiffness(Effect):
         def mean_of(a):
             return s.experiment.mean(s.rec, dict(p, bending_number=a), (self,))
 
-        p["bending_number"] = amplitude_for_size(mean_of, s.mean0, s.sd, s.size, 0.01)
+        def base_of(mu):
+            return s.experiment.mean(s.rec, dict(p, mu=mu), ())
+
+        # sized by what a refitted mu cannot absorb
+        p["bending_number"] = amplitude_beyond_mu(mean_of, base_of, p["mu"], s.sd, s.size, 0.01)
         return p, {"bending_number": p["bending_number"]}

@@ -18,7 +18,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from knotmech.diagnose.effects._common import amplitude_for_size, fmt
+from knotmech.diagnose.effects._common import amplitude_beyond_mu, fmt
 from knotmech.diagnose.effects.base import Effect
 from knotmech.diagnose.fitting import param_vector
 
@@ -69,6 +69,10 @@ class PressureDependentFriction(Effect):
         def mean_of(d):
             return s.experiment.mean(s.rec, dict(p, friction_exponent=1.0 - d), (self,))
 
-        d = amplitude_for_size(mean_of, s.mean0, s.sd, s.size, 0.02)
+        def base_of(mu):
+            return s.experiment.mean(s.rec, dict(p, mu=mu), ())
+
+        # sized by what a refitted mu cannot absorb
+        d = amplitude_beyond_mu(mean_of, base_of, p["mu"], s.sd, s.size, 0.02)
         p["friction_exponent"] = float(max(1.0 - d, 0.2))
         return p, {"friction_exponent": p["friction_exponent"]}

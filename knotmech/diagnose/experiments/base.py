@@ -71,7 +71,7 @@ class Experiment:
     required_metadata: tuple = ()
     optional_columns: tuple = ()
     word_columns: dict = {}
-    min_rows = 8
+    min_rows = 8  # knotmech.diagnose.recording.MIN_ROWS (spec section 1)
     control_nonnegative = False
     stages = ""
 

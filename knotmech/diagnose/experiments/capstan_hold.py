@@ -26,6 +26,7 @@ from __future__ import annotations
 import numpy as np
 
 from knotmech.diagnose.experiments.base import Experiment, Stages
+from knotmech.errors import InputError
 
 __all__ = ["CapstanHold", "hold_load", "hold_sign", "hold_radius"]
 
@@ -98,6 +99,11 @@ class CapstanHold(Experiment):
         reading step), so spikes are dropped; the noise is then estimated between
         holds. A ``sigma`` column becomes the sd of each mean. Returns the recording
         itself when every hold has one row.
+
+        Raises
+        ------
+        InputError
+            Fewer than ``min_rows`` holds.
         """
         from knotmech.diagnose.recording import Recording
 
@@ -109,6 +115,12 @@ class CapstanHold(Experiment):
         m = int(block[-1]) + 1
         if m == rec.n:
             return rec, None
+        if m < self.min_rows:
+            raise InputError(
+                f"{rec.source}: {rec.n} readings of {m} holds (rows with the same trial, "
+                f"angle, direction and load); a capstan_hold recording needs at least "
+                f"{self.min_rows} holds"
+            )
         med = np.array([np.median(y[block == b]) for b in range(m)])
         dev = y - med[block]
         counts = np.bincount(block)
