@@ -124,14 +124,24 @@ def test_recording_columns_words_and_metadata():
         columns={"direction": ["lower"] * 5},
     )
     assert np.all(rec.extra["direction"] == -1)
+    # 6 readings at 2 wrap angles: the reader refuses a control variable with fewer than 3
+    # values before the engine would count 2 holds (fewer than the 5 a hold recording needs)
+    with pytest.raises(InputError, match="only 2 distinct values of wrap_angle_rad"):
+        recording_from_arrays(
+            "capstan_hold",
+            [1, 1, 1, 2, 2, 2],
+            [3, 3.1, 3, 2.5, 2.4, 2.5],
+            metadata={"load_N": 4.0},
+            columns={"direction": ["lower"] * 6},
+        )
     rec = recording_from_arrays(
         "capstan_hold",
-        [1, 1, 1, 2, 2, 2],
-        [3, 3.1, 3, 2.5, 2.4, 2.5],
+        [1, 1, 1, 2, 2, 2, 3, 3, 3, 4, 4, 4],
+        [3, 3.1, 3, 2.5, 2.4, 2.5, 2.0, 2.1, 2.0, 1.6, 1.7, 1.6],
         metadata={"load_N": 4.0},
-        columns={"direction": ["lower"] * 6},
+        columns={"direction": ["lower"] * 12},
     )
-    with pytest.raises(InputError, match="6 readings of 2 holds .* at least 5 holds"):
+    with pytest.raises(InputError, match="12 readings of 4 holds .* at least 5 holds"):
         diagnose(rec)
 
 
