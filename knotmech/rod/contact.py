@@ -29,7 +29,9 @@ from knotmech.rod._kernels.contact_rodrod import (
     Z_JACOBIAN,
     max_node_speed,
     max_pair_displacement,
+    rodrod_anchor_commit,
     rodrod_assemble,
+    rodrod_closest_params,
     rodrod_energy,
     rodrod_near,
 )
@@ -136,7 +138,7 @@ class RodContact:
 
     stiffness: float
     sharpness: float
-    friction: SmoothFriction | None = None
+    friction: SmoothFriction | AnchorFriction | None = None
     margin: float | None = None
     exclusion: int | None = None
     max_displacement: float | None = 0.5
@@ -151,8 +153,64 @@ class RodContact:
             self.margin = float(check_nonnegative("margin", self.margin))
         if self.max_displacement is not None:
             self.max_displacement = float(check_positive("max_displacement", self.max_displacement))
-        if self.friction is not None and not isinstance(self.friction, SmoothFriction):
-            raise InputError("friction must be a SmoothFriction or None")
+        if self.friction is not None and not isinstance(
+            self.friction, (SmoothFriction, AnchorFriction)
+        ):
+            raise InputError("friction must be a SmoothFriction, an AnchorFriction or None")
+        self.reset()
+
+    @property
+    def _anchored(self) -> bool:
+        return isinstance(self.friction, AnchorFriction)
+
+    def reset(self):
+        """Forget the friction state (the anchors of the pairs in contact)."""
+        self._store = (np.zeros(0, dtype=np.int64), np.zeros((0, 2)), np.zeros(0, dtype=bool))
+        self._anc = None
+        self._no_anchor = (np.zeros((1, 2)), np.zeros(1, dtype=bool), np.zeros(1, dtype=bool))
+
+    def state_arrays(self) -> dict:
+        """The friction state as arrays (for :class:`knotmech.rod.State` checkpoints): the
+        key e_i * n_edges + e_j of each pair in contact, its anchor (s_a, s_b) (material
+        parameters on the two edges) and whether it slid at the last accepted step."""
+        keys, anc, slip = self._store
+        return {"keys": keys, "anchor": anc, "slipping": slip}
+
+    def load_state_arrays(self, d) -> None:
+        """Restore the friction state written by :meth:`state_arrays`."""
+        self._store = (
+            np.array(d["keys"], dtype=np.int64),
+            np.array(d["anchor"], dtype=float).reshape(-1, 2),
+            np.array(d["slipping"], dtype=bool),
+        )
+        self._anc = None
+
+    def _anchor_params(self):
+        """(mu_s, mu_k, k_t) of the anchor law; k_t [N/m] defaults to 2 K_c, the normal
+        penalty's stiffness under load."""
+        fr = self.friction
+        kt = fr.tangential_stiffness
+        return fr.mu_s, fr.mu_k, float(2.0 * self.stiffness if kt is None else kt)
+
+    def _align_anchors(self, system, q_old):
+        """Anchors aligned with ``self.pairs``: the committed ones of pairs still in the
+        candidate list, the contact point at the step start for new pairs."""
+        keys_old, anc_old, slip_old = self._store
+        n_edges = system.edge_nodes.shape[0]
+        keys = self.pairs[:, 0] * n_edges + self.pairs[:, 1]
+        anc = np.empty((keys.size, 2))
+        slip = np.zeros(keys.size, dtype=bool)
+        known = np.zeros(keys.size, dtype=bool)
+        if keys_old.size and keys.size:
+            idx = np.minimum(np.searchsorted(keys_old, keys), keys_old.size - 1)
+            known = keys_old[idx] == keys
+            anc[known] = anc_old[idx[known]]
+            slip[known] = slip_old[idx[known]]
+        fresh = np.flatnonzero(~known)
+        if fresh.size:
+            en = self._arrays(system)[1]
+            rodrod_closest_params(_positions(system, q_old), self.pairs, fresh, en, anc)
+        self._anc = (keys, anc, slip, np.zeros(keys.size, dtype=bool))
 
     def _exclusion(self, system):
         if self.exclusion is not None:
@@ -178,6 +236,8 @@ class RodContact:
             exclusion=self._exclusion(system),
             validate=False,
         )
+        if self._anchored:
+            self._align_anchors(system, q_old)
 
     def _ensure_pairs(self, system, q):
         if self.pairs is None:
@@ -194,12 +254,21 @@ class RodContact:
         rad, en, nd, _, _, rmin = self._arrays(system)
         fp = getattr(self, "_friction_cache", None)
         if fp is None or fp[0] is not self.friction or fp[1] != rmin:
-            if self.friction is not None:
+            if isinstance(self.friction, SmoothFriction):
                 fp = (self.friction, rmin, self.friction.parameters(rmin))
             else:
                 fp = (None, rmin, (0.0, 1.0, 0.0))
             self._friction_cache = fp
-        mu, fk, fc = fp[2]
+        if self._anchored:
+            mu, mu_k, k_t = self._anchor_params()
+            fk = fc = 0.0
+            _, anc, slip_prev, slip_now = self._anc
+            law = 1
+        else:
+            mu, fk, fc = fp[2]
+            mu_k = k_t = 0.0
+            anc, slip_prev, slip_now = self._no_anchor
+            law = 0
         pos = np.asarray(q, dtype=float)[nd]
         near = self._near_buffer(npair)
         n_near = rodrod_near(pos, pairs, en, rad, self.sharpness, Z_CUTOFF, near)
@@ -237,6 +306,12 @@ class RodContact:
             bool(self.friction_normal_derivative),
             Z_JACOBIAN,
             want,
+            law,
+            mu_k,
+            k_t,
+            anc,
+            slip_prev,
+            slip_now,
         )
         self.last_normal_force = fn
         self._energy_cache = (pairs, pos, float(e))  # energy() at the same q is free
@@ -295,11 +370,42 @@ class RodContact:
             )
         return None
 
+    @property
+    def sliding(self) -> np.ndarray:
+        """Anchor law: whether each candidate pair slid at the last assembly (n_pairs,)."""
+        return np.zeros(0, dtype=bool) if self._anc is None else self._anc[3]
+
+    def _anchor_pass(self, system, q, mode, keep):
+        rad, en, nd = self._arrays(system)[:3]
+        pos = _positions(system, q)
+        npair = self.pairs.shape[0]
+        near = self._near_buffer(npair)
+        n_near = rodrod_near(pos, self.pairs, en, rad, self.sharpness, Z_CUTOFF, near)
+        mu_s, mu_k, k_t = self._anchor_params()
+        _, anc, slip, _ = self._anc
+        return rodrod_anchor_commit(
+            pos, self.pairs, near, n_near, en, rad, self.sharpness, self.stiffness,
+            mu_s, mu_k, k_t, anc, slip, keep, mode,
+        )  # fmt: skip
+
     def end_step(self, system, q_new, q_old, dt):
-        """Nothing to commit (the regularised friction is stateless)."""
+        """Anchor law: commit the anchors of the pairs in contact at the accepted state
+        (stick: kept; slide: moved to the yield length; out of contact: dropped). The
+        regularised law is stateless."""
+        if not self._anchored:
+            return
+        self._ensure_pairs(system, q_old)
+        keys, anc, slip, _ = self._anc
+        keep = np.zeros(keys.size, dtype=bool)
+        if keys.size:
+            self._anchor_pass(system, q_new, 1, keep)
+        self._store = (keys[keep], anc[keep], slip[keep])
+        self._energy_cache = None
+        self._align_anchors(system, q_new)  # for energy() until the next begin_step
 
     def energy(self, system, q):
-        """Penalty energy [J] of the current candidate pairs."""
+        """Penalty energy [J] of the current candidate pairs (anchor law: plus the energy
+        stored in the anchors' tangential springs)."""
         self._ensure_pairs(system, q)
         if self.pairs.shape[0] == 0:
             return 0.0
@@ -307,7 +413,7 @@ class RodContact:
         cache = getattr(self, "_energy_cache", None)
         if cache is not None and cache[0] is self.pairs and np.array_equal(cache[1], pos):
             return cache[2]
-        return float(
+        e = float(
             rodrod_energy(
                 pos,
                 self.pairs,
@@ -317,6 +423,10 @@ class RodContact:
                 self.stiffness,
             )
         )
+        if self._anchored:
+            keep = np.zeros(self.pairs.shape[0], dtype=bool)
+            e += float(self._anchor_pass(system, q, 2, keep))
+        return e
 
 
 @dataclass

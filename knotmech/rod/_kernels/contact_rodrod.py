@@ -338,7 +338,13 @@ def rodrod_assemble(
     contact_force,
     normal_derivative,
     z_jacobian,
-    want_jacobian=True,
+    want_jacobian,
+    law,
+    mu_k,
+    k_t,
+    anchor,
+    anchor_slip,
+    out_slip,
 ):
     """Contact + friction forces and Jacobian blocks of the near candidate pairs.
 
@@ -358,6 +364,13 @@ def rodrod_assemble(
     near pair: 144 penalty, then 144 friction if the pair has friction); returns (energy,
     number of entries written). ``contact_force`` (n_pairs,) receives |F_n| (0 for pairs
     that are not near).
+
+    ``law`` 0 is the regularised friction above (``mu``, ``fric_k``, ``fric_c``,
+    ``vel_eps``); ``law`` 1 the elasto-plastic anchor of :func:`_anchor_friction` (static
+    ``mu``, kinetic ``mu_k``, tangential stiffness ``k_t`` [N/m], the pairs' anchors
+    ``anchor`` (n_pairs, 2) and last slip flags ``anchor_slip``; ``out_slip`` (n_pairs,)
+    receives whether each pair slides at ``pos``); the energy then includes the anchor
+    springs' (see :func:`rodrod_anchor_commit`).
     """
     x = np.empty(12)
     grad = np.empty(12)
@@ -374,8 +387,15 @@ def rodrod_assemble(
     H = np.empty((12, 12))
     B = np.empty((12, 2))
     U = np.empty((2, 2))
+    cw = np.empty(4)
+    u = np.empty(3)
+    ft = np.empty(3)
+    dndx = np.empty((3, 12))
+    G3 = np.empty((3, 12))
     energy = 0.0
     contact_force[:] = 0.0
+    if law == 1:
+        out_slip[:] = False
     cnt = 0
     for kp in range(n_near):
         p = near[kp]
@@ -412,6 +432,15 @@ def rodrod_assemble(
             continue
         for m in range(3):
             n[m] = fn[m] / fnorm
+        if law == 1:
+            cn = d2e / de if (normal_derivative and de != 0.0) else 0.0
+            e_f, slip, cnt = _anchor_friction(
+                x, anchor[p], anchor_slip[p], n, fnorm, mu, mu_k, k_t, cn, grad, dofs, jac,
+                force, rows, cols, vals, cnt, cw, u, ft, coef, dist, B, U, dndx, G3,
+            )  # fmt: skip
+            energy += e_f
+            out_slip[p] = slip
+            continue
         for m in range(3):
             vi = 0.5 * (pos[nodes[0], m] - pos_old[nodes[0], m])
             vi += 0.5 * (pos[nodes[1], m] - pos_old[nodes[1], m])
@@ -457,6 +486,254 @@ def rodrod_assemble(
                         vals[cnt] = scale * Dp[a, b] + sgn[k] * ffr[a] * cn * grad[3 * l + b]
                         cnt += 1
     return energy, cnt
+
+
+@njit(cache=True)
+def _anchor_gap(x, anc, n, cw, u):
+    """Tangential gap of an anchor: u = P_n (X_a - X_b) with the anchor's material points
+    X_a = (1 - s_a) x1 + s_a x2 and X_b = (1 - s_b) x3 + s_b x4 (``anc`` = (s_a, s_b),
+    ``x`` (12,) the pair's nodes, P_n = I - n n^T); writes the node weights ``cw`` (4,) of
+    X_a - X_b and ``u`` (3,); returns (|u|, n . (X_a - X_b))."""
+    cw[0] = 1.0 - anc[0]
+    cw[1] = anc[0]
+    cw[2] = -(1.0 - anc[1])
+    cw[3] = -anc[1]
+    dn = 0.0
+    for m in range(3):
+        u[m] = cw[0] * x[m] + cw[1] * x[3 + m] + cw[2] * x[6 + m] + cw[3] * x[9 + m]
+        dn += u[m] * n[m]
+    un = 0.0
+    for m in range(3):
+        u[m] -= dn * n[m]
+        un += u[m] * u[m]
+    return np.sqrt(un), dn
+
+
+@njit(cache=True)
+def _normal_jacobian(x, coef, n, dist, B, U, dndx):
+    """dn/dx (3, 12) of the contact normal n = w/|w| (w = A x the gap vector of the
+    closest points, ``coef`` its node weights): dw/dx = A - W U^-1 B^T, the closest-point
+    parameters moving with x (implicit differentiation of phi_u = 0, with B and U the
+    phi_xu columns and phi_uu of the free parameters as left by
+    :func:`_edge_distance_hessian_ws`, W = (e1, -e2) their dw/du), and
+    dn/dx = P_n dw/dx / |w|."""
+    _, _, free_s, free_t = _segment_params_flat(x)
+    nfree = int(free_s) + int(free_t)
+    # W U^-1 (3, nfree)
+    wu0 = np.zeros(3)
+    wu1 = np.zeros(3)
+    if nfree > 0:
+        col = np.zeros((3, 2))
+        c = 0
+        if free_s:
+            for m in range(3):
+                col[m, c] = x[3 + m] - x[m]
+            c += 1
+        if free_t:
+            for m in range(3):
+                col[m, c] = -(x[9 + m] - x[6 + m])
+        if nfree == 1:
+            for m in range(3):
+                wu0[m] = col[m, 0] / U[0, 0]
+        else:
+            det = U[0, 0] * U[1, 1] - U[0, 1] * U[1, 0]
+            for m in range(3):
+                wu0[m] = (col[m, 0] * U[1, 1] - col[m, 1] * U[1, 0]) / det
+                wu1[m] = (-col[m, 0] * U[0, 1] + col[m, 1] * U[0, 0]) / det
+    for m in range(3):
+        for j in range(12):
+            dw = coef[j // 3] if (j % 3) == m else 0.0
+            if nfree > 0:
+                dw -= wu0[m] * B[j, 0]
+            if nfree > 1:
+                dw -= wu1[m] * B[j, 1]
+            dndx[m, j] = dw
+    # P_n / |w|
+    for j in range(12):
+        proj = n[0] * dndx[0, j] + n[1] * dndx[1, j] + n[2] * dndx[2, j]
+        for m in range(3):
+            dndx[m, j] = (dndx[m, j] - proj * n[m]) / dist
+
+
+@njit(cache=True)
+def _anchor_friction(
+    x, anc, slipped, n, fnorm, mu_s, mu_k, k_t, cn, grad, dofs, jac,
+    force, rows, cols, vals, cnt, cw, u, ft, coef, dist, B, U, dndx, G,
+):  # fmt: skip
+    """Elasto-plastic anchor friction of one rod-rod pair (return mapping of Coulomb's law
+    with a tangential penalty; Wriggers, Computational Contact Mechanics, 2nd ed., sect.
+    5.2.2), the rod-rod counterpart of the rod-cylinder anchor of ``contact_cylinder``.
+
+    Trial force on edge i F = -k_t u (u the anchor's tangential gap, :func:`_anchor_gap`);
+    it sticks if |F| <= mu |F_n| and otherwise slides with F = -mu |F_n| u/|u|, with
+    mu = mu_k if the pair slid at the last accepted step (``slipped``) and mu_s otherwise.
+    F acts on the anchor's material points: node k of the pair gets cw_k F (edge j the
+    opposite force).
+
+    Jacobian (if ``jac``), consistent with the return mapping: with D = X_a - X_b and
+    du/dx = P_n C - (n.D) dn/dx - n (u^T dn/dx) (C = cw (x) I3; dn/dx from
+    :func:`_normal_jacobian`: the normal turns as the rods roll over each other, which a
+    gap of 2r turns into a tangential motion of the same order as the nodes'), stick
+    dF/dx = -k_t du/dx, slide dF/dx = -(mu |F_n|/|u|) (I - uh uh^T) du/dx +
+    F (c_n grad Delta)^T, the last term through |F_n| (``cn`` = d2E/dDelta2 / dE/dDelta,
+    0 to leave it out). Returns (stored energy, slides, entries written): 0.5 k_t |u|^2
+    when it sticks, mu |F_n| |u| - (mu |F_n|)^2/(2 k_t) when it slides (continuous at the
+    yield point).
+    """
+    unorm, dpar = _anchor_gap(x, anc, n, cw, u)
+    mu = mu_k if slipped else mu_s
+    limit = mu * fnorm
+    slip = k_t * unorm > limit
+    if slip:
+        scale = limit / unorm
+        e_f = limit * unorm - 0.5 * limit * limit / k_t
+    else:
+        scale = k_t
+        e_f = 0.5 * k_t * unorm * unorm
+    for m in range(3):
+        ft[m] = -scale * u[m]
+    for k in range(4):
+        for m in range(3):
+            force[dofs[3 * k + m]] += cw[k] * ft[m]
+    if not jac:
+        return e_f, slip, cnt
+    _normal_jacobian(x, coef, n, dist, B, U, dndx)
+    # G = du/dx (3, 12)
+    for j in range(12):
+        und = u[0] * dndx[0, j] + u[1] * dndx[1, j] + u[2] * dndx[2, j]
+        c = cw[j // 3]
+        b = j % 3
+        for a in range(3):
+            pab = ((1.0 if a == b else 0.0) - n[a] * n[b]) * c
+            G[a, j] = pab - dpar * dndx[a, j] - n[a] * und
+    # dF/dx = -scale (I - [slip] uh uh^T) G (+ the |F_n| term when sliding)
+    if slip:
+        for j in range(12):
+            ug = (u[0] * G[0, j] + u[1] * G[1, j] + u[2] * G[2, j]) / (unorm * unorm)
+            for a in range(3):
+                G[a, j] = -scale * (G[a, j] - u[a] * ug) + ft[a] * cn * grad[j]
+    else:
+        for j in range(12):
+            for a in range(3):
+                G[a, j] = -scale * G[a, j]
+    for k in range(4):
+        for a in range(3):
+            for j in range(12):
+                rows[cnt] = dofs[3 * k + a]
+                cols[cnt] = dofs[j]
+                vals[cnt] = cw[k] * G[a, j]
+                cnt += 1
+    return e_f, slip, cnt
+
+
+@njit(cache=True)
+def rodrod_closest_params(pos, pairs, which, edge_nodes, anchor):
+    """``anchor[p]`` = the closest-point parameters (s, t) of pair p's edges at ``pos``
+    for the pairs p in ``which`` (a new pair's anchor: its contact point at the step
+    start, in the two edges' material coordinates)."""
+    x = np.empty(12)
+    for kp in range(which.shape[0]):
+        p = which[kp]
+        ei = pairs[p, 0]
+        ej = pairs[p, 1]
+        nodes = (edge_nodes[ei, 0], edge_nodes[ei, 1], edge_nodes[ej, 0], edge_nodes[ej, 1])
+        for k in range(4):
+            for m in range(3):
+                x[3 * k + m] = pos[nodes[k], m]
+        s, t, _, _ = _segment_params_flat(x)
+        anchor[p, 0] = s
+        anchor[p, 1] = t
+
+
+@njit(cache=True)
+def rodrod_anchor_commit(
+    pos, pairs, near, n_near, edge_nodes, radius_edge, sharpness, stiffness,
+    mu_s, mu_k, k_t, anchor, anchor_slip, keep, mode,
+):  # fmt: skip
+    """Commit (``mode`` 1) or stored energy (``mode`` 2) of the rod-rod anchors at ``pos``.
+
+    For each near pair with a normal force (the others get ``keep`` False: the pair has
+    left the contact and its anchor is dropped) the return mapping of
+    :func:`_anchor_friction` is evaluated; mode 1 writes whether it slides to
+    ``anchor_slip`` and, if it does, moves the anchor's material points along the two
+    edges so that the tangential gap shrinks to the yield length mu |F_n|/k_t (least
+    squares in (s_a, s_b) with a tiny Tikhonov term for parallel edges, each parameter
+    kept in [0, 1]). Returns the anchors' stored energy (mode 2).
+    """
+    x = np.empty(12)
+    grad = np.empty(12)
+    coef = np.empty(4)
+    w = np.empty(3)
+    n = np.empty(3)
+    cw = np.empty(4)
+    u = np.empty(3)
+    e1 = np.empty(3)
+    e2 = np.empty(3)
+    dd = np.empty(3)
+    keep[:] = False
+    energy = 0.0
+    for kp in range(n_near):
+        p = near[kp]
+        ei = pairs[p, 0]
+        ej = pairs[p, 1]
+        nodes = (edge_nodes[ei, 0], edge_nodes[ei, 1], edge_nodes[ej, 0], edge_nodes[ej, 1])
+        for k in range(4):
+            for m in range(3):
+                x[3 * k + m] = pos[nodes[k], m]
+        dist = _edge_distance_grad_ws(x, grad, coef, w)
+        _, de, _ = penalty_derivs(radius_edge[ei] + radius_edge[ej] - dist, sharpness, stiffness)
+        fnorm = 0.0
+        for m in range(3):
+            fm = -de * (grad[m] + grad[3 + m])
+            fnorm += fm * fm
+        fnorm = np.sqrt(fnorm)
+        if not fnorm > 0.0:
+            continue
+        for m in range(3):
+            n[m] = -de * (grad[m] + grad[3 + m]) / fnorm
+        unorm, _ = _anchor_gap(x, anchor[p], n, cw, u)
+        mu = mu_k if anchor_slip[p] else mu_s
+        limit = mu * fnorm
+        slip = k_t * unorm > limit
+        keep[p] = True
+        if mode == 2:
+            if slip:
+                energy += limit * unorm - 0.5 * limit * limit / k_t
+            else:
+                energy += 0.5 * k_t * unorm * unorm
+            continue
+        anchor_slip[p] = slip
+        if not slip:
+            continue
+        # wanted change of X_a - X_b: dd = -(|u| - limit/k_t) u/|u| = ds_a e1 - ds_b e2
+        shrink = (unorm - limit / k_t) / unorm
+        a11 = 0.0
+        a22 = 0.0
+        a12 = 0.0
+        b1 = 0.0
+        b2 = 0.0
+        for m in range(3):
+            e1[m] = x[3 + m] - x[m]
+            e2[m] = x[9 + m] - x[6 + m]
+            dd[m] = -shrink * u[m]
+            a11 += e1[m] * e1[m]
+            a22 += e2[m] * e2[m]
+            a12 -= e1[m] * e2[m]
+            b1 += e1[m] * dd[m]
+            b2 -= e2[m] * dd[m]
+        lam = 1e-9 * (a11 + a22)
+        det = (a11 + lam) * (a22 + lam) - a12 * a12
+        dsa = ((a22 + lam) * b1 - a12 * b2) / det
+        dsb = ((a11 + lam) * b2 - a12 * b1) / det
+        sa = _clamp01(anchor[p, 0] + dsa)
+        if sa != anchor[p, 0] + dsa:  # s_a at an end: the best s_b for it
+            dsb = (b2 - a12 * (sa - anchor[p, 0])) / a22
+        sb = _clamp01(anchor[p, 1] + dsb)
+        if sb != anchor[p, 1] + dsb and sa == anchor[p, 0] + dsa:
+            sa = _clamp01(anchor[p, 0] + (b1 - a12 * (sb - anchor[p, 1])) / a11)
+        anchor[p, 0] = sa
+        anchor[p, 1] = sb
+    return energy
 
 
 @njit(cache=True)
