@@ -495,6 +495,7 @@ class CylinderContact:
         self._ch = np.array([0.5 * c.length for c in cyl])
         self._topology = None
         self._anchor = None
+        self._restored = None
 
     # --- geometry helpers -------------------------------------------------------------
     def _setup(self, system):
@@ -524,6 +525,41 @@ class CylinderContact:
         self._valid = np.zeros((n_nodes, nc), dtype=np.bool_)
         self._slipping = np.zeros((n_nodes, nc), dtype=np.bool_)
         self._weight = None
+        if self._restored is not None:
+            self._apply_restored()
+
+    def state_arrays(self) -> dict:
+        """The friction state as arrays (for :class:`knotmech.rod.State` checkpoints): the
+        stick anchors (n_nodes, n_cyl, 3) [m], whether each is set, and the slip flags."""
+        if self._anchor is None:
+            return {}
+        return {
+            "anchor": self._anchor.copy(),
+            "valid": self._valid.copy(),
+            "slipping": self._slipping.copy(),
+        }
+
+    def load_state_arrays(self, d) -> None:
+        """Restore the friction state written by :meth:`state_arrays` (applied when the
+        contact first sees its system, if it has not yet)."""
+        self._restored = dict(d)
+        if self._anchor is not None:
+            self._apply_restored()
+
+    def _apply_restored(self):
+        d, self._restored = self._restored, None
+        if not d:
+            self.reset()
+            return
+        anchor = np.asarray(d["anchor"], dtype=float)
+        if anchor.shape != self._anchor.shape:
+            raise InputError(
+                f"the saved rod-post anchors have shape {anchor.shape}, this contact "
+                f"needs {self._anchor.shape} (another system or other cylinders)"
+            )
+        self._anchor[:] = anchor
+        self._valid[:] = np.asarray(d["valid"], dtype=bool)
+        self._slipping[:] = np.asarray(d["slipping"], dtype=bool)
 
     def _node_weight(self, pos):
         _, en, nd, _, _, _ = self._topology
