@@ -31,7 +31,7 @@ from knotmech.rod._kernels.contact_rodrod import (
     max_pair_displacement,
     rodrod_anchor_commit,
     rodrod_assemble,
-    rodrod_closest_params,
+    rodrod_fresh_anchors,
     rodrod_energy,
     rodrod_near,
 )
@@ -209,7 +209,7 @@ class RodContact:
         fresh = np.flatnonzero(~known)
         if fresh.size:
             en = self._arrays(system)[1]
-            rodrod_closest_params(_positions(system, q_old), self.pairs, fresh, en, anc)
+            rodrod_fresh_anchors(_positions(system, q_old), self.pairs, fresh, en, anc)
         self._anc = (keys, anc, slip, np.zeros(keys.size, dtype=bool))
 
     def _exclusion(self, system):

@@ -390,6 +390,7 @@ def rodrod_assemble(
     cw = np.empty(4)
     u = np.empty(3)
     ft = np.empty(3)
+    nf = np.empty(3)
     dndx = np.empty((3, 12))
     G3 = np.empty((3, 12))
     energy = 0.0
@@ -436,7 +437,7 @@ def rodrod_assemble(
             cn = d2e / de if (normal_derivative and de != 0.0) else 0.0
             e_f, slip, cnt = _anchor_friction(
                 x, anchor[p], anchor_slip[p], n, fnorm, mu, mu_k, k_t, cn, grad, dofs, jac,
-                force, rows, cols, vals, cnt, cw, u, ft, coef, dist, B, U, dndx, G3,
+                force, rows, cols, vals, cnt, cw, u, ft, nf, coef, dist, B, U, dndx, G3,
             )  # fmt: skip
             energy += e_f
             out_slip[p] = slip
@@ -488,6 +489,49 @@ def rodrod_assemble(
     return energy, cnt
 
 
+# Anchor parameters stay within [ANCHOR_LO, ANCHOR_HI] on the lines of their edges: a pair
+# whose closest points sit at a node still holds its anchor where the contact really is,
+# up to one edge length beyond the node (on the extension of the edge)
+ANCHOR_LO = -1.0
+ANCHOR_HI = 2.0
+# edges crossing at less than about 5 degrees use the pair's normal for the friction plane
+_SIN2_PLANE = 0.0076
+
+
+@njit(cache=True)
+def _friction_normal(x, n, nf):
+    """Normal ``nf`` (3,) of the friction's tangent plane: the normal m = e1 x e2/|e1 x e2|
+    of the plane of the two edges (the contact normal of the two lines, also when the
+    closest points of the segments sit at a node and the pair's normal ``n`` leans
+    toward it), or ``n`` for (near-)parallel edges. Returns |e1 x e2| (0: ``n`` used)."""
+    a11 = 0.0
+    a22 = 0.0
+    c0 = 0.0
+    c1 = 0.0
+    c2 = 0.0
+    e1x = x[3] - x[0]
+    e1y = x[4] - x[1]
+    e1z = x[5] - x[2]
+    e2x = x[9] - x[6]
+    e2y = x[10] - x[7]
+    e2z = x[11] - x[8]
+    a11 = e1x * e1x + e1y * e1y + e1z * e1z
+    a22 = e2x * e2x + e2y * e2y + e2z * e2z
+    c0 = e1y * e2z - e1z * e2y
+    c1 = e1z * e2x - e1x * e2z
+    c2 = e1x * e2y - e1y * e2x
+    cc = c0 * c0 + c1 * c1 + c2 * c2
+    if cc <= _SIN2_PLANE * a11 * a22:
+        for m in range(3):
+            nf[m] = n[m]
+        return 0.0
+    cn = np.sqrt(cc)
+    nf[0] = c0 / cn
+    nf[1] = c1 / cn
+    nf[2] = c2 / cn
+    return cn
+
+
 @njit(cache=True)
 def _anchor_gap(x, anc, n, cw, u):
     """Tangential gap of an anchor: u = P_n (X_a - X_b) with the anchor's material points
@@ -510,8 +554,41 @@ def _anchor_gap(x, anc, n, cw, u):
 
 
 @njit(cache=True)
+def _shift_anchor(x, anc, dd):
+    """Move the anchor's parameters so that X_a - X_b changes by ``dd`` (3,) as nearly as
+    the two edge directions allow: least squares ds_a e1 - ds_b e2 = dd with a tiny
+    Tikhonov term (parallel edges: the smallest shift), each parameter kept in
+    [ANCHOR_LO, ANCHOR_HI] (the other then re-fitted)."""
+    a11 = 0.0
+    a22 = 0.0
+    a12 = 0.0
+    b1 = 0.0
+    b2 = 0.0
+    for m in range(3):
+        e1 = x[3 + m] - x[m]
+        e2 = x[9 + m] - x[6 + m]
+        a11 += e1 * e1
+        a22 += e2 * e2
+        a12 -= e1 * e2
+        b1 += e1 * dd[m]
+        b2 -= e2 * dd[m]
+    lam = 1e-9 * (a11 + a22)
+    det = (a11 + lam) * (a22 + lam) - a12 * a12
+    dsa = ((a22 + lam) * b1 - a12 * b2) / det
+    dsb = ((a11 + lam) * b2 - a12 * b1) / det
+    sa = min(max(anc[0] + dsa, ANCHOR_LO), ANCHOR_HI)
+    if sa != anc[0] + dsa:  # s_a at its bound: the best s_b for it
+        dsb = (b2 - a12 * (sa - anc[0])) / a22
+    sb = min(max(anc[1] + dsb, ANCHOR_LO), ANCHOR_HI)
+    if sb != anc[1] + dsb and sa == anc[0] + dsa:
+        sa = min(max(anc[0] + (b1 - a12 * (sb - anc[1])) / a11, ANCHOR_LO), ANCHOR_HI)
+    anc[0] = sa
+    anc[1] = sb
+
+
+@njit(cache=True)
 def _normal_jacobian(x, coef, n, dist, B, U, dndx):
-    """dn/dx (3, 12) of the contact normal n = w/|w| (w = A x the gap vector of the
+    """dn/dx (3, 12) of the pair's normal n = w/|w| (w = A x the gap vector of the
     closest points, ``coef`` its node weights): dw/dx = A - W U^-1 B^T, the closest-point
     parameters moving with x (implicit differentiation of phi_u = 0, with B and U the
     phi_xu columns and phi_uu of the free parameters as left by
@@ -519,7 +596,6 @@ def _normal_jacobian(x, coef, n, dist, B, U, dndx):
     dn/dx = P_n dw/dx / |w|."""
     _, _, free_s, free_t = _segment_params_flat(x)
     nfree = int(free_s) + int(free_t)
-    # W U^-1 (3, nfree)
     wu0 = np.zeros(3)
     wu1 = np.zeros(3)
     if nfree > 0:
@@ -548,7 +624,6 @@ def _normal_jacobian(x, coef, n, dist, B, U, dndx):
             if nfree > 1:
                 dw -= wu1[m] * B[j, 1]
             dndx[m, j] = dw
-    # P_n / |w|
     for j in range(12):
         proj = n[0] * dndx[0, j] + n[1] * dndx[1, j] + n[2] * dndx[2, j]
         for m in range(3):
@@ -556,31 +631,66 @@ def _normal_jacobian(x, coef, n, dist, B, U, dndx):
 
 
 @njit(cache=True)
+def _plane_normal_jacobian(x, nf, cnorm, dndx):
+    """dm/dx (3, 12) of m = c/|c|, c = e1 x e2 (see :func:`_friction_normal`):
+    dc/dx1 = [e2]x, dc/dx2 = -[e2]x, dc/dx3 = -[e1]x, dc/dx4 = [e1]x ([a]x b = a x b),
+    dm = (I - m m^T) dc/|c|."""
+    e1 = np.empty(3)
+    e2 = np.empty(3)
+    for m in range(3):
+        e1[m] = x[3 + m] - x[m]
+        e2[m] = x[9 + m] - x[6 + m]
+    for node in range(4):
+        v = e2 if node < 2 else e1
+        sg = 1.0 if node == 0 or node == 3 else -1.0
+        # columns b of sg [v]x: [v]x e_b = v x e_b
+        for b in range(3):
+            col0 = 0.0
+            col1 = 0.0
+            col2 = 0.0
+            if b == 0:
+                col1 = v[2]
+                col2 = -v[1]
+            elif b == 1:
+                col0 = -v[2]
+                col2 = v[0]
+            else:
+                col0 = v[1]
+                col1 = -v[0]
+            proj = nf[0] * col0 + nf[1] * col1 + nf[2] * col2
+            j = 3 * node + b
+            dndx[0, j] = sg * (col0 - proj * nf[0]) / cnorm
+            dndx[1, j] = sg * (col1 - proj * nf[1]) / cnorm
+            dndx[2, j] = sg * (col2 - proj * nf[2]) / cnorm
+
+
+@njit(cache=True)
 def _anchor_friction(
     x, anc, slipped, n, fnorm, mu_s, mu_k, k_t, cn, grad, dofs, jac,
-    force, rows, cols, vals, cnt, cw, u, ft, coef, dist, B, U, dndx, G,
+    force, rows, cols, vals, cnt, cw, u, ft, nf, coef, dist, B, U, dndx, G,
 ):  # fmt: skip
     """Elasto-plastic anchor friction of one rod-rod pair (return mapping of Coulomb's law
     with a tangential penalty; Wriggers, Computational Contact Mechanics, 2nd ed., sect.
     5.2.2), the rod-rod counterpart of the rod-cylinder anchor of ``contact_cylinder``.
 
-    Trial force on edge i F = -k_t u (u the anchor's tangential gap, :func:`_anchor_gap`);
-    it sticks if |F| <= mu |F_n| and otherwise slides with F = -mu |F_n| u/|u|, with
-    mu = mu_k if the pair slid at the last accepted step (``slipped``) and mu_s otherwise.
-    F acts on the anchor's material points: node k of the pair gets cw_k F (edge j the
-    opposite force).
+    Trial force on edge i F = -k_t u, u = P (X_a - X_b) the anchor's tangential gap
+    (:func:`_anchor_gap`; P the projector on the friction plane of
+    :func:`_friction_normal`); it sticks if |F| <= mu |F_n| and otherwise slides with
+    F = -mu |F_n| u/|u|, mu = mu_k if the pair slid at the last accepted step
+    (``slipped``) and mu_s otherwise. F acts on the anchor's material points: node k of
+    the pair gets cw_k F (edge j the opposite force).
 
-    Jacobian (if ``jac``), consistent with the return mapping: with D = X_a - X_b and
-    du/dx = P_n C - (n.D) dn/dx - n (u^T dn/dx) (C = cw (x) I3; dn/dx from
-    :func:`_normal_jacobian`: the normal turns as the rods roll over each other, which a
-    gap of 2r turns into a tangential motion of the same order as the nodes'), stick
-    dF/dx = -k_t du/dx, slide dF/dx = -(mu |F_n|/|u|) (I - uh uh^T) du/dx +
-    F (c_n grad Delta)^T, the last term through |F_n| (``cn`` = d2E/dDelta2 / dE/dDelta,
-    0 to leave it out). Returns (stored energy, slides, entries written): 0.5 k_t |u|^2
-    when it sticks, mu |F_n| |u| - (mu |F_n|)^2/(2 k_t) when it slides (continuous at the
-    yield point).
+    Jacobian (if ``jac``), consistent with the return mapping: with D = X_a - X_b and nf
+    the plane normal, du/dx = P C - (nf.D) dnf/dx - nf (u^T dnf/dx) (C = cw (x) I3; the
+    plane turns as the rods roll over each other, which a gap of 2r turns into a
+    tangential motion of the order of the nodes'), stick dF/dx = -k_t du/dx, slide
+    dF/dx = -(mu |F_n|/|u|) (I - uh uh^T) du/dx + F (c_n grad Delta)^T, the last term
+    through |F_n| (``cn`` = d2E/dDelta2 / dE/dDelta, 0 to leave it out). Returns (stored
+    energy, slides, entries written): 0.5 k_t |u|^2 when it sticks,
+    mu |F_n| |u| - (mu |F_n|)^2/(2 k_t) when it slides (continuous at the yield point).
     """
-    unorm, dpar = _anchor_gap(x, anc, n, cw, u)
+    cnorm = _friction_normal(x, n, nf)
+    unorm, dpar = _anchor_gap(x, anc, nf, cw, u)
     mu = mu_k if slipped else mu_s
     limit = mu * fnorm
     slip = k_t * unorm > limit
@@ -597,15 +707,18 @@ def _anchor_friction(
             force[dofs[3 * k + m]] += cw[k] * ft[m]
     if not jac:
         return e_f, slip, cnt
-    _normal_jacobian(x, coef, n, dist, B, U, dndx)
+    if cnorm > 0.0:
+        _plane_normal_jacobian(x, nf, cnorm, dndx)
+    else:
+        _normal_jacobian(x, coef, n, dist, B, U, dndx)
     # G = du/dx (3, 12)
     for j in range(12):
         und = u[0] * dndx[0, j] + u[1] * dndx[1, j] + u[2] * dndx[2, j]
         c = cw[j // 3]
         b = j % 3
         for a in range(3):
-            pab = ((1.0 if a == b else 0.0) - n[a] * n[b]) * c
-            G[a, j] = pab - dpar * dndx[a, j] - n[a] * und
+            pab = ((1.0 if a == b else 0.0) - nf[a] * nf[b]) * c
+            G[a, j] = pab - dpar * dndx[a, j] - nf[a] * und
     # dF/dx = -scale (I - [slip] uh uh^T) G (+ the |F_n| term when sliding)
     if slip:
         for j in range(12):
@@ -627,11 +740,35 @@ def _anchor_friction(
 
 
 @njit(cache=True)
-def rodrod_closest_params(pos, pairs, which, edge_nodes, anchor):
-    """``anchor[p]`` = the closest-point parameters (s, t) of pair p's edges at ``pos``
-    for the pairs p in ``which`` (a new pair's anchor: its contact point at the step
-    start, in the two edges' material coordinates)."""
+def _pair_normal(x, edge_i, edge_j, radius_edge, sharpness, stiffness, grad, coef, w, n):
+    """|F_n| of the pair at ``x`` and its normal into ``n`` (the penalty force on edge i,
+    as in :func:`rodrod_assemble`)."""
+    dist = _edge_distance_grad_ws(x, grad, coef, w)
+    _, de, _ = penalty_derivs(radius_edge[edge_i] + radius_edge[edge_j] - dist, sharpness, stiffness)
+    fnorm = 0.0
+    for m in range(3):
+        n[m] = -de * (grad[m] + grad[3 + m])
+        fnorm += n[m] * n[m]
+    fnorm = np.sqrt(fnorm)
+    if fnorm > 0.0:
+        for m in range(3):
+            n[m] /= fnorm
+    return fnorm
+
+
+@njit(cache=True)
+def rodrod_fresh_anchors(pos, pairs, which, edge_nodes, anchor):
+    """Anchors of new pairs (the pairs p in ``which``): the material points where the two
+    edges touch at ``pos`` (the step start), i.e. the closest points of the segments moved
+    along the edge lines (:func:`_shift_anchor`) until X_a - X_b is normal to the friction
+    plane (:func:`_friction_normal`): zero tangential gap."""
     x = np.empty(12)
+    coef = np.empty(4)
+    w = np.empty(3)
+    n = np.empty(3)
+    nf = np.empty(3)
+    cw = np.empty(4)
+    u = np.empty(3)
     for kp in range(which.shape[0]):
         p = which[kp]
         ei = pairs[p, 0]
@@ -640,9 +777,18 @@ def rodrod_closest_params(pos, pairs, which, edge_nodes, anchor):
         for k in range(4):
             for m in range(3):
                 x[3 * k + m] = pos[nodes[k], m]
-        s, t, _, _ = _segment_params_flat(x)
-        anchor[p, 0] = s
-        anchor[p, 1] = t
+        dist, _, _ = _gap(x, coef, w)
+        anchor[p, 0] = coef[1]
+        anchor[p, 1] = -coef[3]
+        if dist <= 0.0:
+            continue
+        for m in range(3):
+            n[m] = w[m] / dist
+        _friction_normal(x, n, nf)
+        _anchor_gap(x, anchor[p], nf, cw, u)
+        for m in range(3):
+            u[m] = -u[m]
+        _shift_anchor(x, anchor[p], u)
 
 
 @njit(cache=True)
@@ -656,20 +802,17 @@ def rodrod_anchor_commit(
     left the contact and its anchor is dropped) the return mapping of
     :func:`_anchor_friction` is evaluated; mode 1 writes whether it slides to
     ``anchor_slip`` and, if it does, moves the anchor's material points along the two
-    edges so that the tangential gap shrinks to the yield length mu |F_n|/k_t (least
-    squares in (s_a, s_b) with a tiny Tikhonov term for parallel edges, each parameter
-    kept in [0, 1]). Returns the anchors' stored energy (mode 2).
+    edges (:func:`_shift_anchor`) so that the tangential gap shrinks to the yield length
+    mu |F_n|/k_t. Returns the anchors' stored energy (mode 2).
     """
     x = np.empty(12)
     grad = np.empty(12)
     coef = np.empty(4)
     w = np.empty(3)
     n = np.empty(3)
+    nf = np.empty(3)
     cw = np.empty(4)
     u = np.empty(3)
-    e1 = np.empty(3)
-    e2 = np.empty(3)
-    dd = np.empty(3)
     keep[:] = False
     energy = 0.0
     for kp in range(n_near):
@@ -680,18 +823,11 @@ def rodrod_anchor_commit(
         for k in range(4):
             for m in range(3):
                 x[3 * k + m] = pos[nodes[k], m]
-        dist = _edge_distance_grad_ws(x, grad, coef, w)
-        _, de, _ = penalty_derivs(radius_edge[ei] + radius_edge[ej] - dist, sharpness, stiffness)
-        fnorm = 0.0
-        for m in range(3):
-            fm = -de * (grad[m] + grad[3 + m])
-            fnorm += fm * fm
-        fnorm = np.sqrt(fnorm)
+        fnorm = _pair_normal(x, ei, ej, radius_edge, sharpness, stiffness, grad, coef, w, n)
         if not fnorm > 0.0:
             continue
-        for m in range(3):
-            n[m] = -de * (grad[m] + grad[3 + m]) / fnorm
-        unorm, _ = _anchor_gap(x, anchor[p], n, cw, u)
+        _friction_normal(x, n, nf)
+        unorm, _ = _anchor_gap(x, anchor[p], nf, cw, u)
         mu = mu_k if anchor_slip[p] else mu_s
         limit = mu * fnorm
         slip = k_t * unorm > limit
@@ -703,36 +839,11 @@ def rodrod_anchor_commit(
                 energy += 0.5 * k_t * unorm * unorm
             continue
         anchor_slip[p] = slip
-        if not slip:
-            continue
-        # wanted change of X_a - X_b: dd = -(|u| - limit/k_t) u/|u| = ds_a e1 - ds_b e2
-        shrink = (unorm - limit / k_t) / unorm
-        a11 = 0.0
-        a22 = 0.0
-        a12 = 0.0
-        b1 = 0.0
-        b2 = 0.0
-        for m in range(3):
-            e1[m] = x[3 + m] - x[m]
-            e2[m] = x[9 + m] - x[6 + m]
-            dd[m] = -shrink * u[m]
-            a11 += e1[m] * e1[m]
-            a22 += e2[m] * e2[m]
-            a12 -= e1[m] * e2[m]
-            b1 += e1[m] * dd[m]
-            b2 -= e2[m] * dd[m]
-        lam = 1e-9 * (a11 + a22)
-        det = (a11 + lam) * (a22 + lam) - a12 * a12
-        dsa = ((a22 + lam) * b1 - a12 * b2) / det
-        dsb = ((a11 + lam) * b2 - a12 * b1) / det
-        sa = _clamp01(anchor[p, 0] + dsa)
-        if sa != anchor[p, 0] + dsa:  # s_a at an end: the best s_b for it
-            dsb = (b2 - a12 * (sa - anchor[p, 0])) / a22
-        sb = _clamp01(anchor[p, 1] + dsb)
-        if sb != anchor[p, 1] + dsb and sa == anchor[p, 0] + dsa:
-            sa = _clamp01(anchor[p, 0] + (b1 - a12 * (sb - anchor[p, 1])) / a11)
-        anchor[p, 0] = sa
-        anchor[p, 1] = sb
+        if slip:
+            shrink = (unorm - limit / k_t) / unorm
+            for m in range(3):
+                u[m] *= -shrink
+            _shift_anchor(x, anchor[p], u)
     return energy
 
 
