@@ -167,6 +167,7 @@ class RodContact:
         """Forget the friction state (the anchors of the pairs in contact)."""
         self._store = (np.zeros(0, dtype=np.int64), np.zeros((0, 2)), np.zeros(0, dtype=bool))
         self._anc = None
+        self.pairs = None
         self._no_anchor = (np.zeros((1, 2)), np.zeros(1, dtype=bool), np.zeros(1, dtype=bool))
 
     def state_arrays(self) -> dict:
@@ -184,6 +185,7 @@ class RodContact:
             np.array(d["slipping"], dtype=bool),
         )
         self._anc = None
+        self.pairs = None  # aligned again with the next broad phase
 
     def _anchor_params(self):
         """(mu_s, mu_k, k_t) of the anchor law; k_t [N/m] defaults to 2 K_c, the normal
