@@ -9,7 +9,8 @@ number of rods, self-contact and any number of cylinders are handled alike.
 
 - :class:`RodContact`: the implicit contact model (Choi, Tong & Jawed, J. Appl. Mech. 88
   (2021) 051010) on the edge-edge distance, with the regularised friction of the coated-rod
-  paper (eqs. 10-12), and a sort-and-sweep broad phase.
+  paper (eqs. 10-12) or elasto-plastic anchors that stick, and a sort-and-sweep broad
+  phase.
 - :class:`CylinderContact`: rigid cylinders (posts, capstans, pinching rollers), smooth
   penalty normal force and elasto-plastic friction that truly sticks, applied at the contact
   surface so that thick rods show mu_eff (see :func:`knotmech.analytic.capstan.mu_eff`).
@@ -27,9 +28,9 @@ from knotmech.rod._kernels.contact_rodrod import (
     ENTRIES_PER_PAIR,
     Z_CUTOFF,
     Z_JACOBIAN,
+    align_anchors,
     max_node_speed,
     max_pair_displacement,
-    align_anchors,
     rodrod_anchor_commit,
     rodrod_assemble,
     rodrod_energy,
@@ -105,8 +106,22 @@ class RodContact:
     (the softplus of the coated-rod paper's eq. (10), squared as in Choi, Tong & Jawed 2021,
     so that the force grows like :math:`2K_c\,\delta` with the overlap
     :math:`\delta = r_i + r_j - \Delta`). Its exact gradient and Hessian enter the Newton
-    system. Friction: coated-rod paper eqs. (11)-(12) (:class:`~knotmech.rod.friction.
-    SmoothFriction`), with dF/dq through the velocity only (contact normal and |F_n| lagged).
+    system. Friction, one of two laws:
+
+    - :class:`~knotmech.rod.friction.SmoothFriction` ("imc"): coated-rod paper eqs.
+      (11)-(12), with dF/dq through the velocity (and |F_n|; the normal lagged). Stateless;
+      it vanishes at zero slip, so a held load creeps.
+    - :class:`~knotmech.rod.friction.AnchorFriction` ("anchor"): an elasto-plastic anchor
+      per pair in contact, two material points (parameters on the lines of the pair's two
+      edges) carried with the rods while the pair sticks, moved to the yield length when it
+      slides, dropped when the pair leaves the penalty's reach (a re-found pair starts
+      afresh at its contact point at the step start). The tangential force is
+      :math:`-k_t u` (u the anchor's gap in the plane of the two edges) below
+      :math:`\mu_s |F_n|` and :math:`\mu_k |F_n|` along u while sliding; its consistent
+      tangent (the plane turning with the rods included) enters the Newton Jacobian. The
+      anchors are state: :meth:`state_arrays` / :meth:`load_state_arrays` (carried by
+      :class:`knotmech.rod.State` checkpoints). ``tangential_stiffness`` is k_t [N/m] per
+      pair (default 2 K_c, the normal penalty's stiffness under load).
 
     Parameters
     ----------
@@ -114,7 +129,7 @@ class RodContact:
         K_c; the force at an overlap delta (>> 1/k) is about 2 K_c delta.
     sharpness : float [1/m]
         k; the penalty acts from a gap of a few 1/k (take 1/k ~ 1 % of the rod diameter).
-    friction : SmoothFriction or None
+    friction : SmoothFriction, AnchorFriction or None
     margin : float or None [m]
         Broad-phase margin; None -> 30/k + 2 r (covers the penalty range and motion).
     exclusion : int or None

@@ -18,8 +18,7 @@ import numpy as np
 import pytest
 
 from knotmech.errors import InputError
-from knotmech.rod import Clamp, Gravity, MovingNodes, Rod, RodSystem, SolverOptions, State
-from knotmech.rod import simulate
+from knotmech.rod import Clamp, Gravity, MovingNodes, Rod, RodSystem, SolverOptions, State, simulate
 from knotmech.rod.contact import Cylinder, CylinderContact, RodContact
 from knotmech.rod.friction import AnchorFriction
 

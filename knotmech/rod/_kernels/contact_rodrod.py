@@ -754,7 +754,8 @@ def _pair_normal(x, edge_i, edge_j, radius_edge, sharpness, stiffness, grad, coe
     """|F_n| of the pair at ``x`` and its normal into ``n`` (the penalty force on edge i,
     as in :func:`rodrod_assemble`)."""
     dist = _edge_distance_grad_ws(x, grad, coef, w)
-    _, de, _ = penalty_derivs(radius_edge[edge_i] + radius_edge[edge_j] - dist, sharpness, stiffness)
+    two_h = radius_edge[edge_i] + radius_edge[edge_j]
+    _, de, _ = penalty_derivs(two_h - dist, sharpness, stiffness)
     fnorm = 0.0
     for m in range(3):
         n[m] = -de * (grad[m] + grad[3 + m])
@@ -830,8 +831,8 @@ def rodrod_anchor_commit(
     in :func:`rodrod_near`) with a normal force (the others get ``keep`` False: the pair
     has left the contact and its anchor is dropped) the return mapping of
     :func:`_anchor_friction` is evaluated (a pair without an anchor yet, ``known`` False,
-    gets it from ``pos_old``; mode 2 skips it); mode 1 writes whether it slides to ``anchor_slip`` and, if
-    it does, moves the anchor's material points along the two edges
+    gets it from ``pos_old``; mode 2 skips it); mode 1 writes whether it slides to
+    ``anchor_slip`` and, if it does, moves the anchor's material points along the two edges
     (:func:`_shift_anchor`) so that the tangential gap shrinks to the yield length
     mu |F_n|/k_t. Returns the anchors' stored energy (mode 2).
     """
