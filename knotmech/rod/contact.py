@@ -113,11 +113,12 @@ class RodContact:
       it vanishes at zero slip, so a held load creeps.
     - :class:`~knotmech.rod.friction.AnchorFriction` ("anchor"): an elasto-plastic anchor
       per pair in contact, two material points (parameters on the lines of the pair's two
-      edges) carried with the rods while the pair sticks, moved to the yield length when it
-      slides, dropped when the pair leaves the penalty's reach (a re-found pair starts
-      afresh at its contact point at the step start). The tangential force is
-      :math:`-k_t u` (u the anchor's gap in the plane of the two edges) below
-      :math:`\mu_s |F_n|` and :math:`\mu_k |F_n|` along u while sliding; its consistent
+      edges) carried with the rods while the pair sticks, moved back to SLIP_GAP yield
+      lengths when it slides, dropped when the pair leaves the penalty's reach (a
+      re-found pair starts afresh at its contact point at the step start). The tangential force is
+      :math:`-k_t u` (u the anchor's gap in the plane of the two edges) for small u,
+      capped smoothly at :math:`\mu_s |F_n|`, and :math:`\mu_k |F_n|` (to 0.5 %) along
+      u while sliding; its consistent
       tangent (the plane turning with the rods included) enters the Newton Jacobian. The
       anchors are state: :meth:`state_arrays` / :meth:`load_state_arrays` (carried by
       :class:`knotmech.rod.State` checkpoints). ``tangential_stiffness`` is k_t [N/m] per
@@ -408,7 +409,7 @@ class RodContact:
 
     def end_step(self, system, q_new, q_old, dt):
         """Anchor law: commit the anchors of the pairs in contact at the accepted state
-        (stick: kept; slide: moved to the yield length; out of contact: dropped). The
+        (stick: kept; slide: moved back to SLIP_GAP yield lengths; out of contact: dropped). The
         regularised law is stateless."""
         if not self._anchored:
             return

@@ -504,6 +504,12 @@ def rodrod_assemble(
 # up to one edge length beyond the node (on the extension of the edge)
 ANCHOR_LO = -1.0
 ANCHOR_HI = 2.0
+# The anchor spring F = -mu |F_n| u / sqrt(|u|^2 + a^2), a = mu |F_n|/k_t: -k_t u for
+# |u| << a, mu |F_n| for |u| >> a, and smooth in between (Newton does not chatter between
+# a stick and a slip branch). The pair slides when |u| exceeds SLIP_GAP a: the anchor is
+# then moved back to |u| = SLIP_GAP a, where the force is mu |F_n| (1 + SLIP_GAP^-2)^-1/2
+# = 0.995 mu |F_n|
+SLIP_GAP = 10.0
 # edges crossing at less than about 5 degrees use the pair's normal for the friction plane
 _SIN2_PLANE = 0.0076
 
@@ -683,33 +689,36 @@ def _anchor_friction(
     with a tangential penalty; Wriggers, Computational Contact Mechanics, 2nd ed., sect.
     5.2.2), the rod-rod counterpart of the rod-cylinder anchor of ``contact_cylinder``.
 
-    Trial force on edge i F = -k_t u, u = P (X_a - X_b) the anchor's tangential gap
-    (:func:`_anchor_gap`; P the projector on the friction plane of
-    :func:`_friction_normal`); it sticks if |F| <= mu |F_n| and otherwise slides with
-    F = -mu |F_n| u/|u|, mu = mu_k if the pair slid at the last accepted step
-    (``slipped``) and mu_s otherwise. F acts on the anchor's material points: node k of
-    the pair gets cw_k F (edge j the opposite force).
+    Force on edge i F = -mu |F_n| u / s, s = sqrt(|u|^2 + a^2), a = mu |F_n|/k_t, with
+    u = P (X_a - X_b) the anchor's tangential gap (:func:`_anchor_gap`; P the projector on
+    the friction plane of :func:`_friction_normal`): the spring -k_t u while |u| << a,
+    capped smoothly at mu |F_n| (see ``SLIP_GAP``; a sharp stick/slip switch made Newton
+    chatter: 9x the iterations of the regularised law on the clove-hitch pull). The pair
+    slides when |u| > SLIP_GAP a (the commit then moves the anchor);
+    mu = mu_k if the pair slid at the last accepted step (``slipped``), else mu_s. F acts
+    on the anchor's material points: node k of the pair gets cw_k F (edge j the opposite
+    force).
 
     Jacobian (if ``jac``), consistent with the return mapping: with D = X_a - X_b and nf
     the plane normal, du/dx = P C - (nf.D) dnf/dx - nf (u^T dnf/dx) (C = cw (x) I3; the
     plane turns as the rods roll over each other, which a gap of 2r turns into a
-    tangential motion of the order of the nodes'), stick dF/dx = -k_t du/dx, slide
-    dF/dx = -(mu |F_n|/|u|) (I - uh uh^T) du/dx + F (c_n grad Delta)^T, the last term
-    through |F_n| (``cn`` = d2E/dDelta2 / dE/dDelta, 0 to leave it out). Returns (stored
-    energy, slides, entries written): 0.5 k_t |u|^2 when it sticks,
-    mu |F_n| |u| - (mu |F_n|)^2/(2 k_t) when it slides (continuous at the yield point).
+    tangential motion of the order of the nodes'),
+    dF/dx = -(mu |F_n|/s) (I - u u^T/s^2) du/dx + F (|u|^2/s^2) (c_n grad Delta)^T, the
+    last term through |F_n| (``cn`` = d2E/dDelta2 / dE/dDelta, 0 to leave it out).
+    Returns (stored energy mu |F_n| (s - a), slides, entries written).
     """
     cnorm = _friction_normal(x, n, nf)
     unorm, dpar = _anchor_gap(x, anc, nf, cw, u)
     mu = mu_k if slipped else mu_s
     limit = mu * fnorm
-    slip = k_t * unorm > limit
-    if slip:
-        scale = limit / unorm
-        e_f = limit * unorm - 0.5 * limit * limit / k_t
+    a = limit / k_t
+    slip = unorm > SLIP_GAP * a
+    sq = np.sqrt(unorm * unorm + a * a)
+    if sq > 0.0:
+        scale = limit / sq
     else:
         scale = k_t
-        e_f = 0.5 * k_t * unorm * unorm
+    e_f = limit * (sq - a)
     for m in range(3):
         ft[m] = -scale * u[m]
     for k in range(4):
@@ -729,16 +738,18 @@ def _anchor_friction(
         for a in range(3):
             pab = ((1.0 if a == b else 0.0) - nf[a] * nf[b]) * c
             G[a, j] = pab - dpar * dndx[a, j] - nf[a] * und
-    # dF/dx = -scale (I - [slip] uh uh^T) G (+ the |F_n| term when sliding)
-    if slip:
+    # dF/dx = -scale (I - u u^T/s^2) G + F (|u|^2/s^2) c_n grad^T, s^2 = |u|^2 + a^2
+    if sq > 0.0:
+        s2 = sq * sq
+        wn = unorm * unorm / s2 * cn
         for j in range(12):
-            ug = (u[0] * G[0, j] + u[1] * G[1, j] + u[2] * G[2, j]) / (unorm * unorm)
-            for a in range(3):
-                G[a, j] = -scale * (G[a, j] - u[a] * ug) + ft[a] * cn * grad[j]
+            ug = (u[0] * G[0, j] + u[1] * G[1, j] + u[2] * G[2, j]) / s2
+            for b in range(3):
+                G[b, j] = -scale * (G[b, j] - u[b] * ug) + ft[b] * wn * grad[j]
     else:
         for j in range(12):
-            for a in range(3):
-                G[a, j] = -scale * G[a, j]
+            for b in range(3):
+                G[b, j] = -scale * G[b, j]
     for k in range(4):
         for a in range(3):
             for j in range(12):
@@ -833,8 +844,8 @@ def rodrod_anchor_commit(
     :func:`_anchor_friction` is evaluated (a pair without an anchor yet, ``known`` False,
     gets it from ``pos_old``; mode 2 skips it); mode 1 writes whether it slides to
     ``anchor_slip`` and, if it does, moves the anchor's material points along the two edges
-    (:func:`_shift_anchor`) so that the tangential gap shrinks to the yield length
-    mu |F_n|/k_t. Returns the anchors' stored energy (mode 2).
+    (:func:`_shift_anchor`) so that the tangential gap shrinks to SLIP_GAP mu |F_n|/k_t.
+    Returns the anchors' stored energy (mode 2).
     """
     x = np.empty(12)
     grad = np.empty(12)
@@ -864,17 +875,15 @@ def rodrod_anchor_commit(
         unorm, _ = _anchor_gap(x, anchor[p], nf, cw, u)
         mu = mu_k if anchor_slip[p] else mu_s
         limit = mu * fnorm
-        slip = k_t * unorm > limit
+        a = limit / k_t
+        slip = unorm > SLIP_GAP * a
         keep[p] = True
         if mode == 2:
-            if slip:
-                energy += limit * unorm - 0.5 * limit * limit / k_t
-            else:
-                energy += 0.5 * k_t * unorm * unorm
+            energy += limit * (np.sqrt(unorm * unorm + a * a) - a)
             continue
         anchor_slip[p] = slip
         if slip:
-            shrink = (unorm - limit / k_t) / unorm
+            shrink = (unorm - SLIP_GAP * a) / unorm
             for m in range(3):
                 u[m] *= -shrink
             _shift_anchor(x, anchor[p], u)
