@@ -9,7 +9,8 @@ number of rods, self-contact and any number of cylinders are handled alike.
 
 - :class:`RodContact`: the implicit contact model (Choi, Tong & Jawed, J. Appl. Mech. 88
   (2021) 051010) on the edge-edge distance, with the regularised friction of the coated-rod
-  paper (eqs. 10-12), and a sort-and-sweep broad phase.
+  paper (eqs. 10-12) or elasto-plastic anchors that stick, and a sort-and-sweep broad
+  phase.
 - :class:`CylinderContact`: rigid cylinders (posts, capstans, pinching rollers), smooth
   penalty normal force and elasto-plastic friction that truly sticks, applied at the contact
   surface so that thick rods show mu_eff (see :func:`knotmech.analytic.capstan.mu_eff`).
@@ -27,8 +28,10 @@ from knotmech.rod._kernels.contact_rodrod import (
     ENTRIES_PER_PAIR,
     Z_CUTOFF,
     Z_JACOBIAN,
+    align_anchors,
     max_node_speed,
     max_pair_displacement,
+    rodrod_anchor_commit,
     rodrod_assemble,
     rodrod_energy,
     rodrod_near,
@@ -103,8 +106,23 @@ class RodContact:
     (the softplus of the coated-rod paper's eq. (10), squared as in Choi, Tong & Jawed 2021,
     so that the force grows like :math:`2K_c\,\delta` with the overlap
     :math:`\delta = r_i + r_j - \Delta`). Its exact gradient and Hessian enter the Newton
-    system. Friction: coated-rod paper eqs. (11)-(12) (:class:`~knotmech.rod.friction.
-    SmoothFriction`), with dF/dq through the velocity only (contact normal and |F_n| lagged).
+    system. Friction, one of two laws:
+
+    - :class:`~knotmech.rod.friction.SmoothFriction` ("imc"): coated-rod paper eqs.
+      (11)-(12), with dF/dq through the velocity (and |F_n|; the normal lagged). Stateless;
+      it vanishes at zero slip, so a held load creeps.
+    - :class:`~knotmech.rod.friction.AnchorFriction` ("anchor"): an elasto-plastic anchor
+      per pair in contact, two material points (parameters on the lines of the pair's two
+      edges) carried with the rods while the pair sticks, moved back to SLIP_GAP yield
+      lengths when it slides, dropped when the pair leaves the penalty's reach (a
+      re-found pair starts afresh at its contact point at the step start). The tangential force is
+      :math:`-k_t u` (u the anchor's gap in the plane of the two edges) for small u,
+      capped smoothly at :math:`\mu_s |F_n|`, and :math:`\mu_k |F_n|` (to 0.5 %) along
+      u while sliding; its consistent
+      tangent (the plane turning with the rods included) enters the Newton Jacobian. The
+      anchors are state: :meth:`state_arrays` / :meth:`load_state_arrays` (carried by
+      :class:`knotmech.rod.State` checkpoints). ``tangential_stiffness`` is k_t [N/m] per
+      pair (default 2 K_c, the normal penalty's stiffness under load).
 
     Parameters
     ----------
@@ -112,7 +130,7 @@ class RodContact:
         K_c; the force at an overlap delta (>> 1/k) is about 2 K_c delta.
     sharpness : float [1/m]
         k; the penalty acts from a gap of a few 1/k (take 1/k ~ 1 % of the rod diameter).
-    friction : SmoothFriction or None
+    friction : SmoothFriction, AnchorFriction or None
     margin : float or None [m]
         Broad-phase margin; None -> 30/k + 2 r (covers the penalty range and motion).
     exclusion : int or None
@@ -136,7 +154,7 @@ class RodContact:
 
     stiffness: float
     sharpness: float
-    friction: SmoothFriction | None = None
+    friction: SmoothFriction | AnchorFriction | None = None
     margin: float | None = None
     exclusion: int | None = None
     max_displacement: float | None = 0.5
@@ -151,8 +169,65 @@ class RodContact:
             self.margin = float(check_nonnegative("margin", self.margin))
         if self.max_displacement is not None:
             self.max_displacement = float(check_positive("max_displacement", self.max_displacement))
-        if self.friction is not None and not isinstance(self.friction, SmoothFriction):
-            raise InputError("friction must be a SmoothFriction or None")
+        if self.friction is not None and not isinstance(
+            self.friction, (SmoothFriction, AnchorFriction)
+        ):
+            raise InputError("friction must be a SmoothFriction, an AnchorFriction or None")
+        self.reset()
+
+    @property
+    def _anchored(self) -> bool:
+        return isinstance(self.friction, AnchorFriction)
+
+    def reset(self):
+        """Forget the friction state (the anchors of the pairs in contact)."""
+        self._store = (np.zeros(0, dtype=np.int64), np.zeros((0, 2)), np.zeros(0, dtype=bool))
+        self._anc = None
+        self.pairs = None
+        self._no_anchor = (
+            np.zeros((1, 2)),
+            np.zeros(1, dtype=bool),
+            np.zeros(1, dtype=bool),
+            np.ones(1, dtype=bool),
+        )
+
+    def state_arrays(self) -> dict:
+        """The friction state as arrays (for :class:`knotmech.rod.State` checkpoints): the
+        key e_i * n_edges + e_j of each pair in contact, its anchor (s_a, s_b) (material
+        parameters on the two edges) and whether it slid at the last accepted step."""
+        keys, anc, slip = self._store
+        return {"keys": keys, "anchor": anc, "slipping": slip}
+
+    def load_state_arrays(self, d) -> None:
+        """Restore the friction state written by :meth:`state_arrays`."""
+        self._store = (
+            np.array(d["keys"], dtype=np.int64),
+            np.array(d["anchor"], dtype=float).reshape(-1, 2),
+            np.array(d["slipping"], dtype=bool),
+        )
+        self._anc = None
+        self.pairs = None  # aligned again with the next broad phase
+
+    def _anchor_params(self):
+        """(mu_s, mu_k, k_t) of the anchor law; k_t [N/m] defaults to 2 K_c, the normal
+        penalty's stiffness under load."""
+        fr = self.friction
+        kt = fr.tangential_stiffness
+        return fr.mu_s, fr.mu_k, float(2.0 * self.stiffness if kt is None else kt)
+
+    def _align_anchors(self, system):
+        """Anchors aligned with ``self.pairs``: the committed ones of pairs still in the
+        candidate list; new pairs get theirs (the contact point at the step start) when
+        first in reach (in the kernels)."""
+        keys_old, anc_old, slip_old = self._store
+        n_edges = system.edge_nodes.shape[0]
+        keys = self.pairs[:, 0] * n_edges + self.pairs[:, 1]
+        n = keys.size
+        anc = np.empty((n, 2))
+        slip = np.empty(n, dtype=bool)
+        known = np.empty(n, dtype=bool)
+        align_anchors(keys_old, anc_old, slip_old, keys, anc, slip, known)
+        self._anc = (keys, anc, slip, np.zeros(n, dtype=bool), known)
 
     def _exclusion(self, system):
         if self.exclusion is not None:
@@ -178,6 +253,8 @@ class RodContact:
             exclusion=self._exclusion(system),
             validate=False,
         )
+        if self._anchored:
+            self._align_anchors(system)
 
     def _ensure_pairs(self, system, q):
         if self.pairs is None:
@@ -194,12 +271,23 @@ class RodContact:
         rad, en, nd, _, _, rmin = self._arrays(system)
         fp = getattr(self, "_friction_cache", None)
         if fp is None or fp[0] is not self.friction or fp[1] != rmin:
-            if self.friction is not None:
+            if isinstance(self.friction, SmoothFriction):
                 fp = (self.friction, rmin, self.friction.parameters(rmin))
             else:
                 fp = (None, rmin, (0.0, 1.0, 0.0))
             self._friction_cache = fp
-        mu, fk, fc = fp[2]
+        if self._anchored:
+            mu, mu_k, k_t = self._anchor_params()
+            fk = fc = 0.0
+            if self._anc is None:
+                self._align_anchors(system)
+            _, anc, slip_prev, slip_now, known = self._anc
+            law = 1
+        else:
+            mu, fk, fc = fp[2]
+            mu_k = k_t = 0.0
+            anc, slip_prev, slip_now, known = self._no_anchor
+            law = 0
         pos = np.asarray(q, dtype=float)[nd]
         near = self._near_buffer(npair)
         n_near = rodrod_near(pos, pairs, en, rad, self.sharpness, Z_CUTOFF, near)
@@ -237,6 +325,13 @@ class RodContact:
             bool(self.friction_normal_derivative),
             Z_JACOBIAN,
             want,
+            law,
+            mu_k,
+            k_t,
+            anc,
+            slip_prev,
+            known,
+            slip_now,
         )
         self.last_normal_force = fn
         self._energy_cache = (pairs, pos, float(e))  # energy() at the same q is free
@@ -295,11 +390,43 @@ class RodContact:
             )
         return None
 
+    @property
+    def sliding(self) -> np.ndarray:
+        """Anchor law: whether each candidate pair slid at the last assembly (n_pairs,)."""
+        return np.zeros(0, dtype=bool) if self._anc is None else self._anc[3]
+
+    def _anchor_pass(self, system, q, q_old, mode, keep):
+        rad, en, nd = self._arrays(system)[:3]
+        if self._anc is None:
+            self._align_anchors(system)
+        mu_s, mu_k, k_t = self._anchor_params()
+        _, anc, slip, _, known = self._anc
+        return rodrod_anchor_commit(
+            _positions(system, q), _positions(system, q_old), self.pairs, en, rad,
+            self.sharpness, self.stiffness, Z_CUTOFF, mu_s, mu_k, k_t, anc, slip, known,
+            keep, mode,
+        )  # fmt: skip
+
     def end_step(self, system, q_new, q_old, dt):
-        """Nothing to commit (the regularised friction is stateless)."""
+        """Anchor law: commit the anchors of the pairs in contact at the accepted state
+        (stick: kept; slide: moved back to SLIP_GAP yield lengths; out of contact: dropped). The
+        regularised law is stateless."""
+        if not self._anchored:
+            return
+        self._ensure_pairs(system, q_old)
+        if self._anc is None:
+            self._align_anchors(system)
+        keys, anc, slip = self._anc[:3]
+        keep = np.zeros(keys.size, dtype=bool)
+        if keys.size:
+            self._anchor_pass(system, q_new, q_old, 1, keep)
+        self._store = (keys[keep], anc[keep], slip[keep])
+        self._energy_cache = None
+        self._anc = None  # aligned again by the next begin_step (or energy())
 
     def energy(self, system, q):
-        """Penalty energy [J] of the current candidate pairs."""
+        """Penalty energy [J] of the current candidate pairs (anchor law: plus the energy
+        stored in the anchors' tangential springs)."""
         self._ensure_pairs(system, q)
         if self.pairs.shape[0] == 0:
             return 0.0
@@ -307,7 +434,7 @@ class RodContact:
         cache = getattr(self, "_energy_cache", None)
         if cache is not None and cache[0] is self.pairs and np.array_equal(cache[1], pos):
             return cache[2]
-        return float(
+        e = float(
             rodrod_energy(
                 pos,
                 self.pairs,
@@ -317,6 +444,10 @@ class RodContact:
                 self.stiffness,
             )
         )
+        if self._anchored:
+            keep = np.zeros(self.pairs.shape[0], dtype=bool)
+            e += float(self._anchor_pass(system, q, q, 2, keep))
+        return e
 
 
 @dataclass
@@ -385,6 +516,7 @@ class CylinderContact:
         self._ch = np.array([0.5 * c.length for c in cyl])
         self._topology = None
         self._anchor = None
+        self._restored = None
 
     # --- geometry helpers -------------------------------------------------------------
     def _setup(self, system):
@@ -414,6 +546,41 @@ class CylinderContact:
         self._valid = np.zeros((n_nodes, nc), dtype=np.bool_)
         self._slipping = np.zeros((n_nodes, nc), dtype=np.bool_)
         self._weight = None
+        if self._restored is not None:
+            self._apply_restored()
+
+    def state_arrays(self) -> dict:
+        """The friction state as arrays (for :class:`knotmech.rod.State` checkpoints): the
+        stick anchors (n_nodes, n_cyl, 3) [m], whether each is set, and the slip flags."""
+        if self._anchor is None:
+            return {}
+        return {
+            "anchor": self._anchor.copy(),
+            "valid": self._valid.copy(),
+            "slipping": self._slipping.copy(),
+        }
+
+    def load_state_arrays(self, d) -> None:
+        """Restore the friction state written by :meth:`state_arrays` (applied when the
+        contact first sees its system, if it has not yet)."""
+        self._restored = dict(d)
+        if self._anchor is not None:
+            self._apply_restored()
+
+    def _apply_restored(self):
+        d, self._restored = self._restored, None
+        if not d:
+            self.reset()
+            return
+        anchor = np.asarray(d["anchor"], dtype=float)
+        if anchor.shape != self._anchor.shape:
+            raise InputError(
+                f"the saved rod-post anchors have shape {anchor.shape}, this contact "
+                f"needs {self._anchor.shape} (another system or other cylinders)"
+            )
+        self._anchor[:] = anchor
+        self._valid[:] = np.asarray(d["valid"], dtype=bool)
+        self._slipping[:] = np.asarray(d["slipping"], dtype=bool)
 
     def _node_weight(self, pos):
         _, en, nd, _, _, _ = self._topology

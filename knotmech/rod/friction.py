@@ -7,8 +7,8 @@ Two laws, both used through the contact interactions of :mod:`knotmech.rod.conta
   :func:`stick_slip_weight` of the tangential relative speed. It does not truly stick (a held
   load creeps slowly), which is what that paper uses for knots.
 - :class:`AnchorFriction`, an elasto-plastic "anchor spring" (return mapping of Coulomb's law
-  with a tangential penalty) for contact with rigid cylinders: it truly sticks below
-  mu_s N and slides at mu_k N above, with mu_s >= mu_k.
+  with a tangential penalty) for contact with rigid cylinders and for rod-rod contact: it
+  truly sticks below mu_s N and slides at mu_k N above, with mu_s >= mu_k.
 """
 
 from __future__ import annotations
@@ -103,8 +103,9 @@ class AnchorFriction:
         Static coefficient mu_s (>= mu_kinetic).
     mu_kinetic : float or None
         Kinetic coefficient mu_k (>= 0); None -> equal to mu_static.
-    tangential_stiffness : float or None [N/m^2]
-        k_t, per unit rod length; None -> the contact's normal penalty stiffness scale.
+    tangential_stiffness : float or None
+        k_t; rod-cylinder: per unit rod length [N/m^2], rod-rod: per contact pair [N/m];
+        None -> the contact's normal penalty stiffness scale.
 
     References
     ----------

@@ -11,7 +11,7 @@ from typing import Protocol, runtime_checkable
 
 import numpy as np
 
-from ..errors import check_finite, check_nonnegative
+from ..errors import InputError, check_finite, check_nonnegative
 from .loads import _index_array
 
 __all__ = ["Interaction", "PointSpring"]
@@ -37,6 +37,37 @@ class Interaction(Protocol):
     # ``check_step(system, q_new, q_old, dt) -> str | None`` is called on a converged
     # step; a returned reason rejects it and the solver retries with half the step
     # (RodContact's tunnelling guard).
+    # ``state_arrays() -> dict`` and ``load_state_arrays(dict)``: internal state committed
+    # by ``end_step`` (friction anchors), carried in ``State.interactions`` so that a
+    # checkpoint resumes bit-identically in a new process (see
+    # :func:`interaction_state`).
+
+
+def interaction_state(interactions) -> dict:
+    """``{k: arrays}`` of the interactions that have a ``state_arrays`` method (k: their
+    position in ``interactions``), for :attr:`knotmech.rod.State.interactions`."""
+    out = {}
+    for k, it in enumerate(interactions):
+        get = getattr(it, "state_arrays", None)
+        if get is not None:
+            out[k] = get()
+    return out
+
+
+def restore_interaction_state(interactions, saved) -> None:
+    """Give each interaction its arrays from ``saved`` (a :func:`interaction_state`
+    dictionary, e.g. read back by ``State.load``); None leaves them as they are."""
+    if saved is None:
+        return
+    for k, arrays in saved.items():
+        put = getattr(interactions[k], "load_state_arrays", None) if k < len(interactions) else None
+        if put is None:
+            raise InputError(
+                f"the state holds the internal state of interaction {k}, which the "
+                "interactions passed to simulate do not take (pass the same interactions, "
+                "in the same order, as the run that wrote it)"
+            )
+        put(arrays)
 
 
 @dataclass(frozen=True)

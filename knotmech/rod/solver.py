@@ -46,6 +46,7 @@ from ..errors import InputError, SolverError, check_positive, check_range
 from ._kernels import assembly as _asm
 from ._kernels import envelope as _env
 from .elastic import ElasticWorkspace
+from .interactions import interaction_state, restore_interaction_state
 from .jacobian import Triplets
 from .results import Result
 from .system import RodSystem, State
@@ -742,6 +743,7 @@ def simulate(
     save_every = dt if opt.save_every is None else float(opt.save_every)
     stepper = Stepper(system, _as_tuple(loads, "loads"), _as_tuple(constraints, "constraints"),
                       _as_tuple(interactions, "interactions"), opt)  # fmt: skip
+    restore_interaction_state(stepper.interactions, st.interactions)  # friction anchors
 
     node_lists = [c.node_indices(system) for c in stepper.constraints]
     edge_lists = [c.edge_indices(system) for c in stepper.constraints]
@@ -855,6 +857,7 @@ def simulate(
                 n_good=n_good,
                 accel=accel,
                 h_last=h_step,
+                interactions=interaction_state(stepper.interactions),
             )
             residual = stepper.f.copy()
             if bar is not None:

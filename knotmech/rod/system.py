@@ -180,6 +180,10 @@ class State:
     accel : (n_dof,) array or None  rate of change of ``v`` over the last two steps (the
         solver's second-order predictor; None: not known yet, e.g. at the start)
     h_last : float [s]  the step that led to this state (nan: not known)
+    interactions : dict or None  internal state of the interactions (friction anchors),
+        ``{k: {name: array}}`` for the k-th interaction passed to ``simulate`` (None: not
+        known, the interactions keep theirs); a checkpoint carries it so that a new process
+        resumes bit-identically
     """
 
     t: float
@@ -192,6 +196,7 @@ class State:
     n_good: int = 0
     accel: np.ndarray | None = None
     h_last: float = float("nan")
+    interactions: dict | None = None
 
     def as_dict(self) -> dict:
         out = {
@@ -207,6 +212,11 @@ class State:
         }
         if self.accel is not None:
             out["accel"] = self.accel
+        if self.interactions is not None:
+            out["n_interactions"] = np.int64(len(self.interactions))
+            for k, arrays in self.interactions.items():
+                for name, v in arrays.items():
+                    out[f"interaction{int(k)}__{name}"] = v
         return out
 
     @classmethod
@@ -222,6 +232,7 @@ class State:
             n_good=int(d["n_good"]),
             accel=np.array(d["accel"], dtype=float) if "accel" in d else None,
             h_last=float(d["h_last"]) if "h_last" in d else float("nan"),
+            interactions=_interaction_arrays(d),
         )
 
     def save(self, path) -> None:
@@ -233,6 +244,21 @@ class State:
         """Read a state written by :meth:`save`."""
         with np.load(path) as d:
             return cls.from_dict(d)
+
+
+def _interaction_arrays(d) -> dict | None:
+    """The ``interaction<k>__<name>`` entries of a state dictionary as {k: {name: array}}."""
+    if "n_interactions" not in d:
+        return None
+    out = {k: {} for k in range(int(d["n_interactions"]))}
+    for key in d.keys():
+        if key.startswith("interaction") and "__" in key:
+            head, name = key.split("__", 1)
+            k = int(head[len("interaction") :])
+            if k not in out:
+                raise InputError(f"state entry {key!r} names interaction {k} of {len(out)}")
+            out[k][name] = np.array(d[key])
+    return out
 
 
 def _default_director(t0: np.ndarray) -> np.ndarray:

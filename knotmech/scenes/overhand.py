@@ -33,7 +33,7 @@ import numpy as np
 from knotmech import rod
 from knotmech.errors import InputError, check_nonnegative, check_positive
 from knotmech.rod.contact import RodContact
-from knotmech.rod.friction import SmoothFriction
+from knotmech.rod.friction import AnchorFriction, SmoothFriction
 from knotmech.scenes._common import check_pull_step, check_run_size, fail, measured_strain
 from knotmech.scenes.curves import (
     OVERHAND_COATED_TABLE1,
@@ -190,6 +190,7 @@ class OverhandResult:
     status, message : str  solver outcome ("failed" also when the rod's strain exceeded
         50 %); stats : dict (steps, newton_iterations, wall_s)
     warnings : list of str  one line each (a strain above 10 %)
+    friction : str  rod-rod friction law, "imc" or "anchor"
     """
 
     turns: int
@@ -211,6 +212,7 @@ class OverhandResult:
     message: str
     stats: dict = field(default_factory=dict)
     warnings: list = field(default_factory=list)
+    friction: str = "imc"
 
     @property
     def knot_preserved(self) -> bool:
@@ -233,6 +235,7 @@ class OverhandResult:
             "scene": "overhand",
             "turns": self.turns,
             "mu": self.mu,
+            "friction": self.friction,
             "setup": asdict(self.setup),
             "status": self.status,
             "message": self.message,
@@ -268,6 +271,7 @@ def overhand(
     progress: bool = False,
     options: rod.SolverOptions | None = None,
     max_node_steps: float | None = None,
+    friction: str = "imc",
     **overrides,
 ) -> OverhandResult:
     r"""Pull an overhand knot with ``turns`` braid turns tight at constant speed.
@@ -293,6 +297,12 @@ def overhand(
     max_node_steps : float, optional
         Bound on (t_end/dt) x nodes, checked before the rod is built (default
         :data:`knotmech.scenes._common.MAX_NODE_STEPS`; ``inf`` lifts it).
+    friction : {"imc", "anchor"}
+        Rod-rod friction law: ``"imc"`` (default) the regularised law of the implicit
+        contact model and the coated-rod paper (:class:`~knotmech.rod.friction.
+        SmoothFriction`, the papers' own, which these scenes reproduce); ``"anchor"`` the
+        elasto-plastic anchor that truly sticks (:class:`~knotmech.rod.friction.
+        AnchorFriction`, mu_s = mu_k = ``mu``).
 
     Returns
     -------
@@ -360,7 +370,12 @@ def overhand(
         constraints.append(rod.MovingNodes([0, 1], path=lambda t: left0 - shift(t)))
     else:
         constraints.append(rod.Clamp(nodes=[0, 1]))
-    if setup.slip_speed is None:
+    if friction not in ("imc", "anchor"):
+        raise InputError(f"friction must be 'imc' or 'anchor', got {friction!r}")
+    law = friction
+    if law == "anchor":
+        friction = AnchorFriction(mu_static=mu)
+    elif setup.slip_speed is None:
         friction = SmoothFriction(mu)
     else:
         nu = float(check_positive("slip_speed", setup.slip_speed))
@@ -422,6 +437,7 @@ def overhand(
         message=message,
         stats=dict(res.stats),
         warnings=warnings,
+        friction=law,
     )
 
 

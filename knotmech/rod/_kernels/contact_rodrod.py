@@ -352,7 +352,14 @@ def rodrod_assemble(
     contact_force,
     normal_derivative,
     z_jacobian,
-    want_jacobian=True,
+    want_jacobian,
+    law,
+    mu_k,
+    k_t,
+    anchor,
+    anchor_slip,
+    anchor_known,
+    out_slip,
 ):
     """Contact + friction forces and Jacobian blocks of the near candidate pairs.
 
@@ -372,6 +379,14 @@ def rodrod_assemble(
     near pair: 144 penalty, then 144 friction if the pair has friction); returns (energy,
     number of entries written). ``contact_force`` (n_pairs,) receives |F_n| (0 for pairs
     that are not near).
+
+    ``law`` 0 is the regularised friction above (``mu``, ``fric_k``, ``fric_c``,
+    ``vel_eps``); ``law`` 1 the elasto-plastic anchor of :func:`_anchor_friction` (static
+    ``mu``, kinetic ``mu_k``, tangential stiffness ``k_t`` [N/m], the pairs' anchors
+    ``anchor`` (n_pairs, 2) and last slip flags ``anchor_slip``, ``anchor_known`` False
+    for a pair without an anchor yet: it is made from ``pos_old`` and the flag set;
+    ``out_slip`` (n_pairs,) receives whether each pair slides at ``pos``); the energy then
+    includes the anchor springs' (see :func:`rodrod_anchor_commit`).
     """
     x = np.empty(12)
     grad = np.empty(12)
@@ -388,8 +403,20 @@ def rodrod_assemble(
     H = np.empty((12, 12))
     B = np.empty((12, 2))
     U = np.empty((2, 2))
+    cw = np.empty(4)
+    u = np.empty(3)
+    ft = np.empty(3)
+    nf = np.empty(3)
+    dndx = np.empty((3, 12))
+    G3 = np.empty((3, 12))
+    xo = np.empty(12)
+    coef_o = np.empty(4)
+    w_o = np.empty(3)
+    n_o = np.empty(3)
     energy = 0.0
     contact_force[:] = 0.0
+    if law == 1:
+        out_slip[:] = False
     cnt = 0
     for kp in range(n_near):
         p = near[kp]
@@ -426,6 +453,19 @@ def rodrod_assemble(
             continue
         for m in range(3):
             n[m] = fn[m] / fnorm
+        if law == 1:
+            if not anchor_known[p]:  # a new pair: its anchor from the step start
+                _pair_nodes(pos_old, pairs, p, edge_nodes, xo)
+                _fresh_anchor(xo, anchor[p], coef_o, w_o, n_o, nf, cw, u)
+                anchor_known[p] = True
+            cn = d2e / de if (normal_derivative and de != 0.0) else 0.0
+            e_f, slip, cnt = _anchor_friction(
+                x, anchor[p], anchor_slip[p], n, fnorm, mu, mu_k, k_t, cn, grad, dofs, jac,
+                force, rows, cols, vals, cnt, cw, u, ft, nf, coef, dist, B, U, dndx, G3,
+            )  # fmt: skip
+            energy += e_f
+            out_slip[p] = slip
+            continue
         for m in range(3):
             vi = 0.5 * (pos[nodes[0], m] - pos_old[nodes[0], m])
             vi += 0.5 * (pos[nodes[1], m] - pos_old[nodes[1], m])
@@ -471,6 +511,397 @@ def rodrod_assemble(
                         vals[cnt] = scale * Dp[a, b] + sgn[k] * ffr[a] * cn * grad[3 * l + b]
                         cnt += 1
     return energy, cnt
+
+
+# Anchor parameters stay within [ANCHOR_LO, ANCHOR_HI] on the lines of their edges: a pair
+# whose closest points sit at a node still holds its anchor where the contact really is,
+# up to one edge length beyond the node (on the extension of the edge)
+ANCHOR_LO = -1.0
+ANCHOR_HI = 2.0
+# The anchor spring F = -mu |F_n| u / sqrt(|u|^2 + a^2), a = mu |F_n|/k_t: -k_t u for
+# |u| << a, mu |F_n| for |u| >> a, and smooth in between (Newton does not chatter between
+# a stick and a slip branch). The pair slides when |u| exceeds SLIP_GAP a: the anchor is
+# then moved back to |u| = SLIP_GAP a, where the force is mu |F_n| (1 + SLIP_GAP^-2)^-1/2
+# = 0.995 mu |F_n|
+SLIP_GAP = 10.0
+# edges crossing at less than about 5 degrees use the pair's normal for the friction plane
+_SIN2_PLANE = 0.0076
+
+
+@njit(cache=True)
+def _friction_normal(x, n, nf):
+    """Normal ``nf`` (3,) of the friction's tangent plane: the normal m = e1 x e2/|e1 x e2|
+    of the plane of the two edges (the contact normal of the two lines, also when the
+    closest points of the segments sit at a node and the pair's normal ``n`` leans
+    toward it), or ``n`` for (near-)parallel edges. Returns |e1 x e2| (0: ``n`` used)."""
+    a11 = 0.0
+    a22 = 0.0
+    c0 = 0.0
+    c1 = 0.0
+    c2 = 0.0
+    e1x = x[3] - x[0]
+    e1y = x[4] - x[1]
+    e1z = x[5] - x[2]
+    e2x = x[9] - x[6]
+    e2y = x[10] - x[7]
+    e2z = x[11] - x[8]
+    a11 = e1x * e1x + e1y * e1y + e1z * e1z
+    a22 = e2x * e2x + e2y * e2y + e2z * e2z
+    c0 = e1y * e2z - e1z * e2y
+    c1 = e1z * e2x - e1x * e2z
+    c2 = e1x * e2y - e1y * e2x
+    cc = c0 * c0 + c1 * c1 + c2 * c2
+    if cc <= _SIN2_PLANE * a11 * a22:
+        for m in range(3):
+            nf[m] = n[m]
+        return 0.0
+    cn = np.sqrt(cc)
+    nf[0] = c0 / cn
+    nf[1] = c1 / cn
+    nf[2] = c2 / cn
+    return cn
+
+
+@njit(cache=True)
+def _anchor_gap(x, anc, n, cw, u):
+    """Tangential gap of an anchor: u = P_n (X_a - X_b) with the anchor's material points
+    X_a = (1 - s_a) x1 + s_a x2 and X_b = (1 - s_b) x3 + s_b x4 (``anc`` = (s_a, s_b),
+    ``x`` (12,) the pair's nodes, P_n = I - n n^T); writes the node weights ``cw`` (4,) of
+    X_a - X_b and ``u`` (3,); returns (|u|, n . (X_a - X_b))."""
+    cw[0] = 1.0 - anc[0]
+    cw[1] = anc[0]
+    cw[2] = -(1.0 - anc[1])
+    cw[3] = -anc[1]
+    dn = 0.0
+    for m in range(3):
+        u[m] = cw[0] * x[m] + cw[1] * x[3 + m] + cw[2] * x[6 + m] + cw[3] * x[9 + m]
+        dn += u[m] * n[m]
+    un = 0.0
+    for m in range(3):
+        u[m] -= dn * n[m]
+        un += u[m] * u[m]
+    return np.sqrt(un), dn
+
+
+@njit(cache=True)
+def _shift_anchor(x, anc, dd):
+    """Move the anchor's parameters so that X_a - X_b changes by ``dd`` (3,) as nearly as
+    the two edge directions allow: least squares ds_a e1 - ds_b e2 = dd with a tiny
+    Tikhonov term (parallel edges: the smallest shift), each parameter kept in
+    [ANCHOR_LO, ANCHOR_HI] (the other then re-fitted)."""
+    a11 = 0.0
+    a22 = 0.0
+    a12 = 0.0
+    b1 = 0.0
+    b2 = 0.0
+    for m in range(3):
+        e1 = x[3 + m] - x[m]
+        e2 = x[9 + m] - x[6 + m]
+        a11 += e1 * e1
+        a22 += e2 * e2
+        a12 -= e1 * e2
+        b1 += e1 * dd[m]
+        b2 -= e2 * dd[m]
+    lam = 1e-9 * (a11 + a22)
+    det = (a11 + lam) * (a22 + lam) - a12 * a12
+    dsa = ((a22 + lam) * b1 - a12 * b2) / det
+    dsb = ((a11 + lam) * b2 - a12 * b1) / det
+    sa = min(max(anc[0] + dsa, ANCHOR_LO), ANCHOR_HI)
+    if sa != anc[0] + dsa:  # s_a at its bound: the best s_b for it
+        dsb = (b2 - a12 * (sa - anc[0])) / a22
+    sb = min(max(anc[1] + dsb, ANCHOR_LO), ANCHOR_HI)
+    if sb != anc[1] + dsb and sa == anc[0] + dsa:
+        sa = min(max(anc[0] + (b1 - a12 * (sb - anc[1])) / a11, ANCHOR_LO), ANCHOR_HI)
+    anc[0] = sa
+    anc[1] = sb
+
+
+@njit(cache=True)
+def _normal_jacobian(x, coef, n, dist, B, U, dndx):
+    """dn/dx (3, 12) of the pair's normal n = w/|w| (w = A x the gap vector of the
+    closest points, ``coef`` its node weights): dw/dx = A - W U^-1 B^T, the closest-point
+    parameters moving with x (implicit differentiation of phi_u = 0, with B and U the
+    phi_xu columns and phi_uu of the free parameters as left by
+    :func:`_edge_distance_hessian_ws`, W = (e1, -e2) their dw/du), and
+    dn/dx = P_n dw/dx / |w|."""
+    _, _, free_s, free_t = _segment_params_flat(x)
+    nfree = int(free_s) + int(free_t)
+    wu0 = np.zeros(3)
+    wu1 = np.zeros(3)
+    if nfree > 0:
+        col = np.zeros((3, 2))
+        c = 0
+        if free_s:
+            for m in range(3):
+                col[m, c] = x[3 + m] - x[m]
+            c += 1
+        if free_t:
+            for m in range(3):
+                col[m, c] = -(x[9 + m] - x[6 + m])
+        if nfree == 1:
+            for m in range(3):
+                wu0[m] = col[m, 0] / U[0, 0]
+        else:
+            det = U[0, 0] * U[1, 1] - U[0, 1] * U[1, 0]
+            for m in range(3):
+                wu0[m] = (col[m, 0] * U[1, 1] - col[m, 1] * U[1, 0]) / det
+                wu1[m] = (-col[m, 0] * U[0, 1] + col[m, 1] * U[0, 0]) / det
+    for m in range(3):
+        for j in range(12):
+            dw = coef[j // 3] if (j % 3) == m else 0.0
+            if nfree > 0:
+                dw -= wu0[m] * B[j, 0]
+            if nfree > 1:
+                dw -= wu1[m] * B[j, 1]
+            dndx[m, j] = dw
+    for j in range(12):
+        proj = n[0] * dndx[0, j] + n[1] * dndx[1, j] + n[2] * dndx[2, j]
+        for m in range(3):
+            dndx[m, j] = (dndx[m, j] - proj * n[m]) / dist
+
+
+@njit(cache=True)
+def _plane_normal_jacobian(x, nf, cnorm, dndx):
+    """dm/dx (3, 12) of m = c/|c|, c = e1 x e2 (see :func:`_friction_normal`):
+    dc/dx1 = [e2]x, dc/dx2 = -[e2]x, dc/dx3 = -[e1]x, dc/dx4 = [e1]x ([a]x b = a x b),
+    dm = (I - m m^T) dc/|c|."""
+    e1 = np.empty(3)
+    e2 = np.empty(3)
+    for m in range(3):
+        e1[m] = x[3 + m] - x[m]
+        e2[m] = x[9 + m] - x[6 + m]
+    for node in range(4):
+        v = e2 if node < 2 else e1
+        sg = 1.0 if node == 0 or node == 3 else -1.0
+        # columns b of sg [v]x: [v]x e_b = v x e_b
+        for b in range(3):
+            col0 = 0.0
+            col1 = 0.0
+            col2 = 0.0
+            if b == 0:
+                col1 = v[2]
+                col2 = -v[1]
+            elif b == 1:
+                col0 = -v[2]
+                col2 = v[0]
+            else:
+                col0 = v[1]
+                col1 = -v[0]
+            proj = nf[0] * col0 + nf[1] * col1 + nf[2] * col2
+            j = 3 * node + b
+            dndx[0, j] = sg * (col0 - proj * nf[0]) / cnorm
+            dndx[1, j] = sg * (col1 - proj * nf[1]) / cnorm
+            dndx[2, j] = sg * (col2 - proj * nf[2]) / cnorm
+
+
+@njit(cache=True)
+def _anchor_friction(
+    x, anc, slipped, n, fnorm, mu_s, mu_k, k_t, cn, grad, dofs, jac,
+    force, rows, cols, vals, cnt, cw, u, ft, nf, coef, dist, B, U, dndx, G,
+):  # fmt: skip
+    """Elasto-plastic anchor friction of one rod-rod pair (return mapping of Coulomb's law
+    with a tangential penalty; Wriggers, Computational Contact Mechanics, 2nd ed., sect.
+    5.2.2), the rod-rod counterpart of the rod-cylinder anchor of ``contact_cylinder``.
+
+    Force on edge i F = -mu |F_n| u / s, s = sqrt(|u|^2 + a^2), a = mu |F_n|/k_t, with
+    u = P (X_a - X_b) the anchor's tangential gap (:func:`_anchor_gap`; P the projector on
+    the friction plane of :func:`_friction_normal`): the spring -k_t u while |u| << a,
+    capped smoothly at mu |F_n| (see ``SLIP_GAP``; a sharp stick/slip switch made Newton
+    chatter: 9x the iterations of the regularised law on the clove-hitch pull). The pair
+    slides when |u| > SLIP_GAP a (the commit then moves the anchor);
+    mu = mu_k if the pair slid at the last accepted step (``slipped``), else mu_s. F acts
+    on the anchor's material points: node k of the pair gets cw_k F (edge j the opposite
+    force).
+
+    Jacobian (if ``jac``), consistent with the return mapping: with D = X_a - X_b and nf
+    the plane normal, du/dx = P C - (nf.D) dnf/dx - nf (u^T dnf/dx) (C = cw (x) I3; the
+    plane turns as the rods roll over each other, which a gap of 2r turns into a
+    tangential motion of the order of the nodes'),
+    dF/dx = -(mu |F_n|/s) (I - u u^T/s^2) du/dx + F (|u|^2/s^2) (c_n grad Delta)^T, the
+    last term through |F_n| (``cn`` = d2E/dDelta2 / dE/dDelta, 0 to leave it out).
+    Returns (stored energy mu |F_n| (s - a), slides, entries written).
+    """
+    cnorm = _friction_normal(x, n, nf)
+    unorm, dpar = _anchor_gap(x, anc, nf, cw, u)
+    mu = mu_k if slipped else mu_s
+    limit = mu * fnorm
+    a = limit / k_t
+    slip = unorm > SLIP_GAP * a
+    sq = np.sqrt(unorm * unorm + a * a)
+    if sq > 0.0:
+        scale = limit / sq
+    else:
+        scale = k_t
+    e_f = limit * (sq - a)
+    for m in range(3):
+        ft[m] = -scale * u[m]
+    for k in range(4):
+        for m in range(3):
+            force[dofs[3 * k + m]] += cw[k] * ft[m]
+    if not jac:
+        return e_f, slip, cnt
+    if cnorm > 0.0:
+        _plane_normal_jacobian(x, nf, cnorm, dndx)
+    else:
+        _normal_jacobian(x, coef, n, dist, B, U, dndx)
+    # G = du/dx (3, 12)
+    for j in range(12):
+        und = u[0] * dndx[0, j] + u[1] * dndx[1, j] + u[2] * dndx[2, j]
+        c = cw[j // 3]
+        b = j % 3
+        for a in range(3):
+            pab = ((1.0 if a == b else 0.0) - nf[a] * nf[b]) * c
+            G[a, j] = pab - dpar * dndx[a, j] - nf[a] * und
+    # dF/dx = -scale (I - u u^T/s^2) G + F (|u|^2/s^2) c_n grad^T, s^2 = |u|^2 + a^2
+    if sq > 0.0:
+        s2 = sq * sq
+        wn = unorm * unorm / s2 * cn
+        for j in range(12):
+            ug = (u[0] * G[0, j] + u[1] * G[1, j] + u[2] * G[2, j]) / s2
+            for b in range(3):
+                G[b, j] = -scale * (G[b, j] - u[b] * ug) + ft[b] * wn * grad[j]
+    else:
+        for j in range(12):
+            for b in range(3):
+                G[b, j] = -scale * G[b, j]
+    for k in range(4):
+        for a in range(3):
+            for j in range(12):
+                rows[cnt] = dofs[3 * k + a]
+                cols[cnt] = dofs[j]
+                vals[cnt] = cw[k] * G[a, j]
+                cnt += 1
+    return e_f, slip, cnt
+
+
+@njit(cache=True)
+def _pair_normal(x, edge_i, edge_j, radius_edge, sharpness, stiffness, grad, coef, w, n):
+    """|F_n| of the pair at ``x`` and its normal into ``n`` (the penalty force on edge i,
+    as in :func:`rodrod_assemble`)."""
+    dist = _edge_distance_grad_ws(x, grad, coef, w)
+    two_h = radius_edge[edge_i] + radius_edge[edge_j]
+    _, de, _ = penalty_derivs(two_h - dist, sharpness, stiffness)
+    fnorm = 0.0
+    for m in range(3):
+        n[m] = -de * (grad[m] + grad[3 + m])
+        fnorm += n[m] * n[m]
+    fnorm = np.sqrt(fnorm)
+    if fnorm > 0.0:
+        for m in range(3):
+            n[m] /= fnorm
+    return fnorm
+
+
+@njit(cache=True)
+def _fresh_anchor(x, anc, coef, w, n, nf, cw, u):
+    """Anchor of a new pair from its nodes ``x`` (12,) at the step start: the material
+    points where the two edges touch, i.e. the closest points of the segments moved along
+    the edge lines (:func:`_shift_anchor`) until X_a - X_b is normal to the friction plane
+    (:func:`_friction_normal`): zero tangential gap. Writes ``anc`` (2,)."""
+    dist, _, _ = _gap(x, coef, w)
+    anc[0] = coef[1]
+    anc[1] = -coef[3]
+    if dist <= 0.0:
+        return
+    for m in range(3):
+        n[m] = w[m] / dist
+    _friction_normal(x, n, nf)
+    _anchor_gap(x, anc, nf, cw, u)
+    for m in range(3):
+        u[m] = -u[m]
+    _shift_anchor(x, anc, u)
+
+
+@njit(cache=True)
+def _pair_nodes(pos, pairs, p, edge_nodes, x):
+    """The 12 coordinates of pair p's nodes into ``x``; returns (e_i, e_j)."""
+    ei = pairs[p, 0]
+    ej = pairs[p, 1]
+    nodes = (edge_nodes[ei, 0], edge_nodes[ei, 1], edge_nodes[ej, 0], edge_nodes[ej, 1])
+    for k in range(4):
+        for m in range(3):
+            x[3 * k + m] = pos[nodes[k], m]
+    return ei, ej
+
+
+@njit(cache=True)
+def align_anchors(keys_old, anc_old, slip_old, keys, anc, slip, known):
+    """Anchors for the candidate pairs ``keys`` (sorted, e_i * n_edges + e_j) from the
+    committed ones (``keys_old`` sorted, ``anc_old`` (k, 2), ``slip_old``): a merge of
+    the two sorted lists. Pairs without a committed anchor get ``known`` False (their
+    anchor is made from the step-start positions when first needed)."""
+    j = 0
+    n_old = keys_old.shape[0]
+    for i in range(keys.shape[0]):
+        while j < n_old and keys_old[j] < keys[i]:
+            j += 1
+        if j < n_old and keys_old[j] == keys[i]:
+            anc[i, 0] = anc_old[j, 0]
+            anc[i, 1] = anc_old[j, 1]
+            slip[i] = slip_old[j]
+            known[i] = True
+        else:
+            slip[i] = False
+            known[i] = False
+
+
+@njit(cache=True)
+def rodrod_anchor_commit(
+    pos, pos_old, pairs, edge_nodes, radius_edge, sharpness, stiffness, z_cutoff,
+    mu_s, mu_k, k_t, anchor, anchor_slip, known, keep, mode,
+):  # fmt: skip
+    """Commit (``mode`` 1) or stored energy (``mode`` 2) of the rod-rod anchors at ``pos``.
+
+    For each candidate pair within the penalty's reach (k (2h - Delta) >= ``z_cutoff``, as
+    in :func:`rodrod_near`) with a normal force (the others get ``keep`` False: the pair
+    has left the contact and its anchor is dropped) the return mapping of
+    :func:`_anchor_friction` is evaluated (a pair without an anchor yet, ``known`` False,
+    gets it from ``pos_old``; mode 2 skips it); mode 1 writes whether it slides to
+    ``anchor_slip`` and, if it does, moves the anchor's material points along the two edges
+    (:func:`_shift_anchor`) so that the tangential gap shrinks to SLIP_GAP mu |F_n|/k_t.
+    Returns the anchors' stored energy (mode 2).
+    """
+    x = np.empty(12)
+    grad = np.empty(12)
+    coef = np.empty(4)
+    w = np.empty(3)
+    n = np.empty(3)
+    nf = np.empty(3)
+    cw = np.empty(4)
+    u = np.empty(3)
+    keep[:] = False
+    energy = 0.0
+    for p in range(pairs.shape[0]):
+        ei, ej = _pair_nodes(pos, pairs, p, edge_nodes, x)
+        if sharpness * (radius_edge[ei] + radius_edge[ej] - edge_distance(x)) < z_cutoff:
+            continue
+        if not known[p]:
+            if mode == 2:  # a new pair stores nothing yet
+                continue
+            _pair_nodes(pos_old, pairs, p, edge_nodes, x)
+            _fresh_anchor(x, anchor[p], coef, w, n, nf, cw, u)
+            known[p] = True
+            _pair_nodes(pos, pairs, p, edge_nodes, x)
+        fnorm = _pair_normal(x, ei, ej, radius_edge, sharpness, stiffness, grad, coef, w, n)
+        if not fnorm > 0.0:
+            continue
+        _friction_normal(x, n, nf)
+        unorm, _ = _anchor_gap(x, anchor[p], nf, cw, u)
+        mu = mu_k if anchor_slip[p] else mu_s
+        limit = mu * fnorm
+        a = limit / k_t
+        slip = unorm > SLIP_GAP * a
+        keep[p] = True
+        if mode == 2:
+            energy += limit * (np.sqrt(unorm * unorm + a * a) - a)
+            continue
+        anchor_slip[p] = slip
+        if slip:
+            shrink = (unorm - SLIP_GAP * a) / unorm
+            for m in range(3):
+                u[m] *= -shrink
+            _shift_anchor(x, anchor[p], u)
+    return energy
 
 
 @njit(cache=True)
