@@ -196,6 +196,7 @@ class SceneRun:
     reactions: dict = field(default_factory=dict)
     tension: np.ndarray | None = None
     stats: dict = field(default_factory=dict)
+    live: rod.State | None = None
 
     def __post_init__(self):
         self.interactions = tuple(self.interactions)
@@ -256,6 +257,7 @@ class SceneRun:
         verdict = {"msg": None}
 
         def callback(state):
+            self.live = state
             x = self.system.positions(state.q)
             if self.watch is not None:
                 msg = self.watch(x)

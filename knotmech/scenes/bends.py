@@ -141,6 +141,8 @@ def bend(
     n_nodes: int = 120,
     dt: float = 2e-3,
     slip_draw_in: float | None = None,
+    set_tension: float | None = None,
+    set_travel: float | None = None,
     force_scale: float | None = None,
     n_frames: int = 120,
     options: rod.SolverOptions | None = None,
@@ -172,8 +174,14 @@ def bend(
     slip_draw_in : float [m], optional
         Tail draw-in beyond its value at the tightening peak that counts as a slip
         (default 4 d).
+    set_tension : float [N], optional
+        Before the pull the bend is *set*: all four ends are pulled outwards at
+        ``pull_speed`` until the mean tension of the four end edges reaches this
+        (default :math:`B/d^2`), or for ``set_travel``; then the tails are let go.
+    set_travel : float [m], optional
+        Largest travel of each end while setting (default 10 d).
     force_scale : float [N], optional
-        Sizes the contact penalty (default :math:`20 B/d^2`).
+        Sizes the contact penalty (default :math:`2 B/d^2`; overlap d/40 under B/d^2).
     n_frames : int
         Recorded frames of the pull (>= 10).
     options : knotmech.rod.SolverOptions, optional
@@ -202,7 +210,9 @@ def bend(
     if int(n_frames) < 10:
         raise InputError(f"n_frames must be >= 10, got {n_frames!r}")
     B = E * np.pi * d**4 / 64
-    fs = 20 * B / d**2 if force_scale is None else float(check_positive("force_scale", force_scale))
+    f_set = B / d**2 if set_tension is None else float(check_positive("set_tension", set_tension))
+    set_travel = 10 * d if set_travel is None else float(check_positive("set_travel", set_travel))
+    fs = 2 * B / d**2 if force_scale is None else float(check_positive("force_scale", force_scale))
     curves = bend_curves(kind, rod_diameter=d, n_nodes=n_nodes)
     rods = [
         rod.Rod(positions=x, radius=0.5 * d, youngs_modulus=E, density=rho, natural="straight")
@@ -223,6 +233,8 @@ def bend(
         return None
 
     mass = rho * np.pi * d * d / 4
+    # drag on the whole length moving at v: 1 % of B/d^2
+    drag = rod.ViscousDamping(coefficient=0.01 * B / d**2 / (2 * N * (d * 0.5) * v))
     run = SceneRun(system, interactions=[contact], options=options, watch=watch, progress=progress)
     ends = [_grip(system, 0, "start"), _grip(system, 0, "end")]
     ends += [_grip(system, 1, "start"), _grip(system, 1, "end")]
@@ -237,18 +249,41 @@ def bend(
     )
     pa, pb = curves.pulled
     ga, gb = _grip(system, 0, pa), _grip(system, 1, pb)
-    ta = _grip(system, 0, "end" if pa == "start" else "start")[0][0]
-    tb = _grip(system, 1, "end" if pb == "start" else "start")[0][0]
+    tail_a = _grip(system, 0, "end" if pa == "start" else "start")
+    tail_b = _grip(system, 1, "end" if pb == "start" else "start")
+    ta, tb = tail_a[0][0], tail_b[0][0]
+    ex = np.array([1.0, 0.0, 0.0])
+    # set (dress) the bend: all four ends pulled outwards until their mean tension reaches
+    # set_tension, as a rigger sets a bend before loading it
+    end_edges = np.array([e[1] for e in ends])
+    ea = system.ea[end_edges]
+    rest = system.rest_length[end_edges]
+    en = system.edge_nodes[end_edges]
+
+    def end_tension(x):
+        return float(np.mean(ea * (np.linalg.norm(x[en[:, 1]] - x[en[:, 0]], axis=1) / rest - 1)))
+
+    x_set = system.positions(run.state.q)
+    t_set = run.t
+    moving = []
+    for g, sign in ((ga, -1), (tail_a, -1), (gb, 1), (tail_b, 1)):
+        moving.append(MovingNodes(nodes=g[0], path=grip_path(x_set[g[0]], sign * ex, v, t_set)))
+    if run.ok:
+        run.phase(
+            "set",
+            set_travel / v,
+            dt=dt,
+            loads=[drag],
+            constraints=[*moving, Clamp(edges=list(end_edges))],
+            stop=lambda x: end_tension(x) >= f_set,
+        )
     x_settled = system.positions(run.state.q)
     t0 = run.t
-    ex = np.array([1.0, 0.0, 0.0])
     grips = [
         MovingNodes(nodes=ga[0], path=grip_path(x_settled[ga[0]], -ex, v, t0)),
         MovingNodes(nodes=gb[0], path=grip_path(x_settled[gb[0]], ex, v, t0)),
         Clamp(edges=[ga[1], gb[1]]),
     ]
-    # drag on the whole length moving at v: 1 % of B/d^2
-    drag = rod.ViscousDamping(coefficient=0.01 * B / d**2 / (2 * N * (d * 0.5) * v))
     if run.ok:
         run.phase(
             "pull",
@@ -266,7 +301,10 @@ def bend(
     # the grip's first node carries the pull; the second only holds the end's direction
     force = force + 0.5 * (run.reaction([ga[0][1]], tp) @ (-ex) + run.reaction([gb[0][1]], tp) @ ex)
     disp = v * (tp - t0)
-    draw = np.column_stack([pos[m][:, ta, 0] - pos[0][ta, 0], -(pos[m][:, tb, 0] - pos[0][tb, 0])])
+    k0 = int(np.argmax(m))
+    draw = np.column_stack(
+        [pos[m][:, ta, 0] - pos[k0][ta, 0], -(pos[m][:, tb, 0] - pos[k0][tb, 0])]
+    )
     verdict, slip_load, k_check = "", float("nan"), len(tp) - 1
     max_force = float(np.nanmax(force)) if force.size else float("nan")
     if force.size:
