@@ -1,21 +1,32 @@
 """Benchmark: the implicit-contact-model overhand-knot pull (Choi, Tong & Jawed 2021).
 
 301 nodes, L = 1 m, h = 1.6 mm, E = 0.18 MPa, dt = 2.5 ms, mu = 0.3, wait 2 s then both
-ends pulled at 6 mm/s for 60 s (62 s simulated). Prints JSON to stdout:
-{"wall_s", "cpu_s", "steps", "newton_iterations", ...} (median wall and process CPU time of
-``--repeats`` runs; on a shared machine the CPU time is the steadier of the two).
-Target: wall_s < 60 on one core.
+ends pulled at 6 mm/s for 60 s (62 s simulated), with each rod-rod friction law: ``imc``
+(the regularised law of the papers, the scene's default) and ``anchor`` (the elasto-plastic
+anchor that sticks, mu_s = mu_k = mu). Prints JSON to stdout, one entry per law:
+{"imc": {"wall_s", "cpu_s", "steps", "newton_iterations", ...}, "anchor": {...},
+"anchor_over_imc_wall": ..., "tight_phase_force_ratio": {...}} (median wall and process CPU
+time of ``--repeats`` runs, the laws alternated so that both see the same machine load; on
+a shared machine the CPU time is the steadier of the two). Target: wall_s < 30 on one core
+for either law.
 
-    python benchmarks/overhand.py --turns 1 [--t-end 62] [--repeats 1]
+    OPENBLAS_NUM_THREADS=1 python benchmarks/overhand.py --turns 1 [--t-end 62] [--repeats 1]
+        [--laws imc,anchor] [--curves curves.npz]
 
 ``--t-end`` shortens the run (simulated seconds, the wait included) for a quick estimate;
-the JSON then reports the simulated time so the full cost can be extrapolated.
+the JSON then reports the simulated time so the full cost can be extrapolated. ``--curves``
+writes the force-displacement curves of the last run of each law (.npz).
+
+The tight phase is where the knot carries load: frames whose imc pull force exceeds a
+quarter of its final value; ``tight_phase_force_ratio`` gives the anchor/imc force ratio
+there (min, median, max) at the same end-to-end length.
 
 Measured on the shared 2-core machine (other jobs running), after the solver work of
 issue #4 (pair pruning, envelope LU, Jacobian reuse with lazy Hessians, second-order
 predictor): ``--turns 1``: wall_s 29.0, cpu_s 28.7, 24800 steps, 39200 Newton iterations,
 final pull force 0.07405255 N (before: 429 s under load, nominally 260-320 s; 31603
 iterations; 0.07405254 N); ``--turns 2``: wall_s 47.1, cpu_s 46.4, 24815 steps (4 rejected).
+Both laws: see NOTES-fric.md.
 """
 
 from __future__ import annotations
@@ -25,7 +36,24 @@ import json
 import statistics
 import time
 
+import numpy as np
+
 from knotmech.scenes.overhand import imc_setup, overhand
+
+LAWS = ("imc", "anchor")
+
+
+def tight_phase_ratio(imc, anchor, fraction=0.25):
+    """(min, median, max) of F_anchor/F_imc at the same end-to-end length, over the frames
+    where F_imc > ``fraction`` of its final value (both curves as recorded)."""
+    e_i, f_i = np.asarray(imc.end_to_end), np.asarray(imc.pull_force)
+    e_a, f_a = np.asarray(anchor.end_to_end), np.asarray(anchor.pull_force)
+    sel = f_i > fraction * f_i[-1]
+    order = np.argsort(e_a)
+    lo, hi = max(e_a.min(), e_i[sel].min()), min(e_a.max(), e_i[sel].max())
+    sel &= (e_i >= lo) & (e_i <= hi)
+    ratio = np.interp(e_i[sel], e_a[order], f_a[order]) / f_i[sel]
+    return float(ratio.min()), float(np.median(ratio)), float(ratio.max()), int(sel.sum())
 
 
 def main() -> None:
@@ -34,34 +62,65 @@ def main() -> None:
     ap.add_argument("--mu", type=float, default=0.3)
     ap.add_argument("--t-end", type=float, default=62.0, help="simulated time [s]")
     ap.add_argument("--repeats", type=int, default=1)
+    ap.add_argument("--laws", default="imc,anchor", help="comma-separated: imc, anchor")
+    ap.add_argument("--curves", default=None, help="write the force curves to this .npz")
     args = ap.parse_args()
+    laws = [x.strip() for x in args.laws.split(",") if x.strip()]
+    bad = [x for x in laws if x not in LAWS]
+    if bad or not laws:
+        ap.error(f"--laws takes imc and/or anchor, got {args.laws!r}")
     base = imc_setup(args.turns)
     pull_time = max(args.t_end - base.wait_time, 0.0)
     wait_time = min(base.wait_time, args.t_end)
-    # compile the numba kernels outside the timing
-    overhand(args.turns, args.mu, n_nodes=101, wait_time=0.0, pull_time=0.02, dt=0.01)
-    walls, cpus, runs = [], [], []
+    # compile the numba kernels outside the timing (a pull long enough for contacts)
+    for law in laws:
+        overhand(args.turns, args.mu, n_nodes=101, wait_time=0.0, pull_time=0.05, dt=0.01,
+                 friction=law)  # fmt: skip
+    walls = {law: [] for law in laws}
+    cpus = {law: [] for law in laws}
+    runs = {}
     for _ in range(max(1, args.repeats)):
-        t0, c0 = time.perf_counter(), time.process_time()
-        r = overhand(args.turns, args.mu, wait_time=wait_time, pull_time=pull_time, n_frames=63)
-        walls.append(time.perf_counter() - t0)
-        cpus.append(time.process_time() - c0)
-        runs.append(r)
-    r = runs[-1]
-    out = {
-        "wall_s": statistics.median(walls),
-        "cpu_s": statistics.median(cpus),
-        "steps": int(r.stats.get("steps", 0)),
-        "newton_iterations": int(r.stats.get("newton_iterations", 0)),
-        "rejected_steps": int(r.stats.get("rejected_steps", 0)),
-        "simulated_s": float(r.times[-1]),
-        "status": r.status,
-        "knot_preserved": bool(r.knot_preserved),
-        "final_pull_force_N": float(r.pull_force[-1]),
-        "final_end_to_end_m": float(r.end_to_end[-1]),
-        "target_wall_s": 60.0,
-    }
+        for law in laws:  # alternated: both laws see the same load
+            t0, c0 = time.perf_counter(), time.process_time()
+            r = overhand(args.turns, args.mu, wait_time=wait_time, pull_time=pull_time,
+                         n_frames=63, friction=law)  # fmt: skip
+            walls[law].append(time.perf_counter() - t0)
+            cpus[law].append(time.process_time() - c0)
+            runs[law] = r
+    out = {}
+    for law in laws:
+        r = runs[law]
+        out[law] = {
+            "wall_s": statistics.median(walls[law]),
+            "cpu_s": statistics.median(cpus[law]),
+            "wall_s_runs": walls[law],
+            "solver_wall_s": float(r.stats.get("wall_s", 0.0)),
+            "steps": int(r.stats.get("steps", 0)),
+            "newton_iterations": int(r.stats.get("newton_iterations", 0)),
+            "rejected_steps": int(r.stats.get("rejected_steps", 0)),
+            "simulated_s": float(r.times[-1]),
+            "status": r.status,
+            "knot_preserved": bool(r.knot_preserved),
+            "final_pull_force_N": float(r.pull_force[-1]),
+            "final_end_to_end_m": float(r.end_to_end[-1]),
+        }
+    if len(laws) == 2:
+        out["anchor_over_imc_wall"] = out["anchor"]["wall_s"] / out["imc"]["wall_s"]
+        out["anchor_over_imc_cpu"] = out["anchor"]["cpu_s"] / out["imc"]["cpu_s"]
+        lo, med, hi, n = tight_phase_ratio(runs["imc"], runs["anchor"])
+        out["tight_phase_force_ratio"] = {"min": lo, "median": med, "max": hi, "frames": n}
+    out["target_wall_s"] = 30.0
+    out["mu"] = args.mu
+    out["turns"] = args.turns
     print(json.dumps(out))
+    if args.curves:
+        arrays = {}
+        for law in laws:
+            r = runs[law]
+            arrays[f"{law}_end_to_end"] = r.end_to_end
+            arrays[f"{law}_pull_force"] = r.pull_force
+            arrays[f"{law}_times"] = r.times
+        np.savez(args.curves, **arrays)
 
 
 if __name__ == "__main__":

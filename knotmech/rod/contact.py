@@ -29,9 +29,9 @@ from knotmech.rod._kernels.contact_rodrod import (
     Z_JACOBIAN,
     max_node_speed,
     max_pair_displacement,
+    align_anchors,
     rodrod_anchor_commit,
     rodrod_assemble,
-    rodrod_fresh_anchors,
     rodrod_energy,
     rodrod_near,
 )
@@ -168,7 +168,12 @@ class RodContact:
         self._store = (np.zeros(0, dtype=np.int64), np.zeros((0, 2)), np.zeros(0, dtype=bool))
         self._anc = None
         self.pairs = None
-        self._no_anchor = (np.zeros((1, 2)), np.zeros(1, dtype=bool), np.zeros(1, dtype=bool))
+        self._no_anchor = (
+            np.zeros((1, 2)),
+            np.zeros(1, dtype=bool),
+            np.zeros(1, dtype=bool),
+            np.ones(1, dtype=bool),
+        )
 
     def state_arrays(self) -> dict:
         """The friction state as arrays (for :class:`knotmech.rod.State` checkpoints): the
@@ -194,25 +199,19 @@ class RodContact:
         kt = fr.tangential_stiffness
         return fr.mu_s, fr.mu_k, float(2.0 * self.stiffness if kt is None else kt)
 
-    def _align_anchors(self, system, q_old):
+    def _align_anchors(self, system):
         """Anchors aligned with ``self.pairs``: the committed ones of pairs still in the
-        candidate list, the contact point at the step start for new pairs."""
+        candidate list; new pairs get theirs (the contact point at the step start) when
+        first in reach (in the kernels)."""
         keys_old, anc_old, slip_old = self._store
         n_edges = system.edge_nodes.shape[0]
         keys = self.pairs[:, 0] * n_edges + self.pairs[:, 1]
-        anc = np.empty((keys.size, 2))
-        slip = np.zeros(keys.size, dtype=bool)
-        known = np.zeros(keys.size, dtype=bool)
-        if keys_old.size and keys.size:
-            idx = np.minimum(np.searchsorted(keys_old, keys), keys_old.size - 1)
-            known = keys_old[idx] == keys
-            anc[known] = anc_old[idx[known]]
-            slip[known] = slip_old[idx[known]]
-        fresh = np.flatnonzero(~known)
-        if fresh.size:
-            en = self._arrays(system)[1]
-            rodrod_fresh_anchors(_positions(system, q_old), self.pairs, fresh, en, anc)
-        self._anc = (keys, anc, slip, np.zeros(keys.size, dtype=bool))
+        n = keys.size
+        anc = np.empty((n, 2))
+        slip = np.empty(n, dtype=bool)
+        known = np.empty(n, dtype=bool)
+        align_anchors(keys_old, anc_old, slip_old, keys, anc, slip, known)
+        self._anc = (keys, anc, slip, np.zeros(n, dtype=bool), known)
 
     def _exclusion(self, system):
         if self.exclusion is not None:
@@ -239,7 +238,7 @@ class RodContact:
             validate=False,
         )
         if self._anchored:
-            self._align_anchors(system, q_old)
+            self._align_anchors(system)
 
     def _ensure_pairs(self, system, q):
         if self.pairs is None:
@@ -264,12 +263,14 @@ class RodContact:
         if self._anchored:
             mu, mu_k, k_t = self._anchor_params()
             fk = fc = 0.0
-            _, anc, slip_prev, slip_now = self._anc
+            if self._anc is None:
+                self._align_anchors(system)
+            _, anc, slip_prev, slip_now, known = self._anc
             law = 1
         else:
             mu, fk, fc = fp[2]
             mu_k = k_t = 0.0
-            anc, slip_prev, slip_now = self._no_anchor
+            anc, slip_prev, slip_now, known = self._no_anchor
             law = 0
         pos = np.asarray(q, dtype=float)[nd]
         near = self._near_buffer(npair)
@@ -313,6 +314,7 @@ class RodContact:
             k_t,
             anc,
             slip_prev,
+            known,
             slip_now,
         )
         self.last_normal_force = fn
@@ -377,17 +379,16 @@ class RodContact:
         """Anchor law: whether each candidate pair slid at the last assembly (n_pairs,)."""
         return np.zeros(0, dtype=bool) if self._anc is None else self._anc[3]
 
-    def _anchor_pass(self, system, q, mode, keep):
+    def _anchor_pass(self, system, q, q_old, mode, keep):
         rad, en, nd = self._arrays(system)[:3]
-        pos = _positions(system, q)
-        npair = self.pairs.shape[0]
-        near = self._near_buffer(npair)
-        n_near = rodrod_near(pos, self.pairs, en, rad, self.sharpness, Z_CUTOFF, near)
+        if self._anc is None:
+            self._align_anchors(system)
         mu_s, mu_k, k_t = self._anchor_params()
-        _, anc, slip, _ = self._anc
+        _, anc, slip, _, known = self._anc
         return rodrod_anchor_commit(
-            pos, self.pairs, near, n_near, en, rad, self.sharpness, self.stiffness,
-            mu_s, mu_k, k_t, anc, slip, keep, mode,
+            _positions(system, q), _positions(system, q_old), self.pairs, en, rad,
+            self.sharpness, self.stiffness, Z_CUTOFF, mu_s, mu_k, k_t, anc, slip, known,
+            keep, mode,
         )  # fmt: skip
 
     def end_step(self, system, q_new, q_old, dt):
@@ -397,13 +398,15 @@ class RodContact:
         if not self._anchored:
             return
         self._ensure_pairs(system, q_old)
-        keys, anc, slip, _ = self._anc
+        if self._anc is None:
+            self._align_anchors(system)
+        keys, anc, slip = self._anc[:3]
         keep = np.zeros(keys.size, dtype=bool)
         if keys.size:
-            self._anchor_pass(system, q_new, 1, keep)
+            self._anchor_pass(system, q_new, q_old, 1, keep)
         self._store = (keys[keep], anc[keep], slip[keep])
         self._energy_cache = None
-        self._align_anchors(system, q_new)  # for energy() until the next begin_step
+        self._anc = None  # aligned again by the next begin_step (or energy())
 
     def energy(self, system, q):
         """Penalty energy [J] of the current candidate pairs (anchor law: plus the energy
@@ -427,7 +430,7 @@ class RodContact:
         )
         if self._anchored:
             keep = np.zeros(self.pairs.shape[0], dtype=bool)
-            e += float(self._anchor_pass(system, q, 2, keep))
+            e += float(self._anchor_pass(system, q, q, 2, keep))
         return e
 
 

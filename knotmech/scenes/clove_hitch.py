@@ -28,9 +28,11 @@ paper eqs. 1-2), the knot's winding number about the post and its over/under cod
 
 Default parameters: the clove-hitch paper, sec. 7: (d, D, L) = (4, 30, 374) mm, VPS32
 (E = 1.26 MPa), :math:`\mu_{rc} = \mu_{rr} = 0.3`, :math:`T_\mathrm{high}` = 1.47 N.
-The rod-rod friction is the regularised law of the coated-rod paper, which does not stick
-exactly: a hitch held only by its nips creeps slowly; the hold/slip verdict compares the
-creep over the hold with ``slip_distance``.
+The rod-rod friction is by default the elasto-plastic anchor (``friction="anchor"``,
+:class:`knotmech.rod.friction.AnchorFriction`), which sticks: a held hitch does not creep.
+``friction="imc"`` selects the regularised law of the coated-rod paper, which does not
+stick exactly (a hitch held only by its nips creeps slowly). The hold/slip verdict
+compares the creep over the last half of the hold with ``slip_distance``.
 """
 
 from __future__ import annotations
@@ -321,6 +323,7 @@ def clove_hitch(
     pull_distance: float = 0.04,
     mu_kinetic: float | None = None,
     pull_dt: float | None = None,
+    friction: str = "anchor",
 ) -> CloveHitchResult:
     r"""Tie a clove hitch on a post and load it.
 
@@ -340,9 +343,8 @@ def clove_hitch(
     rod_diameter, post_diameter, rod_length : float [m]
     youngs_modulus : float [Pa]; density : float [kg/m^3]
     mu_rod_post, mu_rod_rod : float
-        Rod-cylinder (static, mu_s) and rod-rod friction coefficients. The rod-rod friction
-        is the regularised single-coefficient law of the coated-rod paper (no separate
-        static coefficient).
+        Rod-cylinder (static, mu_s) and rod-rod friction coefficients (the rod-rod one
+        static and kinetic alike).
     pretension : float [N], optional
         Load on both ends while the hitch settles (default ``0.1 * t_high``; ``"pull"``:
         the paper's 0.559 N).
@@ -369,6 +371,13 @@ def clove_hitch(
     pull_dt : float [s], optional
         ``"pull"``: nominal step of the pull (default: end 0 moves 1/4 of an edge per step,
         at most 0.2 rod radii).
+    friction : {"anchor", "imc"}
+        Rod-rod friction law: ``"anchor"`` (default) the elasto-plastic anchor per contact
+        pair, which sticks below mu |F_n| (:class:`~knotmech.rod.friction.AnchorFriction`;
+        a held hitch does not creep); ``"imc"`` the regularised law of the implicit
+        contact model and the coated-rod paper (:class:`~knotmech.rod.friction.
+        SmoothFriction`), which vanishes at zero slip, so that a hitch held by its nips
+        creeps (the law of the shipped phase tables).
 
     Returns
     -------
@@ -389,6 +398,8 @@ def clove_hitch(
     mk = mrc if mu_kinetic is None else float(check_nonnegative("mu_kinetic", mu_kinetic))
     if mk > mrc:
         raise InputError(f"mu_kinetic must be <= mu_rod_post ({mrc:g}), got {mk:g}")
+    if friction not in ("anchor", "imc"):
+        raise InputError(f"friction must be 'anchor' or 'imc', got {friction!r}")
     if loading == "symmetric":
         tl = th if t_low is None else float(check_positive("t_low", t_low))
     elif loading == "asymmetric":
@@ -473,7 +484,9 @@ def clove_hitch(
     rr_contact = RodContact(
         stiffness=20.0 * t_max / d,
         sharpness=15.0 / (0.05 * d),
-        friction=SmoothFriction(mrr) if mrr > 0 else None,
+        friction=None
+        if mrr <= 0
+        else (AnchorFriction(mu_static=mrr) if friction == "anchor" else SmoothFriction(mrr)),
     )
     slip = d if slip_distance is None else float(check_positive("slip_distance", slip_distance))
     x_start = x0[0].copy()

@@ -33,7 +33,7 @@ import numpy as np
 from knotmech import rod
 from knotmech.errors import InputError, check_nonnegative, check_positive
 from knotmech.rod.contact import RodContact
-from knotmech.rod.friction import SmoothFriction
+from knotmech.rod.friction import AnchorFriction, SmoothFriction
 from knotmech.scenes.curves import (
     OVERHAND_COATED_TABLE1,
     OVERHAND_IMC,
@@ -187,6 +187,7 @@ class OverhandResult:
     knot_start, knot_end : str  knot names of the closed centreline (e.g. "3_1")
     alexander_start, alexander_end : tuple of int
     status, message : str  solver outcome; stats : dict (steps, newton_iterations, wall_s)
+    friction : str  rod-rod friction law, "imc" or "anchor"
     """
 
     turns: int
@@ -207,6 +208,7 @@ class OverhandResult:
     status: str
     message: str
     stats: dict = field(default_factory=dict)
+    friction: str = "imc"
 
     @property
     def knot_preserved(self) -> bool:
@@ -229,6 +231,7 @@ class OverhandResult:
             "scene": "overhand",
             "turns": self.turns,
             "mu": self.mu,
+            "friction": self.friction,
             "setup": asdict(self.setup),
             "status": self.status,
             "message": self.message,
@@ -262,6 +265,7 @@ def overhand(
     n_snapshots: int = 6,
     progress: bool = False,
     options: rod.SolverOptions | None = None,
+    friction: str = "imc",
     **overrides,
 ) -> OverhandResult:
     r"""Pull an overhand knot with ``turns`` braid turns tight at constant speed.
@@ -284,6 +288,12 @@ def overhand(
     options : knotmech.rod.SolverOptions, optional
         Solver options (``save_every`` is set from ``n_frames``; ``throw`` defaults to False
         so that a failed run returns what it recorded, with ``status = "failed"``).
+    friction : {"imc", "anchor"}
+        Rod-rod friction law: ``"imc"`` (default) the regularised law of the implicit
+        contact model and the coated-rod paper (:class:`~knotmech.rod.friction.
+        SmoothFriction`, the papers' own, which these scenes reproduce); ``"anchor"`` the
+        elasto-plastic anchor that truly sticks (:class:`~knotmech.rod.friction.
+        AnchorFriction`, mu_s = mu_k = ``mu``).
 
     Returns
     -------
@@ -346,7 +356,12 @@ def overhand(
         constraints.append(rod.MovingNodes([0, 1], path=lambda t: left0 - shift(t)))
     else:
         constraints.append(rod.Clamp(nodes=[0, 1]))
-    if setup.slip_speed is None:
+    if friction not in ("imc", "anchor"):
+        raise InputError(f"friction must be 'imc' or 'anchor', got {friction!r}")
+    law = friction
+    if law == "anchor":
+        friction = AnchorFriction(mu_static=mu)
+    elif setup.slip_speed is None:
         friction = SmoothFriction(mu)
     else:
         nu = float(check_positive("slip_speed", setup.slip_speed))
@@ -403,6 +418,7 @@ def overhand(
         status=res.status,
         message=res.message,
         stats=dict(res.stats),
+        friction=law,
     )
 
 

@@ -344,6 +344,7 @@ def rodrod_assemble(
     k_t,
     anchor,
     anchor_slip,
+    anchor_known,
     out_slip,
 ):
     """Contact + friction forces and Jacobian blocks of the near candidate pairs.
@@ -368,9 +369,10 @@ def rodrod_assemble(
     ``law`` 0 is the regularised friction above (``mu``, ``fric_k``, ``fric_c``,
     ``vel_eps``); ``law`` 1 the elasto-plastic anchor of :func:`_anchor_friction` (static
     ``mu``, kinetic ``mu_k``, tangential stiffness ``k_t`` [N/m], the pairs' anchors
-    ``anchor`` (n_pairs, 2) and last slip flags ``anchor_slip``; ``out_slip`` (n_pairs,)
-    receives whether each pair slides at ``pos``); the energy then includes the anchor
-    springs' (see :func:`rodrod_anchor_commit`).
+    ``anchor`` (n_pairs, 2) and last slip flags ``anchor_slip``, ``anchor_known`` False
+    for a pair without an anchor yet: it is made from ``pos_old`` and the flag set;
+    ``out_slip`` (n_pairs,) receives whether each pair slides at ``pos``); the energy then
+    includes the anchor springs' (see :func:`rodrod_anchor_commit`).
     """
     x = np.empty(12)
     grad = np.empty(12)
@@ -393,6 +395,10 @@ def rodrod_assemble(
     nf = np.empty(3)
     dndx = np.empty((3, 12))
     G3 = np.empty((3, 12))
+    xo = np.empty(12)
+    coef_o = np.empty(4)
+    w_o = np.empty(3)
+    n_o = np.empty(3)
     energy = 0.0
     contact_force[:] = 0.0
     if law == 1:
@@ -434,6 +440,10 @@ def rodrod_assemble(
         for m in range(3):
             n[m] = fn[m] / fnorm
         if law == 1:
+            if not anchor_known[p]:  # a new pair: its anchor from the step start
+                _pair_nodes(pos_old, pairs, p, edge_nodes, xo)
+                _fresh_anchor(xo, anchor[p], coef_o, w_o, n_o, nf, cw, u)
+                anchor_known[p] = True
             cn = d2e / de if (normal_derivative and de != 0.0) else 0.0
             e_f, slip, cnt = _anchor_friction(
                 x, anchor[p], anchor_slip[p], n, fnorm, mu, mu_k, k_t, cn, grad, dofs, jac,
@@ -757,52 +767,72 @@ def _pair_normal(x, edge_i, edge_j, radius_edge, sharpness, stiffness, grad, coe
 
 
 @njit(cache=True)
-def rodrod_fresh_anchors(pos, pairs, which, edge_nodes, anchor):
-    """Anchors of new pairs (the pairs p in ``which``): the material points where the two
-    edges touch at ``pos`` (the step start), i.e. the closest points of the segments moved
-    along the edge lines (:func:`_shift_anchor`) until X_a - X_b is normal to the friction
-    plane (:func:`_friction_normal`): zero tangential gap."""
-    x = np.empty(12)
-    coef = np.empty(4)
-    w = np.empty(3)
-    n = np.empty(3)
-    nf = np.empty(3)
-    cw = np.empty(4)
-    u = np.empty(3)
-    for kp in range(which.shape[0]):
-        p = which[kp]
-        ei = pairs[p, 0]
-        ej = pairs[p, 1]
-        nodes = (edge_nodes[ei, 0], edge_nodes[ei, 1], edge_nodes[ej, 0], edge_nodes[ej, 1])
-        for k in range(4):
-            for m in range(3):
-                x[3 * k + m] = pos[nodes[k], m]
-        dist, _, _ = _gap(x, coef, w)
-        anchor[p, 0] = coef[1]
-        anchor[p, 1] = -coef[3]
-        if dist <= 0.0:
-            continue
+def _fresh_anchor(x, anc, coef, w, n, nf, cw, u):
+    """Anchor of a new pair from its nodes ``x`` (12,) at the step start: the material
+    points where the two edges touch, i.e. the closest points of the segments moved along
+    the edge lines (:func:`_shift_anchor`) until X_a - X_b is normal to the friction plane
+    (:func:`_friction_normal`): zero tangential gap. Writes ``anc`` (2,)."""
+    dist, _, _ = _gap(x, coef, w)
+    anc[0] = coef[1]
+    anc[1] = -coef[3]
+    if dist <= 0.0:
+        return
+    for m in range(3):
+        n[m] = w[m] / dist
+    _friction_normal(x, n, nf)
+    _anchor_gap(x, anc, nf, cw, u)
+    for m in range(3):
+        u[m] = -u[m]
+    _shift_anchor(x, anc, u)
+
+
+@njit(cache=True)
+def _pair_nodes(pos, pairs, p, edge_nodes, x):
+    """The 12 coordinates of pair p's nodes into ``x``; returns (e_i, e_j)."""
+    ei = pairs[p, 0]
+    ej = pairs[p, 1]
+    nodes = (edge_nodes[ei, 0], edge_nodes[ei, 1], edge_nodes[ej, 0], edge_nodes[ej, 1])
+    for k in range(4):
         for m in range(3):
-            n[m] = w[m] / dist
-        _friction_normal(x, n, nf)
-        _anchor_gap(x, anchor[p], nf, cw, u)
-        for m in range(3):
-            u[m] = -u[m]
-        _shift_anchor(x, anchor[p], u)
+            x[3 * k + m] = pos[nodes[k], m]
+    return ei, ej
+
+
+@njit(cache=True)
+def align_anchors(keys_old, anc_old, slip_old, keys, anc, slip, known):
+    """Anchors for the candidate pairs ``keys`` (sorted, e_i * n_edges + e_j) from the
+    committed ones (``keys_old`` sorted, ``anc_old`` (k, 2), ``slip_old``): a merge of
+    the two sorted lists. Pairs without a committed anchor get ``known`` False (their
+    anchor is made from the step-start positions when first needed)."""
+    j = 0
+    n_old = keys_old.shape[0]
+    for i in range(keys.shape[0]):
+        while j < n_old and keys_old[j] < keys[i]:
+            j += 1
+        if j < n_old and keys_old[j] == keys[i]:
+            anc[i, 0] = anc_old[j, 0]
+            anc[i, 1] = anc_old[j, 1]
+            slip[i] = slip_old[j]
+            known[i] = True
+        else:
+            slip[i] = False
+            known[i] = False
 
 
 @njit(cache=True)
 def rodrod_anchor_commit(
-    pos, pairs, near, n_near, edge_nodes, radius_edge, sharpness, stiffness,
-    mu_s, mu_k, k_t, anchor, anchor_slip, keep, mode,
+    pos, pos_old, pairs, edge_nodes, radius_edge, sharpness, stiffness, z_cutoff,
+    mu_s, mu_k, k_t, anchor, anchor_slip, known, keep, mode,
 ):  # fmt: skip
     """Commit (``mode`` 1) or stored energy (``mode`` 2) of the rod-rod anchors at ``pos``.
 
-    For each near pair with a normal force (the others get ``keep`` False: the pair has
-    left the contact and its anchor is dropped) the return mapping of
-    :func:`_anchor_friction` is evaluated; mode 1 writes whether it slides to
-    ``anchor_slip`` and, if it does, moves the anchor's material points along the two
-    edges (:func:`_shift_anchor`) so that the tangential gap shrinks to the yield length
+    For each candidate pair within the penalty's reach (k (2h - Delta) >= ``z_cutoff``, as
+    in :func:`rodrod_near`) with a normal force (the others get ``keep`` False: the pair
+    has left the contact and its anchor is dropped) the return mapping of
+    :func:`_anchor_friction` is evaluated (a pair without an anchor yet, ``known`` False,
+    gets it from ``pos_old``; mode 2 skips it); mode 1 writes whether it slides to ``anchor_slip`` and, if
+    it does, moves the anchor's material points along the two edges
+    (:func:`_shift_anchor`) so that the tangential gap shrinks to the yield length
     mu |F_n|/k_t. Returns the anchors' stored energy (mode 2).
     """
     x = np.empty(12)
@@ -815,14 +845,17 @@ def rodrod_anchor_commit(
     u = np.empty(3)
     keep[:] = False
     energy = 0.0
-    for kp in range(n_near):
-        p = near[kp]
-        ei = pairs[p, 0]
-        ej = pairs[p, 1]
-        nodes = (edge_nodes[ei, 0], edge_nodes[ei, 1], edge_nodes[ej, 0], edge_nodes[ej, 1])
-        for k in range(4):
-            for m in range(3):
-                x[3 * k + m] = pos[nodes[k], m]
+    for p in range(pairs.shape[0]):
+        ei, ej = _pair_nodes(pos, pairs, p, edge_nodes, x)
+        if sharpness * (radius_edge[ei] + radius_edge[ej] - edge_distance(x)) < z_cutoff:
+            continue
+        if not known[p]:
+            if mode == 2:  # a new pair stores nothing yet
+                continue
+            _pair_nodes(pos_old, pairs, p, edge_nodes, x)
+            _fresh_anchor(x, anchor[p], coef, w, n, nf, cw, u)
+            known[p] = True
+            _pair_nodes(pos, pairs, p, edge_nodes, x)
         fnorm = _pair_normal(x, ei, ej, radius_edge, sharpness, stiffness, grad, coef, w, n)
         if not fnorm > 0.0:
             continue
