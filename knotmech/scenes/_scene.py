@@ -100,11 +100,13 @@ def grip_path(start, direction, speed: float, t_start: float = 0.0):
     return path
 
 
-def rod_contact(*, rod_diameter: float, force_scale: float, mu_static: float, mu_kinetic=None):
+def rod_contact(
+    *, rod_diameter: float, force_scale: float, mu_static: float, mu_kinetic=None, width=0.05
+):
     r"""Rod-rod contact with sticking (anchor) friction, sized for a force scale.
 
     Penalty stiffness :math:`K_c = 20 F/d` (overlap about 2.5 % of d under ``force_scale``),
-    sharpness :math:`k = 15/(0.05 d)`, the same choice as the clove-hitch scene;
+    sharpness :math:`k = 15/(w d)` with w = ``width`` (0.05: the clove-hitch scene's choice);
     friction :class:`knotmech.rod.AnchorFriction` (true sticking below :math:`\mu_s N`,
     sliding at :math:`\mu_k N`), none when :math:`\mu_s = 0`.
 
@@ -115,6 +117,8 @@ def rod_contact(*, rod_diameter: float, force_scale: float, mu_static: float, mu
         Largest contact force expected (the largest load of the scene).
     mu_static, mu_kinetic : float
         Static and kinetic rod-rod coefficients (``mu_kinetic`` None: equal to mu_s).
+    width : float
+        Range of the penalty in rod diameters (its force rises over about w d).
     """
     d = float(check_positive("rod_diameter", rod_diameter))
     f = float(check_positive("force_scale", force_scale))
@@ -123,7 +127,8 @@ def rod_contact(*, rod_diameter: float, force_scale: float, mu_static: float, mu
     if mk > ms:
         raise InputError(f"mu_kinetic must be <= mu_rod_rod ({ms:g}), got {mk:g}")
     fr = AnchorFriction(mu_static=ms, mu_kinetic=mk) if ms > 0 else None
-    return RodContact(stiffness=20.0 * f / d, sharpness=15.0 / (0.05 * d), friction=fr)
+    w = float(check_positive("width", width))
+    return RodContact(stiffness=20.0 * f / d, sharpness=15.0 / (w * d), friction=fr)
 
 
 def post_contact(
@@ -314,6 +319,8 @@ class SceneRun:
         node was not constrained), (n_times, 3)."""
         t = np.asarray(self.times if times is None else times)
         out = np.zeros((t.size, 3))
+        if t.size == 0:
+            return out
         for node in np.atleast_1d(nodes):
             rec = self.reactions.get(int(node), {})
             out += np.array([rec.get(float(x), (np.nan,) * 3) for x in t])

@@ -144,6 +144,7 @@ def bend(
     set_tension: float | None = None,
     set_travel: float | None = None,
     force_scale: float | None = None,
+    contact_width: float = 0.2,
     n_frames: int = 120,
     options: rod.SolverOptions | None = None,
     progress: bool = False,
@@ -182,6 +183,9 @@ def bend(
         Largest travel of each end while setting (default 10 d).
     force_scale : float [N], optional
         Sizes the contact penalty (default :math:`2 B/d^2`; overlap d/40 under B/d^2).
+    contact_width : float
+        Range of the contact penalty in rod diameters (see
+        :func:`knotmech.scenes._scene.rod_contact`).
     n_frames : int
         Recorded frames of the pull (>= 10).
     options : knotmech.rod.SolverOptions, optional
@@ -220,7 +224,9 @@ def bend(
     ]
     system = rod.RodSystem(rods)
     N = int(n_nodes)
-    contact = rod_contact(rod_diameter=d, force_scale=fs, mu_static=mu, mu_kinetic=mu_kinetic)
+    contact = rod_contact(
+        rod_diameter=d, force_scale=fs, mu_static=mu, mu_kinetic=mu_kinetic, width=contact_width
+    )
     idx = np.arange(2 * N - 2)
     far = np.abs(idx[:, None] - idx[None, :]) >= 3
     far[N - 1 :, : N - 1] = far[: N - 1, N - 1 :] = True  # edges of different ropes
@@ -234,7 +240,7 @@ def bend(
 
     mass = rho * np.pi * d * d / 4
     # drag on the whole length moving at v: 1 % of B/d^2
-    drag = rod.ViscousDamping(coefficient=0.01 * B / d**2 / (2 * N * (d * 0.5) * v))
+    drag = rod.ViscousDamping(coefficient=0.01 * B / d**2 / (float(system.rest_length.sum()) * v))
     run = SceneRun(system, interactions=[contact], options=options, watch=watch, progress=progress)
     ends = [_grip(system, 0, "start"), _grip(system, 0, "end")]
     ends += [_grip(system, 1, "start"), _grip(system, 1, "end")]

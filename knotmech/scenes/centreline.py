@@ -374,8 +374,8 @@ def centreline(
         dirs.append(u)
         cons.append(MovingNodes(nodes=pair, path=grip_path(xs[pair], u, v, t0)))
     cons.append(Clamp(edges=held_edges))
-    total = sum(len(x) for x in rods_x)
-    drag = rod.ViscousDamping(coefficient=0.01 * B / d**2 / (total * 0.5 * d * v))
+    # drag of the whole length moving at v: 1 % of B/d^2 (quasi-static pull)
+    drag = rod.ViscousDamping(coefficient=0.01 * B / d**2 / (float(system.rest_length.sum()) * v))
     if run.ok:
         run.phase(
             "pull", dist / v, dt=dt, loads=[drag], constraints=cons, save_every=dist / v / n_frames
