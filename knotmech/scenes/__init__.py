@@ -9,9 +9,16 @@
 - :mod:`~knotmech.scenes.topology`: knot invariants (Alexander polynomial, determinant),
   winding about a post: the no-pass-through checks.
 - :mod:`~knotmech.scenes.phase_table`: the precomputed clove-hitch hold/slip table.
+- :mod:`~knotmech.scenes.bends`: two ropes joined by a reef, granny, thief or grief bend
+  (:mod:`~knotmech.scenes.bend_curves`), pulled apart until it slips.
+- :mod:`~knotmech.scenes.centreline`: a user's own knot from a CSV of points, pulled.
+- :mod:`~knotmech.scenes._scene`: the shape scenes share (phases, grips, contacts).
 """
 
+from knotmech.scenes.bend_curves import BendCurves, bend_closure, bend_curves, bend_invariants
+from knotmech.scenes.bends import PATIL_ORDER, BendResult, bend
 from knotmech.scenes.capstan import CapstanResult, capstan, capstan_two_loops
+from knotmech.scenes.centreline import CentrelineResult, centreline, read_centreline
 from knotmech.scenes.clove_hitch import CloveHitchResult, clove_hitch, darboux_profile
 from knotmech.scenes.curves import (
     OVERHAND_COATED_TABLE1,
@@ -52,6 +59,16 @@ from knotmech.scenes.topology import (
 )
 
 __all__ = [
+    "bend",
+    "BendResult",
+    "PATIL_ORDER",
+    "BendCurves",
+    "bend_curves",
+    "bend_closure",
+    "bend_invariants",
+    "centreline",
+    "CentrelineResult",
+    "read_centreline",
     "capstan",
     "capstan_two_loops",
     "CapstanResult",

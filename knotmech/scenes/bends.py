@@ -2,10 +2,11 @@ r"""Two ropes joined by a bend (reef, granny, thief, grief) and pulled apart unt
 
 The experiment of Patil, Sandt, Kolle & Dunkel (Science 367, 71, 2020), on the DER solver:
 the bend is tied loosely from :func:`knotmech.scenes.bend_curves.bend_curves` (two naturally
-straight elastic rods), settles for ``settle_time`` with all four ends held, and then the
-two standing ends are pulled apart along x, each at ``pull_speed``, while the two tails are
-free. Rod-rod contact is the implicit contact model with sticking (anchor) friction,
-:func:`knotmech.scenes._scene.rod_contact`.
+straight elastic rods), settles for ``settle_time`` with all four ends held, is *set* (all
+four ends pulled outwards along x at ``pull_speed`` until the mean tension of the end edges
+reaches ``set_tension``) and is then pulled: the two standing ends move apart along x, each
+at ``pull_speed``, while the two tails are free. Rod-rod contact is the implicit contact
+model with sticking (anchor) friction, :func:`knotmech.scenes._scene.rod_contact`.
 
 Measured: the pull force :math:`F(t)` (mean of the two grips' reactions along the pull) and
 the *draw-in* of each tail (how far its free end moved towards the knot, along x). The bend
@@ -135,11 +136,11 @@ def bend(
     density: float = 1100.0,
     mu_rod_rod: float = 0.3,
     mu_kinetic: float | None = None,
-    pull_speed: float = 0.02,
+    pull_speed: float = 0.04,
     pull_distance: float | None = None,
     settle_time: float = 0.2,
-    n_nodes: int = 120,
-    dt: float = 2e-3,
+    n_nodes: int = 80,
+    dt: float = 4e-3,
     slip_draw_in: float | None = None,
     set_tension: float | None = None,
     set_travel: float | None = None,
@@ -178,7 +179,7 @@ def bend(
     set_tension : float [N], optional
         Before the pull the bend is *set*: all four ends are pulled outwards at
         ``pull_speed`` until the mean tension of the four end edges reaches this
-        (default :math:`B/d^2`), or for ``set_travel``; then the tails are let go.
+        (default :math:`0.1 B/d^2`, a hand-set bend), or for ``set_travel``; then the tails are let go.
     set_travel : float [m], optional
         Largest travel of each end while setting (default 10 d).
     force_scale : float [N], optional
@@ -197,8 +198,8 @@ def bend(
 
     Notes
     -----
-    Cost at the defaults (120 nodes per rope, 2 x 48 mm at 20 mm/s): about 1-3 minutes on
-    one core (NOTES-knots.md gives the measured times).
+    Cost at the defaults (80 nodes per rope, 2 x 48 mm at 40 mm/s): about 800 steps and
+    6000 Newton iterations, 1-2 minutes on a free core (NOTES-knots.md gives the times).
     """
     if kind not in BEND_CODES:
         raise InputError(f"kind must be one of {', '.join(BEND_CODES)}, got {kind!r}")
@@ -214,7 +215,9 @@ def bend(
     if int(n_frames) < 10:
         raise InputError(f"n_frames must be >= 10, got {n_frames!r}")
     B = E * np.pi * d**4 / 64
-    f_set = B / d**2 if set_tension is None else float(check_positive("set_tension", set_tension))
+    f_set = (
+        0.1 * B / d**2 if set_tension is None else float(check_positive("set_tension", set_tension))
+    )
     set_travel = 10 * d if set_travel is None else float(check_positive("set_travel", set_travel))
     fs = 2 * B / d**2 if force_scale is None else float(check_positive("force_scale", force_scale))
     curves = bend_curves(kind, rod_diameter=d, n_nodes=n_nodes)
@@ -261,10 +264,12 @@ def bend(
     ex = np.array([1.0, 0.0, 0.0])
     # set (dress) the bend: all four ends pulled outwards until their mean tension reaches
     # set_tension, as a rigger sets a bend before loading it
-    end_edges = np.array([e[1] for e in ends])
-    ea = system.ea[end_edges]
-    rest = system.rest_length[end_edges]
-    en = system.edge_nodes[end_edges]
+    # tension read on the first free edge of each end (the end edge itself is rigid: both
+    # its nodes are gripped)
+    inner = np.array([e[1] + 1 if k % 2 == 0 else e[1] - 1 for k, e in enumerate(ends)])
+    ea = system.ea[inner]
+    rest = system.rest_length[inner]
+    en = system.edge_nodes[inner]
 
     def end_tension(x):
         return float(np.mean(ea * (np.linalg.norm(x[en[:, 1]] - x[en[:, 0]], axis=1) / rest - 1)))
@@ -280,7 +285,9 @@ def bend(
             set_travel / v,
             dt=dt,
             loads=[drag],
-            constraints=[*moving, Clamp(edges=list(end_edges))],
+            # the tails' twist is left free: twist stored against a held tail would whirl
+            # it into curls when it is let go
+            constraints=[*moving, Clamp(edges=[ga[1], gb[1]])],
             stop=lambda x: end_tension(x) >= f_set,
         )
     x_settled = system.positions(run.state.q)
