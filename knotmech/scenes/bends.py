@@ -178,8 +178,9 @@ def bend(
         (default 4 d).
     set_tension : float [N], optional
         Before the pull the bend is *set*: all four ends are pulled outwards at
-        ``pull_speed`` until the mean tension of the four end edges reaches this
-        (default :math:`0.1 B/d^2`, a hand-set bend), or for ``set_travel``; then the tails are let go.
+        ``pull_speed`` until the mean tension next to the four grips reaches this
+        (default :math:`0.1 B/d^2`, a hand-set bend), or for ``set_travel``; then the
+        tails are let go.
     set_travel : float [m], optional
         Largest travel of each end while setting (default 10 d).
     force_scale : float [N], optional
