@@ -10,10 +10,11 @@ model with sticking (anchor) friction, :func:`knotmech.scenes._scene.rod_contact
 
 Measured: the pull force :math:`F(t)` (mean of the two grips' reactions along the pull) and
 the *draw-in* of each tail (how far its free end moved towards the knot, along x). The bend
-**slips** when a tail has been drawn in by more than ``slip_draw_in`` (default 4 d) beyond
-its draw-in at the force peak of tightening, or when it has run out of the knot; the
-**slip load** is the largest pull force before that moment. A bend that has not slipped
-when the pull ends *holds* up to the largest force reached.
+**slips** when a tail is drawn in by more than ``slip_draw_in`` (default 2 d) while the
+pull force stays within 10 % of its largest value (sliding at a plateau or a falling
+force; tightening draws the tails in while the force still rises), or when a tail has run
+out of the knot; the **slip load** is the largest pull force before that moment. A bend
+that has not slipped when the pull ends *holds* up to the largest force reached.
 
 The topology is checked on every recorded frame up to the slip: the Alexander polynomial of
 the two ropes joined around the outside (:func:`~knotmech.scenes.bend_curves.bend_closure`)
@@ -174,8 +175,7 @@ def bend(
     dt : float [s]
         Nominal step (the solver halves it when Newton fails).
     slip_draw_in : float [m], optional
-        Tail draw-in beyond its value at the tightening peak that counts as a slip
-        (default 4 d).
+        Tail draw-in at (near) the largest force that counts as a slip (default 2 d).
     set_tension : float [N], optional
         Before the pull the bend is *set*: all four ends are pulled outwards at
         ``pull_speed`` until the mean tension next to the four grips reaches this
@@ -212,7 +212,7 @@ def bend(
     dist = (
         12 * d if pull_distance is None else float(check_positive("pull_distance", pull_distance))
     )
-    slip = 4 * d if slip_draw_in is None else float(check_positive("slip_draw_in", slip_draw_in))
+    slip = 2 * d if slip_draw_in is None else float(check_positive("slip_draw_in", slip_draw_in))
     if int(n_frames) < 10:
         raise InputError(f"n_frames must be >= 10, got {n_frames!r}")
     B = E * np.pi * d**4 / 64
@@ -322,10 +322,13 @@ def bend(
     verdict, slip_load, k_check = "", float("nan"), len(tp) - 1
     max_force = float(np.nanmax(force)) if force.size else float("nan")
     if force.size:
-        k_peak = int(np.nanargmax(force))
-        beyond = draw.max(axis=1) - draw[: k_peak + 1].max()
+        # slip: the tails are drawn in by more than slip_draw_in while the force is within
+        # 10 % of its largest value (a knot that tightens draws its tails in while the
+        # force still rises; one that slides does so at a plateau or a falling force)
+        k_near = int(np.nonzero(force >= 0.9 * max_force)[0][0])
+        beyond = draw.max(axis=1) - draw[k_near].max()
         out = (np.abs(pos[m][:, ta, 0]) < 1.0 * d) | (np.abs(pos[m][:, tb, 0]) < 1.0 * d)
-        slipped = np.nonzero((beyond > slip) | out)[0]
+        slipped = np.nonzero(((beyond > slip) & (np.arange(tp.size) >= k_near)) | out)[0]
         if slipped.size:
             k = int(slipped[0])
             slip_load = float(np.nanmax(force[: k + 1]))
