@@ -264,9 +264,8 @@ def bend(
     ta, tb = tail_a[0][0], tail_b[0][0]
     ex = np.array([1.0, 0.0, 0.0])
     # set (dress) the bend: all four ends pulled outwards until their mean tension reaches
-    # set_tension, as a rigger sets a bend before loading it
-    # tension read on the first free edge of each end (the end edge itself is rigid: both
-    # its nodes are gripped)
+    # set_tension, as a rigger sets a bend before loading it; the tension is read on the
+    # first free edge of each end (the end edge itself is rigid: both its nodes are gripped)
     inner = np.array([e[1] + 1 if k % 2 == 0 else e[1] - 1 for k, e in enumerate(ends)])
     ea = system.ea[inner]
     rest = system.rest_length[inner]
@@ -312,7 +311,7 @@ def bend(
     m = run.phase_mask("pull")
     tp = times[m]
     force = 0.5 * (run.reaction([ga[0][0]], tp) @ (-ex) + run.reaction([gb[0][0]], tp) @ ex)
-    # the grip's first node carries the pull; the second only holds the end's direction
+    # both gripped nodes of an end carry part of the pull: their reactions are summed
     force = force + 0.5 * (run.reaction([ga[0][1]], tp) @ (-ex) + run.reaction([gb[0][1]], tp) @ ex)
     disp = v * (tp - t0)
     k0 = int(np.argmax(m))
