@@ -114,7 +114,7 @@ class BendResult:
             "topology_preserved": self.topology_preserved,
             "status": self.status,
             "message": self.message,
-            "stats": {k: float(v) for k, v in self.stats.items()},
+            "stats": {k: (float(v) if k == "wall_s" else int(v)) for k, v in self.stats.items()},
             "pull_displacement": [float(v) for v in self.pull_displacement],
             "pull_force": [num(v) for v in self.pull_force],
         }
