@@ -40,3 +40,18 @@ def test_reef_holds_more_than_granny():
     # measured (NOTES-knots.md): reef holds to 3.76 N, granny slips at 0.81 N
     assert reef_load > 2.0 * granny.slip_load
     assert np.nanmax(granny.draw_in) > 4 * 4e-3
+
+
+def test_bend_result_json_is_strict():
+    """NaN becomes null and solver counts stay integers (issue 10, part 6)."""
+    import json
+
+    from knotmech.scenes.bends import BendResult
+
+    z = np.zeros(2)
+    r = BendResult("reef", "holds", float("nan"), 1.0, 0.04, 1.0, z, z, np.array([1.0, np.nan]),
+                   np.zeros((2, 2)), (1,), (1,), 0, 0, np.zeros((2, 4, 3)), "success", "",
+                   {"steps": 3, "wall_s": 1.5})  # fmt: skip
+    d = json.loads(json.dumps(r.to_dict(), allow_nan=False))
+    assert d["slip_load"] is None and d["pull_force"] == [1.0, None]
+    assert d["stats"]["steps"] == 3 and isinstance(d["stats"]["steps"], int)
