@@ -9,6 +9,10 @@
 - :mod:`~knotmech.scenes.topology`: knot invariants (Alexander polynomial, determinant),
   winding about a post: the no-pass-through checks.
 - :mod:`~knotmech.scenes.phase_table`: the precomputed clove-hitch hold/slip table.
+- :mod:`~knotmech.scenes.bends`: two ropes joined by a reef, granny, thief or grief bend
+  (:mod:`~knotmech.scenes.bend_curves`), pulled apart until it slips.
+- :mod:`~knotmech.scenes.centreline`: a user's own knot from a CSV of points, pulled.
+- :mod:`~knotmech.scenes._scene`: the shape scenes share (phases, grips, contacts).
 
 The names are loaded on first use: the scenes import the DER solver (numba, seconds), which
 ``knotmech hold`` answering from :mod:`~knotmech.scenes.phase_table` must not pay. The
@@ -25,6 +29,16 @@ import types
 
 #: public name -> submodule defining it
 _SUBMODULE = {
+    "BendCurves": "bend_curves",
+    "bend_closure": "bend_curves",
+    "bend_curves": "bend_curves",
+    "bend_invariants": "bend_curves",
+    "PATIL_ORDER": "bends",
+    "BendResult": "bends",
+    "bend": "bends",
+    "CentrelineResult": "centreline",
+    "centreline": "centreline",
+    "read_centreline": "centreline",
     "CapstanResult": "capstan",
     "capstan": "capstan",
     "capstan_two_loops": "capstan",
@@ -94,6 +108,16 @@ def __dir__():
 sys.modules[__name__].__class__ = _ScenesPackage
 
 __all__ = [
+    "bend",
+    "BendResult",
+    "PATIL_ORDER",
+    "BendCurves",
+    "bend_curves",
+    "bend_closure",
+    "bend_invariants",
+    "centreline",
+    "CentrelineResult",
+    "read_centreline",
     "capstan",
     "capstan_two_loops",
     "CapstanResult",

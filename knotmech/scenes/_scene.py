@@ -1,0 +1,335 @@
+r"""The shape every DER scene shares: build rods (and a post), run phases, measure.
+
+A scene is three steps, and only the first is specific to a knot:
+
+1. **build**: a centreline per rod (a :class:`~knotmech.scenes.curves.KnotCurve` or a node
+   array), the rods' material, the contacts (:func:`rod_contact` for rod-rod contact with
+   sticking friction, :func:`post_contact` for a rigid post);
+2. **run phases** on a :class:`SceneRun`: each phase (``"settle"``, ``"load"``, ``"pull"``,
+   ``"hold"``) is one :func:`knotmech.rod.simulate` call that resumes from the previous
+   phase's last state, with its own loads, constraints and nominal step; frames, reactions
+   and solver statistics are concatenated, a failed phase stops the run (status
+   ``"failed"``, its message, the last good state kept) and a watcher (the topology or
+   distance check of the knot) is called after every accepted step;
+3. **measure** from the concatenated frames (pull force at a gripped end, end draw-in,
+   invariants at the start and the end).
+
+The loads and moving grips every scene needs are written once here: :class:`RampedEndLoad`
+(a dead load on one node, ramped), :func:`grip_path` (a gripped end moved at constant speed
+along a direction after a delay).
+
+Existing scenes (``clove_hitch``, ``capstan``, ``overhand``) predate this module; moving
+them onto it means replacing their hand-written ``simulate`` sequences by
+:meth:`SceneRun.phase` calls and their contact set-up by :func:`rod_contact` /
+:func:`post_contact` (see NOTES-knots.md).
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from knotmech import rod
+from knotmech.errors import InputError, check_nonnegative, check_positive
+from knotmech.rod.contact import Cylinder, CylinderContact, RodContact
+from knotmech.rod.friction import AnchorFriction
+
+__all__ = [
+    "RampedEndLoad",
+    "grip_path",
+    "rod_contact",
+    "post_contact",
+    "SceneRun",
+    "Phase",
+]
+
+
+@dataclass(frozen=True)
+class RampedEndLoad:
+    """Dead force on one node, ramped linearly from 0 to ``force`` over [delay, delay + ramp].
+
+    A load for :func:`knotmech.rod.simulate` (same interface as ``knotmech.rod.NodeForce``).
+
+    Parameters
+    ----------
+    node : int
+        Global node index.
+    force : (3,) array [N]
+    ramp_time : float [s]
+        Duration of the linear ramp (> 0).
+    delay : float [s]
+        Start of the ramp (absolute time).
+    """
+
+    node: int
+    force: np.ndarray
+    ramp_time: float
+    delay: float = 0.0
+
+    def _w(self, t) -> float:
+        return min(max((t - self.delay) / self.ramp_time, 0.0), 1.0)
+
+    def apply(self, system, t, q, q_old, dt, force, jac_diag) -> None:
+        force[system.node_dofs[self.node]] += self._w(t) * np.asarray(self.force)
+
+    def energy(self, system, q, t=np.inf) -> float:
+        return float(-self._w(t) * np.dot(q[system.node_dofs[self.node]], self.force))
+
+
+def grip_path(start, direction, speed: float, t_start: float = 0.0):
+    """Path ``t -> start + speed max(t - t_start, 0) direction`` for :class:`rod.MovingNodes`.
+
+    Parameters
+    ----------
+    start : (k, 3) array [m]
+        Positions of the gripped nodes at ``t_start``.
+    direction : (3,) array
+        Pull direction (normalised here).
+    speed : float [m/s]
+    t_start : float [s]
+    """
+    x0 = np.array(start, dtype=float)
+    u = np.asarray(direction, dtype=float)
+    u = u / np.linalg.norm(u)
+    v = float(check_nonnegative("pull_speed", speed))
+
+    def path(t):
+        return x0 + u * v * max(t - t_start, 0.0)
+
+    return path
+
+
+def rod_contact(
+    *, rod_diameter: float, force_scale: float, mu_static: float, mu_kinetic=None, width=0.05
+):
+    r"""Rod-rod contact with sticking (anchor) friction, sized for a force scale.
+
+    Penalty stiffness :math:`K_c = 20 F/d` (overlap about 2.5 % of d under ``force_scale``),
+    sharpness :math:`k = 15/(w d)` with w = ``width`` (0.05: the clove-hitch scene's choice);
+    friction :class:`knotmech.rod.AnchorFriction` (true sticking below :math:`\mu_s N`,
+    sliding at :math:`\mu_k N`), none when :math:`\mu_s = 0`.
+
+    Parameters
+    ----------
+    rod_diameter : float [m]
+    force_scale : float [N]
+        Largest contact force expected (the largest load of the scene).
+    mu_static, mu_kinetic : float
+        Static and kinetic rod-rod coefficients (``mu_kinetic`` None: equal to mu_s).
+    width : float
+        Range of the penalty in rod diameters (its force rises over about w d).
+    """
+    d = float(check_positive("rod_diameter", rod_diameter))
+    f = float(check_positive("force_scale", force_scale))
+    ms = float(check_nonnegative("mu_rod_rod", mu_static))
+    mk = ms if mu_kinetic is None else float(check_nonnegative("mu_kinetic", mu_kinetic))
+    if mk > ms:
+        raise InputError(f"mu_kinetic must be <= mu_rod_rod ({ms:g}), got {mk:g}")
+    fr = AnchorFriction(mu_static=ms, mu_kinetic=mk) if ms > 0 else None
+    w = float(check_positive("width", width))
+    return RodContact(stiffness=20.0 * f / d, sharpness=15.0 / (w * d), friction=fr)
+
+
+def post_contact(
+    *, post_diameter: float, rod_diameter: float, force_scale: float, mu_static, mu_kinetic=None
+):
+    r"""Rigid post on the z axis through the origin, with sticking friction on the rod surface.
+
+    Stiffness :math:`K = 200 F/(R d)` (R = (D + d)/2), sharpness 400/d, tangential stiffness
+    K: the clove-hitch scene's choice.
+    """
+    D = float(check_positive("post_diameter", post_diameter))
+    d = float(check_positive("rod_diameter", rod_diameter))
+    f = float(check_positive("force_scale", force_scale))
+    ms = float(check_nonnegative("mu_rod_post", mu_static))
+    mk = ms if mu_kinetic is None else float(check_nonnegative("mu_kinetic", mu_kinetic))
+    if mk > ms:
+        raise InputError(f"mu_kinetic must be <= mu_rod_post ({ms:g}), got {mk:g}")
+    K = 200.0 * f / (0.5 * (D + d) * d)
+    post = Cylinder(point=(0.0, 0.0, 0.0), axis=(0.0, 0.0, 1.0), radius=0.5 * D)
+    return CylinderContact(
+        (post,),
+        stiffness=K,
+        sharpness=400.0 / d,
+        friction=AnchorFriction(mu_static=ms, mu_kinetic=mk, tangential_stiffness=K),
+        rod_radius=0.5 * d,
+    )
+
+
+@dataclass
+class Phase:
+    """What one phase of a scene ran: name, [t0, t1] [s], status and frame range."""
+
+    name: str
+    t0: float
+    t1: float
+    status: str
+    message: str
+    frames: tuple
+
+
+@dataclass
+class SceneRun:
+    """Runs the phases of a scene on one rod system and concatenates what they record.
+
+    Parameters
+    ----------
+    system : knotmech.rod.RodSystem
+    interactions : sequence
+        Contacts shared by every phase (their friction state carries over).
+    options : knotmech.rod.SolverOptions, optional
+        Base options (``throw`` is forced False: a failed phase is reported, not raised).
+    watch : callable(positions) -> str or None, optional
+        Called after every accepted step with the (n_nodes, 3) positions; a returned string
+        stops the run with status ``"failed"`` and that message (e.g. strands passed
+        through each other).
+    progress : bool
+    """
+
+    system: rod.RodSystem
+    interactions: tuple = ()
+    options: rod.SolverOptions | None = None
+    watch: object = None
+    progress: bool = False
+    state: rod.State | None = None
+    status: str = "success"
+    message: str = ""
+    phases: list = field(default_factory=list)
+    times: list = field(default_factory=list)
+    positions: list = field(default_factory=list)
+    reactions: dict = field(default_factory=dict)
+    tension: np.ndarray | None = None
+    stats: dict = field(default_factory=dict)
+    live: rod.State | None = None
+
+    def __post_init__(self):
+        self.interactions = tuple(self.interactions)
+        base = self.options if self.options is not None else rod.SolverOptions(rtol=1e-6)
+        self.options = replace(base, throw=False)
+        if self.state is None:
+            self.state = self.system.initial_state()
+        self.times.append(float(self.state.t))
+        self.positions.append(self.system.positions(self.state.q))
+
+    @property
+    def ok(self) -> bool:
+        """True while every phase so far succeeded."""
+        return self.status == "success"
+
+    @property
+    def t(self) -> float:
+        """Current time [s]."""
+        return float(self.state.t)
+
+    def phase(
+        self,
+        name: str,
+        duration: float,
+        *,
+        dt: float,
+        loads=(),
+        constraints=(),
+        save_every: float | None = None,
+        stop=None,
+    ) -> bool:
+        """Run one phase for ``duration`` [s] from the current state; False if it failed.
+
+        Parameters
+        ----------
+        name : str
+        duration : float [s]
+        dt : float [s]
+            Nominal step of this phase.
+        loads, constraints : sequences for :func:`knotmech.rod.simulate`
+            Times inside them are absolute (the phase starts at :attr:`t`).
+        save_every : float [s], optional
+            Frame interval (default ``duration / 50``).
+        stop : callable(positions) -> bool, optional
+            Ends the phase early (successfully) when it returns True.
+
+        Returns
+        -------
+        bool
+            True if the phase ran to its end (or to ``stop``).
+        """
+        if not self.ok:
+            return False
+        dur = float(check_positive(f"{name} duration", duration))
+        t0 = self.t
+        every = dur / 50 if save_every is None else float(check_positive("save_every", save_every))
+        opts = replace(self.options, save_every=every)
+        verdict = {"msg": None}
+
+        def callback(state):
+            self.live = state
+            x = self.system.positions(state.q)
+            if self.watch is not None:
+                msg = self.watch(x)
+                if msg:
+                    verdict["msg"] = msg
+                    return True
+            return bool(stop(x)) if stop is not None else False
+
+        res = rod.simulate(
+            self.system,
+            self.state,
+            t_end=t0 + dur,
+            dt=float(check_positive("dt", dt)),
+            loads=list(loads),
+            constraints=list(constraints),
+            interactions=list(self.interactions),
+            options=opts,
+            progress=self.progress,
+            callback=callback,
+        )
+        k0 = len(self.times)
+        tt = np.asarray(res.times)[1:]
+        self.times.extend(tt.tolist())
+        self.positions.extend(list(np.asarray(res.positions)[1:]))
+        rn = np.asarray(res.reaction_nodes)
+        rx = np.asarray(res.reactions)[1:]
+        for j, node in enumerate(rn):
+            self.reactions.setdefault(int(node), {})
+            for t, f in zip(tt, rx[:, j], strict=True):
+                self.reactions[int(node)][float(t)] = f
+        if len(res.tension):
+            self.tension = np.asarray(res.tension[-1])
+        for k, v in res.stats.items():
+            self.stats[k] = self.stats.get(k, 0) + v
+        if res.final_state is not None:
+            self.state = res.final_state
+        status, message = res.status, res.message
+        if verdict["msg"]:
+            status, message = "failed", f"{name}: {verdict['msg']}"
+        elif status != "success":
+            message = f"{name}: {message}"
+        self.phases.append(Phase(name, t0, self.t, status, message, (k0, len(self.times))))
+        if status != "success":
+            self.status, self.message = status, message
+            return False
+        return True
+
+    def frames(self):
+        """(times (n_frames,) [s], positions (n_frames, n_nodes, 3) [m]) of all phases."""
+        return np.asarray(self.times), np.asarray(self.positions)
+
+    def reaction(self, nodes, times=None) -> np.ndarray:
+        """Summed constraint reaction on ``nodes`` [N] at each recorded time (NaN where a
+        node was not constrained), (n_times, 3)."""
+        t = np.asarray(self.times if times is None else times)
+        out = np.zeros((t.size, 3))
+        if t.size == 0:
+            return out
+        for node in np.atleast_1d(nodes):
+            rec = self.reactions.get(int(node), {})
+            out += np.array([rec.get(float(x), (np.nan,) * 3) for x in t])
+        return out
+
+    def phase_mask(self, name: str) -> np.ndarray:
+        """Boolean mask of the frames recorded by the phase(s) called ``name``."""
+        m = np.zeros(len(self.times), dtype=bool)
+        for p in self.phases:
+            if p.name == name:
+                m[p.frames[0] : p.frames[1]] = True
+        return m

@@ -1,0 +1,377 @@
+r"""Two ropes joined by a bend (reef, granny, thief, grief) and pulled apart until it slips.
+
+The experiment of Patil, Sandt, Kolle & Dunkel (Science 367, 71, 2020), on the DER solver:
+the bend is tied loosely from :func:`knotmech.scenes.bend_curves.bend_curves` (two naturally
+straight elastic rods), settles for ``settle_time`` with all four ends held, is *set* (all
+four ends pulled outwards along x at ``pull_speed`` until the mean tension of the end edges
+reaches ``set_tension``) and is then pulled: the two standing ends move apart along x, each
+at ``pull_speed``, while the two tails are free. Rod-rod contact is the implicit contact
+model with sticking (anchor) friction, :func:`knotmech.scenes._scene.rod_contact`.
+
+Measured: the pull force :math:`F(t)` (mean of the two grips' reactions along the pull) and
+the *draw-in* of each tail (how far its free end moved towards the knot, along x). The bend
+**slips** when a tail is drawn in by more than ``slip_draw_in`` (default 2 d) while the
+pull force stays within 10 % of its largest value (sliding at a plateau or a falling
+force; tightening draws the tails in while the force still rises), or when a tail has run
+out of the knot; the **slip load** is the largest pull force before that moment. A bend
+that has not slipped when the pull ends *holds* up to the largest force reached.
+
+The topology is checked on every recorded frame up to the slip: the Alexander polynomial of
+the two ropes joined around the outside (:func:`~knotmech.scenes.bend_curves.bend_closure`)
+and the linking number of the ropes closed each on its own side must stay those of the
+start shape; a change means a strand passed through another and the run is ``failed``.
+Every accepted step also checks that no two strands overlap by more than half a diameter.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from knotmech import rod
+from knotmech.errors import InputError, check_nonnegative, check_positive
+from knotmech.rod.constraints import Clamp, MovingNodes
+from knotmech.scenes._scene import SceneRun, grip_path, rod_contact
+from knotmech.scenes.bend_curves import BEND_CODES, bend_curves, bend_invariants
+from knotmech.scenes.curves import _edge_distances
+
+__all__ = ["BendResult", "bend", "PATIL_ORDER"]
+
+#: Stability order of the four bends reported by Patil et al. (2020), most secure first.
+PATIL_ORDER = ("reef", "thief", "granny", "grief")
+
+
+@dataclass
+class BendResult:
+    """What a bend pull measured (SI units).
+
+    Attributes
+    ----------
+    kind : str
+    verdict : {"slips", "holds", ""}
+        ``""`` when the run failed.
+    slip_load : float [N]
+        Largest pull force before the slip (NaN if it held).
+    max_force : float [N]
+        Largest pull force of the whole pull.
+    pull_speed, mu_rod_rod : float
+    times : (n_frames,) [s]
+    pull_displacement : (n_frames,) [m]
+        Displacement of each grip (0 before the pull).
+    pull_force : (n_frames,) [N]
+    draw_in : (n_frames, 2) [m]
+        Draw-in of A's and B's tail ends.
+    alexander_start, alexander_checked : tuple
+        Of the closed bend at the start and at the last frame checked (the slip or the end).
+    linking_start, linking_checked : int
+    positions : (n_frames, 2 n_nodes, 3) [m]
+    status, message : str; stats : dict (steps, newton_iterations, wall_s)
+    """
+
+    kind: str
+    verdict: str
+    slip_load: float
+    max_force: float
+    pull_speed: float
+    mu_rod_rod: float
+    times: np.ndarray
+    pull_displacement: np.ndarray
+    pull_force: np.ndarray
+    draw_in: np.ndarray
+    alexander_start: tuple
+    alexander_checked: tuple
+    linking_start: int
+    linking_checked: int
+    positions: np.ndarray
+    status: str
+    message: str
+    stats: dict = field(default_factory=dict)
+
+    @property
+    def topology_preserved(self) -> bool:
+        """Same Alexander polynomial and linking number at the start and where checked."""
+        return (self.alexander_start, self.linking_start) == (
+            self.alexander_checked,
+            self.linking_checked,
+        )
+
+    def to_dict(self) -> dict:
+        """Plain-JSON summary (curves as lists, positions left out)."""
+
+        def num(v):
+            return float(v) if np.isfinite(v) else None
+
+        return {
+            "scene": "bend",
+            "kind": self.kind,
+            "verdict": self.verdict,
+            "slip_load": num(self.slip_load),
+            "max_force": num(self.max_force),
+            "pull_speed": self.pull_speed,
+            "mu_rod_rod": self.mu_rod_rod,
+            "topology_preserved": self.topology_preserved,
+            "status": self.status,
+            "message": self.message,
+            "stats": {k: (float(v) if k == "wall_s" else int(v)) for k, v in self.stats.items()},
+            "pull_displacement": [float(v) for v in self.pull_displacement],
+            "pull_force": [num(v) for v in self.pull_force],
+        }
+
+
+def _grip(system, rope: int, end: str):
+    """Global indices of a rope end's two nodes (end node first) and its end edge."""
+    nodes = system.rod_nodes(rope)
+    edges = system.rod_edges(rope)
+    if end == "start":
+        return [int(nodes[0]), int(nodes[1])], int(edges[0])
+    return [int(nodes[-1]), int(nodes[-2])], int(edges[-1])
+
+
+def bend(
+    kind: str,
+    *,
+    rod_diameter: float = 4e-3,
+    youngs_modulus: float = 1.0e6,
+    density: float = 1100.0,
+    mu_rod_rod: float = 0.3,
+    mu_kinetic: float | None = None,
+    pull_speed: float = 0.04,
+    pull_distance: float | None = None,
+    settle_time: float = 0.2,
+    n_nodes: int = 80,
+    dt: float = 4e-3,
+    slip_draw_in: float | None = None,
+    set_tension: float | None = None,
+    set_travel: float | None = None,
+    force_scale: float | None = None,
+    contact_width: float = 0.2,
+    n_frames: int = 120,
+    options: rod.SolverOptions | None = None,
+    progress: bool = False,
+) -> BendResult:
+    r"""Tie a bend between two ropes, pull the standing ends apart, report the slip load.
+
+    Parameters
+    ----------
+    kind : {"reef", "granny", "thief", "grief"}
+    rod_diameter : float [m]
+        Diameter d of both ropes (default 4 mm).
+    youngs_modulus : float [Pa]
+        Of the (solid, elastic) rods (default 1 MPa, a soft elastomer; the bending
+        stiffness is :math:`B = E\pi d^4/64`).
+    density : float [kg/m^3]
+    mu_rod_rod, mu_kinetic : float
+        Static and kinetic rod-rod friction (``mu_kinetic`` None: equal to the static).
+    pull_speed : float [m/s]
+        Speed of each grip (the ends separate at twice this).
+    pull_distance : float [m], optional
+        Travel of each grip (default 12 d).
+    settle_time : float [s]
+        All four ends held while the contacts settle.
+    n_nodes : int
+        Nodes per rope.
+    dt : float [s]
+        Nominal step (the solver halves it when Newton fails).
+    slip_draw_in : float [m], optional
+        Tail draw-in at (near) the largest force that counts as a slip (default 2 d).
+    set_tension : float [N], optional
+        Before the pull the bend is *set*: all four ends are pulled outwards at
+        ``pull_speed`` until the mean tension next to the four grips reaches this
+        (default :math:`0.1 B/d^2`, a hand-set bend), or for ``set_travel``; then the
+        tails are let go.
+    set_travel : float [m], optional
+        Largest travel of each end while setting (default 10 d).
+    force_scale : float [N], optional
+        Sizes the contact penalty (default :math:`2 B/d^2`; overlap d/40 under B/d^2).
+    contact_width : float
+        Range of the contact penalty in rod diameters (see
+        :func:`knotmech.scenes._scene.rod_contact`).
+    n_frames : int
+        Recorded frames of the pull (>= 10).
+    options : knotmech.rod.SolverOptions, optional
+    progress : bool
+
+    Returns
+    -------
+    BendResult
+
+    Notes
+    -----
+    Cost at the defaults (80 nodes per rope, 2 x 48 mm at 40 mm/s): about 800 steps and
+    6000 Newton iterations, 1-2 minutes on a free core (NOTES-knots.md gives the times).
+    """
+    if kind not in BEND_CODES:
+        raise InputError(f"kind must be one of {', '.join(BEND_CODES)}, got {kind!r}")
+    d = float(check_positive("rod_diameter", rod_diameter))
+    E = float(check_positive("youngs_modulus", youngs_modulus))
+    rho = float(check_positive("density", density))
+    mu = float(check_nonnegative("mu_rod_rod", mu_rod_rod))
+    v = float(check_positive("pull_speed", pull_speed))
+    dist = (
+        12 * d if pull_distance is None else float(check_positive("pull_distance", pull_distance))
+    )
+    slip = 2 * d if slip_draw_in is None else float(check_positive("slip_draw_in", slip_draw_in))
+    if int(n_frames) < 10:
+        raise InputError(f"n_frames must be >= 10, got {n_frames!r}")
+    B = E * np.pi * d**4 / 64
+    f_set = (
+        0.1 * B / d**2 if set_tension is None else float(check_positive("set_tension", set_tension))
+    )
+    set_travel = 10 * d if set_travel is None else float(check_positive("set_travel", set_travel))
+    fs = 2 * B / d**2 if force_scale is None else float(check_positive("force_scale", force_scale))
+    curves = bend_curves(kind, rod_diameter=d, n_nodes=n_nodes)
+    rods = [
+        rod.Rod(positions=x, radius=0.5 * d, youngs_modulus=E, density=rho, natural="straight")
+        for x in (curves.rope_a, curves.rope_b)
+    ]
+    system = rod.RodSystem(rods)
+    N = int(n_nodes)
+    contact = rod_contact(
+        rod_diameter=d, force_scale=fs, mu_static=mu, mu_kinetic=mu_kinetic, width=contact_width
+    )
+    idx = np.arange(2 * N - 2)
+    far = np.abs(idx[:, None] - idx[None, :]) >= 3
+    far[N - 1 :, : N - 1] = far[: N - 1, N - 1 :] = True  # edges of different ropes
+    edge_rows = np.r_[np.arange(N - 1), np.arange(N, 2 * N - 1)]
+
+    def watch(x):
+        gap = _edge_distances(x)[np.ix_(edge_rows, edge_rows)][far].min()
+        if gap < 0.5 * d:
+            return f"strands overlap by more than half a diameter (gap {gap / d:.2f} d)"
+        return None
+
+    mass = rho * np.pi * d * d / 4
+    # drag on the whole length moving at v: 1 % of B/d^2
+    drag = rod.ViscousDamping(coefficient=0.01 * B / d**2 / (float(system.rest_length.sum()) * v))
+    run = SceneRun(system, interactions=[contact], options=options, watch=watch, progress=progress)
+    ends = [_grip(system, 0, "start"), _grip(system, 0, "end")]
+    ends += [_grip(system, 1, "start"), _grip(system, 1, "end")]
+    hold_all = Clamp(nodes=[n for e in ends for n in e[0]], edges=[e[1] for e in ends])
+    t_wall = time.perf_counter()
+    run.phase(
+        "settle",
+        float(check_positive("settle_time", settle_time)),
+        dt=dt,
+        loads=[rod.ViscousDamping(coefficient=20.0 * mass / settle_time)],
+        constraints=[hold_all],
+    )
+    pa, pb = curves.pulled
+    ga, gb = _grip(system, 0, pa), _grip(system, 1, pb)
+    tail_a = _grip(system, 0, "end" if pa == "start" else "start")
+    tail_b = _grip(system, 1, "end" if pb == "start" else "start")
+    ta, tb = tail_a[0][0], tail_b[0][0]
+    ex = np.array([1.0, 0.0, 0.0])
+    # set (dress) the bend: all four ends pulled outwards until their mean tension reaches
+    # set_tension, as a rigger sets a bend before loading it; the tension is read on the
+    # first free edge of each end (the end edge itself is rigid: both its nodes are gripped)
+    inner = np.array([e[1] + 1 if k % 2 == 0 else e[1] - 1 for k, e in enumerate(ends)])
+    ea = system.ea[inner]
+    rest = system.rest_length[inner]
+    en = system.edge_nodes[inner]
+
+    def end_tension(x):
+        return float(np.mean(ea * (np.linalg.norm(x[en[:, 1]] - x[en[:, 0]], axis=1) / rest - 1)))
+
+    x_set = system.positions(run.state.q)
+    t_set = run.t
+    moving = []
+    for g, sign in ((ga, -1), (tail_a, -1), (gb, 1), (tail_b, 1)):
+        moving.append(MovingNodes(nodes=g[0], path=grip_path(x_set[g[0]], sign * ex, v, t_set)))
+    if run.ok:
+        run.phase(
+            "set",
+            set_travel / v,
+            dt=dt,
+            loads=[drag],
+            # the tails' twist is left free: twist stored against a held tail would whirl
+            # it into curls when it is let go
+            constraints=[*moving, Clamp(edges=[ga[1], gb[1]])],
+            stop=lambda x: end_tension(x) >= f_set,
+        )
+    x_settled = system.positions(run.state.q)
+    t0 = run.t
+    grips = [
+        MovingNodes(nodes=ga[0], path=grip_path(x_settled[ga[0]], -ex, v, t0)),
+        MovingNodes(nodes=gb[0], path=grip_path(x_settled[gb[0]], ex, v, t0)),
+        Clamp(edges=[ga[1], gb[1]]),
+    ]
+    if run.ok:
+        run.phase(
+            "pull",
+            dist / v,
+            dt=dt,
+            loads=[drag],
+            constraints=grips,
+            save_every=dist / v / int(n_frames),
+            stop=lambda x: (abs(x[ta, 0]) < 1.0 * d) or (abs(x[tb, 0]) < 1.0 * d),
+        )
+    times, pos = run.frames()
+    m = run.phase_mask("pull")
+    tp = times[m]
+    force = 0.5 * (run.reaction([ga[0][0]], tp) @ (-ex) + run.reaction([gb[0][0]], tp) @ ex)
+    # both gripped nodes of an end carry part of the pull: their reactions are summed
+    force = force + 0.5 * (run.reaction([ga[0][1]], tp) @ (-ex) + run.reaction([gb[0][1]], tp) @ ex)
+    disp = v * (tp - t0)
+    k0 = int(np.argmax(m))
+    draw = np.column_stack(
+        [pos[m][:, ta, 0] - pos[k0][ta, 0], -(pos[m][:, tb, 0] - pos[k0][tb, 0])]
+    )
+    verdict, slip_load, k_check = "", float("nan"), len(tp) - 1
+    max_force = float(np.nanmax(force)) if force.size else float("nan")
+    if force.size:
+        # slip: the tails are drawn in by more than slip_draw_in while the force is within
+        # 10 % of its largest value (a knot that tightens draws its tails in while the
+        # force still rises; one that slides does so at a plateau or a falling force)
+        k_near = int(np.nonzero(force >= 0.9 * max_force)[0][0])
+        beyond = draw.max(axis=1) - draw[k_near].max()
+        out = (np.abs(pos[m][:, ta, 0]) < 1.0 * d) | (np.abs(pos[m][:, tb, 0]) < 1.0 * d)
+        slipped = np.nonzero(((beyond > slip) & (np.arange(tp.size) >= k_near)) | out)[0]
+        if slipped.size:
+            k = int(slipped[0])
+            slip_load = float(np.nanmax(force[: k + 1]))
+            verdict, k_check = "slips", int(np.nanargmax(force[: k + 1]))
+        else:
+            verdict = "holds"
+    alex0, lk0 = bend_invariants(curves.rope_a, curves.rope_b)
+    alex1, lk1 = alex0, lk0
+    status, message = run.status, run.message
+    pm = pos[m]
+    for k in range(0, k_check + 1, max(1, (k_check + 1) // 30)):
+        xa, xb = pm[k][:N], pm[k][N:]
+        try:
+            alex1, lk1 = bend_invariants(xa, xb)
+        except InputError:
+            alex1, lk1 = (), lk0
+        if (alex1, lk1) != (alex0, lk0):
+            status = "failed"
+            message = f"topology changed at t = {tp[k]:.3f} s: a strand passed through another"
+            verdict = ""
+            break
+    if status == "success" and not force.size:
+        status, message = "failed", "no pull frames recorded"
+    if status != "success":
+        verdict = ""
+    stats = dict(run.stats)
+    stats["wall_s"] = time.perf_counter() - t_wall
+    return BendResult(
+        kind=kind,
+        verdict=verdict,
+        slip_load=slip_load,
+        max_force=max_force,
+        pull_speed=v,
+        mu_rod_rod=mu,
+        times=tp,
+        pull_displacement=disp,
+        pull_force=force,
+        draw_in=draw,
+        alexander_start=alex0,
+        alexander_checked=alex1,
+        linking_start=lk0,
+        linking_checked=lk1,
+        positions=pos,
+        status=status,
+        message=message,
+        stats=stats,
+    )
