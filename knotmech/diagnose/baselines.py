@@ -161,10 +161,10 @@ class DERBaseline:
     name: str = "der"
 
     def check(self, rec: Recording) -> None:
-        if rec.experiment != "capstan_pull":
+        if rec.experiment not in ("capstan_pull", "knot_pull"):
             raise InputError(
                 f"baseline 'der' is not available for {rec.experiment} recordings "
-                "(capstan_pull only); use closed-form"
+                "(capstan_pull and knot_pull only); use closed-form"
             )
 
 

@@ -48,6 +48,7 @@ import numpy as np
 
 from knotmech.diagnose.baselines import get_baseline
 from knotmech.diagnose.der import fit_der_baseline, select_der
+from knotmech.diagnose.der_knot import fit_knot_der_baseline
 from knotmech.diagnose.effects import CATALOGUE, applicable_effects, get_effect
 from knotmech.diagnose.fitting import (
     Data,
@@ -150,7 +151,10 @@ def diagnose(
     gs = rec.sigma
     data = Data(rec.y, rec.mu_nominal, rec.mu_nominal_sigma)
     der = None
-    if baseline == "der":
+    if baseline == "der" and rec.experiment == "knot_pull":
+        # the DER knot law is attached to the recording; the closed-form engine follows
+        rec, base = fit_knot_der_baseline(rec, data, starts, gs)
+    elif baseline == "der":
         der, base = fit_der_baseline(rec, data, starts, gs)
     else:
         base = fit_baseline(rec, data, starts, given_sigma=gs)
@@ -242,6 +246,8 @@ def diagnose(
         "seed": seed,
         **({"der": der[0].settings()} if der is not None else {}),
     }
+    if getattr(rec, "force_law", None) is not None:
+        details["der"] = rec.force_law.settings()
     report = Report(
         experiment=rec.experiment,
         verdict=verdict,

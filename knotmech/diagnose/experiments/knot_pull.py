@@ -110,8 +110,13 @@ class KnotPull(Experiment):
         return out
 
     def start(self, rec, y) -> dict:
-        f = self.unit_force(rec, rec.x)
-        return {"mu": max(float(np.dot(f, y) / np.dot(f, f)), 1e-3), "offset_m": 0.0}
+        law = getattr(rec, "force_law", None)
+        if law is None:
+            f, mu0 = self.unit_force(rec, rec.x), 1.0
+        else:  # the DER law: scaled from the middle of its mu grid
+            mu0 = float(np.median(law.grid))
+            f = law(rec.x, mu0)
+        return {"mu": max(mu0 * float(np.dot(f, y) / np.dot(f, f)), 1e-3), "offset_m": 0.0}
 
     def mean(self, rec, p, effects=()):
         st = Stages(rec, p, effects)
