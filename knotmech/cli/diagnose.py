@@ -14,7 +14,7 @@ the report is written (whatever the verdict); 2 on a bad recording or bad option
 
 from __future__ import annotations
 
-from knotmech.diagnose import diagnose, plot_report, read_recording
+from knotmech.diagnose import diagnose_many, plot_report, read_recording
 
 __all__ = ["register", "run"]
 
@@ -29,7 +29,12 @@ def register(subparsers) -> None:
             "(parametric bootstrap) and improve the held-out error, and report the verdict."
         ),
     )
-    p.add_argument("recording", metavar="REC.csv", help="recording file (CSV with # metadata)")
+    p.add_argument(
+        "recording",
+        metavar="REC.csv",
+        nargs="+",
+        help="recording file(s) (CSV with # metadata); several: one set-up, fitted together",
+    )
     p.add_argument("--json", metavar="OUT.json", required=True, help="write the report here")
     p.add_argument("--plot", metavar="FILE", default=None, help="also draw the fit (PNG, PDF...)")
     p.add_argument(
@@ -51,8 +56,8 @@ def register(subparsers) -> None:
 
 
 def run(args) -> int:
-    rec = read_recording(args.recording)
-    report = diagnose(rec, baseline=args.baseline, seed=args.seed, alpha=args.alpha)
+    recs = [read_recording(path) for path in args.recording]
+    report = diagnose_many(recs, baseline=args.baseline, seed=args.seed, alpha=args.alpha)
     report.write_json(args.json)
     if args.plot:
         plot_report(report, args.plot)

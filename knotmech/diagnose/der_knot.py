@@ -53,6 +53,8 @@ DER_KNOT_DT = 1e-2
 DER_KNOT_WAIT = 0.2
 DER_KNOT_MAX_RUNS = 6
 _DEGREE = 3
+#: a simulated force this many times the median of the run's first half is a runaway
+_RUNAWAY = 1e3
 
 
 @dataclass
@@ -176,8 +178,22 @@ class DERKnotLaw:
             raise SolverError(f"DER knot baseline failed at mu = {mu:.4g}: {res.message}")
         d = np.asarray(res.end_to_end, float)
         f = np.asarray(res.pull_force, float)
-        keep = (res.times > DER_KNOT_WAIT + 0.25 * (0.03 * self.L) / self.v) & np.isfinite(f)
+        keep = res.times > DER_KNOT_WAIT + 0.25 * (0.03 * self.L) / self.v
         d, f = d[keep], f[keep]
+        # a coarse knot pulled too tight jams and the contact force runs away: cut there
+        ref = float(np.median(np.abs(f[: max(len(f) // 2, 1)])))
+        bad = ~np.isfinite(f) | (np.abs(f) > _RUNAWAY * ref)
+        if np.any(bad):
+            cut = int(np.argmax(bad))
+            d, f = d[:cut], f[:cut]
+        need = self.d1 - 0.01 * self.L
+        if d.size < 2 * (_DEGREE + 3) or d[-1] < need - 1e-9:
+            reached = d[-1] if d.size else self.d0
+            raise SolverError(
+                f"DER knot baseline: the simulated knot ({self.turns} turns, {self.n_nodes} "
+                f"nodes, mu = {mu:.4g}) jams at end_to_end_m = {reached:.4g}, before the "
+                f"recording's {need:.4g}; use the closed-form baseline"
+            )
         self._raw[mu] = (d, f)
         self._refit()
         return d, f
@@ -288,8 +304,11 @@ def fit_knot_der_baseline(rec, data, starts, gs):
     """
     from knotmech.diagnose.fitting import fit_baseline
 
-    closed = fit_baseline(rec, data, starts, given_sigma=gs)
-    drec = der_recording(rec, float(closed.params["mu"]))
+    if getattr(rec, "force_law", None) is not None:  # the law is already run
+        drec = rec
+    else:
+        closed = fit_baseline(rec, data, starts, given_sigma=gs)
+        drec = der_recording(rec, float(closed.params["mu"]))
     for _ in range(DER_KNOT_MAX_RUNS):
         fit = fit_baseline(drec, data, starts, given_sigma=gs)
         if not extend_grid(drec, float(fit.params["mu"])):
@@ -354,7 +373,8 @@ def der_made_recording(
         "rod_length_m": 1.0,
         "pull_speed_m_per_s": DER_KNOT_SEPARATION_SPEED,
     }
-    e_tight = {1: 0.22, 2: 0.32, 3: 0.42, 4: 0.52}[int(turns)]
+    # looser than the closed-form sets: the coarse DER knot jams near the law's limit
+    e_tight = {1: 0.25, 2: 0.38, 3: 0.5, 4: 0.6}[int(turns)]
     eff = get_effect(effect) if effect is not None else None
     speeds = _SPEEDS if effect == "rate_dependent_friction" else _SPEEDS[:1]
     m = n // len(speeds)

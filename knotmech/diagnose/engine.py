@@ -267,6 +267,8 @@ def diagnose(
     )
     verdict_effect = CATALOGUE.get(verdict)
     report.summary = _summary(report, rec, fin_mis, base_mis, verdict_effect)
+    # the fits behind the report (not written to JSON; diagnose_many refits them jointly)
+    report.fits = {"recording": rec, "baseline": base, "final": final}
     return report
 
 

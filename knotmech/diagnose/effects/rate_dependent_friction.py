@@ -29,6 +29,8 @@ class RateDependentFriction(Effect):
     reference = "Rabinowicz, The Friction and Wear of Materials (1995): velocity-dependent friction"
     acts_everywhere = True
     report_keys = ("dmu_dlnv", "reference_speed_m_per_s")
+    #: material parameters, fitted once for all recordings by diagnose_many
+    shared_parameters = ("dmu_dlnv",)
     key_parameter = ("dmu_dlnv", "dmu_dlnv", "rel")
 
     def add_parameters(self, rec, names, lower, upper, fixed):
