@@ -117,7 +117,8 @@ def test_several_recordings_share_mu_and_report_per_recording():
     assert d["effects"][0]["recordings"] == ["recording 3"]
     assert d["effects"][0]["parameters"]["offset_m"] == pytest.approx(0.02, rel=0.05)
     assert d["final"]["parameters"]["mu"] == pytest.approx(0.3, rel=0.01)
-    assert [x["verdict"] for x in d["recordings"]] == ["none", "none", "displacement_offset", "none"]
+    verdicts = [x["verdict"] for x in d["recordings"]]
+    assert verdicts == ["none", "none", "displacement_offset", "none"]
     assert len(d["heldout_recordings"]) == 4
     h3 = d["heldout_recordings"][2]
     assert h3["rms_after"] < 0.2 * h3["rms_before"]  # predicted from the others' mu
