@@ -122,10 +122,13 @@ def diagnose(
         ``capstan_pull``, ``pinch`` or ``tension_profile`` (with ``x``, ``y``,
         ``metadata`` and optional ``sigma``, ``trial``, ``speed``).
     baseline : {"closed-form", "der"}
-        Baseline model family. ``der`` (capstan_pull only): the DER capstan with kinetic
+        Baseline model family. ``der`` for capstan_pull: the DER capstan with kinetic
         friction only (:class:`knotmech.diagnose.der.DERCurves`); only
         ``static_friction`` is tested against it, by the asymptotic likelihood ratio
-        (no parametric bootstrap), BIC and the held-out check.
+        (no parametric bootstrap), BIC and the held-out check. ``der`` for knot_pull:
+        the DER overhand knot (:mod:`knotmech.diagnose.der_knot`), whose interpolated
+        force law replaces the closed form; the selection, its parametric bootstrap
+        included, is the closed-form one on that surrogate.
     seed : int
         Seed of the parametric bootstrap.
     alpha : float
