@@ -140,6 +140,9 @@ def test_several_recordings_must_be_one_kind():
         diagnose_many([rec, pinch])
     with pytest.raises(InputError, match="at least one"):
         diagnose_many([])
+    cap = [make_recording("capstan_pull", None, seed=s, n=60)[0] for s in (1, 2)]
+    with pytest.raises(InputError, match="knot_pull only"):
+        diagnose_many(cap, baseline="der")
 
 
 def test_cli_takes_several_files(tmp_path):
