@@ -328,6 +328,10 @@ def diagnose_many(
         columns=singles[0].columns,
     )
     report.summary = _summary(report, singles)
+    # which recording each row of the concatenated arrays belongs to (for plotting)
+    report.row_recording = np.concatenate(
+        [np.full(d.y.size, i, dtype=int) for i, d in enumerate(datas)]
+    )
     return report
 
 
