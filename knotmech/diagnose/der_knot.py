@@ -5,8 +5,9 @@ knot (``turns``, ``rod_radius_m``, ``youngs_modulus_Pa``, ``rod_length_m``, opti
 ``density_kg_m3``, ``poisson_ratio``, ``pull_speed_m_per_s``) on a coarse mesh, at a few
 friction coefficients, and gives the pull force :math:`F(D;\mu)` at any end-to-end
 distance D and any mu from a smooth surface fitted to every run: the raw DER force
-carries a slow ripple of about 20 % rms at these settings (the coarse mesh passing
-through the knot, stick-slip of the braid), so each run is averaged over a window of
+carries a slow ripple of about 20 % rms at these settings (lag-one correlation 0.97
+between frames; probably the coarse mesh passing through the knot and stick-slip of the
+braid; a larger slip-speed tolerance did not reduce it), so each run is averaged over a window of
 two edges in D and :math:`\ln F = P_3(\ln e) + (b_0 + b_1\ln e)\ln\mu` is fitted to
 all runs together (:math:`e = L - D`; the coated-rod paper fitted mu by matching DER
 pull curves; the Jawed law is :math:`\ln F = \ln f_n(e) + \ln\mu`).
@@ -33,7 +34,12 @@ Settings (chosen for speed; the pull is quasi-static):
 - mu grid: one run at the closed-form mu, then runs at 0.85 and 1.15 times the mu that
   matches the recording's level (F is close to proportional to mu; the first run is left
   out of the surface when far from it), more runs if the fit leaves the grid (at most
-  :data:`DER_KNOT_MAX_RUNS`).
+  :data:`DER_KNOT_MAX_RUNS`);
+- a run whose force runs away (a coarse knot pulled too tight jams) is cut there; if it no
+  longer covers the recording, :class:`~knotmech.errors.SolverError` says where it jammed.
+
+Cost: 3 runs of about 7-10 s each for the IMC paper's rod (1 m, h = 1.6 mm, 79 nodes) on
+one loaded core (``benchmarks/diagnose_speed.py``).
 """
 
 from __future__ import annotations
@@ -46,7 +52,15 @@ import numpy as np
 from knotmech.diagnose.recording import Recording
 from knotmech.errors import InputError, SolverError
 
-__all__ = ["DERKnotLaw", "DERKnotRecording", "der_recording", "DER_KNOT_MAX_RUNS"]
+__all__ = [
+    "DERKnotLaw",
+    "DERKnotRecording",
+    "der_recording",
+    "extend_grid",
+    "fit_knot_der_baseline",
+    "der_made_recording",
+    "DER_KNOT_MAX_RUNS",
+]
 
 DER_KNOT_SEPARATION_SPEED = 0.06
 DER_KNOT_DT = 1e-2
