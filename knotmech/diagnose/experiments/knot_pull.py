@@ -39,6 +39,10 @@ def closure_limits() -> tuple[float, float]:
     return float(knots._SHORTENING_MIN), float(knots._SHORTENING_MAX)
 
 
+def _number(v) -> bool:
+    return isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, bool)
+
+
 class KnotPull(Experiment):
     name = "knot_pull"
     columns = ("end_to_end_m", "force_N")
@@ -58,11 +62,11 @@ class KnotPull(Experiment):
         if str(md.get("knot")).strip().lower() not in KNOTS:
             return f"metadata knot must be one of {', '.join(KNOTS)}, got {md.get('knot')!r}"
         n = md.get("turns")
-        if not isinstance(n, float) or n != round(n) or not 1 <= n <= 4:
+        if not _number(n) or n != round(n) or not 1 <= n <= 4:
             return f"metadata turns must be a whole number 1-4, got {n!r}"
         for key in ("rod_radius_m", "youngs_modulus_Pa", "rod_length_m"):
             v = md.get(key)
-            if not isinstance(v, float) or not np.isfinite(v) or v <= 0:
+            if not _number(v) or not np.isfinite(v) or v <= 0:
                 return f"metadata {key} must be a number > 0, got {v!r}"
         length = rec.meta("rod_length_m")
         if np.max(rec.x) >= length:
