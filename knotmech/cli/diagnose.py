@@ -3,12 +3,15 @@
 Example::
 
     knotmech diagnose pull.csv --json report.json --plot report.png
+    knotmech diagnose n1.csv n2.csv n3.csv --json joint.json   # one set-up, fitted together
     knotmech diagnose --template pinch > my_pinch.csv
 
 Reads and validates the recording (``docs/recordings.md``), runs
 :func:`knotmech.diagnose.diagnose`, writes the JSON report, prints the one-line
-verdict and a short summary. ``--baseline der`` (capstan_pull) uses the DER capstan
-as the baseline, see :class:`knotmech.diagnose.baselines.DERCurves`. ``--template
+verdict and a short summary; several recordings go to
+:func:`knotmech.diagnose.diagnose_many`. ``--baseline der`` uses the DER capstan
+(capstan_pull, :class:`knotmech.diagnose.der.DERCurves`) or the DER overhand knot
+(knot_pull, :mod:`knotmech.diagnose.der_knot`) as the baseline. ``--template
 KIND`` prints a valid example recording of that kind (``knotmech/data/templates``).
 The output paths (``--json``, ``--plot`` and its format) are checked before any work
 starts. Exit status 0 once the report is written (whatever the verdict); 2 on a bad
@@ -58,7 +61,10 @@ def register(subparsers) -> None:
         ),
     )
     p.add_argument(
-        "recording", metavar="REC.csv", nargs="?", help="recording file (CSV with # metadata)"
+        "recording",
+        metavar="REC.csv",
+        nargs="*",
+        help="recording file(s) (CSV with # metadata); several: one set-up, fitted together",
     )
     p.add_argument("--json", metavar="OUT.json", help="write the report here (required)")
     p.add_argument(
@@ -79,10 +85,11 @@ def register(subparsers) -> None:
         choices=("closed-form", "der"),
         default="closed-form",
         help=(
-            "baseline model family (default closed-form); der: capstan_pull only, the DER "
-            "capstan with kinetic friction only (rope-like EI, 40 elements, ~17 runs of ~0.3 s); "
+            "baseline model family (default closed-form); der: capstan_pull (the DER capstan "
+            "with kinetic friction only, rope-like EI, 40 elements, ~17 runs of ~0.3 s; "
             "static_friction re-runs it with mu_s > mu_k, decided by the asymptotic "
-            "likelihood ratio (no bootstrap), BIC and the held-out check"
+            "likelihood ratio) or knot_pull (3 DER overhand pulls on a coarse mesh, a smooth "
+            "surface in mu as the baseline, the usual bootstrap on it)"
         ),
     )
     p.add_argument("--seed", type=int, default=0, help="seed of the bootstrap, >= 0 (default 0)")
@@ -101,22 +108,24 @@ def run(args) -> int:
     if not args.recording or not args.json:
         missing = [n for n, v in (("REC.csv", args.recording), ("--json", args.json)) if not v]
         raise InputError(
-            f"missing {' and '.join(missing)}: knotmech diagnose REC.csv --json OUT.json "
-            "(or --template KIND for an example recording)"
+            f"missing {' and '.join(missing)}: knotmech diagnose REC.csv [REC2.csv ...] "
+            "--json OUT.json (or --template KIND for an example recording)"
         )
     # every output is checked before any work starts
     json_path = check_output_path(args.json, option="--json")
     plot_path = None
     if args.plot is not None:
         plot_path = check_output_path(args.plot, formats=plot_formats(), option="--plot")
-    source = Path(args.recording)
-    for option, out in (("--json", json_path), ("--plot", plot_path)):
-        if out is not None and source.exists() and out.resolve() == source.resolve():
-            raise InputError(f"{option} {out}: is the recording itself; give another file name")
-    from knotmech.diagnose import diagnose, plot_report, read_recording
+    for source in map(Path, args.recording):
+        for option, out in (("--json", json_path), ("--plot", plot_path)):
+            if out is not None and source.exists() and out.resolve() == source.resolve():
+                raise InputError(
+                    f"{option} {out}: is the recording {source} itself; give another file name"
+                )
+    from knotmech.diagnose import diagnose_many, plot_report, read_recording
 
-    rec = read_recording(args.recording)
-    report = diagnose(rec, baseline=args.baseline, seed=args.seed, alpha=args.alpha)
+    recs = [read_recording(path) for path in args.recording]
+    report = diagnose_many(recs, baseline=args.baseline, seed=args.seed, alpha=args.alpha)
     with writing(json_path, option="--json"):
         report.write_json(json_path)
     if plot_path is not None:

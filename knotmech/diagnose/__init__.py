@@ -13,12 +13,15 @@ Public API::
 Layout: one module per experiment kind in :mod:`knotmech.diagnose.experiments`
 (:class:`Experiment`) and one per effect in :mod:`knotmech.diagnose.effects`
 (:class:`Effect`), each registered once; :func:`get_experiment` and :func:`get_effect`
-are the lookups by name; :mod:`knotmech.diagnose.der` holds the DER baseline.
+are the lookups by name; :mod:`knotmech.diagnose.der` holds the DER baseline
+(:mod:`knotmech.diagnose.der_knot` that of knot_pull); :func:`diagnose_many`
+(:mod:`knotmech.diagnose.joint`) diagnoses several recordings of one set-up together.
 """
 
 from knotmech.diagnose.effects import CATALOGUE, Effect, applicable_effects, get_effect
 from knotmech.diagnose.engine import diagnose
 from knotmech.diagnose.experiments import EXPERIMENT_KINDS, Experiment, get_experiment
+from knotmech.diagnose.joint import diagnose_many
 from knotmech.diagnose.plot import plot_report
 from knotmech.diagnose.recording import (
     EXPERIMENTS,
@@ -32,6 +35,7 @@ from knotmech.diagnose.synth import make_recording
 
 __all__ = [
     "diagnose",
+    "diagnose_many",
     "Report",
     "Recording",
     "read_recording",

@@ -57,7 +57,8 @@ DER_MAX_STEPS = 1000
 def check_der_recording(rec: Recording) -> None:
     """Refuse, before any simulation, a recording the DER baseline cannot run on.
 
-    Besides the kind (``capstan_pull`` only): the wrap beyond :data:`DER_MAX_WRAP` (two
+    Besides the kind (``capstan_pull``; ``knot_pull`` is checked by
+    :mod:`knotmech.diagnose.der_knot`): the wrap beyond :data:`DER_MAX_WRAP` (two
     loops), displacements below the range of the model's shift (``-0.3`` of the
     largest), and a pull so short that one run would need more than
     :data:`DER_MAX_STEPS` implicit steps (the 0.1 s load ramp at the step
@@ -68,10 +69,12 @@ def check_der_recording(rec: Recording) -> None:
     InputError
         One line naming what is wrong.
     """
+    if rec.experiment == "knot_pull":
+        return  # the knot's own checks: knotmech.diagnose.der_knot
     if rec.experiment != "capstan_pull":
         raise InputError(
             f"baseline 'der' is not available for {rec.experiment} recordings "
-            "(capstan_pull only); use closed-form"
+            "(capstan_pull and knot_pull only); use closed-form"
         )
     theta = rec.meta("wrap_angle_rad")
     if theta > DER_MAX_WRAP:

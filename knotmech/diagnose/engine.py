@@ -49,6 +49,7 @@ import numpy as np
 
 from knotmech.diagnose.baselines import get_baseline
 from knotmech.diagnose.der import fit_der_baseline, select_der
+from knotmech.diagnose.der_knot import fit_knot_der_baseline
 from knotmech.diagnose.effects import CATALOGUE, applicable_effects, get_effect
 from knotmech.diagnose.experiments import get_experiment
 from knotmech.diagnose.fitting import (
@@ -156,10 +157,13 @@ def diagnose(
         ``capstan_pull``, ``pinch`` or ``tension_profile`` (with ``x``, ``y``,
         ``metadata`` and optional ``sigma``, ``trial``, ``speed``).
     baseline : {"closed-form", "der"}
-        Baseline model family. ``der`` (capstan_pull only): the DER capstan with kinetic
+        Baseline model family. ``der`` for capstan_pull: the DER capstan with kinetic
         friction only (:class:`knotmech.diagnose.der.DERCurves`); only
         ``static_friction`` is tested against it, by the asymptotic likelihood ratio
-        (no parametric bootstrap), BIC and the held-out check.
+        (no parametric bootstrap), BIC and the held-out check. ``der`` for knot_pull:
+        the DER overhand knot (:mod:`knotmech.diagnose.der_knot`), whose interpolated
+        force law replaces the closed form; the selection, its parametric bootstrap
+        included, is the closed-form one on that surrogate.
     seed : int
         Seed of the parametric bootstrap.
     alpha : float
@@ -188,7 +192,10 @@ def diagnose(
     gs = rec.sigma
     data = Data(rec.y, rec.mu_nominal, rec.mu_nominal_sigma)
     der = None
-    if baseline == "der":
+    if baseline == "der" and rec.experiment == "knot_pull":
+        # the DER knot law is attached to the recording; the closed-form engine follows
+        rec, base = fit_knot_der_baseline(rec, data, starts, gs)
+    elif baseline == "der":
         der, base = fit_der_baseline(rec, data, starts, gs)
     else:
         base = fit_baseline(rec, data, starts, given_sigma=gs)
@@ -288,6 +295,8 @@ def diagnose(
         "seed": seed,
         **({"der": der[0].settings()} if der is not None else {}),
     }
+    if getattr(rec, "force_law", None) is not None:
+        details["der"] = rec.force_law.settings()
     report = Report(
         experiment=rec.experiment,
         verdict=verdict,
@@ -307,6 +316,8 @@ def diagnose(
     )
     verdict_effect = CATALOGUE.get(verdict)
     report.summary = _summary(report, rec, fin_mis, base_mis, verdict_effect)
+    # the fits behind the report (not written to JSON; diagnose_many refits them jointly)
+    report.fits = {"recording": rec, "baseline": base, "final": final}
     return report
 
 

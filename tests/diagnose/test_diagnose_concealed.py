@@ -14,8 +14,13 @@ import pytest
 
 from knotmech.cli.validate import load_case
 from knotmech.diagnose.effects import CATALOGUE
+from knotmech.diagnose.synth import SYNTH_EFFECTS
 
 case = load_case("concealed_effects")
+#: experiment kinds and (kind, effect) pairs of the sample (the counts below grow with them;
+#: 3 kinds and 9 pairs when the thresholds were set)
+KINDS = len(SYNTH_EFFECTS)
+PAIRS = sum(len(v) for v in SYNTH_EFFECTS.values())
 
 
 @pytest.fixture(scope="module")
@@ -27,7 +32,7 @@ def quick(tmp_path_factory):
 def test_recovery_at_three_sigma(quick):
     result, _ = quick
     big = result["table"]["recovery_at_3_sigma_or_more_white"]
-    assert big["n"] == 28
+    assert big["n"] >= 28
     assert big["rate"] >= 0.85
 
 
@@ -37,25 +42,25 @@ def test_recovery_under_ar1_noise_at_ten_sigma(quick):
     # contact flattening in 2 of 6 such recordings
     result, _ = quick
     rows = [r for r in result["results"] if r["noise"] == "ar1" and r["size"] == 10.0]
-    assert len(rows) == 9
-    assert sum(r["verdict"] == r["effect"] for r in rows) >= 8
+    assert len(rows) == PAIRS
+    assert sum(r["verdict"] == r["effect"] for r in rows) >= PAIRS - 1
 
 
 def test_false_positives_on_nulls_white_and_ar1(quick):
     result, _ = quick
     nulls = result["table"]["nulls"]
-    assert nulls["white"]["n"] == 12 and nulls["ar1"]["n"] == 12
+    assert nulls["white"]["n"] == 4 * KINDS and nulls["ar1"]["n"] == 4 * KINDS
     assert nulls["all"]["false_positives"] <= 1
 
 
 def test_out_of_catalogue_is_never_given_a_catalogue_name(quick):
     result, _ = quick
     ooc = [r for r in result["results"] if r["effect"] == "out_of_catalogue"]
-    assert len(ooc) == 12
+    assert len(ooc) == 4 * KINDS
     named = [r for r in ooc if r["verdict"] in CATALOGUE]
     assert len(named) <= 1
     white = [r for r in ooc if r["noise"] == "white"]
-    assert sum(r["verdict"] == "unexplained" for r in white) >= 5  # of 6
+    assert sum(r["verdict"] == "unexplained" for r in white) >= len(white) - 1
 
 
 def test_json_and_plot_written(quick):

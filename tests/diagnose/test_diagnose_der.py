@@ -86,7 +86,7 @@ def test_der_refuses_other_experiments():
     fn = np.linspace(0.5, 9.0, 60)
     meta = {"rod_diameter_m": 0.004, "pinch_diameter_m": 0.008, "youngs_modulus_Pa": 1.26e6}
     rec = recording_from_arrays("pinch", fn, 0.6 * fn, metadata=meta)
-    with pytest.raises(InputError, match="capstan_pull only"):
+    with pytest.raises(InputError, match="capstan_pull and knot_pull only"):
         diagnose(rec, baseline="der")
 
 

@@ -31,6 +31,8 @@ class ContactFlattening(Effect):
     signature = "sub-linear F_t beyond a load parameter (a bend at high load)"
     reference = CLOVE + ", sec. 9 and Fig. 5(d): Amontons holds for 4F_n/(pi E d D) < ~0.1"
     report_keys = ("onset_load_parameter", "slope_ratio")
+    #: material parameters, fitted once for all recordings by diagnose_many
+    shared_parameters = ("onset_load_parameter", "slope_ratio")
     key_parameter = ("onset_load_parameter", "onset_load_parameter", "abs")
 
     @staticmethod

@@ -18,7 +18,7 @@ __all__ = ["RateDependentFriction"]
 
 class RateDependentFriction(Effect):
     name = "rate_dependent_friction"
-    experiments = ("capstan_pull", "pinch")
+    experiments = ("capstan_pull", "pinch", "knot_pull")
     parameters = {
         "dmu_dlnv": (0.0, "d mu / d ln(v): change of mu per e-fold of speed"),
         "reference_speed_m_per_s": ("-", "geometric-mean speed at which mu is reported"),
@@ -29,6 +29,8 @@ class RateDependentFriction(Effect):
     reference = "Rabinowicz, The Friction and Wear of Materials (1995): velocity-dependent friction"
     acts_everywhere = True
     report_keys = ("dmu_dlnv", "reference_speed_m_per_s")
+    #: material parameters, fitted once for all recordings by diagnose_many
+    shared_parameters = ("dmu_dlnv",)
     key_parameter = ("dmu_dlnv", "dmu_dlnv", "rel")
 
     def add_parameters(self, rec, names, lower, upper, fixed):
@@ -54,6 +56,8 @@ class RateDependentFriction(Effect):
         if kind == "capstan_pull":
             plateau = s.meta["T_low_N"] * np.exp(p["mu"] * s.meta["wrap_angle_rad"])
             slope = plateau * s.meta["wrap_angle_rad"] * np.max(np.abs(lnv))
+        elif kind == "knot_pull":  # F = mu f(D): dF/dmu = F/mu
+            slope = float(np.max(s.mean0)) / p["mu"] * np.max(np.abs(lnv))
         else:
             slope = 2 * np.max(s.x) * np.max(np.abs(lnv))
         p["dmu_dlnv"] = float(s.size * np.max(s.sd) / slope) * s.rng.choice([-1.0, 1.0])

@@ -9,6 +9,7 @@ from __future__ import annotations
 from knotmech.diagnose.experiments.base import Experiment, Stages
 from knotmech.diagnose.experiments.capstan_hold import CapstanHold
 from knotmech.diagnose.experiments.capstan_pull import CapstanPull
+from knotmech.diagnose.experiments.knot_pull import KnotPull
 from knotmech.diagnose.experiments.pinch import Pinch
 from knotmech.diagnose.experiments.tension_profile import TensionProfile
 from knotmech.errors import InputError
@@ -29,6 +30,7 @@ _register(CapstanPull())
 _register(Pinch())
 _register(TensionProfile())
 _register(CapstanHold())
+_register(KnotPull())
 
 
 def get_experiment(name: str) -> Experiment:

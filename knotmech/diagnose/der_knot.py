@@ -1,0 +1,430 @@
+r"""The DER overhand knot as the baseline of ``knot_pull`` (``--baseline der``).
+
+:class:`DERKnotLaw` runs :func:`knotmech.scenes.overhand.overhand` with the recording's
+knot (``turns``, ``rod_radius_m``, ``youngs_modulus_Pa``, ``rod_length_m``, optional
+``density_kg_m3``, ``poisson_ratio``, ``pull_speed_m_per_s``) on a coarse mesh, at a few
+friction coefficients, and gives the pull force :math:`F(D;\mu)` at any end-to-end
+distance D and any mu from a smooth surface fitted to every run: the raw DER force
+carries a slow ripple of about 20 % rms at these settings (lag-one correlation 0.97
+between frames; probably the coarse mesh passing through the knot and stick-slip of the
+braid; a larger slip-speed tolerance did not reduce it), so each run is averaged over a window of
+two edges in D and :math:`\ln F = P_3(\ln e) + (b_0 + b_1\ln e)\ln\mu` is fitted to
+all runs together (:math:`e = L - D`; the coated-rod paper fitted mu by matching DER
+pull curves; the Jawed law is :math:`\ln F = \ln f_n(e) + \ln\mu`).
+
+:func:`der_recording` returns the recording with that law attached (``force_law``): the
+:class:`~knotmech.diagnose.experiments.knot_pull.KnotPull` mean then uses it in place of
+the closed form, and the whole closed-form engine applies unchanged, its parametric
+bootstrap included: a bootstrap draw refits the interpolated DER law, which needs no
+new simulation (the draws are calibrated on the DER surrogate itself, not on the
+closed form). Effects under this baseline: ``displacement_offset`` (a shift of D) and
+``rate_dependent_friction`` (mu per row), neither of which needs a new run.
+
+Settings (chosen for speed; the pull is quasi-static):
+
+- mesh: the coarsest the start-shape generator accepts at or above :math:`L/(8h)` nodes
+  (an edge of at most a sixth of the braid's helix pitch);
+- the start shape: the generator's knot at :math:`D_0 = \min D - 0.03L` with the
+  braid strand length of the closed form at :math:`e_0 = L - D_0`; held 0.2 s, then both
+  ends pulled apart to :math:`\max D + 0.01L`;
+- separation speed 0.06 m/s (0.03 m/s each end, the quick setting of the overhand tests)
+  or the recording's ``pull_speed_m_per_s`` if larger; time step 10 ms;
+- contact range 0.3125 h, slip-speed tolerance 1e-4 m/s (implicit-contact-model paper);
+- density ``density_kg_m3`` or 1180 kg/m^3, Poisson ratio ``poisson_ratio`` or 0.5;
+- mu grid: one run at the closed-form mu, then runs at 0.85 and 1.15 times the mu that
+  matches the recording's level (F is close to proportional to mu; the first run is left
+  out of the surface when far from it), more runs if the fit leaves the grid (at most
+  :data:`DER_KNOT_MAX_RUNS`);
+- a run whose force runs away (a coarse knot pulled too tight jams) is cut there; if it no
+  longer covers the recording, :class:`~knotmech.errors.SolverError` says where it jammed.
+
+Cost: 3 runs of about 7-10 s each for the IMC paper's rod (1 m, h = 1.6 mm, 79 nodes) on
+one loaded core (``benchmarks/diagnose_speed.py``).
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, fields
+
+import numpy as np
+
+from knotmech.diagnose.recording import Recording
+from knotmech.errors import InputError, SolverError
+
+__all__ = [
+    "DERKnotLaw",
+    "DERKnotRecording",
+    "der_recording",
+    "extend_grid",
+    "fit_knot_der_baseline",
+    "der_made_recording",
+    "DER_KNOT_MAX_RUNS",
+]
+
+DER_KNOT_SEPARATION_SPEED = 0.06
+DER_KNOT_DT = 1e-2
+DER_KNOT_WAIT = 0.2
+DER_KNOT_MAX_RUNS = 6
+_DEGREE = 3
+#: a simulated force this many times the median of the run's first half is a runaway
+_RUNAWAY = 1e3
+
+
+@dataclass
+class DERKnotRecording(Recording):
+    """A knot_pull recording carrying the DER force law (``force_law(D, mu)`` -> F [N])."""
+
+    force_law: object = None
+
+
+class DERKnotLaw:
+    """DER pull force of one recording's knot, :math:`F(D;\\mu)` by interpolation.
+
+    Parameters
+    ----------
+    rec : Recording
+        A ``knot_pull`` recording (its metadata set up the knot).
+    n_nodes : int, optional
+        Mesh (default: the coarsest accepted, see the module docstring).
+    """
+
+    def __init__(self, rec, *, n_nodes=None):
+        md = rec.metadata
+        self.turns = int(rec.meta("turns"))
+        self.h = rec.meta("rod_radius_m")
+        self.E = rec.meta("youngs_modulus_Pa")
+        self.L = rec.meta("rod_length_m")
+        self.rho = float(md["density_kg_m3"]) if "density_kg_m3" in md else 1180.0
+        self.nu = float(md["poisson_ratio"]) if "poisson_ratio" in md else 0.5
+        v = md.get("pull_speed_m_per_s")
+        self.v = max(float(v), DER_KNOT_SEPARATION_SPEED) if v else DER_KNOT_SEPARATION_SPEED
+        self.d0 = float(np.min(rec.x)) - 0.03 * self.L
+        self.d1 = float(np.max(rec.x)) + 0.01 * self.L
+        self.B = self.E * np.pi * self.h**4 / 4.0
+        from knotmech.analytic.knots import overhand_knot
+
+        self.braid = float(
+            overhand_knot(
+                end_to_end_shortening=self.L - self.d0,
+                turns=self.turns,
+                mu=0.3,
+                rod_radius=self.h,
+                bending_stiffness=self.B,
+            ).braid_length
+        )
+        self.n_nodes = self._mesh() if n_nodes is None else int(n_nodes)
+        self._raw: dict = {}  # mu -> raw (D, F) of the run (in the surface)
+        self._dropped: dict = {}  # runs left out of the surface (far from the data's mu)
+        self.seconds = 0.0
+
+    def _mesh(self) -> int:
+        from knotmech.scenes.curves import overhand_knot as knot_curve
+
+        n = max(int(round(self.L / (8.0 * self.h))) + 1, 41)
+        for _ in range(12):
+            try:
+                knot_curve(
+                    self.turns,
+                    rod_length=self.L,
+                    rod_radius=self.h,
+                    end_to_end_length=self.d0,
+                    braid_length=self.braid,
+                    n_nodes=n,
+                )
+                return n
+            except InputError as exc:
+                if "coarse" not in str(exc):
+                    raise InputError(f"the DER knot cannot be set up: {exc}") from None
+                n = int(np.ceil(1.2 * n))
+        raise InputError("the DER knot needs more than ~10 000 nodes; use the closed form")
+
+    def settings(self) -> dict:
+        return {
+            "n_nodes": self.n_nodes,
+            "separation_speed_m_per_s": self.v,
+            "dt_s": DER_KNOT_DT,
+            "start_end_to_end_m": float(f"{self.d0:.6g}"),
+            "start_braid_length_m": float(f"{self.braid:.6g}"),
+            "mu_grid": [float(f"{m:.4g}") for m in self.grid],
+            "simulations": len(self._raw) + len(self._dropped),
+            "simulation_seconds": float(f"{self.seconds:.3g}"),
+        }
+
+    @property
+    def grid(self) -> np.ndarray:
+        return np.array(sorted(self._raw))
+
+    def run(self, mu: float):
+        """Simulate the pull at ``mu``; returns the raw (D, F) of the run [m, N]."""
+        mu = round(float(mu), 6)
+        if mu in self._raw:
+            return self._raw[mu]
+        from knotmech.rod.solver import SolverOptions
+        from knotmech.scenes.overhand import overhand
+
+        t0 = time.perf_counter()
+        pull = (self.d1 - self.d0) / self.v
+        res = overhand(
+            self.turns,
+            mu,
+            n_nodes=self.n_nodes,
+            rod_length=self.L,
+            rod_radius=self.h,
+            youngs_modulus=self.E,
+            density=self.rho,
+            poisson_ratio=self.nu,
+            end_to_end_length=self.d0,
+            braid_length=self.braid,
+            pull_speed=0.5 * self.v,
+            pull_both_ends=True,
+            wait_time=DER_KNOT_WAIT,
+            pull_time=pull,
+            dt=DER_KNOT_DT,
+            contact_distance=0.3125 * self.h,
+            slip_speed=1e-4,
+            n_frames=max(int(pull / DER_KNOT_DT / 2), 40),
+            n_snapshots=1,
+            options=SolverOptions(throw=False, rtol=1e-6),
+        )
+        self.seconds += time.perf_counter() - t0
+        if res.status != "success":
+            raise SolverError(f"DER knot baseline failed at mu = {mu:.4g}: {res.message}")
+        d = np.asarray(res.end_to_end, float)
+        f = np.asarray(res.pull_force, float)
+        keep = res.times > DER_KNOT_WAIT + 0.25 * (0.03 * self.L) / self.v
+        d, f = d[keep], f[keep]
+        # a coarse knot pulled too tight jams and the contact force runs away: cut there
+        ref = float(np.median(np.abs(f[: max(len(f) // 2, 1)])))
+        bad = ~np.isfinite(f) | (np.abs(f) > _RUNAWAY * ref)
+        if np.any(bad):
+            cut = int(np.argmax(bad))
+            d, f = d[:cut], f[:cut]
+        need = self.d1 - 0.01 * self.L
+        if d.size < 2 * (_DEGREE + 3) or d[-1] < need - 1e-9:
+            reached = d[-1] if d.size else self.d0
+            raise SolverError(
+                f"DER knot baseline: the simulated knot ({self.turns} turns, {self.n_nodes} "
+                f"nodes, mu = {mu:.4g}) jams at end_to_end_m = {reached:.4g}, before the "
+                f"recording's {need:.4g}; use the closed-form baseline"
+            )
+        self._raw[mu] = (d, f)
+        self._refit()
+        return d, f
+
+    def _boxcar(self, d, f) -> np.ndarray:
+        """Force averaged over a window of two edges in D (the mesh passing the knot)."""
+        w = 2.0 * self.L / (self.n_nodes - 1)
+        c = np.concatenate([[0.0], np.cumsum(f)])
+        lo = np.searchsorted(d, d - 0.5 * w, side="left")
+        hi = np.searchsorted(d, d + 0.5 * w, side="right")
+        return (c[hi] - c[lo]) / np.maximum(hi - lo, 1)
+
+    def _refit(self) -> None:
+        """Fit the surface ln F = P(ln e) + (b0 + b1 ln e) ln mu to every run.
+
+        ``P`` a cubic; the boxcar-averaged positive forces of all runs enter with equal
+        weight, so the ripple of one run is averaged with the others'.
+        """
+        zs, ms, ls = [], [], []
+        for mu, (d, f) in self._raw.items():
+            order = np.argsort(d)
+            d, f = d[order], f[order]
+            fa = self._boxcar(d, f)
+            ok = fa > 0
+            zs.append(np.log(self.L - d[ok]))
+            ms.append(np.full(ok.sum(), np.log(mu)))
+            ls.append(np.log(fa[ok]))
+        z, lm, lf = (np.concatenate(v) for v in (zs, ms, ls))
+        if z.size < 2 * (_DEGREE + 3):
+            raise SolverError("DER knot baseline: the simulated pull force is not positive")
+        cols = [z**j for j in range(_DEGREE + 1)]
+        if len(self._raw) >= 2:
+            cols += [lm, lm * z]
+        a = np.column_stack(cols)
+        self._coef = np.linalg.lstsq(a, lf, rcond=None)[0]
+        self._zrange = (float(z.min()), float(z.max()))
+
+    def log_force(self, d, mu) -> np.ndarray:
+        """ln F of the fitted surface at distances ``d`` [m] and ``mu`` (scalar or per row)."""
+        z = np.log(np.clip(self.L - np.asarray(d, float), 1e-6 * self.L, None))
+        z = np.clip(z, *self._zrange)  # flat beyond the simulated range
+        c = self._coef
+        out = sum(c[j] * z**j for j in range(_DEGREE + 1))
+        if c.size > _DEGREE + 1:
+            lm = np.log(np.maximum(np.asarray(mu, float), 1e-6))
+            out = out + (c[_DEGREE + 1] + c[_DEGREE + 2] * z) * lm
+        return out
+
+    def smooth_force(self, mu: float, d) -> np.ndarray:
+        """Force of the fitted surface at ``mu`` and distances ``d`` [N]."""
+        return np.exp(self.log_force(d, mu))
+
+    def __call__(self, d, mu) -> np.ndarray:
+        """F(D; mu) [N] of the fitted surface (``mu`` may be an array per row)."""
+        return np.exp(self.log_force(d, mu))
+
+    def fit_grid(self, rec, mu_closed: float) -> None:
+        """Run the grid: at ``mu_closed``, then at 0.85 and 1.15 times the mu that matches
+        ``rec``'s level (F close to proportional to mu); the first run is dropped from the
+        surface when it lies outside [0.7, 1.4] times that mu."""
+        self.run(mu_closed)
+        f = self.smooth_force(mu_closed, rec.x)
+        ratio = float(np.dot(f, rec.y) / np.dot(f, f))
+        mu1 = float(np.clip(mu_closed * ratio, 0.02, 3.0))
+        for m in (0.85 * mu1, 1.15 * mu1):
+            self.run(m)
+        if not 0.7 * mu1 <= mu_closed <= 1.4 * mu1:
+            self._dropped[round(float(mu_closed), 6)] = self._raw.pop(round(float(mu_closed), 6))
+            self._refit()
+
+
+def der_recording(rec, mu_closed: float) -> DERKnotRecording:
+    """``rec`` with the DER force law of its knot attached (the grid already run).
+
+    Parameters
+    ----------
+    rec : Recording
+        A ``knot_pull`` recording.
+    mu_closed : float
+        The closed-form fit's mu (the first run of the grid).
+    """
+    law = DERKnotLaw(rec)
+    law.fit_grid(rec, mu_closed)
+    vals = {f.name: getattr(rec, f.name) for f in fields(Recording)}
+    return DERKnotRecording(**vals, force_law=law)
+
+
+def extend_grid(rec: DERKnotRecording, mu: float) -> bool:
+    """Run one more grid point when ``mu`` lies outside the grid (returns True if run)."""
+    law = rec.force_law
+    g = law.grid
+    if len(law._raw) >= DER_KNOT_MAX_RUNS or g[0] * 1.02 <= mu <= g[-1] / 1.02:
+        return False
+    law.run(1.15 * mu if mu > g[-1] else mu / 1.15)
+    return True
+
+
+def fit_knot_der_baseline(rec, data, starts, gs):
+    """The DER baseline of a knot_pull recording: the closed-form fit gives the first
+    mu of the grid, then the DER law is fitted (one free parameter, mu), the grid
+    extended while the fit leaves it.
+
+    Returns
+    -------
+    rec : DERKnotRecording
+        The recording with the DER law attached (use it for everything that follows).
+    fit : Fit
+    """
+    from knotmech.diagnose.fitting import fit_baseline
+
+    if getattr(rec, "force_law", None) is not None:  # the law is already run
+        drec = rec
+    else:
+        closed = fit_baseline(rec, data, starts, given_sigma=gs)
+        drec = der_recording(rec, float(closed.params["mu"]))
+    for _ in range(DER_KNOT_MAX_RUNS):
+        fit = fit_baseline(drec, data, starts, given_sigma=gs)
+        if not extend_grid(drec, float(fit.params["mu"])):
+            break
+    return drec, fit
+
+
+#: speeds of the DER-made recordings with rate-dependent friction [m/s]
+_SPEEDS = np.array([1e-4, 1e-3, 1e-2])
+
+
+def der_made_recording(
+    turns: int = 1,
+    mu: float = 0.3,
+    effect: str | None = None,
+    *,
+    size: float = 8.0,
+    n: int = 90,
+    seed: int = 0,
+    noise_fraction: float = 0.03,
+):
+    """A knot_pull recording made by the DER knot (the IMC paper's rod), with an effect.
+
+    The mean is the DER law (:class:`DERKnotLaw`, its surface fitted to runs at 0.85 and
+    1.2 times ``mu``: a grid of its own, not the one the baseline runs) at ``mu`` (the
+    ripple of the raw force is numerical), with ``effect`` planted at ``size``
+    noise sd (as :func:`knotmech.diagnose.make_recording` plants it: the effect's
+    ``plant`` with the DER law as the mean), plus white noise of ``noise_fraction`` of
+    the local force plus a quarter of that of the median force (a force sensor's relative
+    error and a floor).
+
+    Parameters
+    ----------
+    turns : int
+    mu : float
+    effect : None, "displacement_offset" or "rate_dependent_friction"
+    size : float
+    n : int
+        Rows (split over three speeds for rate-dependent friction).
+    seed : int
+    noise_fraction : float
+
+    Returns
+    -------
+    rec : Recording
+    truth : dict
+        ``effect``, ``mu``, the planted parameters, ``noise_sd`` and ``law`` (the
+        :class:`DERKnotLaw` holding the run at ``mu``).
+    """
+    from knotmech.diagnose.effects import PlantContext, get_effect
+    from knotmech.diagnose.experiments import get_experiment
+    from knotmech.diagnose.experiments.knot_pull import KnotPull
+
+    rng = np.random.default_rng(seed)
+    exp = get_experiment("knot_pull")
+    meta = {
+        "experiment": "knot_pull",
+        "knot": "overhand",
+        "turns": float(turns),
+        "rod_radius_m": 1.6e-3,
+        "youngs_modulus_Pa": 0.18e6,
+        "rod_length_m": 1.0,
+        "pull_speed_m_per_s": DER_KNOT_SEPARATION_SPEED,
+    }
+    # looser than the closed-form sets: the coarse DER knot jams near the law's limit
+    e_tight = {1: 0.25, 2: 0.38, 3: 0.5, 4: 0.6}[int(turns)]
+    eff = get_effect(effect) if effect is not None else None
+    speeds = _SPEEDS if effect == "rate_dependent_friction" else _SPEEDS[:1]
+    m = n // len(speeds)
+    x = np.tile(np.linspace(1.0 - 0.7, 1.0 - e_tight, m), len(speeds))
+    trial = np.repeat(np.arange(len(speeds)), m)
+    speed = np.repeat(speeds, m) if len(speeds) > 1 else None
+    cols = KnotPull.columns
+    base = Recording("knot_pull", x, np.zeros_like(x), dict(meta), None, trial, speed, "", cols)
+    law = DERKnotLaw(base)
+    for m in (0.85 * mu, 1.2 * mu):  # a grid of its own, not the baseline's
+        law.run(m)
+    vals = {f.name: getattr(base, f.name) for f in fields(Recording)}
+    made = DERKnotRecording(**vals, force_law=law)
+    p = {"mu": float(mu)}
+    mean0 = exp.mean(made, p, ())
+    sd = noise_fraction * (mean0 + 0.25 * float(np.median(mean0)))
+    truth = {"effect": effect or "none", "mu": float(mu), "size": float(size)}
+    mean = mean0
+    if eff is not None:
+        ctx = PlantContext(
+            experiment=exp,
+            rec=made,
+            meta=meta,
+            x=x,
+            speed=speed,
+            p=dict(p),
+            mean0=mean0,
+            sd=sd,
+            size=size,
+            rng=rng,
+        )
+        p, planted = eff.plant("knot_pull", ctx)
+        truth.update(planted)
+        mean = exp.mean(made, p, (eff,))
+    y = mean + sd * rng.standard_normal(x.size)
+    truth["noise_sd"] = sd
+    truth["law"] = law
+    rec = Recording("knot_pull", x, y, meta, None, trial, speed, "<der-made>", cols)
+    return rec, truth

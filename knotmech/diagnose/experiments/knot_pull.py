@@ -1,0 +1,165 @@
+r"""``knot_pull``: an overhand knot in a rod pulled tight by its two ends (spec section 5).
+
+Columns ``end_to_end_m`` (D, the distance between the pulled ends), ``force_N`` (F);
+metadata ``knot`` (``overhand``), ``turns`` (n, 1-4), ``rod_radius_m`` (h),
+``youngs_modulus_Pa`` (E), ``rod_length_m`` (L); optional ``density_kg_m3``,
+``poisson_ratio``, ``pull_speed_m_per_s`` (used by the DER baseline).
+
+Closed-form baseline: the braid law of Jawed, Dieleman, Audoly & Reis, PRL 115, 118302
+(2015), Eqs. (3)-(5) with the loop closure
+(:func:`knotmech.analytic.knots.overhand_pull_force`), at the shortening
+:math:`e = L - D`:
+
+.. math:: F(D) = \mu\, f_n(L - D), \qquad f_n(e) = 2\pi n h B k(e)^3,
+          \quad B = E\pi h^4/4,
+
+free parameter ``mu`` (rod-rod kinetic friction). The law is linear in mu, so
+:math:`f_n` is evaluated once per shifted axis. With ``--baseline der`` the force law
+is the DER simulation of the same knot (:mod:`knotmech.diagnose.der_knot`), which the
+recording carries as ``force_law``; the stages are the same.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from knotmech.analytic.knots import overhand_knot
+from knotmech.diagnose.experiments.base import Experiment, Stages
+
+__all__ = ["KnotPull", "closure_limits"]
+
+#: the knots this kind knows
+KNOTS = ("overhand",)
+
+
+def closure_limits() -> tuple[float, float]:
+    """(smallest, largest) :math:`e/(n^2h)` the Jawed et al. closure represents [-]."""
+    from knotmech.analytic import knots
+
+    return float(knots._SHORTENING_MIN), float(knots._SHORTENING_MAX)
+
+
+def _number(v) -> bool:
+    return isinstance(v, (int, float, np.integer, np.floating)) and not isinstance(v, bool)
+
+
+class KnotPull(Experiment):
+    name = "knot_pull"
+    columns = ("end_to_end_m", "force_N")
+    required_metadata = ("knot", "turns", "rod_radius_m", "youngs_modulus_Pa", "rod_length_m")
+    control_nonnegative = True
+    stages = (
+        "friction(mu) -> mu per row; knot_shift(None) -> the true end-to-end distance "
+        "per row (default the recorded one); output(F) -> the measured force"
+    )
+
+    def __init__(self):
+        self._cache: dict = {}
+
+    # --- recording -------------------------------------------------------------------
+    def check(self, rec):
+        md = rec.metadata
+        if str(md.get("knot")).strip().lower() not in KNOTS:
+            return f"metadata knot must be one of {', '.join(KNOTS)}, got {md.get('knot')!r}"
+        n = md.get("turns")
+        if not _number(n) or n != round(n) or not 1 <= n <= 4:
+            return f"metadata turns must be a whole number 1-4, got {n!r}"
+        for key in ("rod_radius_m", "youngs_modulus_Pa", "rod_length_m"):
+            v = md.get(key)
+            if not _number(v) or not np.isfinite(v) or v <= 0:
+                return f"metadata {key} must be a number > 0, got {v!r}"
+        length = rec.meta("rod_length_m")
+        if np.max(rec.x) >= length:
+            return (
+                f"end_to_end_m must be below rod_length_m = {length:g} (the knot holds rod), "
+                f"got {np.max(rec.x):g}"
+            )
+        lo, _ = closure_limits()
+        e_min = lo * n**2 * rec.meta("rod_radius_m")
+        if np.min(length - rec.x) <= e_min:
+            return (
+                f"end_to_end_m up to {np.max(rec.x):g} leaves less rod in the knot than the "
+                f"Jawed et al. closure allows (L - D must exceed {e_min:.4g} m for {int(n)} turns)"
+            )
+        return None
+
+    # --- baseline ----------------------------------------------------------------------
+    def bending_stiffness(self, rec) -> float:
+        """B = E pi h^4 / 4 [N m^2]."""
+        return rec.meta("youngs_modulus_Pa") * np.pi * rec.meta("rod_radius_m") ** 4 / 4.0
+
+    def unit_force(self, rec, d) -> np.ndarray:
+        """Closed-form force at mu = 1 at end-to-end distances ``d`` [m] -> [N].
+
+        ``d`` is clipped into the range the closure represents (a shifted axis may
+        leave it while a fit explores).
+        """
+        n = int(rec.meta("turns"))
+        h = rec.meta("rod_radius_m")
+        length = rec.meta("rod_length_m")
+        b = self.bending_stiffness(rec)
+        d = np.asarray(d, float)
+        key = (n, h, length, b, d.tobytes())
+        hit = self._cache.get(key)
+        if hit is not None:
+            return hit
+        lo, hi = closure_limits()
+        e = np.clip(length - d, lo * n**2 * h * (1 + 1e-6), min(hi * n**2 * h, length) * 0.999)
+        out = overhand_knot(
+            end_to_end_shortening=e, turns=n, mu=1.0, rod_radius=h, bending_stiffness=b
+        ).force
+        if len(self._cache) > 256:
+            self._cache.clear()
+        self._cache[key] = out
+        return out
+
+    def start(self, rec, y) -> dict:
+        law = getattr(rec, "force_law", None)
+        if law is None:
+            f, mu0 = self.unit_force(rec, rec.x), 1.0
+        else:  # the DER law: scaled from the middle of its mu grid
+            mu0 = float(np.median(law.grid))
+            f = law(rec.x, mu0)
+        return {"mu": max(mu0 * float(np.dot(f, y) / np.dot(f, f)), 1e-3), "offset_m": 0.0}
+
+    def mean(self, rec, p, effects=()):
+        st = Stages(rec, p, effects)
+        mu = st.apply("friction", p["mu"])
+        d = st.apply("knot_shift", None)
+        if d is None:
+            d = rec.x
+        law = getattr(rec, "force_law", None)
+        force = mu * self.unit_force(rec, d) if law is None else law(d, mu)
+        return st.apply("output", force)
+
+    # --- synthetic recordings ------------------------------------------------------------
+    def synth_setup(self, rng, n, speeds):
+        turns = int(rng.integers(1, 5))
+        meta = {
+            "knot": "overhand",
+            "turns": float(turns),
+            "rod_radius_m": 1.6e-3,
+            "youngs_modulus_Pa": 0.18e6,
+            "rod_length_m": 1.0,
+        }
+        # from a loose knot (e = 0.7 m) to where the slender-loop law stays valid
+        e_tight = {1: 0.22, 2: 0.32, 3: 0.42, 4: 0.52}[turns]
+        m = n // len(speeds)
+        d1 = np.linspace(1.0 - 0.7, 1.0 - e_tight, m)
+        x = np.tile(d1, len(speeds))
+        params = {"mu": float(rng.uniform(0.2, 0.5))}
+        trial = np.repeat(np.arange(len(speeds)), m)
+        speed = np.repeat(speeds, m) if len(speeds) > 1 else None
+        return meta, x, trial, speed, params, {}
+
+    def synth_noise_scale(self, meta, mean0) -> float:
+        """Noise sd [N]: 1 % of the median force (the force spans a decade)."""
+        return 0.01 * float(np.median(np.abs(mean0)))
+
+    def out_of_catalogue(self, x, meta, p, mean0, sd, size, rng):
+        """A local force bump (a strand catching: Gaussian, 5 % of the span wide)."""
+        span = x[-1] - x[0]
+        c = x[0] + rng.uniform(0.3, 0.7) * span
+        w = 0.05 * span
+        i = int(np.argmin(np.abs(x - c)))
+        return mean0 + size * sd[i] * np.exp(-0.5 * ((x - c) / w) ** 2)

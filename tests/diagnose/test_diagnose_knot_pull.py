@@ -1,0 +1,198 @@
+"""The knot_pull kind (closed form and DER baselines) and several recordings at once
+(issue 12 parts 3 and 4).
+
+Fast tests use the closed-form baseline (the Jawed et al. 2015 braid law); the DER ones
+simulate overhand knots (about 20-60 s each on a loaded 2-core machine) and are slow.
+"""
+
+import json
+import subprocess
+import sys
+
+import numpy as np
+import pytest
+
+from knotmech.analytic.knots import overhand_pull_force
+from knotmech.diagnose import (
+    diagnose,
+    diagnose_many,
+    get_effect,
+    get_experiment,
+    make_recording,
+    parse_recording,
+    recording_from_arrays,
+)
+from knotmech.errors import InputError, RecordingError
+
+KNOT = get_experiment("knot_pull")
+H, E, L = 1.6e-3, 0.18e6, 1.0
+B = E * np.pi * H**4 / 4
+E_TIGHT = {1: 0.22, 2: 0.32, 3: 0.42, 4: 0.52}
+
+
+def _meta(turns):
+    return {
+        "knot": "overhand",
+        "turns": float(turns),
+        "rod_radius_m": H,
+        "youngs_modulus_Pa": E,
+        "rod_length_m": L,
+    }
+
+
+def knot_recording(turns, mu, seed, *, offset=0.0, n=80, noise=0.01):
+    """A closed-form knot pull (IMC paper's rod), optionally with a displacement offset."""
+    rng = np.random.default_rng(seed)
+    x = np.linspace(0.3, L - E_TIGHT[turns], n)
+    r0 = recording_from_arrays("knot_pull", x, np.ones_like(x), metadata=_meta(turns))
+    m = KNOT.mean(r0, {"mu": mu, "offset_m": offset}, (get_effect("displacement_offset"),))
+    y = m + noise * np.median(m) * rng.standard_normal(n)
+    return recording_from_arrays("knot_pull", x, y, metadata=_meta(turns))
+
+
+def test_closed_form_mean_is_the_jawed_law():
+    """The baseline mean is overhand_pull_force at e = L - D, linear in mu."""
+    rec = knot_recording(2, 0.3, 0, noise=0.0)
+    f = KNOT.mean(rec, {"mu": 0.37})
+    ref = overhand_pull_force(L - rec.x, 2, 0.37, H, B)
+    np.testing.assert_allclose(f, ref, rtol=1e-12)
+    # linear in mu (Jawed et al. 2015, Eq. 4), and a shifted axis is the law at D + offset
+    np.testing.assert_allclose(KNOT.mean(rec, {"mu": 0.74}), 2 * f, rtol=1e-12)
+    off = KNOT.mean(rec, {"mu": 0.37, "offset_m": 0.01}, (get_effect("displacement_offset"),))
+    np.testing.assert_allclose(off, overhand_pull_force(L - rec.x - 0.01, 2, 0.37, H, B))
+
+
+@pytest.mark.parametrize(
+    ("effect", "seed"),
+    [(None, 1), (None, 2), ("displacement_offset", 1), ("rate_dependent_friction", 2)],
+)
+def test_closed_form_planted_effects_are_named(effect, seed):
+    rec, truth = make_recording("knot_pull", effect, size=6.0, seed=seed, n=120)
+    r = diagnose(rec, seed=seed)
+    assert r.verdict == (effect or "none")
+    mu = r.final["parameters"]["mu"]
+    if effect is None:
+        assert r.effects == [] and r.regions == []
+    else:
+        key = get_effect(effect).key_parameter[0]
+        got = r.effects[0]["parameters"][key]
+        assert got == pytest.approx(truth[key], rel=0.2)
+        assert r.heldout_rms_after < r.heldout_rms_before
+    assert 0.1 < mu < 0.6
+
+
+def test_out_of_catalogue_bump_is_unexplained():
+    rec, _ = make_recording("knot_pull", "out_of_catalogue", size=8.0, seed=1, n=120)
+    assert diagnose(rec, seed=1).verdict == "unexplained"
+
+
+def _text(meta, rows=12):
+    head = "".join(f"# {k}: {v}\n" for k, v in meta.items())
+    x = np.linspace(0.3, 0.6, rows)
+    body = "".join(f"{a:.4f},{1e-3 * (1 + a):.6g}\n" for a in x)
+    return "# experiment: knot_pull\n" + head + "end_to_end_m,force_N\n" + body
+
+
+def test_bad_knot_metadata_is_one_line():
+    good = {k: (int(v) if k == "turns" else v) for k, v in _meta(2).items()}
+    assert parse_recording(_text(good), source="k.csv").experiment == "knot_pull"
+    for key, value, words in (
+        ("turns", 5, "turns must be a whole number 1-4"),
+        ("knot", "bowline", "knot must be one of overhand"),
+        ("rod_length_m", 0.5, "must be below rod_length_m"),
+        ("rod_length_m", 0.61, "leaves less rod in the knot"),
+    ):
+        with pytest.raises(RecordingError, match=words) as exc:
+            parse_recording(_text(dict(good, **{key: value})), source="k.csv")
+        assert "\n" not in str(exc.value) and "k.csv" in str(exc.value)
+
+
+def test_several_recordings_share_mu_and_report_per_recording():
+    """Knots of 1-4 turns in one rod (mu 0.3); an offset in the 3-turn pull only."""
+    recs = [knot_recording(n, 0.3, n, offset=0.02 if n == 3 else 0.0) for n in (1, 2, 3, 4)]
+    r = diagnose_many(recs)
+    d = r.to_dict()
+    assert d["verdict"] == "displacement_offset"
+    assert [e["name"] for e in d["effects"]] == ["displacement_offset"]
+    assert d["effects"][0]["recordings"] == ["recording 3"]
+    assert d["effects"][0]["parameters"]["offset_m"] == pytest.approx(0.02, rel=0.05)
+    assert d["final"]["parameters"]["mu"] == pytest.approx(0.3, rel=0.01)
+    verdicts = [x["verdict"] for x in d["recordings"]]
+    assert verdicts == ["none", "none", "displacement_offset", "none"]
+    assert len(d["heldout_recordings"]) == 4
+    h3 = d["heldout_recordings"][2]
+    assert h3["rms_after"] < 0.2 * h3["rms_before"]  # predicted from the others' mu
+    for rec in d["recordings"]:
+        assert {"file", "regions", "rms_before", "rms_after"} <= set(rec)
+    json.dumps(d)
+
+
+def test_one_recording_keeps_the_single_report():
+    rec = knot_recording(2, 0.3, 7)
+    a, b = diagnose(rec, seed=3).to_dict(), diagnose_many([rec], seed=3).to_dict()
+    assert a == b and "recordings" not in b
+
+
+def test_several_recordings_must_be_one_kind():
+    rec = knot_recording(1, 0.3, 1)
+    pinch, _ = make_recording("pinch", None, seed=1, n=60)
+    with pytest.raises(InputError, match="one experiment kind"):
+        diagnose_many([rec, pinch])
+    with pytest.raises(InputError, match="at least one"):
+        diagnose_many([])
+    cap = [make_recording("capstan_pull", None, seed=s, n=60)[0] for s in (1, 2)]
+    with pytest.raises(InputError, match="knot_pull only"):
+        diagnose_many(cap, baseline="der")
+
+
+def test_cli_takes_several_files(tmp_path):
+    paths = []
+    for n in (1, 2):
+        rec = knot_recording(n, 0.3, n, n=40)
+        p = tmp_path / f"knot{n}.csv"
+        head = "".join(f"# {k}: {v}\n" for k, v in _meta(n).items())
+        rows = "".join(f"{a:.6g},{b:.6g}\n" for a, b in zip(rec.x, rec.y, strict=True))
+        p.write_text("# experiment: knot_pull\n" + head + "end_to_end_m,force_N\n" + rows)
+        paths.append(str(p))
+    out = tmp_path / "r.json"
+    run = subprocess.run(
+        [sys.executable, "-m", "knotmech", "diagnose", *paths, "--json", str(out)],
+        capture_output=True,
+        text=True,
+        timeout=300,
+    )
+    assert run.returncode == 0, run.stderr
+    d = json.loads(out.read_text())
+    assert [x["file"] for x in d["recordings"]] == ["knot1.csv", "knot2.csv"]
+    assert d["verdict"] == "none"
+
+
+# --- the DER baseline (slow: overhand simulations) ---------------------------------------
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize(
+    ("effect", "turns", "mu"),
+    [(None, 1, 0.3), (None, 2, 0.4), ("displacement_offset", 2, 0.4)],
+)
+def test_der_baseline_on_der_made_recordings(effect, turns, mu):
+    """DER-made knot pulls (a grid of their own): mu is recovered, a null is none, an
+    offset is found and named."""
+    from knotmech.diagnose.der_knot import der_made_recording
+
+    rec, truth = der_made_recording(turns, mu, effect, size=8.0, seed=turns)
+    r = diagnose(rec, baseline="der", seed=1)
+    assert r.verdict == (effect or "none")
+    assert r.final["parameters"]["mu"] == pytest.approx(mu, rel=0.1)
+    assert r.details["der"]["simulations"] <= 6
+
+
+@pytest.mark.slow
+def test_der_baseline_finds_rate_dependence():
+    from knotmech.diagnose.der_knot import der_made_recording
+
+    rec, truth = der_made_recording(1, 0.3, "rate_dependent_friction", size=8.0, seed=3)
+    r = diagnose(rec, baseline="der", seed=1)
+    assert r.verdict == "rate_dependent_friction"
+    got = r.effects[0]["parameters"]["dmu_dlnv"]
+    assert got == pytest.approx(truth["dmu_dlnv"], rel=0.3)
