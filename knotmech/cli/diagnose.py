@@ -120,7 +120,7 @@ def run(args) -> int:
         for option, out in (("--json", json_path), ("--plot", plot_path)):
             if out is not None and source.exists() and out.resolve() == source.resolve():
                 raise InputError(
-                    f"{option} {out}: is the recording {source} itself; give another file name"
+                    f"{option} {out}: is the recording itself ({source}); give another file name"
                 )
     from knotmech.diagnose import diagnose_many, plot_report, read_recording
 

@@ -44,7 +44,8 @@ def knot_recording(turns, mu, seed, *, offset=0.0, n=80, noise=0.01):
     """A closed-form knot pull (IMC paper's rod), optionally with a displacement offset."""
     rng = np.random.default_rng(seed)
     x = np.linspace(0.3, L - E_TIGHT[turns], n)
-    r0 = recording_from_arrays("knot_pull", x, np.ones_like(x), metadata=_meta(turns))
+    # placeholder readings (not constant: the reader refuses a constant reading)
+    r0 = recording_from_arrays("knot_pull", x, 1.0 + x, metadata=_meta(turns))
     m = KNOT.mean(r0, {"mu": mu, "offset_m": offset}, (get_effect("displacement_offset"),))
     y = m + noise * np.median(m) * rng.standard_normal(n)
     return recording_from_arrays("knot_pull", x, y, metadata=_meta(turns))

@@ -26,6 +26,18 @@ def reference_speed(rec) -> float:
     return float(np.exp(np.mean(np.log(rec.speed))))
 
 
+def amplitude_for_size(mean_of, mean0, sd, size, a0) -> float:
+    """Amplitude ``a`` of an effect whose largest change ``max |mean_of(a) - mean0| / sd``
+    equals ``size`` (secant steps from ``a0``; the change is nearly linear in ``a``)."""
+    a = float(a0)
+    for _ in range(3):
+        change = float(np.max(np.abs(mean_of(a) - mean0) / sd))
+        if change <= 0:
+            return a
+        a = a * size / change
+    return a
+
+
 def amplitude_beyond_mu(mean_of, baseline_of_mu, mu0, sd, size, a0) -> float:
     """Amplitude ``a`` whose change *beyond what a refitted mu absorbs* is ``size`` sd.
 

@@ -36,7 +36,8 @@ def closure_limits() -> tuple[float, float]:
     """(smallest, largest) :math:`e/(n^2h)` the Jawed et al. closure represents [-]."""
     from knotmech.analytic import knots
 
-    return float(knots._SHORTENING_MIN), float(knots._SHORTENING_MAX)
+    lo, hi = knots._shortening_bounds()
+    return float(lo), float(hi)
 
 
 def _number(v) -> bool:
