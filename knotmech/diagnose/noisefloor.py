@@ -62,8 +62,11 @@ __all__ = [
 ]
 
 #: the fewest independent stretches, n (1 - rho)/(1 + rho), at which a fitted AR(1)
-#: model may be told from a smooth mismatch (fewer: ``undetermined``)
-N_EFF_MIN = 10.0
+#: model may be told from a smooth mismatch (fewer: ``unexplained``/``undetermined``):
+#: half the 10 knots of the structure test (:func:`~knotmech.diagnose.locate.flexible_mismatch`).
+#: Measured: smooth misfits folded into the noise leave 3.0-3.7 (issue 14's nips of 30
+#: and 100 sd at 240 rows), AR(1) nulls at rho = 0.9 and 200-240 rows 7.8-8.9
+N_EFF_MIN = 5.0
 #: an outlier lies farther than this many high-frequency sd from its running median
 OUTLIER_SD = 8.0
 #: most rows called outliers (a larger share is not outliers but the data)
