@@ -365,7 +365,12 @@ def _noise_floor_check(rec, final, starts, rng, alpha):
     ``unexplained``: located under white noise at the high-frequency level).
     """
     resid = rec.y - final.mean
-    floor = noise_floor(resid, rec.x, rec.trial, final.noise, final.mean, starts, rng)
+    # enough white draws to resolve alpha (a counted p is at least 1/(B + 1)); fewer on
+    # long recordings, where each draw costs n normal deviates
+    draws = int(np.ceil(3.0 / alpha)) + (200 if rec.n <= 20_000 else 0)
+    floor = noise_floor(
+        resid, rec.x, rec.trial, final.noise, final.mean, starts, rng, draws=max(draws, 199)
+    )
     verdict, reason = noise_floor_verdict(floor, alpha)
     regions = []
     if verdict == "unexplained":

@@ -19,7 +19,9 @@ Three statistics of the remainder ``r`` of the would-be ``none`` model:
 
 - ``level``: :math:`R = \mathrm{rms}(r)/\hat\sigma_\mathrm{hf}`; under white noise
   :math:`R \approx 1`. Its p-value is counted from white-noise draws of the same rows
-  and trials, the statistic recomputed on each (the estimate's own scatter included).
+  and trials, the statistic recomputed on each (the estimate's own scatter included);
+  beyond 20 000 rows a normal tail whose mean and sd are measured on 20 000-row draws
+  (sd scaled by the square root of the row ratio).
   AR(1) noise of lag-one correlation :math:`\rho` gives
   :math:`R^2 \approx 3/((1-\rho)(3-\rho))`, so :math:`R` names the correlation
   ``rho_needed`` = :math:`2 - \sqrt{1 + 3/R^2}` that noise would need to explain it.
@@ -73,6 +75,8 @@ OUTLIER_SD = 8.0
 OUTLIER_SHARE = 0.05
 #: white-noise draws calibrating ``level`` and ``hf_white``
 _DRAWS = 400
+#: up to this many rows the p-values are counted from full-size white draws
+_N_COUNTED = 20_000
 _MAD = 1.482602218505602
 
 
@@ -138,6 +142,21 @@ def _d1_lag1(r2d: np.ndarray, seg: np.ndarray) -> np.ndarray:
     num = np.sum((d1[1:] * d1[:-1])[pair], axis=0)
     den = np.sum(d1 * d1, axis=0)
     return num / np.where(den > 0, den, 1.0)
+
+
+def _white_draws(seg, draws, rng):
+    """``level`` and ``hf_lag1`` of ``draws`` white-noise series laid out as ``seg``."""
+    n = seg.size
+    sims_level, sims_hf = [], []
+    chunk = max(1, min(draws, 2_000_000 // max(n, 1)))
+    done = 0
+    while done < draws:
+        b = min(chunk, draws - done)
+        z = rng.standard_normal((n, b))
+        sims_level.append(_level(z, seg))
+        sims_hf.append(_d1_lag1(z, seg))
+        done += b
+    return np.concatenate(sims_level), np.concatenate(sims_hf)
 
 
 def _level(r2d: np.ndarray, seg: np.ndarray) -> np.ndarray:
@@ -229,20 +248,20 @@ def noise_floor(
     r = resid[o][:, None]
     level = float(_level(r, seg)[0])
     hf_l1 = float(_d1_lag1(r, seg)[0])
-    sims_level = []
-    sims_hf = []
-    chunk = max(1, min(draws, 2_000_000 // max(n, 1)))
-    done = 0
-    while done < draws:
-        b = min(chunk, draws - done)
-        z = rng.standard_normal((n, b))
-        sims_level.append(_level(z, seg))
-        sims_hf.append(_d1_lag1(z, seg))
-        done += b
-    sims_level = np.concatenate(sims_level)
-    sims_hf = np.concatenate(sims_hf)
-    p_level = (1 + int(np.sum(sims_level >= level))) / (draws + 1)
-    p_hf = (1 + int(np.sum(sims_hf >= hf_l1))) / (draws + 1)
+    if n <= _N_COUNTED:
+        sims_level, sims_hf = _white_draws(seg, draws, rng)
+        p_level = (1 + int(np.sum(sims_level >= level))) / (draws + 1)
+        p_hf = (1 + int(np.sum(sims_hf >= hf_l1))) / (draws + 1)
+    else:
+        # long recordings: both statistics are averages over n rows, normal to order
+        # 1/sqrt(n); their mean and sd are measured on _N_COUNTED white rows (one segment)
+        # and the sd scaled by sqrt(_N_COUNTED / n)
+        sims_level, sims_hf = _white_draws(np.zeros(_N_COUNTED, int), min(draws, 200), rng)
+        shrink = np.sqrt(_N_COUNTED / n)
+        ll = np.log(sims_level)
+        z_l = (np.log(level) - np.mean(ll)) / (np.std(ll) * shrink)
+        z_h = (hf_l1 - np.mean(sims_hf)) / (np.std(sims_hf) * shrink)
+        p_level, p_hf = float(stats.norm.sf(z_l)), float(stats.norm.sf(z_h))
     rho_needed = float(2.0 - np.sqrt(1.0 + 3.0 / max(level, 1.0) ** 2))
     e = noise.whiten(resid, noise.sd(mean), starts)
     pair = ~starts[1:]
