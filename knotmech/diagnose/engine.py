@@ -61,9 +61,16 @@ from knotmech.diagnose.fitting import (
     heldout_innovation_rms,
 )
 from knotmech.diagnose.locate import flexible_mismatch, regions_from_mask
+from knotmech.diagnose.noisefloor import (
+    OUTLIER_SD,
+    find_outliers,
+    noise_floor,
+    noise_floor_verdict,
+    without_rows,
+)
 from knotmech.diagnose.recording import Recording, read_recording, recording_from_arrays
 from knotmech.diagnose.report import Report, effect_parameters, public_parameters
-from knotmech.diagnose.stats import monte_carlo_pvalue, trial_starts
+from knotmech.diagnose.stats import NoiseModel, monte_carlo_pvalue, trial_starts
 from knotmech.errors import DiagnoseError, InputError, KnotmechError
 
 __all__ = ["diagnose"]
@@ -182,6 +189,7 @@ def diagnose(
     )
     get_baseline(baseline).check(rec)
     rec, reduced = get_experiment(rec.experiment).reduce(rec)
+    rec, outliers = _drop_outliers(rec)
     only = _resolve_effects(effects)
     if not 0 < alpha < 1:
         raise InputError(f"alpha must lie in (0, 1), got {alpha!r}")
@@ -243,6 +251,9 @@ def diagnose(
     else:
         verdict = "none"
         regions = []
+    floor, floor_reason = None, ""
+    if verdict == "none":
+        floor, verdict, floor_reason, regions = _noise_floor_check(rec, final, starts, rng, alpha)
     fin_public = public_parameters(final.params, final.model.effect_objects, rec)
     base_public = public_parameters(base.params, (), rec)
     effects_out = []
@@ -290,7 +301,13 @@ def diagnose(
         "selection_steps": steps,
         "confusable_with": {a[0].name: list(a[0].confusable_with) for a in accepted},
         "skipped_effects": skipped,
+        **(
+            {"noise_floor": {**floor.describe(), "reason": floor_reason}}
+            if floor is not None
+            else {}
+        ),
         **({"reduced": reduced} if reduced else {}),
+        **({"outliers": outliers} if outliers else {}),
         "alpha": alpha,
         "seed": seed,
         **({"der": der[0].settings()} if der is not None else {}),
@@ -319,6 +336,51 @@ def diagnose(
     # the fits behind the report (not written to JSON; diagnose_many refits them jointly)
     report.fits = {"recording": rec, "baseline": base, "final": final}
     return report
+
+
+def _drop_outliers(rec):
+    """``rec`` without its isolated outliers, and their report (None when there are none).
+
+    See :func:`knotmech.diagnose.noisefloor.find_outliers`; the rows are those of the
+    recording as diagnosed (after any reduction), counted from 0.
+    """
+    rows, size = find_outliers(rec.y, rec.x, rec.trial)
+    if rows.size == 0 or rec.n - rows.size < 8:
+        return rec, None
+    out = {
+        "rows": [int(i) for i in rows],
+        rec.columns[0]: [float(f"{v:.6g}") for v in rec.x[rows]],
+        rec.columns[1]: [float(f"{v:.6g}") for v in rec.y[rows]],
+        "size_sd": [float(f"{v:.3g}") for v in size],
+        "note": "left out of every fit: farther than "
+        f"{OUTLIER_SD:g} high-frequency noise sd from the running median of 5 rows",
+    }
+    return without_rows(rec, rows), out
+
+
+def _noise_floor_check(rec, final, starts, rng, alpha):
+    """A would-be ``none`` judged against the high-frequency noise floor.
+
+    See :mod:`knotmech.diagnose.noisefloor`. Returns the floor, the verdict (``none``,
+    ``unexplained`` or ``undetermined``), the reason and the regions (for
+    ``unexplained``: located under white noise at the high-frequency level).
+    """
+    resid = rec.y - final.mean
+    # enough white draws to resolve alpha (a counted p is at least 1/(B + 1)); fewer on
+    # long recordings, where each draw costs n normal deviates
+    draws = int(np.ceil(3.0 / alpha)) + (200 if rec.n <= 20_000 else 0)
+    floor = noise_floor(
+        resid, rec.x, rec.trial, final.noise, final.mean, starts, rng, draws=max(draws, 199)
+    )
+    verdict, reason = noise_floor_verdict(floor, alpha)
+    regions = []
+    if verdict == "unexplained":
+        white = NoiseModel(floor.sigma_hf, 0.0, 0.0, 1.0)
+        mis = flexible_mismatch(
+            rec.x, resid, final.mean, white, starts, rec.trial, rng=rng, decide_at=alpha
+        )
+        regions = mis.regions or [(float(np.min(rec.x)), float(np.max(rec.x)))]
+    return floor, verdict, reason, regions
 
 
 def _select_closed_form(base, rec, data, starts, gs, rng, alpha, effects, max_effects):
@@ -495,6 +557,9 @@ def _verdict_line(report: Report, rec, fin_mis, effect) -> str:
             f"none: the {report.details['baseline_model']} baseline explains the data within its "
             f"noise (mu = {_fmt(p['mu'])}, rms = {_fmt(report.final['rms'])})"
         )
+    reason = report.details.get("noise_floor", {}).get("reason")
+    if v in ("unexplained", "undetermined") and reason:
+        return f"{v}: {reason}"
     if v == "unexplained":
         where = ", ".join(f"[{_fmt(a)}, {_fmt(b)}]" for a, b in report.regions)
         return (
@@ -518,6 +583,21 @@ def _summary(report: Report, rec, fin_mis, base_mis, effect) -> str:
         )
     for name, why in report.details["skipped_effects"].items():
         lines.append(f"  skipped {name}: {why}")
+    out = report.details.get("outliers")
+    if out:
+        shown = ", ".join(
+            f"row {i} ({rec.columns[1]} = {_fmt(v)}, {_fmt(z, 2)} sd)"
+            for i, v, z in zip(out["rows"], out[rec.columns[1]], out["size_sd"], strict=True)
+        )
+        lines.append(f"  outliers left out of the fit: {len(out['rows'])}: {shown}")
+    nf = report.details.get("noise_floor")
+    if nf:
+        lines.append(
+            f"  noise floor: rms {_fmt(nf['level'])} x the high-frequency noise "
+            f"{_fmt(nf['sigma_hf'])} (p = {_fmt(nf['p_level'], 2)}); innovations' lag-one "
+            f"correlation {_fmt(nf['innovation_lag1'], 2)} (p = {_fmt(nf['p_model'], 2)}); "
+            f"{_fmt(nf['n_eff'])} independent stretches"
+        )
     lines.append(
         f"  final: rms {_fmt(report.final['rms'])}, held-out rms {_fmt(report.heldout_rms_before)}"
         f" -> {_fmt(report.heldout_rms_after)}"

@@ -211,6 +211,24 @@ def _second_pass(fit, model, data, p_starts, noise, starts, given_sigma):
     return alt if alt.loglik > fit.loglik else fit
 
 
+def _second_pass_own(own, current, effect, data, starts, given_sigma):
+    """The second pass of :func:`_second_pass` for an effect with a fit of its own.
+
+    With rho near 1 the effect's own search (nip positions scored on whitened steps)
+    runs again under a moderate-correlation copy of the current noise; the model it
+    finds is refitted from there under the current noise, and the better likelihood
+    is kept.
+    """
+    if current.noise.rho <= _RHO_SECOND_PASS:
+        return own
+    moderate = replace(current, noise=replace(current.noise, rho=0.5))
+    alt = effect.fit(moderate, data, starts, given_sigma=given_sigma)
+    if alt is None:
+        return own
+    alt = fit_model(alt.model, data, [alt.p], current.noise, starts, given_sigma=given_sigma)
+    return alt if alt.loglik > own.loglik else own
+
+
 def fit_with_effect(current: Fit, effect, data: Data, starts, *, given_sigma=None) -> Fit:
     """Fit ``current``'s model with ``effect`` (an Effect object) added.
 
@@ -221,7 +239,7 @@ def fit_with_effect(current: Fit, effect, data: Data, starts, *, given_sigma=Non
     """
     own = effect.fit(current, data, starts, given_sigma=given_sigma)
     if own is not None:
-        return own
+        return _second_pass_own(own, current, effect, data, starts, given_sigma)
     model = build_model(
         current.model.rec, current.model.effect_objects_added + (effect,), current.model.fixed
     )

@@ -425,9 +425,7 @@ def parse_recording(text: str, *, source: str = "<string>") -> Recording:
     if kind.control_nonnegative and np.any(x < 0):
         j = int(np.argmax(x < 0))
         raise _err(source, int(lines_arr[j]), f"{xcol} must be >= 0, got {x[j]:g}")
-    _check_columns(
-        cols, header, xcol, ycol, trial, source, lines_arr, header_line, kind.min_rows
-    )
+    _check_columns(cols, header, xcol, ycol, trial, source, lines_arr, header_line, kind.min_rows)
     rec = Recording(
         experiment=experiment,
         x=x,
