@@ -174,6 +174,8 @@ def fail(status: str, message: str, reason: str | None) -> tuple[str, str]:
     if reason and status == "success":
         return "failed", reason
     return status, message
+
+
 #: default bound on the work of one scene run: nominal steps x nodes (see check_run_size)
 MAX_NODE_STEPS = 2e8
 
