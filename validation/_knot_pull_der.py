@@ -9,7 +9,7 @@ case the verdict, fitted and true mu, the planted and fitted key parameter, the
 seconds of the diagnosis (its simulations included) and the false-positive count on
 the nulls (the measured size of the test at alpha = 0.01).
 
-    python -m validation.knot_pull_der [--nulls 6] [--effects 2]
+    python -m validation._knot_pull_der [--nulls 6] [--effects 2]
 """
 
 from __future__ import annotations
