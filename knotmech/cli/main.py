@@ -30,7 +30,8 @@ class _Parser(argparse.ArgumentParser):
 SUMMARIES = {
     "tour": "a short tour: closed forms, a hold verdict and a figure",
     "hold": "does a rope tied to a post hold a load? (closed forms; DER for the clove hitch)",
-    "simulate": "run a simulated experiment (capstan, two-loops, pinch, overhand, clove-hitch)",
+    "simulate": "run a simulated experiment (capstan, two-loops, pinch, overhand, clove-hitch, "
+    "bend, centreline)",
     "diagnose": "find where a recording differs from its baseline model and name the missing "
     "physics",
     "validate": "run the validation cases (theory vs simulation), write PNG, JSON and index.html",

@@ -12,6 +12,10 @@ Example::
     knotmech simulate clove-hitch --loading free --t-high 1.47N --mu 0.3 --json hitch.json
     knotmech simulate clove-hitch --loading pull --speed 20mm/s --t-low 0.069N --mu 0.5 \\
         --mu-kinetic 0.32 --pull-distance 40mm --csv pull.csv
+    knotmech simulate bend --kind granny --mu 1 --json granny.json --csv granny.csv
+    knotmech simulate centreline reef.csv --unit mm --ends free,pull --ends pull,free \\
+        --rod-diameter 4mm --youngs-modulus 1MPa --density 1100kg/m^3 --mu 1 \\
+        --pull-distance 16mm
 
 Each scene is its own sub-command with only its own options (``knotmech simulate capstan
 --help`` lists them, marks the required ones and shows every default). Quantities need
@@ -36,11 +40,20 @@ from knotmech.errors import InputError
 
 __all__ = ["register", "run"]
 
-SCENES = ("capstan", "two-loops", "pinch", "overhand", "clove-hitch")
+SCENES = ("capstan", "two-loops", "pinch", "overhand", "clove-hitch", "bend", "centreline")
+
+#: The bends of :func:`knotmech.scenes.bend` (its ``BEND_CODES``; a test keeps them equal).
+BEND_KINDS = ("reef", "granny", "thief", "grief")
 
 REQUIRED = "required"
 
-_METAVAR = {"dimensionless": "X", "count": "N", "bending_stiffness": "EI", "velocity": "SPEED"}
+_METAVAR = {
+    "dimensionless": "X",
+    "count": "N",
+    "bending_stiffness": "EI",
+    "velocity": "SPEED",
+    "choice": "KIND",
+}
 
 
 @dataclass(frozen=True)
@@ -54,6 +67,7 @@ class Opt:
     kind: str
     help: str
     default: str | None = None
+    choices: tuple[str, ...] | None = None  # kind "choice": a word, passed on as given
 
 
 _COMMON_TAIL = (
@@ -161,12 +175,65 @@ _CLOVE = (
     _COMMON_TAIL[1],
 )  # fmt: skip
 
+_BEND = (  # knotmech.scenes.bends.bend
+    Opt("--kind", "kind", "choice", f"which bend: {', '.join(BEND_KINDS)}", REQUIRED,
+        choices=BEND_KINDS),
+    Opt("--mu", "mu_rod_rod", "dimensionless", "rod-rod (static) friction coefficient", "0.3"),
+    Opt("--mu-kinetic", "mu_kinetic", "dimensionless", "kinetic rod-rod coefficient", "--mu"),
+    Opt("--rod-diameter", "rod_diameter", "length", "diameter d of both ropes", "4mm"),
+    Opt("--youngs-modulus", "youngs_modulus", "pressure", "Young's modulus E (B = E pi d^4/64)",
+        "1MPa"),
+    Opt("--density", "density", "density", "rope density", "1100kg/m^3"),
+    Opt("--pull-speed", "pull_speed", "velocity", "speed of each grip (set and pull)",
+        "40mm/s"),
+    Opt("--pull-distance", "pull_distance", "length", "travel of each grip", "12 x d"),
+    Opt("--settle-time", "settle_time", "time", "all four ends held while contacts settle",
+        "0.2s"),
+    Opt("--set-tension", "set_tension", "force", "the bend is set (four ends pulled) until "
+        "the tension next to the grips reaches this", "0.1 B/d^2"),
+    Opt("--set-travel", "set_travel", "length", "largest travel of each end while setting",
+        "10 x d"),
+    Opt("--slip-draw-in", "slip_draw_in", "length", "tail draw-in near the largest force "
+        "that counts as a slip", "2 x d"),
+    Opt("--force-scale", "force_scale", "force", "sizes the contact penalty", "2 B/d^2"),
+    Opt("--contact-width", "contact_width", "dimensionless",
+        "range of the contact penalty in rod diameters", "0.2"),
+    Opt("--n-nodes", "n_nodes", "count", "nodes per rope", "80"),
+    Opt("--n-frames", "n_frames", "count", "recorded frames of the pull (>= 10)", "120"),
+    Opt("--dt", "dt", "time", "nominal time step (halved when Newton fails)", "4ms"),
+)  # fmt: skip
+
+_CENTRELINE = (  # knotmech.scenes.centreline.centreline
+    Opt("--rod-diameter", "rod_diameter", "length", "rod diameter d, e.g. 4mm", REQUIRED),
+    Opt("--youngs-modulus", "youngs_modulus", "pressure", "Young's modulus E, e.g. 1MPa",
+        REQUIRED),
+    Opt("--density", "density", "density", "rod density, e.g. 1100kg/m^3", REQUIRED),
+    Opt("--mu", "mu_rod_rod", "dimensionless", "rod-rod friction coefficient, e.g. 0.3",
+        REQUIRED),
+    Opt("--post-diameter", "post_diameter", "length", "a rigid post of this diameter on the "
+        "z axis through the origin", "no post"),
+    Opt("--mu-post", "mu_rod_post", "dimensionless", "rod-post friction coefficient", "--mu"),
+    Opt("--pull-speed", "pull_speed", "velocity", "speed of each pulled end, outwards along "
+        "its end tangent", "20mm/s"),
+    Opt("--pull-distance", "pull_distance", "length", "travel of each pulled end", "12 x d"),
+    Opt("--settle-time", "settle_time", "time", "pulled and fixed ends held while the rods "
+        "settle", "0.2s"),
+    Opt("--slip-draw-in", "slip_draw_in", "length", "free-end draw-in after the force peak "
+        "that counts as a slip", "4 x d"),
+    Opt("--force-scale", "force_scale", "force", "sizes the contact penalties", "20 B/d^2"),
+    Opt("--n-nodes", "n_nodes", "count", "nodes per rod after resampling (>= 10)", "100"),
+    Opt("--n-frames", "n_frames", "count", "recorded frames of the pull", "100"),
+    Opt("--dt", "dt", "time", "nominal time step", "2ms"),
+)  # fmt: skip
+
 SCENE_OPTIONS: dict[str, tuple[Opt, ...]] = {
     "capstan": _CAPSTAN,
     "two-loops": _TWO_LOOPS,
     "pinch": _PINCH,
     "overhand": _OVERHAND,
     "clove-hitch": _CLOVE,
+    "bend": _BEND,
+    "centreline": _CENTRELINE,
 }
 
 _DESCRIPTIONS = {
@@ -178,6 +245,10 @@ _DESCRIPTIONS = {
     "Amontons' 2 mu F_n)",
     "overhand": "an overhand knot with n braid turns pulled tight (force against end-to-end)",
     "clove-hitch": "a clove hitch tied on a post, held by end loads or pulled (clove-hitch paper)",
+    "bend": "two ropes joined by a reef, granny, thief or grief bend, set and pulled apart "
+    "until it slips (Patil et al., Science 2020): verdict and slip load",
+    "centreline": "your own knot from a CSV of centreline points (one or two rods), relaxed "
+    "and pulled by the ends you choose: verdict and slip load",
 }
 
 
@@ -187,7 +258,8 @@ def register(subparsers) -> None:
 
     p = subparsers.add_parser(
         "simulate",
-        help="run a simulated experiment (capstan, two-loops, pinch, overhand, clove-hitch)",
+        help="run a simulated experiment (capstan, two-loops, pinch, overhand, clove-hitch, "
+        "bend, centreline)",
         description=(
             "Simulate an experiment with the discrete-elastic-rods solver and frictional "
             "contact. Quantities need units (4mm, 0.16N, 180deg, 1.26MPa, 10mm/s, "
@@ -206,9 +278,34 @@ def register(subparsers) -> None:
         )
         req = sp.add_argument_group("required")
         opt = sp.add_argument_group("options (default in brackets)")
+        if name == "centreline":
+            req.add_argument(
+                "file",
+                metavar="FILE",
+                help="CSV of centreline points: lines "
+                "'x, y, z' (one rod) or 'rod, x, y, z' (rod 0 or 1), a header "
+                "line allowed, at least 10 points per rod, lengths in --unit",
+            )
+            req.add_argument(
+                "--ends",
+                action="append",
+                required=True,
+                metavar="FIRST,LAST",
+                help="once per rod, in file order: what the rod's first and "
+                "last points are, each pull (gripped and pulled outwards), "
+                "fixed (clamped) or free; e.g. --ends free,pull --ends pull,free "
+                "(at least one end pulled)",
+            )
+            opt.add_argument(
+                "--unit",
+                default="m",
+                choices=("m", "cm", "mm"),
+                help="unit of the coordinates in FILE [m]",
+            )
         for o in SCENE_OPTIONS[name]:
             if o.default == REQUIRED:
                 req.add_argument(o.flag, dest=o.kwarg, required=True, help=o.help,
+                                 choices=o.choices,
                                  metavar=_METAVAR.get(o.kind, o.kind.upper()))  # fmt: skip
             else:
                 flags = (o.flag, "--speed") if o.flag == "--pull-speed" else (o.flag,)
@@ -271,7 +368,9 @@ def _parse(args, scene: str) -> dict:
         raw = getattr(args, o.kwarg, None)
         if raw is None:
             continue
-        if o.kind == "count":
+        if o.kind == "choice":
+            kw[o.kwarg] = raw
+        elif o.kind == "count":
             kw[o.kwarg] = parse_count(raw, name=o.flag)
         else:
             kw[o.kwarg] = parse_quantity(raw, o.kind, name=o.flag)
@@ -331,6 +430,11 @@ def _csv_tables(scene: str, args) -> list[tuple[str, str]]:
         return [("", "pull force against time and displacement")]
     if scene == "overhand":
         return [("", "pull force, end-to-end distance and loop size against time")]
+    if scene == "bend":
+        return [("", "pull force and the tails' draw-in against the grips' displacement")]
+    if scene == "centreline":
+        return [("", "pull force and the free ends' draw-in against the pulled ends' "
+                 "displacement")]  # fmt: skip
     tables = [("_tension_profile", "tension along the rod at the end"),
               ("_curvature", "Darboux vector (curvatures, twist) along the rod")]  # fmt: skip
     if args.loading == "pull":
@@ -391,6 +495,13 @@ def _csv_columns(scene: str, res, loading: str | None) -> list[tuple[list[str], 
     if scene == "overhand":
         return [(["time_s", "end_to_end_m", "pull_force_N", "loop_diameter_m"],
                  [res.times, res.end_to_end, res.pull_force, res.loop_diameter])]  # fmt: skip
+    if scene in ("bend", "centreline"):
+        draw = np.asarray(res.draw_in).reshape(len(res.times), -1)
+        names = (["draw_in_tail_a_m", "draw_in_tail_b_m"] if scene == "bend"
+                 else [f"draw_in_free_end_{j}_m" for j in range(draw.shape[1])])  # fmt: skip
+        return [(["time_s", "pull_displacement_m", "pull_force_N", *names],
+                 [res.times, res.pull_displacement, res.pull_force,
+                  *(draw[:, j] for j in range(draw.shape[1]))])]  # fmt: skip
     tables = [
         (["s_m", "tension_N", "rod_contact"], [res.s, res.tension, res.rod_contact.astype(int)]),
         (["s_m", "omega1_per_m", "omega2_per_m", "omega3_per_m"],
@@ -409,7 +520,14 @@ def _scalars_and_arrays(res) -> tuple[dict, dict]:
     from knotmech._json import split_arrays
 
     scalars, arrays = split_arrays(res)
-    summary = res.to_dict() if hasattr(res, "to_dict") else res.summary()
+    if hasattr(res, "to_dict"):
+        summary = res.to_dict()
+    elif hasattr(res, "summary"):
+        summary = res.summary()
+    else:
+        summary = {}
+    if hasattr(type(res), "topology_preserved"):  # a property, not a field
+        summary = {**summary, "topology_preserved": bool(res.topology_preserved)}
     extra, _ = split_arrays(summary)
     for key, value in extra.items():
         scalars.setdefault(key, value)
@@ -487,6 +605,15 @@ def _plot(path: Path, scene: str, res, kw: dict) -> str:
         ax.set_xlabel("end-to-end distance [m]")
         ax.set_ylabel("pull force [N]")
         what = "pull force against end-to-end distance (no closed form drawn)"
+    elif scene in ("bend", "centreline"):
+        ax.plot(res.pull_displacement * 1e3, res.pull_force, "k-", lw=1.2,
+                label="DER simulation")  # fmt: skip
+        if np.isfinite(res.slip_load):
+            ax.axhline(res.slip_load, color="C3", ls="--",
+                       label=f"slip load {res.slip_load:.4g} N")  # fmt: skip
+        ax.set_xlabel("pulled-end displacement [mm]")
+        ax.set_ylabel("pull force [N]")
+        what = "pull force against displacement, with the slip load (no closed form drawn)"
     elif res.loading == "pull":
         ax.plot(res.pull_displacement * 1e3, res.ratio_curve, "k-", lw=1.2,
                 label="DER simulation")  # fmt: skip
@@ -530,6 +657,8 @@ def run(args) -> int:
         )
     elif scene == "overhand":
         res = _run_overhand(kw, args, progress)
+    elif scene in ("bend", "centreline"):
+        res = _run_pulled_knot(scene, kw, args, progress)
     else:
         res = _run_clove_hitch(kw, args, progress)
     for warning in getattr(res, "warnings", None) or ():  # the scene's own checks, one line each
@@ -592,4 +721,49 @@ def _run_clove_hitch(kw, args, progress):
             f"clove-hitch ({res.loading}): status {res.status}; T_high = {res.t_high:.4g} N, "
             f"T_low = {res.t_low:.4g} N, creep {res.creep:.3g} m{verdict}"
         )
+    return res
+
+
+def _ends(values: list[str]) -> list[tuple[str, str]]:
+    """``--ends FIRST,LAST`` (once per rod) as (first, last) pairs; the words are the
+    scene's to check."""
+    ends = []
+    for value in values:
+        parts = [p.strip() for p in value.split(",")]
+        if len(parts) != 2:
+            raise InputError(
+                f"--ends {value}: give FIRST,LAST, each pull, fixed or free (e.g. free,pull)"
+            )
+        ends.append((parts[0], parts[1]))
+    return ends
+
+
+def _run_pulled_knot(scene, kw, args, progress):
+    """A bend, or a user's centreline: pulled by its ends until it slips or the pull ends."""
+    import math
+
+    if scene == "bend":
+        from knotmech.scenes.bends import bend
+
+        kw = dict(kw)
+        kind = kw.pop("kind")
+        res = bend(kind, progress=progress, **kw)
+        name = f"bend {kind}"
+    else:
+        from knotmech.scenes.centreline import centreline
+
+        res = centreline(args.file, ends=_ends(args.ends), unit=args.unit, progress=progress, **kw)
+        name = f"centreline {args.file}"
+    if res.verdict == "slips":
+        verdict = f"SLIPS at {res.slip_load:.4g} N"
+    elif res.verdict == "holds":
+        verdict = f"HOLDS up to {res.max_force:.4g} N (the pull ended)"
+    else:
+        verdict = "no verdict"
+    kept = "kept" if res.topology_preserved else "CHANGED (a strand passed through another)"
+    peak = f"{res.max_force:.4g} N" if math.isfinite(res.max_force) else "none"
+    print(
+        f"{name}: status {res.status}; {verdict}; max force {peak}; knot type {kept}; "
+        f"{res.stats.get('steps', 0)} steps, {res.stats.get('wall_s', 0.0):.3g} s"
+    )
     return res

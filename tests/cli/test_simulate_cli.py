@@ -131,11 +131,13 @@ def test_help_marks_required_and_shows_every_default(capsys):
 def _scene_function(scene):
     import importlib
 
-    module = {"capstan": "capstan", "pinch": "pinch", "clove-hitch": "clove_hitch"}[scene]
-    return getattr(importlib.import_module(f"knotmech.scenes.{module}"), module.split(".")[-1])
+    module, func = {"capstan": ("capstan", "capstan"), "pinch": ("pinch", "pinch"),
+                    "clove-hitch": ("clove_hitch", "clove_hitch"), "bend": ("bends", "bend"),
+                    "centreline": ("centreline", "centreline")}[scene]  # fmt: skip
+    return getattr(importlib.import_module(f"knotmech.scenes.{module}"), func)
 
 
-@pytest.mark.parametrize("scene", ["capstan", "pinch", "clove-hitch"])
+@pytest.mark.parametrize("scene", ["capstan", "pinch", "clove-hitch", "bend", "centreline"])
 def test_defaults_shown_are_the_scene_functions_defaults(scene):
     """A default shown in --help that is a quantity equals the library's default."""
     params = inspect.signature(_scene_function(scene)).parameters
@@ -153,7 +155,9 @@ def test_defaults_shown_are_the_scene_functions_defaults(scene):
                 continue  # a sentence, not a value
             assert shown == pytest.approx(default, rel=1e-12), o.flag
         checked += 1
-    assert checked >= {"capstan": 1, "pinch": 5, "clove-hitch": 9}[scene]
+    assert (
+        checked >= {"capstan": 1, "pinch": 5, "clove-hitch": 9, "bend": 9, "centreline": 6}[scene]
+    )
 
 
 def test_output_paths_are_checked_before_the_run(capture_scene, capsys, tmp_path):
@@ -276,7 +280,10 @@ def test_start_up_imports_nothing_heavy(argv, banned):
 def test_max_node_steps_default_shown_is_the_library_bound():
     from knotmech.scenes._common import MAX_NODE_STEPS
 
-    for opts in sim.SCENE_OPTIONS.values():
+    for scene, opts in sim.SCENE_OPTIONS.items():
+        if scene in ("bend", "centreline"):  # these scenes have no up-front work bound
+            assert "--max-node-steps" not in [o.flag for o in opts]
+            continue
         (o,) = [o for o in opts if o.flag == "--max-node-steps"]
         assert float(o.default) == MAX_NODE_STEPS
 
@@ -287,6 +294,8 @@ _SCENE_FUNCS = {
     "pinch": ("knotmech.scenes.pinch", "pinch"),
     "overhand": ("knotmech.scenes.overhand", "overhand"),
     "clove-hitch": ("knotmech.scenes.clove_hitch", "clove_hitch"),
+    "bend": ("knotmech.scenes.bends", "bend"),
+    "centreline": ("knotmech.scenes.centreline", "centreline"),
 }
 _VALUE = st.text(st.sampled_from(list("0123456789.,_-+e mMNkgs/^*%\u2212\uff14")), max_size=8)
 
@@ -309,10 +318,13 @@ def test_fuzz_option_values_exit_2_with_one_line(data, monkeypatch, capsys):
     monkeypatch.setattr(module, func_name, stub)
     opts = sim.SCENE_OPTIONS[scene]
     argv = ["simulate", scene, "--no-progress"]
+    if scene == "centreline":  # the file is read by the (stubbed) scene
+        argv += ["knot.csv", "--ends", "fixed,pull"]
     for o in opts:
         if o.default == sim.REQUIRED:
             argv += [o.flag, {"angle": "1rad", "dimensionless": "0.3", "length": "4mm",
-                              "pressure": "1MPa", "force": "1N"}[o.kind]]  # fmt: skip
+                              "pressure": "1MPa", "force": "1N", "density": "1100kg/m^3",
+                              "choice": (o.choices or ("",))[0]}[o.kind]]  # fmt: skip
     chosen = data.draw(st.lists(st.sampled_from(opts), max_size=3, unique_by=lambda o: o.flag))
     for o in chosen:
         argv += [f"{o.flag}={data.draw(_VALUE)}"]
@@ -320,7 +332,9 @@ def test_fuzz_option_values_exit_2_with_one_line(data, monkeypatch, capsys):
     err = capsys.readouterr().err.strip()
     assert code == 2 and err.count("\n") == 0 and "Traceback" not in err, err
     if seen:
+        ends = seen.pop("ends", [("fixed", "pull")])
         assert all(isinstance(v, (int, float, str, bool)) for v in seen.values())
+        assert all(isinstance(e, tuple) and len(e) == 2 for e in ends)
 
 
 def test_scene_warnings_are_printed_and_kept_in_the_json(monkeypatch, tmp_path, capsys):
