@@ -156,7 +156,7 @@ def test_defaults_shown_are_the_scene_functions_defaults(scene):
             assert shown == pytest.approx(default, rel=1e-12), o.flag
         checked += 1
     assert (
-        checked >= {"capstan": 1, "pinch": 5, "clove-hitch": 9, "bend": 9, "centreline": 6}[scene]
+        checked >= {"capstan": 1, "pinch": 5, "clove-hitch": 9, "bend": 9, "centreline": 5}[scene]
     )
 
 
