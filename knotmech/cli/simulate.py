@@ -614,6 +614,8 @@ def _plot(path: Path, scene: str, res, kw: dict) -> str:
         ax.set_xlabel("pulled-end displacement [mm]")
         ax.set_ylabel("pull force [N]")
         what = "pull force against displacement, with the slip load (no closed form drawn)"
+        name = f"bend {res.kind}" if scene == "bend" else "centreline"
+        ax.set_title(f"simulate {name}: status {res.status}, verdict {res.verdict or 'none'}")
     elif res.loading == "pull":
         ax.plot(res.pull_displacement * 1e3, res.ratio_curve, "k-", lw=1.2,
                 label="DER simulation")  # fmt: skip
