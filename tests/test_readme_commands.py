@@ -43,6 +43,7 @@ SLOW_TIMEOUT = 1200
 SLOW_MARKERS = (
     "knotmech simulate clove-hitch",
     "knotmech simulate overhand",
+    "knotmech simulate bend",
     "knotmech validate",
     "benchmarks/",
 )
