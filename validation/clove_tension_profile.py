@@ -77,6 +77,9 @@ def _runs(mu_values, quick):
             mu_rod_post=float(m),
             mu_rod_rod=MU_RR,
             n_nodes=N_NODES[bool(quick)],
+            # the law these checks were validated with (the clove-hitch scene's default is
+            # now the sticking anchor law, under which held wraps need not mobilise mu_eff)
+            friction="imc",
             **PROTOCOL,
         )
         for m in mu_values

@@ -39,6 +39,8 @@ from knotmech.diagnose import diagnose
 from knotmech.diagnose.recording import recording_from_arrays
 from knotmech.diagnose.stats import wilson_interval
 
+from ._common import finish, output_dir, save_figure, to_jsonable
+
 SUMMARY = (
     "Verdicts of knotmech diagnose on recordings from a generator of its own (ripples, tanh "
     "steps and Stribeck decays; white, AR(1), AR(2), pink, heteroscedastic, quantised noise "
@@ -46,7 +48,6 @@ SUMMARY = (
     "10 sd is called none, and nulls stay at the nominal size."
 )
 
-from ._common import finish, output_dir, save_figure, to_jsonable
 
 NAME = "noise_robustness"
 KINDS = ("pinch", "tension_profile", "capstan_pull")

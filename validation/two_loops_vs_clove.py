@@ -117,6 +117,9 @@ def _clove_task(**kw):
     """One clove-hitch pull reduced to its curve (module level, picklable)."""
     from knotmech.scenes.clove_hitch import clove_hitch
 
+    # rod-rod friction: the regularised law this case was validated with (the scene's
+    # default is now the sticking anchor law)
+    kw.setdefault("friction", "imc")
     r = clove_hitch(loading="pull", **kw)
     return {
         "displacement": r.pull_displacement,
