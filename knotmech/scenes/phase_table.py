@@ -104,6 +104,7 @@ def simulate_point(
     rod_diameter: float = ROD_DIAMETER,
     youngs_modulus: float = YOUNGS_MODULUS,
     density: float = DENSITY,
+    friction: str = "anchor",
     progress: bool = False,
     keep_result: bool = False,
 ) -> dict:
@@ -114,11 +115,17 @@ def simulate_point(
     end free, and returns the scene's verdict (hold: end 0 creeps less than one rod
     diameter over the second half of a 0.4 s hold; protocol :data:`PROTOCOL`).
 
+    ``friction`` is the rod-rod law passed to the scene (``"anchor"``, the scene's
+    default, or ``"imc"``, the law of the shipped tables); it is passed explicitly so a
+    change of the scene's default does not silently change a table.
+
     Returns
     -------
     dict
-        ``d_over_2R, t_over_EA, t_high [N], post_diameter [m], verdict ("hold"/"slip"),
-        holds (bool), creep [m], status, topology_preserved, wall_s``. A run whose solver
+        ``d_over_2R, t_over_EA, t_high [N], post_diameter [m], friction, verdict
+        ("hold"/"slip"), holds (bool), creep [m], creep_speed [d/s] (creep over the last
+        half of the hold divided by that time and by d), status, topology_preserved,
+        wall_s``. A run whose solver
         failed has ``holds = None``. With ``keep_result``, also ``result``: the scene's
         :class:`~knotmech.scenes.clove_hitch.CloveHitchResult` (positions, tension).
     """
@@ -140,6 +147,7 @@ def simulate_point(
         density=float(density),
         mu_rod_post=float(mu),
         mu_rod_rod=float(mu if mu_rr is None else mu_rr),
+        friction=friction,
         progress=progress,
         **PROTOCOL,
     )
@@ -153,7 +161,9 @@ def simulate_point(
         "mu_rr": float(mu if mu_rr is None else mu_rr),
         "verdict": r.verdict if ok else "",
         "holds": (r.verdict == "hold") if ok else None,
+        "friction": friction,
         "creep": float(r.creep),
+        "creep_speed": float(r.creep) / (0.5 * PROTOCOL["hold_time"] * d),
         "status": r.status,
         "message": r.message,
         "topology_preserved": bool(r.topology_preserved),
@@ -164,7 +174,7 @@ def simulate_point(
     return out
 
 
-simulate_point.__sweep_version__ = "1"
+simulate_point.__sweep_version__ = "2"
 
 
 @dataclass(frozen=True)
