@@ -21,7 +21,7 @@ along a direction after a delay).
 Existing scenes (``clove_hitch``, ``capstan``, ``overhand``) predate this module; moving
 them onto it means replacing their hand-written ``simulate`` sequences by
 :meth:`SceneRun.phase` calls and their contact set-up by :func:`rod_contact` /
-:func:`post_contact` (see NOTES-knots.md).
+:func:`post_contact` (see docs/notes/knots.md).
 """
 
 from __future__ import annotations

@@ -200,7 +200,7 @@ def bend(
     Notes
     -----
     Cost at the defaults (80 nodes per rope, 2 x 48 mm at 40 mm/s): about 800 steps and
-    6000 Newton iterations, 1-2 minutes on a free core (NOTES-knots.md gives the times).
+    6000 Newton iterations, 1-2 minutes on a free core (docs/notes/knots.md gives the times).
     """
     if kind not in BEND_CODES:
         raise InputError(f"kind must be one of {', '.join(BEND_CODES)}, got {kind!r}")

@@ -17,7 +17,7 @@ the start. The penalty on the edge-edge distance makes a "cogging" force periodi
 slide with the edge length (+-10 % of the friction here, zero mean), so the sliding force is
 averaged over whole edges. On a finer mesh (edges of r) the onset peak is 4.6 % low: a
 contact then spans three edge pairs, which reach their static limits one after the other
-(NOTES-fric.md).
+(docs/notes/fric.md).
 """
 
 from dataclasses import dataclass

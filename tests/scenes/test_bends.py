@@ -37,7 +37,7 @@ def test_reef_holds_more_than_granny():
         assert r.topology_preserved
     assert granny.verdict == "slips"
     reef_load = reef.slip_load if reef.verdict == "slips" else reef.max_force
-    # measured (NOTES-knots.md): reef holds to 3.76 N, granny slips at 0.81 N
+    # measured (docs/notes/knots.md): reef holds to 3.76 N, granny slips at 0.81 N
     assert reef_load > 2.0 * granny.slip_load
     assert np.nanmax(granny.draw_in) > 4 * 4e-3
 

@@ -3,7 +3,7 @@
 Issue 11 (d): both laws are Coulomb once the strands slide, so in the tight phase of the
 implicit-contact-model pull (n = 1, mu_s = mu_k = 0.3) the force curves agree within 15 %.
 Quick settings (151 nodes, 30 mm/s per end, 5 ms, the same ends travel as the paper's 60 s
-at 6 mm/s); the full benchmark case is in benchmarks/overhand.py (NOTES-fric.md: anchor/imc
+at 6 mm/s); the full benchmark case is in benchmarks/overhand.py (docs/notes/fric.md: anchor/imc
 force ratio 0.92-1.01 in its tight phase).
 """
 
