@@ -89,10 +89,13 @@ def grid_points(grid, mu=None) -> list[dict]:
     """Parameter sets of :func:`knotmech.scenes.phase_table.simulate_point` for a grid.
 
     ``mu`` (rod-post and rod-rod friction) enters the parameters only when it differs
-    from the default :data:`knotmech.scenes.phase_table.MU` (so that mu = 0.3 runs keep
-    their cache keys).
+    from the default :data:`knotmech.scenes.phase_table.MU`; the rod-rod law is the shipped
+    tables' (``friction="imc"``).
     """
     extra = {} if mu is None or abs(mu - pt.MU) <= pt.MU_TOL else {"mu": mu, "mu_rr": mu}
+    # the rod-rod law of the shipped tables (the smooth law of the coated-rod paper); the
+    # anchor-law table at mu = 0.3 is knotmech/data/anchor_clove_phase_table_mu0.3*.json
+    extra["friction"] = "imc"
     return [
         {"d_over_2R": float(x), "t_over_EA": float(y), **extra}
         for x in grid["d_over_2R"]
