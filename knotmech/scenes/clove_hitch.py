@@ -54,32 +54,11 @@ from knotmech.scenes._common import (
     fail,
     measured_strain,
 )
+from knotmech.scenes._scene import RampedEndLoad as _RampedEndLoad
 from knotmech.scenes.curves import _edge_distances, clove_hitch_curve
 from knotmech.scenes.topology import post_crossing_code, winding_number
 
 __all__ = ["CloveHitchResult", "clove_hitch", "darboux_profile"]
-
-
-@dataclass(frozen=True)
-class _RampedEndLoad:
-    """Dead force on one node, ramped linearly from 0 to ``force`` over [delay, delay + ramp].
-
-    A load for :func:`knotmech.rod.simulate` (same interface as ``knotmech.rod.NodeForce``).
-    """
-
-    node: int
-    force: np.ndarray
-    ramp_time: float
-    delay: float = 0.0
-
-    def _w(self, t) -> float:
-        return min(max((t - self.delay) / self.ramp_time, 0.0), 1.0)
-
-    def apply(self, system, t, q, q_old, dt, force, jac_diag) -> None:
-        force[system.node_dofs[self.node]] += self._w(t) * np.asarray(self.force)
-
-    def energy(self, system, q, t=np.inf) -> float:
-        return float(-self._w(t) * np.dot(q[system.node_dofs[self.node]], self.force))
 
 
 def darboux_profile(positions, m1):
