@@ -42,6 +42,7 @@ _LAZY_NAMES = {
     "sweep_parameters": ("knotmech.sweep", "sweep"),
     "parse_quantity": ("knotmech.units", "parse_quantity"),
     "Verdict": ("knotmech.hold", "Verdict"),
+    "hold_verdict": ("knotmech.hold", "hold_verdict"),
     "material": ("knotmech.materials", "material"),
 }
 
@@ -57,35 +58,10 @@ __all__ = [
 ]
 
 
-def hold_verdict(
-    knot,
-    *,
-    rod_diameter,
-    post_diameter,
-    mu,
-    load,
-    free_end_load=0.0,
-    mu_rr=None,
-    wrap_angle=None,
-):
-    """Deprecated: use :func:`knotmech.hold` (this returns its :class:`~knotmech.hold.Verdict`).
-
-    ``knotmech.hold_verdict`` used to be the closed forms' answer
-    (:func:`knotmech.analytic.hitch.hold_verdict`), whose rule could disagree with
-    ``knotmech hold``; it now gives the same verdict as the command.
-    """
-    from knotmech.hold import hold_verdict as _deprecated
-
-    return _deprecated(
-        knot,
-        rod_diameter=rod_diameter,
-        post_diameter=post_diameter,
-        mu=mu,
-        load=load,
-        free_end_load=free_end_load,
-        mu_rr=mu_rr,
-        wrap_angle=wrap_angle,
-    )
+# ``knotmech.hold_verdict`` is the deprecated alias of ``knotmech.hold`` (same verdict as the
+# command), loaded lazily below; the closed forms' own answer the star import brought in stays
+# ``knotmech.analytic.hold_verdict``
+del hold_verdict  # noqa: F821 (star-imported above)
 
 
 def __getattr__(name: str):
