@@ -140,3 +140,34 @@ def test_checkout_without_validation_folder_is_a_clear_error(monkeypatch, tmp_pa
 def test_list(cases, capsys):
     assert main(["validate", "--list", "--cases-dir", str(cases)]) == 0
     assert capsys.readouterr().out.split() == ["bad", "broken", "good"]
+
+
+def test_one_case_command_prints_checks_and_short_numbers(tmp_path, capsys):
+    """``python -m validation.<name>``: verdict, each check marked, numbers to 4 digits."""
+    import importlib.util
+    import sys
+
+    path = Path(knotmech.__file__).resolve().parents[1] / "validation" / "_common.py"
+    spec = importlib.util.spec_from_file_location("_validation_common_under_test", path)
+    common = importlib.util.module_from_spec(spec)
+    sys.modules[spec.name] = common
+    spec.loader.exec_module(common)
+
+    def run(quick=True, out_dir="."):
+        return common.finish(
+            "demo",
+            out_dir=out_dir,
+            checks={"ratio within 1 %": True, "order near 2": False},
+            numbers={"ratio": 1.0012345678, "grid": list(range(40)), "n": 7},
+            figures=[],
+            quick=quick,
+        )
+
+    assert common.main(run, ["--out", str(tmp_path)]) == 1  # one check fails
+    text = capsys.readouterr().out.splitlines()
+    assert text[0] == "demo: FAIL"
+    assert "  [pass] ratio within 1 %" in text and "  [FAIL] order near 2" in text
+    assert "  ratio = 1.001" in text and "  n = 7" in text
+    grid = next(line for line in text if line.startswith("  grid = "))
+    assert len(grid) <= 2 + len("grid = ") + 72 and grid.endswith("...")
+    assert json.loads((tmp_path / "demo.json").read_text())["numbers"]["ratio"] == 1.0012345678

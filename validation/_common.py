@@ -109,9 +109,36 @@ def main(run: Callable[..., dict], argv=None) -> int:
     parser.add_argument("--out", default="validation-out", help="output folder")
     args = parser.parse_args(argv)
     result = run(quick=not args.full, out_dir=args.out)
-    print(f"{result['name']}: {result['verdict']}")
-    for key, value in result["numbers"].items():
-        print(f"  {key} = {value}")
-    for fig in result["figures"]:
-        print(f"  figure: {fig}")
+    print(format_result(result))
     return 0 if result["verdict"] == "pass" else 1
+
+
+def _short(value, width: int = 72) -> str:
+    """A number to 4 significant digits, a list or dict cut to one line of ``width``."""
+    if isinstance(value, bool) or value is None:
+        return str(value)
+    if isinstance(value, int | float):
+        return f"{value:.4g}"
+    if isinstance(value, list | tuple):
+        text = "[" + ", ".join(_short(v, width) for v in value) + "]"
+    elif isinstance(value, dict):
+        text = "{" + ", ".join(f"{k}: {_short(v, width)}" for k, v in value.items()) + "}"
+    else:
+        text = str(value)
+    return text if len(text) <= width else text[: width - 3] + "..."
+
+
+def format_result(result: Mapping) -> str:
+    """A case's summary for people: verdict, each check, the numbers (short), the figures."""
+    lines = [f"{result['name']}: {result['verdict'].upper()}"]
+    checks = result.get("checks", {})
+    if checks:
+        lines.append("checks:")
+        lines += [f"  [{'pass' if ok else 'FAIL'}] {name}" for name, ok in checks.items()]
+    numbers = result.get("numbers", {})
+    if numbers:
+        lines.append("numbers:")
+        lines += [f"  {key} = {_short(value)}" for key, value in numbers.items()]
+    lines += [f"figure: {fig}" for fig in result.get("figures", [])]
+    lines += [f"note: {note}" for note in result.get("notes", [])]
+    return "\n".join(lines)
