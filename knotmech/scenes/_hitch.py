@@ -694,7 +694,10 @@ def run_hitch(
         ta = times[-1] - window
         if window > 0:
             v_end = float((disp[-1] - np.interp(ta, times, disp)) / window)
-            draw = (pos[:, -1, :] - x0[-1]) @ (-dir1)
+            # along the end edge's last direction: a tail swinging about the knot does
+            # not count, a tail drawn into it does
+            t_last = pos[-1, -1] - pos[-1, -2]
+            draw = (pos[:, -1, :] - x0[-1]) @ (-t_last / np.linalg.norm(t_last))
             v_tail = float((draw[-1] - np.interp(ta, times, draw)) / window)
     if loading == "free":
         stopped_early = times[-1] < t_end - 1e-9 and status == "success"
