@@ -84,7 +84,9 @@ def _curve(post_diameter, rod_diameter, rod_length, n_nodes):
 #: the clove hitch as a post hitch: its curve, two wraps for the contact sizing of a pull,
 #: no knot invariants beyond the winding (its closure depends on how the tails lie) and the
 #: distance rule for the verdict
-CLOVE = HitchKnot(name="clove_hitch", curve=_curve, pull_angle=4 * np.pi, creep_limit=None)
+CLOVE = HitchKnot(
+    name="clove_hitch", curve=_curve, pull_angle=4 * np.pi, creep_limit=None, hold_damping=None
+)
 
 clove_hitch = hitch_scene(
     CLOVE,
@@ -148,8 +150,8 @@ clove_hitch = hitch_scene(
         creeps (the law of the shipped phase tables).
 
     creep_limit : float or None [d/s]
-        Free-end verdict: also slip when end 0 or the free end creeps faster than this
-        over the last second of the hold (default None: the ``slip_distance`` rule only,
+        Free-end verdict: also slip when end 0 creeps faster than this over the last
+        second of the hold (default None: the ``slip_distance`` rule only,
         that of the shipped phase tables).
 
     Returns
