@@ -200,7 +200,8 @@ class HitchResult:
     verdict : "hold", "slip" or "" (only for the free-end loading)
     creep : float [m]  displacement of end 0 during the last half of the hold
     creep_speed : float [m/s]  speed of end 0 along its load over the creep window (the
-        last second of the hold, or its last half if shorter; nan for ``"pull"``)
+        last second of the hold, or its last half if shorter; the least-squares slope
+        through the frames in it; nan for ``"pull"``)
     tail_creep_speed : float [m/s]  speed at which the other end is drawn in along its
         tail over the same window (positive: into the knot)
     creep_window : float [s]
@@ -713,12 +714,11 @@ def run_hitch(
         window = min(1.0, 0.5 * (times[-1] - t2))
         ta = times[-1] - window
         if window > 0:
-            v_end = float((disp[-1] - np.interp(ta, times, disp)) / window)
             # along the end edge's last direction: a tail swinging about the knot does
             # not count, a tail drawn into it does
             t_last = pos[-1, -1] - pos[-1, -2]
             draw = (pos[:, -1, :] - x0[-1]) @ (-t_last / np.linalg.norm(t_last))
-            v_tail = float((draw[-1] - np.interp(ta, times, draw)) / window)
+            v_end, v_tail = (_mean_speed(times, u, ta, window) for u in (disp, draw))
     if loading == "free":
         stopped_early = times[-1] < t_end - 1e-9 and status == "success"
         fast = climit is not None and not (abs(v_end) <= climit * d)
@@ -776,6 +776,17 @@ def run_hitch(
         invariants_end=inv1,
         invariants_kept=kept,
     )
+
+
+def _mean_speed(times, u, t_a, window) -> float:
+    """Speed [m/s] of ``u`` over [t_a, end]: the least-squares slope through the frames in
+    the window when there are at least four (a hitch at rest still rings at the 1e-4 d
+    level, which an end-point difference over a short window reads as creep), else the
+    end-point difference."""
+    sel = times >= t_a - 1e-12
+    if np.count_nonzero(sel) >= 4:
+        return float(np.polyfit(times[sel], u[sel], 1)[0])
+    return float((u[-1] - np.interp(t_a, times, u)) / window)
 
 
 def _grip(x0, u, v, t_start):
