@@ -768,7 +768,11 @@ def _run_hitch(scene, kw, args, progress):
     if "mu_rod_post" in kw:
         kw.setdefault("mu_rod_rod", kw["mu_rod_post"])
     res = getattr(module, name)(progress=progress, **kw)
-    kept = "kept" if res.topology_preserved else "CHANGED (a strand passed through another)"
+    kept = (
+        "kept"
+        if res.topology_preserved
+        else "CHANGED (the knot came apart or a strand passed through another)"
+    )
     if args.loading == "pull":
         head = (
             f"T_low = {res.t_low:.4g} N; T_high = {res.t_high:.4g} N after "

@@ -30,7 +30,8 @@ Every post hitch (:mod:`~knotmech.scenes.clove_hitch`,
 Verdict (``loading="free"``): *slip* when the run stopped early (end 0 ran out), when end 0
 crept more than ``slip_distance`` over the last half of the hold, or (``creep_limit`` given)
 when end 0 crept faster than ``creep_limit`` rod diameters per second over the creep window
-(the last second of the hold, or its last half if shorter); else *hold*. The free end's
+(the last second of the hold, or its last half if shorter), or when the knot invariants
+changed (the knot came apart); else *hold*. The free end's
 draw-in speed is reported (``tail_creep_speed``) but does not decide: an unloaded tail also
 moves as the rod's bending relaxes, without the hitch giving.
 The clove hitch keeps the distance rule alone (``creep_limit=None``), the rule its shipped
@@ -719,15 +720,16 @@ def run_hitch(
             t_last = pos[-1, -1] - pos[-1, -2]
             draw = (pos[:, -1, :] - x0[-1]) @ (-t_last / np.linalg.norm(t_last))
             v_end, v_tail = (_mean_speed(times, u, ta, window) for u in (disp, draw))
-    if loading == "free":
-        stopped_early = times[-1] < t_end - 1e-9 and status == "success"
-        fast = climit is not None and not (abs(v_end) <= climit * d)
-        verdict = "slip" if stopped_early or not (creep <= slip) or fast else "hold"
-    if loading == "pull":
-        th = float(pull_force[-1]) if pull_force.size else float("nan")
     inv0 = inv1 = kept = None
     if knot.invariants is not None:
         inv0, inv1, kept = _check_invariants(knot.invariants, x0, pos, disp, d)
+    if loading == "free":
+        stopped_early = times[-1] < t_end - 1e-9 and status == "success"
+        fast = climit is not None and not (abs(v_end) <= climit * d)
+        undone = kept is False  # the knot came apart (or a strand passed through)
+        verdict = "slip" if stopped_early or not (creep <= slip) or fast or undone else "hold"
+    if loading == "pull":
+        th = float(pull_force[-1]) if pull_force.size else float("nan")
     le = system.rest_length
     s_mid = np.cumsum(le) - 0.5 * le
     reason, more = measured_strain(np.concatenate([tension_last, pull_force]), ea,

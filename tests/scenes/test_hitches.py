@@ -164,3 +164,24 @@ def test_light_load_is_held_by_bending_not_by_the_capstan(thh_light):
     """At 0.1 N the tension leaving the post (7 mN) is below B/R^2 = 44 mN: the ratio over
     the wrap (9.1) exceeds exp(mu_eff theta) = 3.3; the capstan test does not apply."""
     assert _capstan_ratios(thh_light) == []
+
+
+@pytest.mark.slow
+def test_cow_hitch_legs_share_a_symmetric_load():
+    """Both legs loaded with 0.3 N, mu = 0.3: the two turns are mirror images. Measured:
+    each turn wraps 3.85 rad and carries 0.261 N -> 0.093 N, one from each leg; end 0 slid
+    7.3 d while the load came on and then stopped (4.6e-5 d over the last half)."""
+    r = hitch("cow_hitch", loading="symmetric", t_high=0.3,
+              **{**PROTOCOL, "hold_time": 0.6})  # fmt: skip
+    assert r.status == "success" and r.topology_preserved
+    assert r.tension[0] == pytest.approx(0.3, rel=0.02)
+    assert r.tension[-1] == pytest.approx(0.3, rel=0.02)
+    wraps = [w for w in r.post_wraps() if w["i1"] - w["i0"] > 5]
+    assert len(wraps) == 2
+    a, b = wraps
+    n = len(r.tension)
+    assert a["theta"] == pytest.approx(b["theta"], rel=0.05)
+    assert a["i0"] + b["i1"] == pytest.approx(n, abs=3)  # mirror images along the rod
+    assert a["t_in"] == pytest.approx(b["t_out"], rel=0.05)
+    assert a["t_out"] == pytest.approx(b["t_in"], rel=0.05)
+    assert abs(r.creep) < 1e-2 * D_ROD and abs(r.creep_speed_d) < 1e-3
