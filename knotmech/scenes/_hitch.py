@@ -375,9 +375,8 @@ class HitchResult:
             "tail_creep_speed": _num(self.tail_creep_speed),
             "creep_window": _num(self.creep_window),
             "creep_limit": self.creep_limit,
-            "invariants": None
-            if self.invariants_start is None
-            else [_inv(self.invariants_start), _inv(self.invariants_end)],
+            "invariants_start": _inv(self.invariants_start),
+            "invariants_end": _inv(self.invariants_end),
             "invariants_kept": self.invariants_kept,
         }
 
@@ -391,7 +390,8 @@ def _inv(v):
     if v is None:
         return None
     alex, link = v
-    return {"alexander": [int(c) for c in alex], "linking": int(link)}
+    # the polynomial's coefficients as one string: a scalar for JSON summaries
+    return {"alexander": " ".join(str(int(c)) for c in alex), "linking": int(link)}
 
 
 @dataclass
