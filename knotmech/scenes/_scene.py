@@ -19,8 +19,8 @@ The loads and moving grips every scene needs are written once here: :class:`Ramp
 along a direction after a delay).
 
 The post hitches (clove hitch, two half hitches, round turn and two half hitches, cow
-hitch) run on it through :mod:`knotmech.scenes._hitch`; ``capstan`` and ``overhand`` still
-write their ``simulate`` sequences by hand (see docs/notes/knots.md).
+hitch) run on it through :mod:`knotmech.scenes._hitch`, and so does ``capstan``;
+``overhand`` still writes its ``simulate`` call by hand (see docs/notes/knots.md).
 """
 
 from __future__ import annotations
@@ -131,12 +131,21 @@ def rod_contact(
 
 
 def post_contact(
-    *, post_diameter: float, rod_diameter: float, force_scale: float, mu_static, mu_kinetic=None
+    *,
+    post_diameter: float,
+    rod_diameter: float,
+    force_scale: float,
+    mu_static,
+    mu_kinetic=None,
+    stiffness: float | None = None,
+    surface_friction: bool = True,
 ):
     r"""Rigid post on the z axis through the origin, with sticking friction on the rod surface.
 
-    Stiffness :math:`K = 200 F/(R d)` (R = (D + d)/2), sharpness 400/d, tangential stiffness
-    K: the clove-hitch scene's choice.
+    Stiffness :math:`K = 200 F/(R d)` (R = (D + d)/2; ``stiffness`` overrides it),
+    sharpness 400/d, tangential stiffness K: the clove-hitch scene's choice.
+    ``surface_friction`` False applies the friction at the centreline (the ideal rope's
+    :math:`e^{\mu\theta}`) instead of the rod surface.
     """
     D = float(check_positive("post_diameter", post_diameter))
     d = float(check_positive("rod_diameter", rod_diameter))
@@ -145,13 +154,14 @@ def post_contact(
     mk = ms if mu_kinetic is None else float(check_nonnegative("mu_kinetic", mu_kinetic))
     if mk > ms:
         raise InputError(f"mu_kinetic must be <= mu_rod_post ({ms:g}), got {mk:g}")
-    K = 200.0 * f / (0.5 * (D + d) * d)
+    K = 200.0 * f / (0.5 * (D + d) * d) if stiffness is None else float(stiffness)
     post = Cylinder(point=(0.0, 0.0, 0.0), axis=(0.0, 0.0, 1.0), radius=0.5 * D)
     return CylinderContact(
         (post,),
         stiffness=K,
         sharpness=400.0 / d,
         friction=AnchorFriction(mu_static=ms, mu_kinetic=mk, tangential_stiffness=K),
+        surface_friction=bool(surface_friction),
         rod_radius=0.5 * d,
     )
 
@@ -205,6 +215,7 @@ class SceneRun:
     positions: list = field(default_factory=list)
     reactions: dict = field(default_factory=dict)
     tension: np.ndarray | None = None
+    tensions: list = field(default_factory=list)
     stats: dict = field(default_factory=dict)
     live: rod.State | None = None
 
@@ -302,6 +313,8 @@ class SceneRun:
                 self.reactions[int(node)][float(t)] = f
         if len(res.tension):
             self.tension = np.asarray(res.tension[-1])
+            # every frame's edge tensions; the first phase keeps its frame 0 (the start)
+            self.tensions.extend(list(np.asarray(res.tension)[0 if k0 == 1 else 1 :]))
         for k, v in res.stats.items():
             self.stats[k] = self.stats.get(k, 0) + v
         if res.final_state is not None:
@@ -316,6 +329,11 @@ class SceneRun:
             self.status, self.message = status, message
             return False
         return True
+
+    def tension_frames(self) -> np.ndarray:
+        """Edge tensions [N] at every recorded frame, (n_frames, n_edges) (the first
+        phase's frame 0 included, as in :meth:`frames`)."""
+        return np.asarray(self.tensions)
 
     def frames(self):
         """(times (n_frames,) [s], positions (n_frames, n_nodes, 3) [m]) of all phases."""
