@@ -18,10 +18,9 @@ The loads and moving grips every scene needs are written once here: :class:`Ramp
 (a dead load on one node, ramped), :func:`grip_path` (a gripped end moved at constant speed
 along a direction after a delay).
 
-Existing scenes (``clove_hitch``, ``capstan``, ``overhand``) predate this module; moving
-them onto it means replacing their hand-written ``simulate`` sequences by
-:meth:`SceneRun.phase` calls and their contact set-up by :func:`rod_contact` /
-:func:`post_contact` (see docs/notes/knots.md).
+The post hitches (clove hitch, two half hitches, round turn and two half hitches, cow
+hitch) run on it through :mod:`knotmech.scenes._hitch`, and so does ``capstan``;
+``overhand`` still writes its ``simulate`` call by hand (see docs/notes/knots.md).
 """
 
 from __future__ import annotations
@@ -132,12 +131,21 @@ def rod_contact(
 
 
 def post_contact(
-    *, post_diameter: float, rod_diameter: float, force_scale: float, mu_static, mu_kinetic=None
+    *,
+    post_diameter: float,
+    rod_diameter: float,
+    force_scale: float,
+    mu_static,
+    mu_kinetic=None,
+    stiffness: float | None = None,
+    surface_friction: bool = True,
 ):
     r"""Rigid post on the z axis through the origin, with sticking friction on the rod surface.
 
-    Stiffness :math:`K = 200 F/(R d)` (R = (D + d)/2), sharpness 400/d, tangential stiffness
-    K: the clove-hitch scene's choice.
+    Stiffness :math:`K = 200 F/(R d)` (R = (D + d)/2; ``stiffness`` overrides it),
+    sharpness 400/d, tangential stiffness K: the clove-hitch scene's choice.
+    ``surface_friction`` False applies the friction at the centreline (the ideal rope's
+    :math:`e^{\mu\theta}`) instead of the rod surface.
     """
     D = float(check_positive("post_diameter", post_diameter))
     d = float(check_positive("rod_diameter", rod_diameter))
@@ -146,20 +154,26 @@ def post_contact(
     mk = ms if mu_kinetic is None else float(check_nonnegative("mu_kinetic", mu_kinetic))
     if mk > ms:
         raise InputError(f"mu_kinetic must be <= mu_rod_post ({ms:g}), got {mk:g}")
-    K = 200.0 * f / (0.5 * (D + d) * d)
+    K = 200.0 * f / (0.5 * (D + d) * d) if stiffness is None else float(stiffness)
     post = Cylinder(point=(0.0, 0.0, 0.0), axis=(0.0, 0.0, 1.0), radius=0.5 * D)
     return CylinderContact(
         (post,),
         stiffness=K,
         sharpness=400.0 / d,
         friction=AnchorFriction(mu_static=ms, mu_kinetic=mk, tangential_stiffness=K),
+        surface_friction=bool(surface_friction),
         rod_radius=0.5 * d,
     )
 
 
 @dataclass
 class Phase:
-    """What one phase of a scene ran: name, [t0, t1] [s], status and frame range."""
+    """What one phase of a scene ran: name, [t0, t1] [s], status and frame range.
+
+    ``start_reactions`` maps each node constrained in the phase to the static reaction
+    [N] the solver reports at the phase's start (its frame 0, not kept in the run's
+    frames: the previous phase's last frame stands there).
+    """
 
     name: str
     t0: float
@@ -167,6 +181,7 @@ class Phase:
     status: str
     message: str
     frames: tuple
+    start_reactions: dict = field(default_factory=dict)
 
 
 @dataclass
@@ -200,6 +215,7 @@ class SceneRun:
     positions: list = field(default_factory=list)
     reactions: dict = field(default_factory=dict)
     tension: np.ndarray | None = None
+    tensions: list = field(default_factory=list)
     stats: dict = field(default_factory=dict)
     live: rod.State | None = None
 
@@ -288,13 +304,17 @@ class SceneRun:
         self.times.extend(tt.tolist())
         self.positions.extend(list(np.asarray(res.positions)[1:]))
         rn = np.asarray(res.reaction_nodes)
-        rx = np.asarray(res.reactions)[1:]
+        rx_all = np.asarray(res.reactions)
+        start = {int(node): rx_all[0, j] for j, node in enumerate(rn)} if len(rx_all) else {}
+        rx = rx_all[1:]
         for j, node in enumerate(rn):
             self.reactions.setdefault(int(node), {})
             for t, f in zip(tt, rx[:, j], strict=True):
                 self.reactions[int(node)][float(t)] = f
         if len(res.tension):
             self.tension = np.asarray(res.tension[-1])
+            # every frame's edge tensions; the first phase keeps its frame 0 (the start)
+            self.tensions.extend(list(np.asarray(res.tension)[0 if k0 == 1 else 1 :]))
         for k, v in res.stats.items():
             self.stats[k] = self.stats.get(k, 0) + v
         if res.final_state is not None:
@@ -304,11 +324,16 @@ class SceneRun:
             status, message = "failed", f"{name}: {verdict['msg']}"
         elif status != "success":
             message = f"{name}: {message}"
-        self.phases.append(Phase(name, t0, self.t, status, message, (k0, len(self.times))))
+        self.phases.append(Phase(name, t0, self.t, status, message, (k0, len(self.times)), start))
         if status != "success":
             self.status, self.message = status, message
             return False
         return True
+
+    def tension_frames(self) -> np.ndarray:
+        """Edge tensions [N] at every recorded frame, (n_frames, n_edges) (the first
+        phase's frame 0 included, as in :meth:`frames`)."""
+        return np.asarray(self.tensions)
 
     def frames(self):
         """(times (n_frames,) [s], positions (n_frames, n_nodes, 3) [m]) of all phases."""

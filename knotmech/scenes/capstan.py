@@ -36,10 +36,8 @@ from knotmech.analytic.capstan import capstan_ratio_bending
 from knotmech.analytic.capstan import mu_eff as _mu_eff
 from knotmech.errors import InputError, check_nonnegative, check_positive
 from knotmech.rod.constraints import Clamp, MovingNodes
-from knotmech.rod.contact import Cylinder, CylinderContact
-from knotmech.rod.friction import AnchorFriction
 from knotmech.rod.loads import NodeForce, ViscousDamping
-from knotmech.rod.solver import SolverOptions, simulate
+from knotmech.rod.solver import SolverOptions
 from knotmech.rod.system import Rod, RodSystem
 from knotmech.scenes._common import (
     check_pull_step,
@@ -50,6 +48,7 @@ from knotmech.scenes._common import (
     fail,
     measured_strain,
 )
+from knotmech.scenes._scene import SceneRun, post_contact
 
 __all__ = ["CapstanResult", "capstan", "capstan_two_loops"]
 
@@ -357,16 +356,9 @@ def capstan(
     system = RodSystem((rod,))
     h_mean = float(np.mean(system.rest_length))
     K = 200.0 * t_max / (R * d) if contact_stiffness is None else float(contact_stiffness)
-    friction = AnchorFriction(mu_static=mu, mu_kinetic=mu_kinetic, tangential_stiffness=K)
-    post = Cylinder(point=(0.0, 0.0, 0.0), axis=(0.0, 0.0, 1.0), radius=0.5 * D)
-    contact = CylinderContact(
-        (post,),
-        stiffness=K,
-        sharpness=400.0 / d,
-        friction=friction,
-        surface_friction=surface_friction,
-        rod_radius=0.5 * d,
-    )
+    contact = post_contact(post_diameter=D, rod_diameter=d, force_scale=t_max, mu_static=mu,
+                           mu_kinetic=mu_kinetic, stiffness=K,
+                           surface_friction=surface_friction)  # fmt: skip
     ramp = 0.1 if ramp_time is None else float(check_nonnegative("ramp_time", ramp_time))
     low_load = NodeForce(nodes=-1, force=t_low * t_end_dir, ramp_time=ramp)
     pull_dir = np.array([0.0, -1.0, 0.0])
@@ -405,34 +397,29 @@ def capstan(
         speed=v if mode == "pull" else None,
     )  # fmt: skip
     opts = options or SolverOptions(throw=False, save_every=max(step, (t_final) / 400.0))
-    callback = None
+    stop = None
     if mode == "hold":
         # stop once the rod has clearly slipped off (0.5 lead lengths): the run has decided
-        def callback(state, x0=x0, lim=0.5 * lead):
-            return float((state.q[system.node_dofs[0]] - x0) @ pull_dir) > lim
+        def stop(x, x0=x0, lim=0.5 * lead):
+            return float((x[0] - x0) @ pull_dir) > lim
 
-    res = simulate(
-        system,
-        t_end=t_final,
-        dt=step,
-        loads=tuple(loads),
-        constraints=constraints,
-        interactions=(contact,),
-        options=opts,
-        progress=progress,
-        callback=callback,
-    )
-    pos = res.positions
+    # one phase (the ramps and the pull's start delay are in the loads and the grip path)
+    run = SceneRun(system, interactions=(contact,), options=opts, progress=progress)
+    run.phase(mode, t_final, dt=step, loads=tuple(loads), constraints=constraints,
+              save_every=step if opts.save_every is None else opts.save_every,
+              stop=stop)  # fmt: skip
+    times, pos = run.frames()
+    tension = run.tension_frames()
     disp = (pos[:, 0, :] - x0) @ pull_dir
-    t_hi = res.tension[:, 0]
+    t_hi = tension[:, 0]
     ratio = float("nan")
     creep = float("nan")
     if mode == "pull":
         sel = disp >= (1.0 - plateau) * pull_distance
-        if np.any(sel) and res.status == "success":
+        if np.any(sel) and run.status == "success":
             ratio = float(np.mean(t_hi[sel]) / t_low)
     else:
-        sel = res.times >= ramp + 0.5 * (t_final - ramp)
+        sel = times >= ramp + 0.5 * (t_final - ramp)
         if np.any(sel):
             creep = float(abs(disp[-1] - disp[sel][0]))
     # final contact region and tension profile
@@ -443,7 +430,7 @@ def capstan(
     contact_angle = float(ang.max() - ang.min()) if ang.size > 1 else 0.0
     s_mid = np.cumsum(system.rest_length) - 0.5 * system.rest_length
     # the result checked against what a capstan is: a failure reason or warnings
-    reason, more = measured_strain(res.tension, ea, warned=bool(warnings))
+    reason, more = measured_strain(tension, ea, warned=bool(warnings))
     warnings += more
     if reason is None and mode == "pull" and contact_angle < 0.5 * theta:
         # the solver converged, but the rod is no longer wrapped: no capstan ratio to report
@@ -456,7 +443,7 @@ def capstan(
         reason = _ratio_reason(ratio, exp_mu)
     if reason is not None:
         ratio = float("nan")
-    status, message = fail(res.status, res.message, reason)
+    status, message = fail(run.status, _plain(run.phases[-1].message), reason)
     mu_slide = (mu if mu_kinetic is None else float(mu_kinetic)) if mode == "pull" else mu
     mu_slide = float(_mu_eff(mu_slide, D / d)) if surface_friction else mu_slide
     ei = float(rod.bending_stiffness)
@@ -475,14 +462,14 @@ def capstan(
         mu=mu,
         rod_diameter=d,
         post_diameter=D,
-        times=res.times,
+        times=times,
         displacement=disp,
         t_high=t_hi,
         t_low=t_low,
         ratio=ratio,
         creep=creep,
         s=s_mid,
-        tension=res.tension[-1],
+        tension=tension[-1],
         contact=in_contact,
         contact_angle=contact_angle,
         mu_eff=me,
@@ -490,12 +477,20 @@ def capstan(
         exp_mu_eff_theta=exp_mue,
         status=status,
         message=message,
-        stats=dict(res.stats),
+        stats=dict(run.stats),
         positions=pos,
         bending_group=float(eps2),
         ratio_bending=float(ratio_b),
         warnings=warnings,
     )
+
+
+def _plain(message: str) -> str:
+    """The solver's message without the phase name (the capstan has one phase)."""
+    for name in ("pull: ", "hold: "):
+        if message.startswith(name):
+            return message[len(name) :]
+    return message
 
 
 def capstan_two_loops(**overrides) -> CapstanResult:
