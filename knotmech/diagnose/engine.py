@@ -330,12 +330,20 @@ def diagnose(
         baseline_mean=base.mean,
         final_mean=final.mean,
         columns=rec.columns,
+        row_trial=_line_ids(rec),
     )
     verdict_effect = CATALOGUE.get(verdict)
     report.summary = _summary(report, rec, fin_mis, base_mis, verdict_effect)
     # the fits behind the report (not written to JSON; diagnose_many refits them jointly)
     report.fits = {"recording": rec, "baseline": base, "final": final}
     return report
+
+
+def _line_ids(rec) -> np.ndarray:
+    """Per row, one id per (trial, speed) pair: the rows the plot joins into one line."""
+    speed = rec.speed if rec.speed is not None else np.zeros(rec.n)
+    pairs = np.column_stack([np.asarray(rec.trial, float), np.asarray(speed, float)])
+    return np.unique(pairs, axis=0, return_inverse=True)[1].reshape(-1).astype(int)
 
 
 def _drop_outliers(rec):

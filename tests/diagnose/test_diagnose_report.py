@@ -54,3 +54,44 @@ def test_axes_have_names_and_units(tmp_path):
     labels = ax.get_legend_handles_labels()[1]
     assert "mismatch region" in labels
     assert "baseline" in labels
+
+
+def _lines(fig, style):
+    return [ln for ln in fig.axes[0].get_lines() if ln.get_linestyle() == style]
+
+
+def _monotone(values) -> bool:
+    return bool(np.all(np.diff(values) >= -1e-12 * np.max(np.abs(values))))
+
+
+def test_joint_plot_draws_one_line_per_recording(tmp_path):
+    # two capstan pulls of one rod at other loads and wraps: at one displacement the
+    # curves differ, so rows sorted across both would zigzag between them
+    from knotmech.diagnose import diagnose_many
+
+    recs = [make_recording("capstan_pull", None, seed=s, n=60)[0] for s in (1, 2)]
+    rep = diagnose_many(recs, seed=1)
+    fig = plot_report(rep, tmp_path / "joint.png")
+    for style in ("--", "-"):
+        lines = _lines(fig, style)
+        assert len(lines) == 2
+        for ln in lines:
+            assert _monotone(ln.get_xdata()) and _monotone(ln.get_ydata())
+    # every row is on exactly one line, at its own model value
+    xs = np.concatenate([ln.get_xdata() for ln in _lines(fig, "--")])
+    assert xs.size == rep.x.size
+    labels = fig.axes[0].get_legend_handles_labels()[1]
+    assert labels.count("baseline") == 1
+
+
+def test_plot_draws_each_speed_as_its_own_line(tmp_path):
+    rec, _ = make_recording("capstan_pull", "rate_dependent_friction", size=8.0, seed=3, n=120)
+    rep = diagnose(rec, seed=3)
+    assert rep.verdict == "rate_dependent_friction"
+    fig = plot_report(rep, tmp_path / "speeds.png")
+    final = _lines(fig, "-")
+    assert len(final) == 3  # one per speed
+    plateaus = sorted(float(np.max(ln.get_ydata())) for ln in final)
+    assert plateaus[-1] - plateaus[0] > 0  # the speeds' plateaus differ ...
+    for ln in final:  # ... and no line jumps between them
+        assert _monotone(ln.get_xdata()) and _monotone(ln.get_ydata())
