@@ -199,7 +199,11 @@ def smooth_mismatch(
 
     Notes
     -----
-    Measured but NOT used by :func:`knotmech.diagnose.diagnose` (issue 5, trial
+    :func:`knotmech.diagnose.diagnose` runs it (5 hat functions, at ``alpha``) only on a
+    recording the noise floor would call ``undetermined``, with at least 20 rows per hat
+    function (``engine.UNDETERMINED_SMOOTH_KNOTS``, ``UNDETERMINED_ROWS_PER_KNOT``): there
+    it turns the verdict into ``unexplained``. Its size on all recordings, measured
+    before that restriction (issue 5, trial
     ``validation.concealed_effects.smooth_trial_one``: run after the engine's own
     test, at ``alpha / 2 = 0.005``, when the verdict is not already ``unexplained``).
     On the full-table seeds it lifts ``unexplained`` on out-of-catalogue shapes under
