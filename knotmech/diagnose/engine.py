@@ -397,6 +397,7 @@ def _noise_floor_check(rec, final, starts, rng, alpha):
     if verdict == "undetermined" and k and rec.n >= UNDETERMINED_ROWS_PER_KNOT * k:
         # the floor cannot tell a smooth mismatch from correlated noise; a smooth basis
         # fitted together with the noise can, on recordings long enough to estimate both
+        # (its p-value counted from up to 3/alpha draws, no fitted tail)
         mis = smooth_mismatch(
             rec.x,
             resid,
@@ -407,6 +408,7 @@ def _noise_floor_check(rec, final, starts, rng, alpha):
             n_knots=k,
             rng=rng,
             decide_at=alpha,
+            counted=True,
         )
         if mis.p_value < alpha and mis.regions:
             return floor, "unexplained", _SMOOTH_REASON.format(mis.shape, mis.p_value), mis.regions
