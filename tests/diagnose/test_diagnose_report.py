@@ -65,12 +65,29 @@ def _monotone(values) -> bool:
 
 
 def test_joint_plot_draws_one_line_per_recording(tmp_path):
-    # two capstan pulls of one rod at other loads and wraps: at one displacement the
-    # curves differ, so rows sorted across both would zigzag between them
+    # two capstan pulls of one rod (mu = 0.3) at other loads and wraps: at one
+    # displacement the curves differ, so rows sorted across both would zigzag between them
     from knotmech.diagnose import diagnose_many
+    from knotmech.diagnose.recording import recording_from_arrays
 
-    recs = [make_recording("capstan_pull", None, seed=s, n=60)[0] for s in (1, 2)]
+    rng = np.random.default_rng(4)
+    u = np.linspace(0.0, 0.05, 60)
+    recs = []
+    for t_low, theta in ((1.0, 2 * np.pi), (1.5, 3 * np.pi)):
+        plateau = t_low * np.exp(0.3 * theta)
+        t = np.minimum(t_low + (plateau - t_low) / 0.02 * u, plateau)
+        meta = {
+            "wrap_angle_rad": theta,
+            "T_low_N": t_low,
+            "rod_diameter_m": 0.004,
+            "post_diameter_m": 0.02,
+            "youngs_modulus_Pa": 1.26e6,
+        }
+        y = t + 0.004 * plateau * rng.standard_normal(u.size)
+        recs.append(recording_from_arrays("capstan_pull", u, y, metadata=meta))
     rep = diagnose_many(recs, seed=1)
+    assert rep.verdict == "none"
+    assert rep.final["parameters"]["mu"] == pytest.approx(0.3, rel=0.01)
     fig = plot_report(rep, tmp_path / "joint.png")
     for style in ("--", "-"):
         lines = _lines(fig, style)
