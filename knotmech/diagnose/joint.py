@@ -332,6 +332,7 @@ def diagnose_many(
     report.row_recording = np.concatenate(
         [np.full(d.y.size, i, dtype=int) for i, d in enumerate(datas)]
     )
+    report.row_trial = np.concatenate([s.row_trial for s in singles])
     return report
 
 

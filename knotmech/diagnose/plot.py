@@ -4,7 +4,7 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["plot_report", "axis_label"]
+__all__ = ["plot_report", "axis_label", "line_groups"]
 
 #: unit suffixes of column names (SI, as the recording format writes them)
 _UNITS = (
@@ -25,11 +25,35 @@ def axis_label(column: str) -> str:
     return column.replace("_", " ")
 
 
+def line_groups(report) -> list:
+    """Row indices of each line of the plot, each sorted by x.
+
+    One line per recording (``report.row_recording``, set by ``diagnose_many``) and, within
+    it, per trial at its own speed (``report.row_trial``): joining the rows of all of them
+    in the order of x would zigzag between curves that differ.
+    """
+    n = report.x.size
+    keys = []
+    for ids in (getattr(report, "row_recording", None), getattr(report, "row_trial", None)):
+        if ids is not None and np.asarray(ids).size == n:
+            keys.append(np.asarray(ids))
+    if not keys:
+        return [np.argsort(report.x, kind="stable")]
+    _, group = np.unique(np.column_stack(keys), axis=0, return_inverse=True)
+    group = group.reshape(-1)
+    out = []
+    for g in np.unique(group):
+        rows = np.flatnonzero(group == g)
+        out.append(rows[np.argsort(report.x[rows], kind="stable")])
+    return out
+
+
 def plot_report(report, path=None):
     """Draw ``report`` (two panels) and save it to ``path`` when given.
 
     Top: data (dots), baseline fit (dashed: the report's baseline, the GLS fit under the
-    noise model the report states for it, ``noise.baseline``), final fit (solid). Bottom:
+    noise model the report states for it, ``noise.baseline``), final fit (solid), one
+    line per recording and trial (:func:`line_groups`). Bottom:
     residuals
     of the baseline and of the final model; the regions where the baseline misses
     shaded in both (and named in the legend). Axes carry the columns' names and
@@ -38,7 +62,7 @@ def plot_report(report, path=None):
     from matplotlib.figure import Figure
 
     x, y = report.x, report.y
-    order = np.argsort(x, kind="stable")
+    groups = line_groups(report)
     fig = Figure(figsize=(7.0, 6.0))
     ax, axr = fig.subplots(2, 1, sharex=True, gridspec_kw={"height_ratios": [3, 2]})
     for a in (ax, axr):
@@ -49,15 +73,24 @@ def plot_report(report, path=None):
             label = "mismatch region" if (a is ax and k == 0) else None
             a.axvspan(lo, hi, color="orange", alpha=0.18, lw=0, label=label)
     ax.plot(x, y, ".", ms=2.5 if x.size > 60 else 5, color="0.35", label="recording")
-    ax.plot(x[order], report.baseline_mean[order], "--", color="C0", lw=1.2, label="baseline")
-    ax.plot(
-        x[order],
-        report.final_mean[order],
-        "-",
-        color="C3",
-        lw=1.2,
-        label="final: " + (", ".join(e["name"] for e in report.effects) or "baseline"),
-    )
+    final_label = "final: " + (", ".join(e["name"] for e in report.effects) or "baseline")
+    for k, rows in enumerate(groups):
+        ax.plot(
+            x[rows],
+            report.baseline_mean[rows],
+            "--",
+            color="C0",
+            lw=1.2,
+            label="baseline" if k == 0 else None,
+        )
+        ax.plot(
+            x[rows],
+            report.final_mean[rows],
+            "-",
+            color="C3",
+            lw=1.2,
+            label=final_label if k == 0 else None,
+        )
     ycol = report.columns[1]
     ax.set_ylabel(axis_label(ycol))
     ax.set_title(report.verdict_line, fontsize=7, wrap=True)

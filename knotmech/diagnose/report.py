@@ -60,6 +60,10 @@ class Report:
     baseline_mean: np.ndarray | None = None
     final_mean: np.ndarray | None = None
     columns: tuple = ("x", "y")
+    #: per row: the recording it belongs to (several recordings) and its trial; the plot
+    #: draws one line per (recording, trial), each sorted by x
+    row_recording: np.ndarray | None = None
+    row_trial: np.ndarray | None = None
 
     @property
     def verdict_line(self) -> str:

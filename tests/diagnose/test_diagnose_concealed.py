@@ -61,6 +61,10 @@ def test_out_of_catalogue_is_never_given_a_catalogue_name(quick):
     assert len(named) <= 1
     white = [r for r in ooc if r["noise"] == "white"]
     assert sum(r["verdict"] == "unexplained" for r in white) >= len(white) - 1
+    # under AR(1) rho = 0.9 at least half (issue 12 part 5; measured 4 of 6, was 0 of 6:
+    # undetermined until the smooth test of undetermined recordings)
+    ar1 = [r for r in ooc if r["noise"] == "ar1"]
+    assert sum(r["verdict"] == "unexplained" for r in ar1) >= len(ar1) / 2
 
 
 def test_json_and_plot_written(quick):

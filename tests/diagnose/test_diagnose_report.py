@@ -54,3 +54,61 @@ def test_axes_have_names_and_units(tmp_path):
     labels = ax.get_legend_handles_labels()[1]
     assert "mismatch region" in labels
     assert "baseline" in labels
+
+
+def _lines(fig, style):
+    return [ln for ln in fig.axes[0].get_lines() if ln.get_linestyle() == style]
+
+
+def _monotone(values) -> bool:
+    return bool(np.all(np.diff(values) >= -1e-12 * np.max(np.abs(values))))
+
+
+def test_joint_plot_draws_one_line_per_recording(tmp_path):
+    # two capstan pulls of one rod (mu = 0.3) at other loads and wraps: at one
+    # displacement the curves differ, so rows sorted across both would zigzag between them
+    from knotmech.diagnose import diagnose_many
+    from knotmech.diagnose.recording import recording_from_arrays
+
+    rng = np.random.default_rng(4)
+    u = np.linspace(0.0, 0.05, 60)
+    recs = []
+    for t_low, theta in ((1.0, 2 * np.pi), (1.5, 3 * np.pi)):
+        plateau = t_low * np.exp(0.3 * theta)
+        t = np.minimum(t_low + (plateau - t_low) / 0.02 * u, plateau)
+        meta = {
+            "wrap_angle_rad": theta,
+            "T_low_N": t_low,
+            "rod_diameter_m": 0.004,
+            "post_diameter_m": 0.02,
+            "youngs_modulus_Pa": 1.26e6,
+        }
+        y = t + 0.004 * plateau * rng.standard_normal(u.size)
+        recs.append(recording_from_arrays("capstan_pull", u, y, metadata=meta))
+    rep = diagnose_many(recs, seed=1)
+    assert rep.verdict == "none"
+    assert rep.final["parameters"]["mu"] == pytest.approx(0.3, rel=0.01)
+    fig = plot_report(rep, tmp_path / "joint.png")
+    for style in ("--", "-"):
+        lines = _lines(fig, style)
+        assert len(lines) == 2
+        for ln in lines:
+            assert _monotone(ln.get_xdata()) and _monotone(ln.get_ydata())
+    # every row is on exactly one line, at its own model value
+    xs = np.concatenate([ln.get_xdata() for ln in _lines(fig, "--")])
+    assert xs.size == rep.x.size
+    labels = fig.axes[0].get_legend_handles_labels()[1]
+    assert labels.count("baseline") == 1
+
+
+def test_plot_draws_each_speed_as_its_own_line(tmp_path):
+    rec, _ = make_recording("capstan_pull", "rate_dependent_friction", size=8.0, seed=3, n=120)
+    rep = diagnose(rec, seed=3)
+    assert rep.verdict == "rate_dependent_friction"
+    fig = plot_report(rep, tmp_path / "speeds.png")
+    final = _lines(fig, "-")
+    assert len(final) == 3  # one per speed
+    plateaus = sorted(float(np.max(ln.get_ydata())) for ln in final)
+    assert plateaus[-1] - plateaus[0] > 0  # the speeds' plateaus differ ...
+    for ln in final:  # ... and no line jumps between them
+        assert _monotone(ln.get_xdata()) and _monotone(ln.get_ydata())
