@@ -1,0 +1,79 @@
+"""Null size of the thinned parametric bootstrap (issue 14 part 3).
+
+Beyond ``fitting.BOOT_ROWS`` rows the engine's bootstrap draws are recordings of
+every k-th row (``fitting.thinned_null``). This script measures, on effect-free
+recordings of ``--rows`` rows, the null distribution of the likelihood ratio of one
+effect (the engine's statistic: ``fit_with_effect`` against the null refitted under
+the augmented noise) from full-size draws and from thinned draws, and the rejection
+rate of full-size null statistics against the thinned draws' 95 % and 99 % quantiles
+(the size of the test the engine runs; nominal 5 % and 1 %).
+
+    python benchmarks/thinned_bootstrap_size.py [--rows 20000] [--draws 150]
+
+Prints JSON.
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+
+import numpy as np
+
+from knotmech.diagnose import get_effect, make_recording
+from knotmech.diagnose.engine import _null_under
+from knotmech.diagnose.fitting import Data, fit_baseline, fit_model, fit_with_effect, thinned_null
+from knotmech.diagnose.stats import trial_starts, wilson_interval
+
+CASES = [("tension_profile", "self_contact_nip"), ("pinch", "contact_flattening")]
+
+
+def _lr(null, effect, data, starts, rng):
+    y = null.mean + null.noise.sample(null.mean, starts, rng)
+    d = Data(y, data.mu_nominal, data.mu_sigma)
+    n0 = fit_model(null.model, d, [null.p], null.noise, starts)
+    alt = fit_with_effect(n0, effect, d, starts)
+    return 2.0 * (alt.loglik - _null_under(n0, alt, d, starts, None).loglik)
+
+
+def main(argv=None) -> dict:
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--rows", type=int, default=20_000)
+    parser.add_argument("--draws", type=int, default=150)
+    args = parser.parse_args(argv)
+    out = {"rows": args.rows, "draws": args.draws, "cases": {}}
+    for kind, name in CASES:
+        rec, _ = make_recording(kind, None, seed=7, n=args.rows)
+        starts = trial_starts(rec.trial)
+        data = Data(rec.y, rec.mu_nominal, rec.mu_nominal_sigma)
+        base = fit_baseline(rec, data, starts)
+        thin, tdata, tstarts, _ = thinned_null(base, data, starts, None)
+        eff = get_effect(name)
+        rng = np.random.default_rng(1)
+        full = np.array([_lr(base, eff, data, starts, rng) for _ in range(args.draws)])
+        th = np.array([_lr(thin, eff, tdata, tstarts, rng) for _ in range(args.draws)])
+        q95, q99 = np.quantile(th, [0.95, 0.99])
+        k95, k99 = int(np.sum(full > q95)), int(np.sum(full > q99))
+        out["cases"][f"{kind}:{name}"] = {
+            "thinned_rows": int(tdata.y.size),
+            "quantiles_full_50_90_95_99": [
+                float(f"{v:.4g}") for v in np.quantile(full, [0.5, 0.9, 0.95, 0.99])
+            ],
+            "quantiles_thinned_50_90_95_99": [
+                float(f"{v:.4g}") for v in np.quantile(th, [0.5, 0.9, 0.95, 0.99])
+            ],
+            "size_at_5pc": [
+                k95 / args.draws,
+                [round(v, 3) for v in wilson_interval(k95, args.draws)],
+            ],
+            "size_at_1pc": [
+                k99 / args.draws,
+                [round(v, 3) for v in wilson_interval(k99, args.draws)],
+            ],
+        }
+    print(json.dumps(out, indent=2))
+    return out
+
+
+if __name__ == "__main__":
+    main()
