@@ -167,7 +167,8 @@ def _knot(turns, mu, n, seed):
         "rod_length_m": 1.0,
     }
     x = np.linspace(0.3, 1.0 - {1: 0.22, 2: 0.32, 3: 0.42, 4: 0.52}[turns], n)
-    r0 = recording_from_arrays("knot_pull", x, np.ones_like(x), metadata=meta)
+    # placeholder forces (not constant: the reader refuses a constant column)
+    r0 = recording_from_arrays("knot_pull", x, 1.0 + x, metadata=meta)
     off = get_effect("displacement_offset")
     m = get_experiment("knot_pull").mean(r0, {"mu": mu, "offset_m": 0.0}, (off,))
     y = m + 0.01 * np.median(m) * rng.standard_normal(n)
