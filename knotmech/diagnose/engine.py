@@ -59,6 +59,7 @@ from knotmech.diagnose.fitting import (
     fit_with_effect,
     heldout_errors,
     heldout_innovation_rms,
+    thinned_null,
 )
 from knotmech.diagnose.locate import flexible_mismatch, regions_from_mask, smooth_mismatch
 from knotmech.diagnose.noisefloor import (
@@ -547,6 +548,8 @@ def _null_under(null, alt, data, starts, gs):
 
 
 def _bootstrap_p(current, effect, lr, data, starts, gs, rng, decide_at):
+    # long recordings: draws of every k-th row (fitting.thinned_null)
+    current, data, starts, gs = thinned_null(current, data, starts, gs)
     rec = current.model.rec
     mu0 = current.params["mu"]
 

@@ -16,11 +16,16 @@ from scipy.optimize import least_squares
 
 from knotmech.diagnose.baselines import Model, build_model
 from knotmech.diagnose.experiments import get_experiment
+from knotmech.diagnose.noisefloor import without_rows
 from knotmech.diagnose.stats import NoiseModel, estimate_noise, require_finite
 from knotmech.errors import DiagnoseError
 
 #: above this lag-one correlation, effects are also fitted from a moderate-noise first pass
 _RHO_SECOND_PASS = 0.95
+
+#: longest recording the parametric bootstraps simulate in full; beyond it each draw is a
+#: recording of every k-th row of each trial (:func:`thinned_rows`, :func:`thinned_null`)
+BOOT_ROWS = 4000
 
 __all__ = [
     "Data",
@@ -35,6 +40,10 @@ __all__ = [
     "heldout_errors",
     "heldout_rms",
     "heldout_innovation_rms",
+    "BOOT_ROWS",
+    "thinned_rows",
+    "thinned_noise",
+    "thinned_null",
 ]
 
 
@@ -324,3 +333,69 @@ def heldout_innovation_rms(err, block, noise: NoiseModel, mean, starts) -> float
     first[1:] |= block[1:] != block[:-1]
     e = noise.whiten(err, noise.sd(mean), first)
     return float(np.sqrt(np.mean(e**2)))
+
+
+def thinned_rows(starts: np.ndarray, n_max: int = BOOT_ROWS):
+    """Every k-th row of each trial, ``k = ceil(n / n_max)`` (all rows when ``n <= n_max``).
+
+    Each trial keeps its first row and every k-th after it, so a thinned trial spans
+    (nearly) the same range of the control variable and its rows stay equally spaced
+    in row order: AR(1) noise of lag-one correlation ``rho`` on the recording is AR(1)
+    of correlation ``rho**k`` on the thinned rows (exactly).
+
+    Returns
+    -------
+    rows : (m,) int array
+        Kept rows, in recording order.
+    k : int
+        Thinning step.
+    """
+    n = starts.size
+    k = max(1, int(np.ceil(n / max(int(n_max), 1))))
+    if k == 1:
+        return np.arange(n), 1
+    first = np.flatnonzero(starts)
+    seg = np.repeat(first, np.diff(np.append(first, n)))  # each row's trial start
+    rows = np.flatnonzero((np.arange(n) - seg) % k == 0)
+    return rows, k
+
+
+def thinned_noise(noise: NoiseModel, rows: np.ndarray, k: int) -> NoiseModel:
+    """``noise`` on the rows of :func:`thinned_rows`: correlation ``rho**k``, sd per row cut."""
+    if k == 1:
+        return noise
+    gs = None if noise.given_sigma is None else noise.given_sigma[rows]
+    return replace(noise, rho=float(noise.rho**k), given_sigma=gs)
+
+
+def thinned_null(fit: Fit, data: Data, starts, given_sigma, n_max: int = BOOT_ROWS):
+    """The null of a parametric bootstrap on a long recording, on every k-th row.
+
+    A draw of the bootstrap simulates a recording from ``fit`` and repeats the whole
+    fitting procedure on it; beyond ``n_max`` rows the draws are recordings of the rows
+    of :func:`thinned_rows` (the same model, parameters and noise model, the noise's
+    correlation ``rho**k``): the likelihood-ratio statistics being compared have the
+    same large-sample null distribution (chi-square for a regular effect) whatever the
+    number of rows, and the draws cost ``n_max`` rows instead of ``n``. (For a searched
+    position, the maximum over more gaps is slightly larger: see docs/notes/diagbig.md
+    for the measured quantiles.)
+
+    Returns
+    -------
+    fit, data, starts, given_sigma
+        Unchanged when ``n <= n_max``; else their thinned counterparts.
+    """
+    rows, k = thinned_rows(starts, n_max)
+    if k == 1:
+        return fit, data, starts, given_sigma
+    rec = fit.model.rec
+    drop = np.ones(rec.n, bool)
+    drop[rows] = False
+    sub = without_rows(rec, np.flatnonzero(drop))
+    model = build_model(sub, fit.model.effect_objects_added, fit.model.fixed)
+    noise = thinned_noise(fit.noise, rows, k)
+    sub_starts = starts[rows]
+    sub_data = Data(data.y[rows], data.mu_nominal, data.mu_sigma)
+    mean = model.mean(fit.p)
+    sub_fit = Fit(model, fit.p, mean, noise, _loglik(model, sub_data, fit.p, noise, sub_starts))
+    return sub_fit, sub_data, sub_starts, None if given_sigma is None else given_sigma[rows]

@@ -17,6 +17,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from knotmech.diagnose.fitting import thinned_noise, thinned_rows
 from knotmech.diagnose.stats import (
     NoiseModel,
     estimate_noise,
@@ -126,12 +127,18 @@ def flexible_mismatch(
     design = _design(x, trial, n_knots)
     stat, coef, nz = _augment(resid, mean, noise, starts, design, given_sigma)
 
+    # long recordings: the pure-noise draws are recordings of every k-th row
+    rows, k = thinned_rows(starts)
+    b_noise, b_mean, b_starts = thinned_noise(noise, rows, k), mean[rows], starts[rows]
+    b_gs = None if given_sigma is None else given_sigma[rows]
+    b_design = design if k == 1 else _design(x[rows], trial[rows], n_knots)
+
     def draw(m):
         out = np.empty(m)
         for i in range(m):
-            r = noise.sample(mean, starts, rng)
-            n0 = estimate_noise(r, mean, starts, given_sigma=given_sigma)
-            out[i] = _augment(r, mean, n0, starts, design, given_sigma)[0]
+            r = b_noise.sample(b_mean, b_starts, rng)
+            n0 = estimate_noise(r, b_mean, b_starts, given_sigma=b_gs)
+            out[i] = _augment(r, b_mean, n0, b_starts, b_design, b_gs)[0]
         return out
 
     p, _ = monte_carlo_pvalue(stat, draw, batches=(19, 40, 80), decide_at=decide_at)

@@ -352,6 +352,67 @@ def parse_recording(text: str, *, source: str = "<string>") -> Recording:
             )
     if len(set(header)) != len(header):
         raise _err(source, header_line, "repeated column name in the header")
+    fast = _numeric_rows(lines, i + 1, header, kind, header_line)
+    if fast is not None:
+        table, lines_arr = fast
+    else:
+        table, lines_arr = _checked_rows(reader, header, kind, source, header_line)
+    if table.shape[0] < kind.min_rows:
+        raise _err(
+            source,
+            header_line,
+            f"{table.shape[0]} data rows; a recording needs at least {kind.min_rows}",
+        )
+    cols = {name: table[:, j] for j, name in enumerate(header)}
+    sigma = cols.get("sigma")
+    if sigma is not None and np.any(sigma <= 0):
+        j = int(np.argmax(sigma <= 0))
+        raise _err(source, int(lines_arr[j]), f"sigma must be > 0, got {sigma[j]:g}")
+    trial = cols.get("trial")
+    if trial is not None and np.any(np.abs(trial) > 1e9):
+        j = int(np.argmax(np.abs(trial) > 1e9))
+        raise _err(source, int(lines_arr[j]), f"trial id {trial[j]:g} is beyond |id| <= 1e9")
+    if trial is not None:
+        if np.any(trial != np.round(trial)):
+            j = int(np.argmax(trial != np.round(trial)))
+            raise _err(source, int(lines_arr[j]), f"trial must be an integer, got {trial[j]:g}")
+        trial = trial.astype(int)
+    else:
+        trial = np.zeros(table.shape[0], dtype=int)
+    speed = cols.get("speed_m_per_s")
+    if speed is not None and np.any(speed <= 0):
+        j = int(np.argmax(speed <= 0))
+        raise _err(source, int(lines_arr[j]), f"speed_m_per_s must be > 0, got {speed[j]:g}")
+    if speed is None:
+        speed = _speed_from_metadata(metadata, trial, source, meta_lines)
+    x = cols[xcol]
+    if kind.control_nonnegative and np.any(x < 0):
+        j = int(np.argmax(x < 0))
+        raise _err(source, int(lines_arr[j]), f"{xcol} must be >= 0, got {x[j]:g}")
+    _check_columns(cols, header, xcol, ycol, trial, source, lines_arr, header_line, kind.min_rows)
+    rec = Recording(
+        experiment=experiment,
+        x=x,
+        y=cols[ycol],
+        metadata=metadata,
+        sigma=sigma,
+        trial=trial,
+        speed=speed,
+        source=source,
+        columns=(xcol, ycol),
+        extra={k: cols[k] for k in kind.optional_columns if k in cols},
+    )
+    problem = kind.check(rec)
+    if problem:
+        raise _err(source, None, problem)
+    return rec
+
+
+def _checked_rows(reader, header, kind, source, header_line):
+    """The data rows cell by cell (every check, with the line of the first bad cell).
+
+    Returns the (rows, columns) table and the 1-based line number of every row.
+    """
     rows = []
     row_lines = []
     while True:
@@ -391,57 +452,44 @@ def parse_recording(text: str, *, source: str = "<string>") -> Recording:
             vals.append(v)
         rows.append(vals)
         row_lines.append(lineno)
-    if len(rows) < kind.min_rows:
-        raise _err(
-            source,
-            header_line,
-            f"{len(rows)} data rows; a recording needs at least {kind.min_rows}",
-        )
-    table = np.array(rows, dtype=float)
-    cols = {name: table[:, j] for j, name in enumerate(header)}
-    lines_arr = np.array(row_lines)
-    sigma = cols.get("sigma")
-    if sigma is not None and np.any(sigma <= 0):
-        j = int(np.argmax(sigma <= 0))
-        raise _err(source, int(lines_arr[j]), f"sigma must be > 0, got {sigma[j]:g}")
-    trial = cols.get("trial")
-    if trial is not None and np.any(np.abs(trial) > 1e9):
-        j = int(np.argmax(np.abs(trial) > 1e9))
-        raise _err(source, int(lines_arr[j]), f"trial id {trial[j]:g} is beyond |id| <= 1e9")
-    if trial is not None:
-        if np.any(trial != np.round(trial)):
-            j = int(np.argmax(trial != np.round(trial)))
-            raise _err(source, int(lines_arr[j]), f"trial must be an integer, got {trial[j]:g}")
-        trial = trial.astype(int)
-    else:
-        trial = np.zeros(len(rows), dtype=int)
-    speed = cols.get("speed_m_per_s")
-    if speed is not None and np.any(speed <= 0):
-        j = int(np.argmax(speed <= 0))
-        raise _err(source, int(lines_arr[j]), f"speed_m_per_s must be > 0, got {speed[j]:g}")
-    if speed is None:
-        speed = _speed_from_metadata(metadata, trial, source, meta_lines)
-    x = cols[xcol]
-    if kind.control_nonnegative and np.any(x < 0):
-        j = int(np.argmax(x < 0))
-        raise _err(source, int(lines_arr[j]), f"{xcol} must be >= 0, got {x[j]:g}")
-    _check_columns(cols, header, xcol, ycol, trial, source, lines_arr, header_line, kind.min_rows)
-    rec = Recording(
-        experiment=experiment,
-        x=x,
-        y=cols[ycol],
-        metadata=metadata,
-        sigma=sigma,
-        trial=trial,
-        speed=speed,
-        source=source,
-        columns=(xcol, ycol),
-        extra={k: cols[k] for k in kind.optional_columns if k in cols},
-    )
-    problem = kind.check(rec)
-    if problem:
-        raise _err(source, None, problem)
-    return rec
+    return np.array(rows, dtype=float).reshape(len(rows), len(header)), np.array(row_lines, int)
+
+
+def _numeric_rows(lines, first, header, kind, header_line):
+    """The data rows at once when they are plainly numeric, else None.
+
+    A fast path for long recordings (1e6 rows in about a second instead of a minute):
+    taken only when the rows hold no word column, no quote, no underscore, no
+    non-ASCII character and no very long line, every non-blank line has as many
+    cells as the header, and every cell is a finite ASCII number (numpy's conversion,
+    which accepts exactly ``_NUMBER`` and ``_NONFINITE`` once those characters are
+    excluded). Anything else returns None, and :func:`_checked_rows` reads the rows
+    cell by cell, naming the line of the first problem.
+    """
+    if any(name in kind.word_columns for name in header):
+        return None
+    block = lines[first:]
+    if not block:
+        return None
+    joined = "\n".join(block)
+    if not joined.isascii() or any(c in joined for c in '"_'):
+        return None
+    if max(map(len, block)) > 1000:
+        return None
+    keep = np.fromiter((bool(ln.strip()) for ln in block), bool, len(block))
+    rows = [ln for ln, k in zip(block, keep, strict=True) if k]
+    ncol = len(header)
+    counts = np.fromiter((ln.count(",") for ln in rows), int, len(rows))
+    if np.any(counts != ncol - 1):
+        return None
+    try:
+        table = np.array(",".join(rows).split(","), dtype=float)
+    except ValueError:
+        return None
+    if not np.all(np.isfinite(table)):
+        return None
+    lines_arr = header_line + 1 + np.flatnonzero(keep)
+    return table.reshape(len(rows), ncol), lines_arr
 
 
 def _csv_problem(exc: csv.Error) -> str:

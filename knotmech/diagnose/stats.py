@@ -85,7 +85,9 @@ class NoiseModel:
         u = resid / sd
         e = np.empty_like(u)
         c = np.sqrt(1.0 - self.rho**2)
-        e[1:] = (u[1:] - self.rho * u[:-1]) / c
+        np.multiply(u[:-1], -self.rho, out=e[1:])
+        e[1:] += u[1:]
+        e[1:] /= c
         e[starts] = u[starts]
         return e
 
@@ -169,22 +171,30 @@ def estimate_noise(
         j = int(np.argmax(ll))
         return NoiseModel(1.0, 0.0, float(rho[j]), fref, given_sigma)
     grid = _G_GRID if heteroscedastic else _G_GRID[:1]
-    h = 1.0 + grid[:, None] * (np.abs(mean) / fref)[None, :]
-    u = resid[None, :] / h
-    rest = ~starts
-    idx = np.flatnonzero(rest)
-    a = np.sum(u[:, starts] ** 2, axis=1)
-    cur, prev = u[:, idx], u[:, idx - 1]
-    b = np.sum(cur * cur, axis=1)
-    c = np.sum(cur * prev, axis=1)
-    d = np.sum(prev * prev, axis=1)
+    # per growth g: u = resid / h, h = 1 + g |f| / fref; sums of u^2 over trial starts (a),
+    # over the other rows (b), of u_i u_{i-1} (c) and u_{i-1}^2 (d) over the other rows,
+    # one g at a time with dot products (no (len(grid), n) arrays: 1e6-row recordings)
+    rest = (~starts).astype(float)
+    first = starts.astype(float)
+    rel = np.abs(mean) / fref
+    a, b, c, d, logh = (np.empty(grid.size) for _ in range(5))
+    for i, g in enumerate(grid):
+        if g == 0.0:
+            u, logh[i] = resid, 0.0
+        else:
+            h = 1.0 + g * rel
+            u = resid / h
+            logh[i] = np.sum(np.log(h))
+        uu = u * u
+        a[i], b[i] = uu @ first, uu @ rest
+        c[i], d[i] = (u[1:] * u[:-1]) @ rest[1:], uu[:-1] @ rest[1:]
     r2 = rho[None, :]
     s_rho = a[:, None] + (b[:, None] - 2 * r2 * c[:, None] + r2**2 * d[:, None]) / (1 - r2**2)
     s_rho = np.maximum(s_rho, 1e-300)
-    n_rest = idx.size
+    n_rest = int(n - starts.sum())
     ll = (
         -0.5 * n * np.log(s_rho / n)
-        - np.sum(np.log(h), axis=1)[:, None]
+        - logh[:, None]
         - 0.5 * n_rest * np.log(1 - r2**2)
         - np.where(grid > 0, 0.5 * np.log(n), 0.0)[:, None]
     )

@@ -56,8 +56,9 @@ class SelfContactNip(Effect):
         return value
 
     def fit(self, current, data, starts, *, given_sigma=None):
-        """Score every sample gap for one more drop (GLS on [d/dmu, step]); fit the best
-        two, refine the better one locally (:meth:`_refine`)."""
+        """Score every sample gap for one more drop (GLS on [d/dmu, step], all gaps at
+        once in O(n log n), :func:`_step_sums`); fit the best candidate and the best one
+        away from it, refine the better fit locally (:meth:`_refine`)."""
         rec = current.model.rec
         s = rec.x
         fixed = dict(current.model.fixed)
@@ -72,30 +73,24 @@ class SelfContactNip(Effect):
             gap = max(1.5 * float(np.median(np.diff(order))), 0.01 * float(np.ptp(s)))
             keep = np.min(np.abs(mids[:, None] - np.array(taken)[None, :]), axis=1) > gap
             mids = mids[keep]
-        if mids.size > 120:
-            mids = mids[np.linspace(0, mids.size - 1, 120).astype(int)]
         f = current.mean
         r = 0.5 * (rec.meta("post_diameter_m") + rec.meta("rod_diameter_m"))
         sd = current.noise.sd(f)
         ew = current.noise.whiten(data.y - f, sd, starts)
         jmu = whiten_columns(current.noise, sd, starts, (-f * s / r)[:, None])[:, 0]
-        steps = -f[:, None] * (s[:, None] > mids[None, :])
-        sw = whiten_columns(current.noise, sd, starts, steps)
+        # the whitened step column of gap m is W(-f H(s > m) / sd); its products with
+        # the whitened d/dmu column and residuals (a12, b2) and with itself (a22)
+        (a12, b2), a22 = _step_sums(s, -f / sd, [jmu, ew], current.noise.rho, starts, mids)
         # score = reduction of whitened SS when regressing on [d/dmu, step_j], per candidate
         a11 = jmu @ jmu
-        a12 = jmu @ sw
-        a22 = np.sum(sw * sw, axis=0)
         b1 = jmu @ ew
-        b2 = sw.T @ ew
         det = a11 * a22 - a12**2
-        det = np.where(det > 1e-300, det, np.inf)
+        det = np.where(det > 1e-300 * max(a11, 1e-300), det, np.inf)
         c2 = (a11 * b2 - a12 * b1) / det
         score = (b1**2 * a22 - 2 * a12 * b1 * b2 + b2**2 * a11) / det
         score = np.where(c2 > 0, score, -np.inf)
         best = None
-        for idx in np.argsort(score)[::-1][:2]:
-            if not np.isfinite(score[idx]):
-                break
+        for idx in _two_best(score, mids, 0.01 * float(np.ptp(s))):
             fx = dict(fixed)
             fx[f"nip_position_{j}"] = float(mids[idx])
             model = build_model(rec, effects, fx)
@@ -131,10 +126,10 @@ class SelfContactNip(Effect):
     def _refine(self, fit, j, data, starts, *, given_sigma=None, window=60):
         """Move nip ``j`` to the best sample gap near it (exact model, other values fixed).
 
-        The candidate grid of :meth:`fit` is coarse for long recordings; here every
-        gap between consecutive arc lengths within ``window`` gaps of the current
+        Every gap between consecutive arc lengths within ``window`` gaps of the current
         position (and not beyond a neighbouring nip) is scored with the exact mean,
-        whitened; the model is refitted when the position moves.
+        whitened (in O(n log n), :func:`_step_sums`); the model is refitted when the
+        position moves.
         """
         rec = fit.model.rec
         s = rec.x
@@ -155,11 +150,13 @@ class SelfContactNip(Effect):
         cand = cand[(cand > lo) & (cand < hi)]
         if cand.size < 2:
             return fit
+        # mean with nip j at m: without * (1 - drop H(s > m)); residual
+        # (y - without) + drop * without * H, whitened: ew0 + drop * W(without H / sd)
         without = fit.mean / np.where(s > pos, 1.0 - drop, 1.0)
-        means = without[:, None] * np.where(s[:, None] > cand[None, :], 1.0 - drop, 1.0)
         sd = fit.noise.sd(fit.mean)
-        ew = whiten_columns(fit.noise, sd, starts, data.y[:, None] - means)
-        best = float(cand[int(np.argmin(np.sum(ew * ew, axis=0)))])
+        ew0 = fit.noise.whiten(data.y - without, sd, starts)
+        (lin,), quad = _step_sums(s, without / sd, [ew0], fit.noise.rho, starts, cand)
+        best = float(cand[int(np.argmin(2.0 * drop * lin + drop**2 * quad))])
         if best == pos:
             return fit
         fx = dict(fit.model.fixed)
@@ -199,3 +196,79 @@ class SelfContactNip(Effect):
             cur[f"nip_position_{j}"] = float(s_j)
             cur[f"nip_drop_{j}"] = drop
         return cur, {"positions_m": [float(v) for v in pos]}
+
+
+def _two_best(score, mids, apart):
+    """Indices of the best finite score and of the best one at least ``apart`` from it."""
+    out = []
+    if score.size == 0:
+        return out
+    i = int(np.argmax(score))
+    if not np.isfinite(score[i]):
+        return out
+    out.append(i)
+    far = np.where(np.abs(mids - mids[i]) >= apart, score, -np.inf)
+    k = int(np.argmax(far))
+    if np.isfinite(far[k]):
+        out.append(k)
+    return out
+
+
+def _sums_above(keys, weights, cuts):
+    """``sum(weights[keys > c])`` for every ``c`` in ``cuts`` (sorted or not)."""
+    o = np.argsort(keys, kind="stable")
+    ks = keys[o]
+    tail = np.concatenate([np.cumsum(weights[o][::-1])[::-1], [0.0]])
+    return tail[np.searchsorted(ks, cuts, side="right")]
+
+
+def _step_sums(s, g, vectors, rho, starts, cuts):
+    r"""Products of whitened step columns with vectors and with themselves, all cuts at once.
+
+    The column of cut :math:`m` is :math:`e(m) = W(g\,H(s > m))`, ``W`` the AR(1)
+    whitening of :meth:`knotmech.diagnose.stats.NoiseModel.whiten` (unit sd: ``g``
+    already divided by the noise sd),
+    :math:`e_i = (u_i - \rho u_{i-1})/\sqrt{1-\rho^2}`, :math:`e_i = u_i` at a trial
+    start. Both :math:`e(m)\cdot w = \sum_{s_i > m} q_i` and
+    :math:`e(m)\cdot e(m) = \sum_{s_i > m} v_i + \sum_{\min(s_i, s_{i-1}) > m} p_i`
+    are sums over the rows above the cut, so a sort and cumulative sums give every cut
+    in O((n + M) log n) time and O(n + M) memory, instead of an (n, M) matrix of columns.
+
+    Parameters
+    ----------
+    s, g : (n,) arrays
+        Control variable (rows in recording order) and the column's scale per row.
+    vectors : list of (n,) arrays
+        Whitened vectors ``w``.
+    rho : float
+        Lag-one correlation.
+    starts : (n,) bool array
+        Trial starts.
+    cuts : (M,) array
+        Cut positions.
+
+    Returns
+    -------
+    lin : list of (M,) arrays
+        :math:`e(m)\cdot w` for each vector.
+    quad : (M,) array
+        :math:`e(m)\cdot e(m)`.
+    """
+    n = s.size
+    c = np.sqrt(1.0 - rho**2)
+    inv = np.where(starts, 1.0, 1.0 / c)
+    nxt = np.zeros(n, dtype=bool)  # row i + 1 exists and continues row i's trial
+    nxt[:-1] = ~starts[1:]
+    lin = []
+    for w in vectors:
+        q = g * w * inv
+        q[:-1] -= np.where(nxt[:-1], rho * g[:-1] * w[1:] / c, 0.0)
+        lin.append(_sums_above(s, q, cuts))
+    v = g * g * inv * inv + np.where(nxt, (rho / c) ** 2 * g * g, 0.0)
+    quad = _sums_above(s, v, cuts)
+    if n > 1 and rho != 0.0:
+        pair = ~starts[1:]
+        key = np.minimum(s[1:], s[:-1])[pair]
+        pw = (-2.0 * rho / c**2) * (g[1:] * g[:-1])[pair]
+        quad = quad + _sums_above(key, pw, cuts)
+    return lin, quad
