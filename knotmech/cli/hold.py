@@ -25,7 +25,7 @@ from pathlib import Path
 from knotmech.errors import InputError
 from knotmech.units import format_quantity, parse_quantity
 
-__all__ = ["register", "run", "format_verdict"]
+__all__ = ["register", "run", "format_verdict", "format_creep"]
 
 #: the library's parameter names -> the options that set them (for warnings)
 _FLAGS = {
@@ -85,6 +85,13 @@ def register(subparsers) -> None:
         action="store_true",
         help="clove hitch with a free end: run one DER simulation of this geometry "
         "(about a minute) instead of reading the shipped tables; needs E",
+    )
+    p.add_argument(
+        "--creep-limit",
+        default=None,
+        metavar="D_PER_S",
+        help="DER hold criterion: holds when the loose end creeps slower than this many "
+        "rope diameters per second over the last second of the hold (default 1e-3)",
     )
     p.add_argument(
         "--phase-table",
@@ -163,6 +170,12 @@ def run(args) -> int:
         raise InputError(
             "--simulate covers the clove hitch with a free end only (--free-end-load 0)"
         )
+    creep_limit = None
+    if args.creep_limit is not None:
+        creep_limit = parse_quantity(args.creep_limit, "dimensionless", name="--creep-limit")
+        if not creep_limit > 0:
+            raise InputError(f"--creep-limit must be > 0 (rope diameters per second), got "
+                             f"{creep_limit:g}")  # fmt: skip
     json_path = _json_path(args.json)
     if args.plot is not None:
         try:
@@ -189,6 +202,7 @@ def run(args) -> int:
             simulate=bool(args.simulate),
             phase_table=args.phase_table,
             progress=bool(args.simulate) and args.json != "-",
+            creep_limit=creep_limit,
         )
     except InputError as exc:
         raise InputError(_flag_names(str(exc))) from None
@@ -217,7 +231,7 @@ def _flag_names(message: str) -> str:
     import re
 
     names = ("rod_diameter", "post_diameter", "mu_rr", "free_end_load", "wrap_angle",
-             "material", "youngs_modulus", "simulate", "phase_table")  # fmt: skip
+             "material", "youngs_modulus", "simulate", "phase_table", "creep_limit")  # fmt: skip
     pattern = r"(?<![\w-])(" + "|".join(names) + r")(?!\w)"
     return re.sub(pattern, lambda m: "--" + m.group(1).replace("_", "-"), message)
 
@@ -245,6 +259,24 @@ def _wrap(theta: float) -> str:
     return f"{math.degrees(theta):.4g} deg ({turns:.4g} {'turn' if turns == 1 else 'turns'})"
 
 
+def format_creep(c: dict) -> str:
+    """The measured creep in one line: speed in d/s (and mm/s), the criterion, the source."""
+    if c.get("speed_d_per_s") is None:
+        what = "the loaded end ran off (no creep speed: a slip)" if c.get("ran_off") else (
+            "not measured")  # fmt: skip
+        return f"creep: {what}; {c['source']}"
+    if "limit_d_per_s" not in c:  # a smooth-law table's distance criterion
+        return (f"creep: {c['creep_m'] * 1e3:.3g} mm over {c['window_s']:g} s "
+                f"({c['speed_d_per_s']:.3g} d/s; {c['source']})")  # fmt: skip
+    v = c["speed_d_per_s"]
+    rel = "<" if v < c["limit_d_per_s"] else ">="
+    return (
+        f"creep: {v:.3g} d/s ({c['speed_m_per_s'] * 1e3:.3g} mm/s) over the last "
+        f"{c['window_s']:g} s of the hold, {rel} the {c['limit_d_per_s']:g} d/s of the "
+        f"{c['criterion']} criterion; {c['source']}"
+    )
+
+
 def format_verdict(verdict, *, verbose: bool = False) -> str:
     """The verdict for people: one line first, then warnings, assumptions, next step.
 
@@ -259,11 +291,7 @@ def format_verdict(verdict, *, verbose: bool = False) -> str:
     for s in verdict.assumptions:
         lines.append(f"assumed: {s}")
     if verdict.creep is not None:
-        c = verdict.creep
-        lines.append(
-            f"creep: {c['creep_m'] * 1e3:.3g} mm over {c['window_s']:g} s "
-            f"({c['speed_d_per_s']:.3g} d/s; {c['source']})"
-        )
+        lines.append(format_creep(verdict.creep))
     if verdict.next_step and verdict.holds is not None:
         lines.append(verdict.next_step)
     if not verbose:
