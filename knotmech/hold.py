@@ -79,18 +79,26 @@ MU_PLAUSIBLE = 2.0  #: a friction coefficient above this is implausible for rope
 WRAP_TURNS_PLAUSIBLE = 20.0  #: a capstan wrap beyond this many turns is implausible
 
 _HITCHES = ("clove-hitch", "two-half-hitches", "round-turn", "round-turn-two-half-hitches")
+#: the bends of Patil et al. (Science 2020): two ropes joined and pulled apart
+_BENDS = ("reef", "granny", "thief", "grief")
 #: hitches with a DER answer (a shipped hold table, or a table file, or ``simulate``)
 _DER_KNOTS = ("clove-hitch",)
 #: knots ``simulate=True`` can run (one DER scene each)
-_SIMULATED = ("clove-hitch",)
+_SIMULATED = ("clove-hitch",) + _BENDS
 #: knots :func:`hold` answers
-KNOT_NAMES = ("capstan",) + _HITCHES
+KNOT_NAMES = ("capstan",) + _HITCHES + _BENDS
 _ALIASES = {
     "clove": "clove-hitch",
     "round-turn-and-two-half-hitches": "round-turn-two-half-hitches",
     "round-turn-&-two-half-hitches": "round-turn-two-half-hitches",
     "rt2hh": "round-turn-two-half-hitches",
     "2hh": "two-half-hitches",
+    "reef-knot": "reef",
+    "square-knot": "reef",
+    "square": "reef",
+    "granny-knot": "granny",
+    "thief-knot": "thief",
+    "grief-knot": "grief",
 }
 #: knots people ask about that hold does not answer, and what they are
 _NOT_ANSWERED = {
@@ -98,15 +106,20 @@ _NOT_ANSWERED = {
     "figure-eight": "a stopper / loop knot (no post, no closed form or DER table here)",
     "figure-8": "a stopper / loop knot (no post, no closed form or DER table here)",
     "sheet-bend": "a bend joining two ropes (no post, no closed form or DER table here)",
-    "reef": "a bend joining two ropes (no closed form or DER table here)",
-    "reef-knot": "a bend joining two ropes (no closed form or DER table here)",
-    "square-knot": "a bend joining two ropes (no closed form or DER table here)",
-    "granny": "a bend joining two ropes (no closed form or DER table here)",
-    "granny-knot": "a bend joining two ropes (no closed form or DER table here)",
     "cow-hitch": "a hitch (girth hitch) with no closed form or DER table here yet",
     "girth-hitch": "a hitch (cow hitch) with no closed form or DER table here yet",
     "overhand": "a stopper knot (see `knotmech simulate overhand`), not a hitch on a post",
 }
+
+
+def is_bend(knot) -> bool:
+    """Whether ``knot`` (a canonical name) is a bend: two ropes pulled apart, no post."""
+    return knot in _BENDS
+
+
+def can_simulate(knot) -> bool:
+    """Whether ``simulate=True`` runs a DER scene for ``knot`` (a canonical name)."""
+    return knot in _SIMULATED
 
 
 def knot_key(knot) -> str:
@@ -519,7 +532,7 @@ def _der(
     if simulate:
         p = pt.simulate_point(
             d_over_2R=x, t_over_EA=y, mu=mu, mu_rr=mu_rr, rod_diameter=d, youngs_modulus=E,
-            creep_limit=lim, progress=progress, keep_result=True,
+            creep_limit=lim, recheck=True, progress=progress, keep_result=True,
         )  # fmt: skip
         shape = _shape(p.get("result"), d=d, D=D)
         if p["holds"] is None:
@@ -660,7 +673,7 @@ def hold(
     knot,
     *,
     rod_diameter,
-    post_diameter,
+    post_diameter=None,
     mu,
     load,
     free_end_load=0.0,
@@ -734,6 +747,15 @@ def hold(
     from knotmech.errors import check_nonnegative, check_positive
 
     key = knot_key(knot)
+    if key in _BENDS:
+        return _hold_bend(
+            key, rod_diameter=rod_diameter, post_diameter=post_diameter, mu=mu, load=load,
+            free_end_load=free_end_load, mu_rr=mu_rr, wrap_angle=wrap_angle, material=material,
+            youngs_modulus=youngs_modulus, simulate=simulate, phase_table=phase_table,
+            progress=progress,
+        )  # fmt: skip
+    if post_diameter is None:
+        raise InputError(f"post_diameter is required for {key}")
     d = float(check_positive("rod_diameter", rod_diameter))
     D = float(check_positive("post_diameter", post_diameter))
     mu = float(check_nonnegative("mu", mu))
@@ -744,7 +766,7 @@ def hold(
     if key == "capstan" and mu_rr is not None:
         raise InputError("mu_rr (rope-on-rope friction) applies to hitches, not to capstan")
     if simulate and key not in _SIMULATED:
-        raise InputError(f"simulate is available for clove-hitch only, not for {key}")
+        raise InputError(f"simulate is available for {', '.join(_SIMULATED)} only, not for {key}")
     if simulate and free > 0:
         raise InputError("simulate covers the clove hitch with a free end only (free_end_load 0)")
     if simulate and phase_table is not None:
@@ -874,6 +896,111 @@ def hold(
         notes=tuple(notes),
         shape=shape,
     )
+
+
+def _hold_bend(
+    key, *, rod_diameter, post_diameter, mu, load, free_end_load, mu_rr, wrap_angle, material,
+    youngs_modulus, simulate, phase_table, progress,
+):  # fmt: skip
+    """A bend (two ropes joined, pulled apart): no closed form and no table; with
+    ``simulate`` one DER pull of the bend scene, its slip load against the load."""
+    from knotmech.analytic.hitch import ModelAnswer
+    from knotmech.errors import check_nonnegative, check_positive
+
+    d = float(check_positive("rod_diameter", rod_diameter))
+    mu = float(check_nonnegative("mu", mu))
+    load = float(check_positive("load", load))
+    for name, val in (("post_diameter", post_diameter), ("mu_rr", mu_rr),
+                      ("wrap_angle", wrap_angle), ("phase_table", phase_table)):  # fmt: skip
+        if val is not None:
+            raise InputError(
+                f"{name} does not apply to a bend ({key}: two ropes pulled apart, no post; "
+                "mu is the rope-rope friction)"
+            )
+    if float(free_end_load or 0.0) != 0.0:
+        raise InputError(f"free_end_load does not apply to a bend ({key}: no free end)")
+    E, mat, e_source = _youngs_modulus(material, youngs_modulus)
+    inputs = {"rod_diameter": d, "mu": mu, "load": load}
+    if mat is not None:
+        inputs["material"] = mat.key
+    if E is not None:
+        inputs["youngs_modulus"] = E
+    cmd = simulate_command(key, d=d, D=None, mu=mu, load=load,
+                           material=None if mat is None else mat.key,
+                           youngs_modulus=youngs_modulus)  # fmt: skip
+    warns = _warnings(mu, None, d, math.inf, load, E, None)
+    assumptions = [e_source] if e_source else []
+    note = (
+        f"{key} is a bend (Patil et al., Science 2020): no closed form and no DER table; "
+        "one DER pull of the bend scene (knotmech.scenes.bends.bend) gives its slip load"
+    )
+    if not simulate:
+        return Verdict(
+            knot=key, holds=None, margin=math.nan, decided_by=None, inside_validity=False,
+            answers=(), assumptions=tuple(assumptions), warnings=warns,
+            next_step=f"next: {cmd} (one DER pull of the bend, 1-3 minutes) decides it",
+            inputs=inputs, notes=(note,),
+        )  # fmt: skip
+    if E is None:
+        from knotmech.materials import material_names
+
+        raise InputError(
+            "simulate needs the rope's stiffness: give material (one of "
+            f"{', '.join(material_names())}) or youngs_modulus"
+        )
+    from knotmech.scenes.bends import bend
+
+    kw = {"density": mat.density} if mat is not None else {}
+    r = bend(key, rod_diameter=d, youngs_modulus=E, mu_rod_rod=mu, progress=progress, **kw)
+    der = {
+        "source": "simulation", "scene": "knotmech.scenes.bends.bend", "kind": key,
+        "verdict": r.verdict, "slip_load": r.slip_load, "max_force": r.max_force,
+        "pull_speed": r.pull_speed, "status": r.status, "message": r.message,
+        "topology_preserved": bool(r.topology_preserved),
+        "wall_s": float(r.stats.get("wall_s", math.nan)),
+    }  # fmt: skip
+    if r.verdict == "slips" and math.isfinite(r.slip_load):
+        holds, capacity = load < r.slip_load, float(r.slip_load)
+        der["message"] = (f"DER pull of the {key}: slips at {r.slip_load:.4g} N "
+                          f"(the largest pull force before its tail drew in)")  # fmt: skip
+    elif r.verdict == "holds" and load <= r.max_force:
+        holds, capacity = True, float(r.max_force)
+        der["message"] = (f"DER pull of the {key}: did not slip up to {r.max_force:.4g} N, "
+                          "the largest force of the pull")  # fmt: skip
+    else:
+        holds, capacity = None, math.nan
+        der["message"] = (
+            f"DER pull of the {key}: {r.verdict or 'failed'} ({r.message}); the load "
+            + (f"{load:.4g} N is above the largest pull force {r.max_force:.4g} N"
+               if r.verdict == "holds" else "is not decided")
+        )  # fmt: skip
+    der["holds"] = holds
+    answers = ()
+    if holds is not None:
+        answers = (
+            ModelAnswer(
+                model="DER-simulation", holds=bool(holds), margin=capacity / load - 1,
+                capacity=capacity, critical_mu=math.nan, decides=True, inside_validity=True,
+                assumptions=(
+                    "two solid elastic rods (EI = E pi d^4/64), sticking rod-rod friction, "
+                    f"set by hand then pulled apart at {r.pull_speed * 1e3:g} mm/s",
+                    "slip: a tail draws in by more than 2 d while the pull force stays "
+                    "within 10 % of its largest value",
+                ),
+                validity=("one DER pull of the bend at this d, E and mu",),
+                reference="Patil, Sandt, Kolle & Dunkel, Science 367, 71 (2020); "
+                "knotmech.scenes.bends",
+                notes=(der["message"],),
+            ),
+        )  # fmt: skip
+    return Verdict(
+        knot=key, holds=holds, margin=answers[0].margin if answers else math.nan,
+        decided_by="DER-simulation" if answers else None, inside_validity=bool(answers),
+        answers=answers, validity=answers[0].validity if answers else (),
+        assumptions=tuple(assumptions), warnings=warns,
+        next_step="" if answers else "next: test the knot (the DER pull did not decide)",
+        inputs=inputs, der=der, notes=(note,),
+    )  # fmt: skip
 
 
 def hold_verdict(

@@ -59,7 +59,12 @@ def register(subparsers) -> None:
     )
     p.add_argument("knot", help=f"one of: {', '.join(KNOT_NAMES)}")
     p.add_argument("--rod-diameter", required=True, help="rope diameter d, e.g. 6mm")
-    p.add_argument("--post-diameter", required=True, help="post diameter D, e.g. 40mm")
+    p.add_argument(
+        "--post-diameter",
+        default=None,
+        help="post diameter D, e.g. 40mm (required except for the bends reef, granny, thief, "
+        "grief)",
+    )
     p.add_argument("--mu", required=True, help="rope-post friction coefficient, e.g. 0.3")
     p.add_argument(
         "--mu-rr", default=None, help="hitches: rope-rope friction coefficient (default: --mu)"
@@ -125,11 +130,17 @@ def _json_path(text) -> Path | None:
 
 
 def run(args) -> int:
-    from knotmech.hold import check_plot_path, hold, knot_key, plot_verdict
+    from knotmech.hold import can_simulate, check_plot_path, hold, knot_key, plot_verdict
 
     knot = knot_key(args.knot)
     d = parse_quantity(args.rod_diameter, "length", name="--rod-diameter")
-    D = parse_quantity(args.post_diameter, "length", name="--post-diameter")
+    from knotmech.hold import is_bend
+
+    bend = is_bend(knot)
+    if args.post_diameter is None and not bend:
+        raise InputError(f"--post-diameter is required for {knot} (e.g. --post-diameter 30mm)")
+    D = (None if args.post_diameter is None
+         else parse_quantity(args.post_diameter, "length", name="--post-diameter"))  # fmt: skip
     mu = parse_quantity(args.mu, "dimensionless", name="--mu")
     mu_rr = (
         None if args.mu_rr is None else parse_quantity(args.mu_rr, "dimensionless", name="--mu-rr")
@@ -145,7 +156,7 @@ def run(args) -> int:
         raise InputError("--wrap-angle is required for capstan (e.g. --wrap-angle 360deg)")
     # range checks here so that messages name the command-line option
     for name, value in (("--rod-diameter", d), ("--post-diameter", D), ("--load", load)):
-        if value <= 0:
+        if value is not None and value <= 0:
             raise InputError(f"{name} must be > 0, got {value:g}")
     for name, value in (("--mu", mu), ("--mu-rr", mu_rr), ("--free-end-load", free)):
         if value is not None and value < 0:
@@ -164,9 +175,11 @@ def run(args) -> int:
         E = parse_quantity(args.youngs_modulus, "pressure", name="--youngs-modulus")
         if not E > 0:
             raise InputError(f"--youngs-modulus must be > 0, got {E:g}")
-    if args.simulate and knot != "clove-hitch":
-        raise InputError(f"--simulate is available for clove-hitch only, not for {knot}")
-    if args.simulate and free > 0:
+    if args.simulate and not can_simulate(knot):
+        raise InputError(
+            f"--simulate is available for clove-hitch and the bends only, not for {knot}"
+        )
+    if args.simulate and free > 0 and not bend:
         raise InputError(
             "--simulate covers the clove hitch with a free end only (--free-end-load 0)"
         )

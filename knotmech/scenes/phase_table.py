@@ -29,9 +29,22 @@ This module
   tables bracketing the user's (mu, mu_rr) decide when they agree, assuming that more
   friction does not turn a hold into a slip (true of every shipped table pair).
 
-Shipped tables (d = 4 mm VPS32 rod, 4 x 4 grid): mu = 0.2 and 0.25 slip at every
-point, 0.3 holds 6 of 16 (interior boundary), 0.35 holds 13 (slips only at 0.3 EA off
-the paper's d/2R), 0.4 and 0.5 hold all 16.
+Shipped smooth-law tables (``friction="imc"``, d = 4 mm VPS32 rod, 4 x 4 grid, kept
+for validation): mu = 0.2 and 0.25 slip at every point, 0.3 holds 6 of 16 (interior
+boundary), 0.35 holds 13 (slips only at 0.3 EA off the paper's d/2R), 0.4 and 0.5 hold
+all 16.
+
+**Hold tables** (what ``knotmech hold`` reads): the sticking (anchor) rod-rod law, three
+axes (d/2R, T_high/EA, mu = mu_rr; :data:`HOLD_GRID`, real-rope ranges), one file per knot
+(``knotmech/data/hold_phase_table_<knot>.json``, :class:`HoldTable`,
+:func:`load_hold_tables`), built by :func:`build_hold_table` from one
+:func:`simulate_point` per point (the scene of each knot is one entry of
+:data:`HOLD_SCENES`). Each point stores the creep speed of its loose end over the last
+second of the hold (:func:`creep_speed`), so the hold criterion (:func:`creep_verdict`,
+:data:`CREEP_CRITERION`: slower than :data:`CREEP_LIMIT` = 1e-3 d/s, topology kept, the
+run not stopped by a runaway end) can be applied at another limit when read.
+:meth:`HoldTable.lookup` decides between points only where the neighbours agree and
+beyond the grid only one way where monotonicity says so.
 """
 
 from __future__ import annotations
@@ -56,6 +69,18 @@ __all__ = [
     "load_tables",
     "PhaseTableSet",
     "TABLE_RESOURCE",
+    "HoldPoint",
+    "HoldTable",
+    "HoldAnswer",
+    "HOLD_GRID",
+    "HOLD_SCENES",
+    "build_hold_table",
+    "load_hold_tables",
+    "read_hold_table",
+    "creep_speed",
+    "creep_verdict",
+    "PROTOCOL",
+    "CREEP_LIMIT",
     "ROD_DIAMETER",
     "YOUNGS_MODULUS",
     "DENSITY",
@@ -89,12 +114,14 @@ MAX_NODES = 200  #: node cap of :func:`point_geometry` (large posts get longer e
 
 
 def creep_speed(times, end_displacement, *, rod_diameter, window=CREEP_WINDOW) -> float:
-    r"""Mean speed of the loaded end over the last ``window`` seconds of a run [d/s].
+    r"""Mean creep speed of the loaded end along its load over the last ``window`` s [d/s].
 
-    :math:`|u(t_\mathrm{end}) - u(t_\mathrm{end} - w)| / (w\,d)`, with :math:`u` the
+    :math:`(u(t_\mathrm{end}) - u(t_\mathrm{end} - w)) / (w\,d)`, with :math:`u` the
     displacement of end 0 along its load [m] (the frame nearest to
     :math:`t_\mathrm{end} - w` at or after it) and :math:`d` the rod diameter [m].
-    NaN when the run has fewer than two frames in the window.
+    Positive when the rope is drawn out along the load (through the knot: a slip);
+    negative when the end moves back (the knot settling). NaN when the run has fewer
+    than two frames in the window.
     """
     t = np.asarray(times, dtype=float)
     u = np.asarray(end_displacement, dtype=float)
@@ -106,7 +133,7 @@ def creep_speed(times, end_displacement, *, rod_diameter, window=CREEP_WINDOW) -
     if sel.size < 2:
         return float("nan")
     i = int(sel[0])
-    return float(abs(u[-1] - u[i]) / (t[-1] - t[i]) / d)
+    return float((u[-1] - u[i]) / (t[-1] - t[i]) / d)
 
 
 def creep_verdict(
@@ -136,6 +163,18 @@ def creep_verdict(
     if speed < lim:
         return True, f"creep {speed:.3g} d/s < {lim:g} d/s"
     return False, f"creep {speed:.3g} d/s >= {lim:g} d/s"
+
+
+#: a point whose creep speed lies within this factor of the limit is run again with a
+#: hold :data:`RECHECK_HOLD_FACTOR` times as long (light loads settle slowly: the creep of
+#: a settling hitch decays by ~80x per second at 1e-4 EA), and the longer run decides
+RECHECK_BAND = 10.0
+RECHECK_HOLD_FACTOR = 2.0
+
+
+def needs_recheck(speed: float, *, limit: float = CREEP_LIMIT) -> bool:
+    """Whether a creep speed [d/s] is within :data:`RECHECK_BAND` of the limit either way."""
+    return bool(math.isfinite(speed) and limit / RECHECK_BAND <= speed < limit * RECHECK_BAND)
 
 
 def point_geometry(
@@ -176,6 +215,8 @@ def simulate_point(
     friction: str = "anchor",
     n_nodes: int | None = None,
     creep_limit: float = CREEP_LIMIT,
+    hold_time: float | None = None,
+    recheck: bool = False,
     progress: bool = False,
     keep_result: bool = False,
 ) -> dict:
@@ -194,6 +235,11 @@ def simulate_point(
     those tables' criterion (end 0 creeps less than d over the second half of the hold),
     so they can be reproduced. It is passed explicitly so a change of the scene's
     default does not silently change a table.
+
+    ``hold_time`` [s] replaces the protocol's hold. With ``recheck`` (what ``hold
+    --simulate`` uses), a run whose creep speed lies within :data:`RECHECK_BAND` of the
+    limit (:func:`needs_recheck`) is run again with a hold :data:`RECHECK_HOLD_FACTOR`
+    times as long, and that run decides (``first_creep_speed`` keeps the first speed).
 
     Returns
     -------
@@ -218,7 +264,11 @@ def simulate_point(
 
     geo = point_geometry(d_over_2R, rod_diameter=d)
     nn = geo["n_nodes"] if n_nodes is None else int(n_nodes)
-    proto = PROTOCOL if friction == "anchor" else IMC_PROTOCOL
+    proto = dict(PROTOCOL if friction == "anchor" else IMC_PROTOCOL)
+    if hold_time is not None:
+        h = float(check_positive("hold_time", hold_time))
+        proto["hold_time"] = h
+        proto["n_frames"] = int(round((proto["settle_time"] + proto["load_time"] + h) / 0.05)) + 1
     t_high = tea * E * np.pi * d * d / 4
     c0 = time.process_time()
     r = clove_hitch(
@@ -267,6 +317,8 @@ def simulate_point(
         "criterion": criterion,
         "creep_limit": lim,
         "creep_window_s": window,
+        "hold_time": proto["hold_time"],
+        "creep_speed_signed": True,
         "verdict": "" if holds is None else ("hold" if holds else "slip"),
         "holds": holds,
         "reason": reason,
@@ -281,6 +333,17 @@ def simulate_point(
     }
     if keep_result:
         out["result"] = r
+    if recheck and friction == "anchor" and ran and needs_recheck(speed, limit=lim):
+        again = simulate_point(
+            d_over_2R=d_over_2R, t_over_EA=t_over_EA, mu=mu, mu_rr=mu_rr, rod_diameter=d,
+            youngs_modulus=E, density=density, friction=friction, n_nodes=n_nodes,
+            creep_limit=lim, hold_time=RECHECK_HOLD_FACTOR * proto["hold_time"],
+            progress=progress, keep_result=keep_result,
+        )  # fmt: skip
+        again["first_creep_speed"] = speed
+        again["first_hold_time"] = proto["hold_time"]
+        again["cpu_s"] += out["cpu_s"]
+        return again
     return out
 
 
@@ -1083,7 +1146,13 @@ class HoldTable:
                 float(r["creep_speed"]), bool(r["ran_to_end"]), bool(r["topology_preserved"]),
                 r["holds"] is not None,
             ))  # fmt: skip
+        pts.sort(key=lambda p: (p.mu, p.d_over_2R, p.t_over_EA))
         return cls(knot, pts, dict(meta or {}))
+
+
+def _num(v):
+    v = float(v)
+    return float(f"{v:.4g}") if math.isfinite(v) else None
 
 
 def read_hold_table(path) -> HoldTable:
@@ -1117,3 +1186,140 @@ def load_hold_tables() -> dict:
         t = HoldTable.from_dict(data, name=f"hold table {n}")
         out[t.knot] = t
     return out
+
+
+# --------------------------------------------------------------------------- building
+#: rope-size ratios d/D of the shipped hold tables (d/2R = (d/D)/(1 + d/D), rounded)
+HOLD_GRID_D_OVER_D = (0.02, 0.05, 4 / 30, 0.3)
+#: the shipped hold tables' grid: d/2R (d/D = 0.02, 0.05, 0.133 (the paper's), 0.3),
+#: T_high/EA (decades from 1e-4, and 0.3, the paper's upper bound), mu = mu_rr
+HOLD_GRID = {
+    "d_over_2R": (0.01961, 0.04762, 0.1176, 0.2308),
+    "t_over_EA": (1e-4, 1e-3, 1e-2, 0.1, 0.3),
+    "mu": (0.1, 0.2, 0.3, 0.5, 0.8),
+}
+#: knot -> module-level DER scene function of one hold-table point (keywords
+#: ``d_over_2R, t_over_EA, mu, friction``; returns a :func:`simulate_point`-like dict).
+#: A new hitch is one entry here.
+HOLD_SCENES = {"clove-hitch": simulate_point}
+
+
+def hold_table_resource(knot: str) -> str:
+    """File name in ``knotmech/data`` of the shipped hold table of ``knot``."""
+    return f"hold_phase_table_{knot}.json"
+
+
+def hold_table_params(grid=None) -> list:
+    """The :func:`knotmech.sweep.sweep` parameter sets of a hold-table grid (mu outermost)."""
+    g = HOLD_GRID if grid is None else grid
+    return [
+        {"d_over_2R": float(x), "t_over_EA": float(y), "mu": float(m), "friction": "anchor"}
+        for m in g["mu"]
+        for x in g["d_over_2R"]
+        for y in g["t_over_EA"]
+    ]
+
+
+def build_hold_table(
+    knot: str = "clove-hitch",
+    grid=None,
+    *,
+    processes: int | None = 2,
+    scheduler=None,
+    cache_dir=None,
+    progress: bool = False,
+    meta=None,
+) -> HoldTable:
+    """Run the DER points of a hold table through :func:`knotmech.sweep.sweep` and tabulate.
+
+    Every point is one call of ``HOLD_SCENES[knot]`` (anchor law, :data:`PROTOCOL`,
+    creep-speed criterion); with ``cache_dir`` each result is stored as it arrives, so an
+    interrupted build recomputes only what is missing. The table's meta records the grid,
+    protocol, rod, criterion, the CPU time per point and in total.
+
+    Raises
+    ------
+    InputError
+        An unknown knot; a point whose run raised (the message names it).
+    """
+    from knotmech.sweep import sweep
+
+    if knot not in HOLD_SCENES:
+        raise InputError(f"no DER hold scene for {knot!r}; known: {', '.join(HOLD_SCENES)}")
+    params = hold_table_params(grid)
+    res = sweep(
+        HOLD_SCENES[knot],
+        params,
+        processes=processes,
+        scheduler=scheduler,
+        cache_dir=cache_dir,
+        progress=progress,
+        on_error="return",
+    )
+    if res.failures:
+        f = res.failures[0]
+        raise InputError(f"hold table of {knot}: {len(res.failures)} runs raised; first: {f}")
+    results = [_signed(r) for r in res]
+    # second pass: points within a decade of the limit, with a hold twice as long
+    again = [
+        i for i, r in enumerate(results) if r["ran_to_end"] and needs_recheck(r["creep_speed"])
+    ]
+    if again:
+        hold2 = RECHECK_HOLD_FACTOR * PROTOCOL["hold_time"]
+        res2 = sweep(
+            HOLD_SCENES[knot],
+            [{**params[i], "hold_time": hold2} for i in again],
+            processes=processes, scheduler=scheduler, cache_dir=cache_dir, progress=progress,
+            on_error="return",
+        )  # fmt: skip
+        if res2.failures:
+            raise InputError(f"hold table of {knot}: a recheck run raised: {res2.failures[0]}")
+        for i, r2 in zip(again, res2, strict=True):
+            r2 = dict(_signed(r2))
+            r2["first_creep_speed"] = results[i]["creep_speed"]
+            r2["cpu_s"] = float(r2.get("cpu_s", 0.0)) + float(results[i].get("cpu_s", 0.0))
+            results[i] = r2
+    return hold_table_from_results(knot, results, meta=meta)
+
+
+def _signed(r: dict) -> dict:
+    """A point result with a signed creep speed (results of ``__sweep_version__`` 3 from
+    before ``creep_speed_signed`` stored |speed|: the sign is that of ``creep``, end 0's
+    creep over the last half of the hold, which ends with the same window)."""
+    if r.get("creep_speed_signed") or not math.isfinite(r.get("creep_speed", math.nan)):
+        return r
+    c = float(r.get("creep", math.nan))
+    s = abs(float(r["creep_speed"]))
+    return {**r, "creep_speed": math.copysign(s, c) if math.isfinite(c) and c != 0 else s,
+            "creep_speed_signed": True}  # fmt: skip
+
+
+def hold_table_from_results(knot: str, results, *, meta=None) -> HoldTable:
+    """A hold table (with its cost and grid in the meta) from point result dicts."""
+    results = list(results)
+    cpu = [float(r.get("cpu_s", float("nan"))) for r in results]
+    g = {a: sorted({float(r[a]) for r in results}) for a in _AXES}
+    rechecked = [[r["d_over_2R"], r["t_over_EA"], r["mu"], _num(r["first_creep_speed"]),
+                  _num(r["creep_speed"])] for r in results if "first_creep_speed" in r]  # fmt: skip
+    m = {
+        "rechecked": {
+            "rule": f"creep speed within {RECHECK_BAND:g}x of the limit after the "
+            f"{PROTOCOL['hold_time']:g} s hold: run again with a "
+            f"{RECHECK_HOLD_FACTOR * PROTOCOL['hold_time']:g} s hold, which decides",
+            "points": rechecked,
+            "columns": ["d_over_2R", "t_over_EA", "mu", "first_d_per_s", "final_d_per_s"],
+        },
+        "what": f"DER {knot} with a free end: creep speed of the loaded end at "
+        "(d/2R, T_high/EA, mu = mu_rr)",
+        "law": "anchor (rod-rod AnchorFriction, rod-post anchor friction)",
+        "generator": "knotmech.scenes.phase_table.build_hold_table (simulate_point per point)",
+        "grid": g,
+        "rod": {"d_m": ROD_DIAMETER, "E_Pa": YOUNGS_MODULUS, "rho": DENSITY},
+        "protocol": dict(PROTOCOL),
+        "n_nodes": {f"{x:g}": point_geometry(x)["n_nodes"] for x in g["d_over_2R"]},
+        "runs": len(results),
+        "cpu_s_total": round(float(np.nansum(cpu)), 1),
+        "cpu_s_per_point": [round(float(np.nanmin(cpu)), 1), round(float(np.nanmax(cpu)), 1)],
+    }
+    m.update(meta or {})
+    return HoldTable.from_results(knot, results, meta=m)

@@ -168,7 +168,7 @@ def test_bad_input(extra, name, capsys):
     assert name in err and len(err.strip().splitlines()) == 1
 
 
-def test_simulate_only_for_clove_hitch(capsys):
+def test_simulate_only_for_clove_hitch_and_bends(capsys):
     args = ["hold", "round-turn", "--rod-diameter", "4mm", "--post-diameter", "30mm"]
     args += ["--mu", "0.3", "--load", "1N", "--simulate"]
     assert main(args) == 2
@@ -194,16 +194,22 @@ def test_simulate_wiring(monkeypatch, capsys):
 
     def fake(**kw):
         seen.update(kw)
-        return {"holds": True, "verdict": "hold", "creep": 1e-5, "wall_s": 1.0, "message": ""}
+        return {"holds": True, "verdict": "hold", "creep": 1e-8, "creep_speed": 2e-5,
+                "ran_to_end": True, "wall_s": 1.0, "message": ""}  # fmt: skip
 
     monkeypatch.setattr(phase_table, "simulate_point", fake)
     assert main(_hold("4mm", "36mm", "2N", "--simulate", "--mu-rr", "0.25", "--verbose")) == 0
     out = capsys.readouterr().out
     assert out.startswith("verdict: HOLDS") and "DER-simulation" in out.splitlines()[0]
     assert "disagreement" in out
-    assert "creep: 0.01 mm over 0.2 s" in out  # 1e-5 m over the last half of the 0.4 s hold
+    # the creep speed over the last second of the hold, in d/s and mm/s (2e-5 x 4 mm)
+    assert "creep: 2e-05 d/s (8e-05 mm/s) over the last 1 s of the hold, < the 0.001 d/s" in out
     assert seen["d_over_2R"] == pytest.approx(0.1) and seen["t_over_EA"] == pytest.approx(2 / EA)
     assert seen["mu"] == 0.3 and seen["mu_rr"] == 0.25 and seen["progress"] is True
+    assert seen["recheck"] is True and seen["creep_limit"] == 1e-3
+    # --creep-limit reaches the run
+    assert main(_hold("4mm", "36mm", "2N", "--simulate", "--creep-limit", "1e-5")) == 0
+    assert seen["creep_limit"] == 1e-5
 
 
 @pytest.mark.slow
@@ -280,8 +286,9 @@ def test_simulate_plot_draws_the_knot_coloured_by_tension(monkeypatch, tmp_path,
 
 
 def test_plot_without_a_der_answer_fails_in_one_line(capsys, tmp_path):
-    # d/2R = 4/104 = 0.038 is below the tables' 0.06: no DER answer to draw
-    assert main(_hold("4mm", "100mm", "1N", "--plot", str(tmp_path / "p.png"))) == 2
+    # without E the DER tables (in T_high/EA) are not read: no DER answer to draw
+    args = ["hold", "clove-hitch", "--rod-diameter", "4mm", "--post-diameter", "100mm"]
+    assert main(args + ["--mu", "0.3", "--load", "1N", "--plot", str(tmp_path / "p.png")]) == 2
     err = capsys.readouterr().err
     assert "--plot" in err and len(err.strip().splitlines()) == 1
 
@@ -292,11 +299,15 @@ def test_simulated_slip_reports_no_creep(monkeypatch, capsys):
     from knotmech.scenes import phase_table
 
     def fake(**kw):
-        return {"holds": False, "verdict": "slip", "creep": float("nan"), "wall_s": 9.0,
-                "message": ""}  # fmt: skip
+        return {"holds": False, "verdict": "slip", "creep": float("nan"),
+                "creep_speed": float("nan"), "ran_to_end": False, "wall_s": 9.0,
+                "message": "", "reason": "the loaded end ran off (run stopped early)"}  # fmt: skip
 
     monkeypatch.setattr(phase_table, "simulate_point", fake)
     assert main(_hold("4mm", "9.3333mm", "0.47N", "--simulate", "--json", "-")) == 0
     data = json.loads(capsys.readouterr().out)
     assert data["holds"] is False and data["decided_by"] == "DER-simulation"
-    assert data["creep"] is None and "ran off" in data["der"]["message"]
+    assert data["creep"]["speed_d_per_s"] is None and data["creep"]["ran_off"] is True
+    assert "ran off" in data["der"]["message"]
+    assert main(_hold("4mm", "9.3333mm", "0.47N", "--simulate")) == 0
+    assert "creep: the loaded end ran off" in capsys.readouterr().out

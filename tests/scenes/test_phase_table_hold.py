@@ -50,14 +50,31 @@ def test_creep_speed_is_the_mean_speed_over_the_last_second():
     u = np.where(t < 0.8, 0.01 * t, 0.008 + 2e-6 * (t - 0.8))  # slides, then creeps 2 um/s
     s = pt.creep_speed(t, u, rod_diameter=4e-3)
     assert s == pytest.approx(2e-6 / 4e-3, rel=1e-9)  # 5e-4 d/s
-    assert pt.creep_speed(t, -u, rod_diameter=4e-3) == pytest.approx(s)  # a speed: |du|
+    # signed along the load: an end moving back (the knot settling) creeps < 0
+    assert pt.creep_speed(t, -u, rod_diameter=4e-3) == pytest.approx(-s)
     assert math.isnan(pt.creep_speed(t[:1], u[:1], rod_diameter=4e-3))
+
+
+def test_points_near_the_limit_are_rechecked_with_a_longer_hold():
+    assert pt.needs_recheck(1.26e-3) and pt.needs_recheck(1e-4) and pt.needs_recheck(9.9e-3)
+    assert not pt.needs_recheck(1e-2) and not pt.needs_recheck(9e-5)
+    assert not pt.needs_recheck(-1.26e-3)  # moving back: the knot settles, not a slip
+    assert not pt.needs_recheck(float("nan"))
+    assert pt.RECHECK_HOLD_FACTOR * pt.PROTOCOL["hold_time"] == 3.0
+
+
+def test_cached_unsigned_speeds_take_the_sign_of_the_creep():
+    r = {"creep_speed": 1.26e-3, "creep": -1.7e-6}
+    assert pt._signed(r)["creep_speed"] == -1.26e-3
+    r2 = {"creep_speed": -2e-3, "creep": 1e-6, "creep_speed_signed": True}
+    assert pt._signed(r2)["creep_speed"] == -2e-3  # already signed: kept
 
 
 @pytest.mark.parametrize(
     ("speed", "ran", "topo", "ok", "limit", "holds"),
     [
         (5e-4, True, True, True, 1e-3, True),
+        (-0.2, True, True, True, 1e-3, True),  # moving back: settling, not slipping
         (1e-3, True, True, True, 1e-3, False),  # at the limit: not slower than it
         (5e-4, True, True, True, 1e-4, False),  # a stricter limit
         (1e-9, False, True, True, 1e-3, False),  # ran off
