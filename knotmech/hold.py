@@ -81,10 +81,22 @@ WRAP_TURNS_PLAUSIBLE = 20.0  #: a capstan wrap beyond this many turns is implaus
 _HITCHES = ("clove-hitch", "two-half-hitches", "round-turn", "round-turn-two-half-hitches")
 #: the bends of Patil et al. (Science 2020): two ropes joined and pulled apart
 _BENDS = ("reef", "granny", "thief", "grief")
-#: hitches with a DER answer (a shipped hold table, or a table file, or ``simulate``)
-_DER_KNOTS = ("clove-hitch",)
-#: knots ``simulate=True`` can run (one DER scene each)
-_SIMULATED = ("clove-hitch",) + _BENDS
+#: hitches that may have a DER answer (a hold table or a DER scene,
+#: :data:`knotmech.scenes.phase_table.HOLD_SCENE_NAMES`); the clove hitch always has one
+_DER_HITCHES = ("clove-hitch", "two-half-hitches", "round-turn-two-half-hitches")
+
+
+def _der_knot(key) -> bool:
+    """Whether ``key`` has a DER answer here: a shipped hold table or an importable scene."""
+    if key == "clove-hitch":
+        return True
+    if key not in _DER_HITCHES:
+        return False
+    from knotmech.scenes import phase_table as pt
+
+    return key in _shipped_hold_tables() or pt.has_hold_scene(key)
+
+
 #: knots :func:`hold` answers
 KNOT_NAMES = ("capstan",) + _HITCHES + _BENDS
 _ALIASES = {
@@ -119,7 +131,13 @@ def is_bend(knot) -> bool:
 
 def can_simulate(knot) -> bool:
     """Whether ``simulate=True`` runs a DER scene for ``knot`` (a canonical name)."""
-    return knot in _SIMULATED
+    if knot in _BENDS or knot == "clove-hitch":
+        return True
+    if knot not in _DER_HITCHES:
+        return False
+    from knotmech.scenes import phase_table as pt
+
+    return pt.has_hold_scene(knot)
 
 
 def knot_key(knot) -> str:
@@ -533,6 +551,7 @@ def _der(
         p = pt.simulate_point(
             d_over_2R=x, t_over_EA=y, mu=mu, mu_rr=mu_rr, rod_diameter=d, youngs_modulus=E,
             creep_limit=lim, recheck=True, progress=progress, keep_result=True,
+            **({} if knot == "clove-hitch" else {"knot": knot}),
         )  # fmt: skip
         shape = _shape(p.get("result"), d=d, D=D)
         if p["holds"] is None:
@@ -765,13 +784,16 @@ def hold(
         creep_limit = float(check_positive("creep_limit", creep_limit))
     if key == "capstan" and mu_rr is not None:
         raise InputError("mu_rr (rope-on-rope friction) applies to hitches, not to capstan")
-    if simulate and key not in _SIMULATED:
-        raise InputError(f"simulate is available for {', '.join(_SIMULATED)} only, not for {key}")
+    if simulate and not can_simulate(key):
+        raise InputError(
+            f"simulate is available for the clove hitch, the hitches with a DER scene and the "
+            f"bends, not for {key}"
+        )
     if simulate and free > 0:
         raise InputError("simulate covers the clove hitch with a free end only (free_end_load 0)")
     if simulate and phase_table is not None:
         raise InputError("give either simulate or phase_table, not both")
-    if phase_table is not None and key not in _DER_KNOTS:
+    if phase_table is not None and not _der_knot(key):
         raise InputError(f"phase_table applies to clove-hitch only, not to {key}")
     E, mat, e_source = _youngs_modulus(material, youngs_modulus)
     if simulate and E is None:
@@ -824,7 +846,7 @@ def hold(
     creep = None
     shape = None
     next_step = ""
-    if key in _DER_KNOTS:
+    if _der_knot(key):
         ideal = next((a.holds for a in answers if a.model == "ideal-rope"), None)
         if free > 0:
             der = {
@@ -856,14 +878,14 @@ def hold(
     dec = None if i is None else answers[i]
     # next step
     der_silent = der is not None and der.get("holds") is None and free == 0
-    can_simulate = key in _SIMULATED and free == 0
+    simulable = can_simulate(key) and free == 0
     cmd = simulate_command(
         key, d=d, D=D, mu=mu, mu_rr=None if mu_rr is None else float(mu_rr), load=load,
         material=None if mat is None else mat.key, youngs_modulus=youngs_modulus,
         creep_limit=creep_limit,
-    ) if can_simulate else ""  # fmt: skip
+    ) if simulable else ""  # fmt: skip
     if dec is None:
-        if can_simulate:
+        if simulable:
             next_step = (
                 f"next: {cmd} (one DER run of this geometry, about a minute) decides it"
                 + ("" if E is not None else "; MATERIAL: one of the presets, or give "
@@ -871,12 +893,12 @@ def hold(
             )  # fmt: skip
         else:
             next_step = "next: no model here applies inside its validity; test the knot"
-    elif key in _DER_KNOTS and free == 0 and E is None:
+    elif _der_knot(key) and free == 0 and E is None:
         next_step = (
             "next: give --material or --youngs-modulus (material=, youngs_modulus=) to "
             "check against the DER phase table"
         )
-    elif can_simulate and der_silent and not simulate and dec.model != "DER-table":
+    elif simulable and der_silent and not simulate and dec.model != "DER-table":
         next_step = f"next: {cmd} checks it with one DER run of this geometry"
     warns = _warnings(mu, mu_rr, d, D, load, E, theta)
     return Verdict(

@@ -39,7 +39,7 @@ axes (d/2R, T_high/EA, mu = mu_rr; :data:`HOLD_GRID`, real-rope ranges), one fil
 (``knotmech/data/hold_phase_table_<knot>.json``, :class:`HoldTable`,
 :func:`load_hold_tables`), built by :func:`build_hold_table` from one
 :func:`simulate_point` per point (the scene of each knot is one entry of
-:data:`HOLD_SCENES`). Each point stores the creep speed of its loose end over the last
+:data:`HOLD_SCENE_NAMES`). Each point stores the creep speed of its loose end over the last
 second of the hold (:func:`creep_speed`), so the hold criterion (:func:`creep_verdict`,
 :data:`CREEP_CRITERION`: slower than :data:`CREEP_LIMIT` = 1e-3 d/s, topology kept, the
 run not stopped by a runaway end) can be applied at another limit when read.
@@ -73,7 +73,8 @@ __all__ = [
     "HoldTable",
     "HoldAnswer",
     "HOLD_GRID",
-    "HOLD_SCENES",
+    "HOLD_SCENE_NAMES",
+    "hold_scene",
     "build_hold_table",
     "load_hold_tables",
     "read_hold_table",
@@ -203,6 +204,38 @@ def point_geometry(
     return {"post_diameter": D, "rod_length": L, "n_nodes": n}
 
 
+#: knot -> name of its DER scene function in :mod:`knotmech.scenes` (keywords of
+#: :func:`~knotmech.scenes.clove_hitch.clove_hitch`); a new hitch is one entry here
+HOLD_SCENE_NAMES = {
+    "clove-hitch": "clove_hitch",
+    "two-half-hitches": "two_half_hitches",
+    "round-turn-two-half-hitches": "round_turn_two_half_hitches",
+    "cow-hitch": "cow_hitch",
+}
+
+
+def hold_scene(knot: str):
+    """The DER scene function of ``knot`` (one of :data:`HOLD_SCENE_NAMES`)."""
+    import importlib
+
+    name = HOLD_SCENE_NAMES.get(knot)
+    if name is None:
+        raise InputError(f"no DER hold scene for {knot!r}; known: {', '.join(HOLD_SCENE_NAMES)}")
+    try:
+        module = importlib.import_module(f"knotmech.scenes.{name}")
+    except ImportError:
+        raise InputError(f"the DER scene of {knot} (knotmech.scenes.{name}) is not here") from None
+    return getattr(module, name)
+
+
+def has_hold_scene(knot: str) -> bool:
+    """Whether the DER scene of ``knot`` is importable (without importing it)."""
+    from importlib.util import find_spec
+
+    name = HOLD_SCENE_NAMES.get(knot)
+    return name is not None and find_spec(f"knotmech.scenes.{name}") is not None
+
+
 def simulate_point(
     *,
     d_over_2R: float,
@@ -217,6 +250,7 @@ def simulate_point(
     creep_limit: float = CREEP_LIMIT,
     hold_time: float | None = None,
     recheck: bool = False,
+    knot: str = "clove-hitch",
     progress: bool = False,
     keep_result: bool = False,
 ) -> dict:
@@ -260,10 +294,14 @@ def simulate_point(
     lim = float(check_positive("creep_limit", creep_limit))
     if friction not in ("anchor", "imc"):
         raise InputError(f"friction must be 'anchor' or 'imc', got {friction!r}")
-    from knotmech.scenes.clove_hitch import clove_hitch
-
+    scene = hold_scene(knot)
     geo = point_geometry(d_over_2R, rod_diameter=d)
-    nn = geo["n_nodes"] if n_nodes is None else int(n_nodes)
+    if knot == "clove-hitch":
+        nn = geo["n_nodes"] if n_nodes is None else int(n_nodes)
+        length = geo["rod_length"]
+    else:  # the knot's curve picks its length and (n_nodes None) its edges
+        nn = None if n_nodes is None else int(n_nodes)
+        length = None
     proto = dict(PROTOCOL if friction == "anchor" else IMC_PROTOCOL)
     if hold_time is not None:
         h = float(check_positive("hold_time", hold_time))
@@ -271,12 +309,12 @@ def simulate_point(
         proto["n_frames"] = int(round((proto["settle_time"] + proto["load_time"] + h) / 0.05)) + 1
     t_high = tea * E * np.pi * d * d / 4
     c0 = time.process_time()
-    r = clove_hitch(
+    r = scene(
         loading="free",
         t_high=t_high,
         rod_diameter=d,
         post_diameter=geo["post_diameter"],
-        rod_length=geo["rod_length"],
+        rod_length=length,
         n_nodes=nn,
         youngs_modulus=E,
         density=float(density),
@@ -310,7 +348,8 @@ def simulate_point(
         "t_over_EA": tea,
         "t_high": float(t_high),
         "post_diameter": geo["post_diameter"],
-        "n_nodes": nn,
+        "n_nodes": int(np.asarray(r.positions).shape[1]) if nn is None else nn,
+        "knot": knot,
         "mu": float(mu),
         "mu_rr": float(mu if mu_rr is None else mu_rr),
         "friction": friction,
@@ -337,7 +376,7 @@ def simulate_point(
         again = simulate_point(
             d_over_2R=d_over_2R, t_over_EA=t_over_EA, mu=mu, mu_rr=mu_rr, rod_diameter=d,
             youngs_modulus=E, density=density, friction=friction, n_nodes=n_nodes,
-            creep_limit=lim, hold_time=RECHECK_HOLD_FACTOR * proto["hold_time"],
+            creep_limit=lim, hold_time=RECHECK_HOLD_FACTOR * proto["hold_time"], knot=knot,
             progress=progress, keep_result=keep_result,
         )  # fmt: skip
         again["first_creep_speed"] = speed
@@ -1198,10 +1237,6 @@ HOLD_GRID = {
     "t_over_EA": (1e-4, 1e-3, 1e-2, 0.1, 0.3),
     "mu": (0.1, 0.2, 0.3, 0.5, 0.8),
 }
-#: knot -> module-level DER scene function of one hold-table point (keywords
-#: ``d_over_2R, t_over_EA, mu, friction``; returns a :func:`simulate_point`-like dict).
-#: A new hitch is one entry here.
-HOLD_SCENES = {"clove-hitch": simulate_point}
 
 
 def hold_table_resource(knot: str) -> str:
@@ -1209,15 +1244,21 @@ def hold_table_resource(knot: str) -> str:
     return f"hold_phase_table_{knot}.json"
 
 
-def hold_table_params(grid=None) -> list:
-    """The :func:`knotmech.sweep.sweep` parameter sets of a hold-table grid (mu outermost)."""
+def hold_table_params(grid=None, knot: str = "clove-hitch") -> list:
+    """The :func:`knotmech.sweep.sweep` parameter sets of a hold-table grid (mu outermost).
+
+    ``knot`` enters the parameters only for knots other than the clove hitch (so the
+    clove hitch's cached points keep their keys).
+    """
     g = HOLD_GRID if grid is None else grid
+    extra = {} if knot == "clove-hitch" else {"knot": knot}
     return [
-        {"d_over_2R": float(x), "t_over_EA": float(y), "mu": float(m), "friction": "anchor"}
+        {"d_over_2R": float(x), "t_over_EA": float(y), "mu": float(m), "friction": "anchor",
+         **extra}
         for m in g["mu"]
         for x in g["d_over_2R"]
         for y in g["t_over_EA"]
-    ]
+    ]  # fmt: skip
 
 
 def build_hold_table(
@@ -1232,7 +1273,7 @@ def build_hold_table(
 ) -> HoldTable:
     """Run the DER points of a hold table through :func:`knotmech.sweep.sweep` and tabulate.
 
-    Every point is one call of ``HOLD_SCENES[knot]`` (anchor law, :data:`PROTOCOL`,
+    Every point is one :func:`simulate_point` of ``knot``'s scene (anchor law, :data:`PROTOCOL`,
     creep-speed criterion); with ``cache_dir`` each result is stored as it arrives, so an
     interrupted build recomputes only what is missing. The table's meta records the grid,
     protocol, rod, criterion, the CPU time per point and in total.
@@ -1244,11 +1285,10 @@ def build_hold_table(
     """
     from knotmech.sweep import sweep
 
-    if knot not in HOLD_SCENES:
-        raise InputError(f"no DER hold scene for {knot!r}; known: {', '.join(HOLD_SCENES)}")
-    params = hold_table_params(grid)
+    hold_scene(knot)  # InputError for an unknown knot or a missing scene
+    params = hold_table_params(grid, knot)
     res = sweep(
-        HOLD_SCENES[knot],
+        simulate_point,
         params,
         processes=processes,
         scheduler=scheduler,
@@ -1267,7 +1307,7 @@ def build_hold_table(
     if again:
         hold2 = RECHECK_HOLD_FACTOR * PROTOCOL["hold_time"]
         res2 = sweep(
-            HOLD_SCENES[knot],
+            simulate_point,
             [{**params[i], "hold_time": hold2} for i in again],
             processes=processes, scheduler=scheduler, cache_dir=cache_dir, progress=progress,
             on_error="return",
@@ -1316,7 +1356,9 @@ def hold_table_from_results(knot: str, results, *, meta=None) -> HoldTable:
         "grid": g,
         "rod": {"d_m": ROD_DIAMETER, "E_Pa": YOUNGS_MODULUS, "rho": DENSITY},
         "protocol": dict(PROTOCOL),
-        "n_nodes": {f"{x:g}": point_geometry(x)["n_nodes"] for x in g["d_over_2R"]},
+        "n_nodes": {
+            f"{float(r['d_over_2R']):g}": int(r["n_nodes"]) for r in results if "n_nodes" in r
+        },  # fmt: skip
         "runs": len(results),
         "cpu_s_total": round(float(np.nansum(cpu)), 1),
         "cpu_s_per_point": [round(float(np.nanmin(cpu)), 1), round(float(np.nanmax(cpu)), 1)],
