@@ -1302,7 +1302,9 @@ def build_hold_table(
     results = [_signed(r) for r in res]
     # second pass: points within a decade of the limit, with a hold twice as long
     again = [
-        i for i, r in enumerate(results) if r["ran_to_end"] and needs_recheck(r["creep_speed"])
+        i
+        for i, r in enumerate(results)
+        if r["ran_to_end"] and r["topology_preserved"] and needs_recheck(r["creep_speed"])
     ]
     if again:
         hold2 = RECHECK_HOLD_FACTOR * PROTOCOL["hold_time"]
