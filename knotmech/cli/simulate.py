@@ -12,6 +12,9 @@ Example::
     knotmech simulate clove-hitch --loading free --t-high 1.47N --mu 0.3 --json hitch.json
     knotmech simulate clove-hitch --loading pull --speed 20mm/s --t-low 0.069N --mu 0.5 \\
         --mu-kinetic 0.32 --pull-distance 40mm --csv pull.csv
+    knotmech simulate two-half-hitches --loading free --t-high 0.1N --mu 0.6 --hold-time 0.4s
+    knotmech simulate round-turn-two-half-hitches --loading free --t-high 0.3N --plot rt.png
+    knotmech simulate cow-hitch --loading symmetric --t-high 0.3N --csv cow.csv
     knotmech simulate bend --kind granny --mu 1 --json granny.json --csv granny.csv
     knotmech simulate centreline reef.csv --unit mm --ends free,pull --ends pull,free \\
         --rod-diameter 4mm --youngs-modulus 1MPa --density 1100kg/m^3 --mu 1 \\
@@ -40,7 +43,11 @@ from knotmech.errors import InputError
 
 __all__ = ["register", "run"]
 
-SCENES = ("capstan", "two-loops", "pinch", "overhand", "clove-hitch", "bend", "centreline")
+#: the post hitches after the clove hitch: same options and outputs as clove-hitch
+HITCH_SCENES = ("two-half-hitches", "round-turn-two-half-hitches", "cow-hitch")
+
+SCENES = ("capstan", "two-loops", "pinch", "overhand", "clove-hitch", *HITCH_SCENES, "bend",
+          "centreline")  # fmt: skip
 
 #: The bends of :func:`knotmech.scenes.bend` (its ``BEND_CODES``; a test keeps them equal).
 BEND_KINDS = ("reef", "granny", "thief", "grief")
@@ -175,6 +182,20 @@ _CLOVE = (
     _COMMON_TAIL[1],
 )  # fmt: skip
 
+_HITCH_DEFAULTS = {  # the knotmech.scenes.hitches scenes (scenes._hitch.run_hitch)
+    "--rod-length": "the knotted part + 64 mm at each end",
+    "--n-nodes": "edges of about 3.1 mm",
+}
+_HITCH = tuple(
+    Opt(o.flag, o.kwarg, o.kind, o.help, _HITCH_DEFAULTS.get(o.flag, o.default)) for o in _CLOVE
+) + (
+    Opt("--creep-limit", "creep_limit", "dimensionless", "--loading free: the hitch slips when "
+        "an end creeps faster than this many rod diameters per second over the last second "
+        "of the hold", "1e-3"),
+    Opt("--settle-time", "settle_time", "time", "settling under the pre-tension", "0.5s"),
+    Opt("--load-time", "load_time", "time", "ramp to the final loads", "0.5s"),
+)  # fmt: skip
+
 _BEND = (  # knotmech.scenes.bends.bend
     Opt("--kind", "kind", "choice", f"which bend: {', '.join(BEND_KINDS)}", REQUIRED,
         choices=BEND_KINDS),
@@ -232,6 +253,7 @@ SCENE_OPTIONS: dict[str, tuple[Opt, ...]] = {
     "pinch": _PINCH,
     "overhand": _OVERHAND,
     "clove-hitch": _CLOVE,
+    **{name: _HITCH for name in HITCH_SCENES},
     "bend": _BEND,
     "centreline": _CENTRELINE,
 }
@@ -245,6 +267,12 @@ _DESCRIPTIONS = {
     "Amontons' 2 mu F_n)",
     "overhand": "an overhand knot with n braid turns pulled tight (force against end-to-end)",
     "clove-hitch": "a clove hitch tied on a post, held by end loads or pulled (clove-hitch paper)",
+    "two-half-hitches": "two half hitches on a post (a turn, then two half hitches round the "
+    "standing part), held by end loads or pulled: verdict, creep speed, knot type kept",
+    "round-turn-two-half-hitches": "a round turn and two half hitches on a post, held by end "
+    "loads or pulled: verdict, creep speed, knot type kept",
+    "cow-hitch": "a cow (girth) hitch on a post, one leg loaded and the other free, loaded or "
+    "both loaded, or pulled: verdict, creep speed, knot type kept",
     "bend": "two ropes joined by a reef, granny, thief or grief bend, set and pulled apart "
     "until it slips (Patil et al., Science 2020): verdict and slip load",
     "centreline": "your own knot from a CSV of centreline points (one or two rods), relaxed "
@@ -326,7 +354,7 @@ def register(subparsers) -> None:
             opt.add_argument("--params", default="imc", choices=("imc", "coated"),
                              help="parameter set: implicit-contact-model paper (imc) or "
                              "coated-rod paper table 1 [imc]")  # fmt: skip
-        if name == "clove-hitch":
+        if name == "clove-hitch" or name in HITCH_SCENES:
             opt.add_argument(
                 "--loading", default="free", choices=("symmetric", "asymmetric", "free", "pull"),
                 help="end loads: both --t-high (symmetric); --t-high and --t-low "
@@ -395,7 +423,9 @@ def _check_combination(scene: str, args, kw: dict) -> None:
         else:
             _refuse(kw, {"t_high": "--t-high", "hold_time": "--hold-time"},
                     "with --mode pull (the pulled end's force is measured)")  # fmt: skip
-    elif scene == "clove-hitch":
+    elif scene == "clove-hitch" or scene in HITCH_SCENES:
+        if scene in HITCH_SCENES and args.loading != "free":
+            _refuse(kw, {"creep_limit": "--creep-limit"}, "without --loading free")
         if args.loading == "pull":
             _refuse(kw, {"t_high": "--t-high", "hold_time": "--hold-time"},
                     "with --loading pull (the pulled end's force is measured)")  # fmt: skip
@@ -661,6 +691,8 @@ def run(args) -> int:
         res = _run_overhand(kw, args, progress)
     elif scene in ("bend", "centreline"):
         res = _run_pulled_knot(scene, kw, args, progress)
+    elif scene in HITCH_SCENES:
+        res = _run_hitch(scene, kw, args, progress)
     else:
         res = _run_clove_hitch(kw, args, progress)
     for warning in getattr(res, "warnings", None) or ():  # the scene's own checks, one line each
@@ -722,6 +754,42 @@ def _run_clove_hitch(kw, args, progress):
         print(
             f"clove-hitch ({res.loading}): status {res.status}; T_high = {res.t_high:.4g} N, "
             f"T_low = {res.t_low:.4g} N, creep {res.creep:.3g} m{verdict}"
+        )
+    return res
+
+
+def _run_hitch(scene, kw, args, progress):
+    """Two half hitches, round turn and two half hitches, cow hitch (scenes.hitches)."""
+    import importlib
+
+    name = scene.replace("-", "_")
+    module = importlib.import_module(f"knotmech.scenes.{name}")
+    kw = {**kw, "loading": args.loading}
+    if "mu_rod_post" in kw:
+        kw.setdefault("mu_rod_rod", kw["mu_rod_post"])
+    res = getattr(module, name)(progress=progress, **kw)
+    kept = (
+        "kept"
+        if res.topology_preserved
+        else "CHANGED (the knot came apart or a strand passed through another)"
+    )
+    if args.loading == "pull":
+        head = (
+            f"T_low = {res.t_low:.4g} N; T_high = {res.t_high:.4g} N after "
+            f"{res.pull_displacement[-1] * 1e3:.3g} mm"
+            if res.pull_force.size
+            else "no pull recorded"
+        )
+        print(f"{scene} (pull at {res.pull_speed * 1e3:.3g} mm/s): status {res.status}; {head}; "
+              f"knot type {kept}")  # fmt: skip
+    else:
+        verdict = f"verdict: {res.verdict.upper()}; " if res.verdict else ""
+        print(
+            f"{scene} ({res.loading}): status {res.status}; {verdict}T_high = {res.t_high:.4g} "
+            f"N, T_low = {res.t_low:.4g} N; creep {res.creep_speed_d:.3g} d/s "
+            f"({res.creep_speed:.3g} m/s) over the last {res.creep_window:.3g} s, free end "
+            f"{res.tail_creep_speed_d:.3g} d/s; knot type {kept}; "
+            f"{res.stats.get('steps', 0)} steps, {res.stats.get('wall_s', 0.0):.3g} s"
         )
     return res
 

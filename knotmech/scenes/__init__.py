@@ -4,6 +4,10 @@
 - :mod:`~knotmech.scenes.pinch`: a rod pinched between two crossed cylinders, pulled out.
 - :mod:`~knotmech.scenes.clove_hitch`: a clove hitch on a post under symmetric, asymmetric
   or free-end loading; tension profile, contact regions, Darboux vector.
+- :mod:`~knotmech.scenes.two_half_hitches`, :mod:`~knotmech.scenes.round_turn_two_half_hitches`,
+  :mod:`~knotmech.scenes.cow_hitch`: more post hitches, the clove hitch's keywords
+  (:mod:`~knotmech.scenes._hitch`, the scene they share; :mod:`~knotmech.scenes.hitches`,
+  all four by name; start curves in :mod:`~knotmech.scenes.hitch_curves`).
 - :mod:`~knotmech.scenes.overhand`: overhand knots with n = 1..4 turns pulled tight.
 - :mod:`~knotmech.scenes.curves`: parametric knot centrelines (overhand, clove hitch, coil).
 - :mod:`~knotmech.scenes.topology`: knot invariants (Alexander polynomial, determinant),
@@ -45,6 +49,14 @@ _SUBMODULE = {
     "CloveHitchResult": "clove_hitch",
     "clove_hitch": "clove_hitch",
     "darboux_profile": "clove_hitch",
+    "HitchResult": "_hitch",
+    "two_half_hitches": "two_half_hitches",
+    "round_turn_two_half_hitches": "round_turn_two_half_hitches",
+    "cow_hitch": "cow_hitch",
+    "HITCHES": "hitches",
+    "hitch": "hitches",
+    "hitch_curve": "hitch_curves",
+    "hitch_invariants": "hitch_curves",
     "OVERHAND_COATED_TABLE1": "curves",
     "OVERHAND_IMC": "curves",
     "KnotCurve": "curves",
@@ -128,6 +140,14 @@ __all__ = [
     "clove_hitch",
     "CloveHitchResult",
     "darboux_profile",
+    "HitchResult",
+    "two_half_hitches",
+    "round_turn_two_half_hitches",
+    "cow_hitch",
+    "HITCHES",
+    "hitch",
+    "hitch_curve",
+    "hitch_invariants",
     "overhand",
     "OverhandResult",
     "OverhandSetup",

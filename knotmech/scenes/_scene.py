@@ -18,10 +18,9 @@ The loads and moving grips every scene needs are written once here: :class:`Ramp
 (a dead load on one node, ramped), :func:`grip_path` (a gripped end moved at constant speed
 along a direction after a delay).
 
-Existing scenes (``clove_hitch``, ``capstan``, ``overhand``) predate this module; moving
-them onto it means replacing their hand-written ``simulate`` sequences by
-:meth:`SceneRun.phase` calls and their contact set-up by :func:`rod_contact` /
-:func:`post_contact` (see docs/notes/knots.md).
+The post hitches (clove hitch, two half hitches, round turn and two half hitches, cow
+hitch) run on it through :mod:`knotmech.scenes._hitch`; ``capstan`` and ``overhand`` still
+write their ``simulate`` sequences by hand (see docs/notes/knots.md).
 """
 
 from __future__ import annotations
@@ -159,7 +158,12 @@ def post_contact(
 
 @dataclass
 class Phase:
-    """What one phase of a scene ran: name, [t0, t1] [s], status and frame range."""
+    """What one phase of a scene ran: name, [t0, t1] [s], status and frame range.
+
+    ``start_reactions`` maps each node constrained in the phase to the static reaction
+    [N] the solver reports at the phase's start (its frame 0, not kept in the run's
+    frames: the previous phase's last frame stands there).
+    """
 
     name: str
     t0: float
@@ -167,6 +171,7 @@ class Phase:
     status: str
     message: str
     frames: tuple
+    start_reactions: dict = field(default_factory=dict)
 
 
 @dataclass
@@ -288,7 +293,9 @@ class SceneRun:
         self.times.extend(tt.tolist())
         self.positions.extend(list(np.asarray(res.positions)[1:]))
         rn = np.asarray(res.reaction_nodes)
-        rx = np.asarray(res.reactions)[1:]
+        rx_all = np.asarray(res.reactions)
+        start = {int(node): rx_all[0, j] for j, node in enumerate(rn)} if len(rx_all) else {}
+        rx = rx_all[1:]
         for j, node in enumerate(rn):
             self.reactions.setdefault(int(node), {})
             for t, f in zip(tt, rx[:, j], strict=True):
@@ -304,7 +311,7 @@ class SceneRun:
             status, message = "failed", f"{name}: {verdict['msg']}"
         elif status != "success":
             message = f"{name}: {message}"
-        self.phases.append(Phase(name, t0, self.t, status, message, (k0, len(self.times))))
+        self.phases.append(Phase(name, t0, self.t, status, message, (k0, len(self.times)), start))
         if status != "success":
             self.status, self.message = status, message
             return False

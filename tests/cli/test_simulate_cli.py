@@ -294,6 +294,12 @@ _SCENE_FUNCS = {
     "pinch": ("knotmech.scenes.pinch", "pinch"),
     "overhand": ("knotmech.scenes.overhand", "overhand"),
     "clove-hitch": ("knotmech.scenes.clove_hitch", "clove_hitch"),
+    "two-half-hitches": ("knotmech.scenes.two_half_hitches", "two_half_hitches"),
+    "round-turn-two-half-hitches": (
+        "knotmech.scenes.round_turn_two_half_hitches",
+        "round_turn_two_half_hitches",
+    ),
+    "cow-hitch": ("knotmech.scenes.cow_hitch", "cow_hitch"),
     "bend": ("knotmech.scenes.bends", "bend"),
     "centreline": ("knotmech.scenes.centreline", "centreline"),
 }
