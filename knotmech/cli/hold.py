@@ -177,7 +177,8 @@ def run(args) -> int:
             raise InputError(f"--youngs-modulus must be > 0, got {E:g}")
     if args.simulate and not can_simulate(knot):
         raise InputError(
-            f"--simulate is available for clove-hitch and the bends only, not for {knot}"
+            f"--simulate is available for the clove hitch, the hitches with a DER scene "
+            f"(two half hitches, round turn and two half hitches) and the bends, not for {knot}"
         )
     if args.simulate and free > 0 and not bend:
         raise InputError(

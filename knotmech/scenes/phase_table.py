@@ -330,8 +330,12 @@ def simulate_point(
     ran = bool(times.size and times[-1] >= t_end - 1e-9)
     solver_ok = r.status == "success" or r.verdict == "slip"
     window = min(CREEP_WINDOW, proto["hold_time"])
-    speed = creep_speed(r.times, r.end_displacement, rod_diameter=d, window=window) if ran \
-        else float("nan")  # fmt: skip
+    if not ran:
+        speed = float("nan")
+    elif knot == "clove-hitch":
+        speed = creep_speed(r.times, r.end_displacement, rod_diameter=d, window=window)
+    else:  # the hitch scenes' own creep speed: the least-squares slope over the window
+        speed = float(r.creep_speed_d)  # (their hold runs with a tenth of the drag and rings)
     if friction == "anchor":
         holds, reason = creep_verdict(
             speed, ran_to_end=ran, topology_preserved=bool(r.topology_preserved),
