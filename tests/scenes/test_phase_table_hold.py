@@ -56,8 +56,8 @@ def test_creep_speed_is_the_mean_speed_over_the_last_second():
 
 
 def test_points_near_the_limit_are_rechecked_with_a_longer_hold():
-    assert pt.needs_recheck(1.26e-3) and pt.needs_recheck(1e-4) and pt.needs_recheck(9.9e-3)
-    assert not pt.needs_recheck(1e-2) and not pt.needs_recheck(9e-5)
+    assert pt.needs_recheck(1.26e-3) and pt.needs_recheck(1e-4) and pt.needs_recheck(0.0377)
+    assert not pt.needs_recheck(0.1) and not pt.needs_recheck(9e-5)
     assert not pt.needs_recheck(-1.26e-3)  # moving back: the knot settles, not a slip
     assert not pt.needs_recheck(float("nan"))
     assert pt.RECHECK_HOLD_FACTOR * pt.PROTOCOL["hold_time"] == 3.0
