@@ -6,20 +6,28 @@ answer and decides by one rule (:data:`RULE`):
 
 - the closed forms of :mod:`knotmech.analytic.hitch` (ideal rope, thick nip;
   ideal and finite-thickness capstan), always;
-- for the clove hitch with a free end, the DER phase diagram of the clove-hitch
-  paper (Extreme Mech. Lett., DOI 10.1016/j.eml.2022.101788, sec. 8 and Fig. 4):
-  the shipped tables (:mod:`knotmech.scenes.phase_table`), a table the user names,
-  or with ``simulate=True`` one DER run of the user's geometry. The tables are in
-  :math:`T_\mathrm{high}/EA`, so they need the rope's Young's modulus: from
-  ``youngs_modulus`` or ``material`` (:mod:`knotmech.materials`); with neither, the
-  DER is not consulted and the verdict says so (nothing is assumed silently).
+- for the hitches with a free end, the DER hold/slip diagram (the clove-hitch paper,
+  Extreme Mech. Lett., DOI 10.1016/j.eml.2022.101788, sec. 8 and Fig. 4): the shipped
+  anchor-law hold tables over real-rope ranges (:class:`knotmech.scenes.phase_table.
+  HoldTable`; d/2R, T_high/EA from 1e-4 to 0.3, mu = mu_rr from 0.1 to 0.8), a table the
+  user names, or with ``simulate=True`` one DER run of the user's geometry. The hold
+  criterion is a creep speed: the hitch holds when its loaded end creeps slower than
+  ``creep_limit`` (default 1e-3 rope diameters per second) over the last second of the
+  hold once the load is on, with its topology kept; the verdict reports the creep speed
+  measured. The tables are in :math:`T_\mathrm{high}/EA`, so they need the rope's
+  Young's modulus: from ``youngs_modulus`` or ``material`` (:mod:`knotmech.materials`);
+  with neither, the DER is not consulted and the verdict says so;
+- for the bends (reef, granny, thief, grief) no closed form and no table: undecided with
+  the command that decides, or with ``simulate=True`` one DER pull of the bend (its slip
+  load against the load).
 
 **The rule.** The most faithful model whose inputs lie inside its validity and that
 gives a definite answer decides, in the order DER simulation, DER table, then the
 closed forms (hitches: ideal rope, then thick nip; capstan: finite-thickness, then
 ideal capstan). A model outside its validity never decides; when no model inside its
 validity answers, the verdict is undecided (``holds is None``) and ``next_step``
-names what decides it (``--simulate`` for the clove hitch with a free end).
+names what decides it (the full ``knotmech hold ... --simulate`` command where a DER
+scene exists).
 
 Validity used by the rule (beyond each closed form's own statement):
 
@@ -27,8 +35,11 @@ Validity used by the rule (beyond each closed form's own statement):
   standing part, of diameter d itself);
 - thick nip: a rope no thicker than its post, and a strain :math:`T_\mathrm{high}/EA
   \le 10\,\%` (the model's inextensible rope) when E is known;
-- DER table: inside the table's grid (d/2R, T_high/EA) and friction range, decided
-  only where the surrounding grid points agree.
+- DER table: between grid points decided only where every neighbouring point agrees;
+  beyond the grid only one way, where monotonicity says so (a load lighter than the
+  lightest where the two lightest agree; a heavier load where the heaviest slipped; more
+  friction where the largest held; less where the smallest slipped); outside the d/2R
+  range never (:meth:`knotmech.scenes.phase_table.HoldTable.lookup`).
 
 Implausible inputs (mu or mu_rr > 2, strain above 10 %, a wrap beyond 20 turns, a
 rope thicker than its post) give an :class:`InputWarning` naming the input.

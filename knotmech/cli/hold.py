@@ -283,7 +283,7 @@ def format_creep(c: dict) -> str:
         return (f"creep: {c['creep_m'] * 1e3:.3g} mm over {c['window_s']:g} s "
                 f"({c['speed_d_per_s']:.3g} d/s; {c['source']})")  # fmt: skip
     v = c["speed_d_per_s"]
-    rel = "<" if v < c["limit_d_per_s"] else ">="
+    rel = "slower than" if abs(v) < c["limit_d_per_s"] else "not slower than"
     return (
         f"creep: {v:.3g} d/s ({c['speed_m_per_s'] * 1e3:.3g} mm/s) over the last "
         f"{c['window_s']:g} s of the hold, {rel} the {c['limit_d_per_s']:g} d/s of the "

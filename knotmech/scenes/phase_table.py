@@ -149,7 +149,8 @@ def creep_verdict(
 
     Holds when the run reached the end of its hold (a slipping end that runs off stops the
     run early: a slip), kept the knot's topology, and its loaded end crept slower than
-    ``limit`` [d/s] over the last :data:`CREEP_WINDOW` of the hold. Returns ``(holds,
+    ``limit`` [d/s] either way over the last :data:`CREEP_WINDOW` of the hold (at rest: an
+    end still moving back fast, a stiff rod springing open, is not a hold). Returns ``(holds,
     reason)``; ``holds`` is None when the solver failed (no verdict).
     """
     lim = float(check_positive("creep limit", limit))
@@ -161,9 +162,9 @@ def creep_verdict(
         return False, "the knot's topology changed"
     if not math.isfinite(speed):
         return None, "no creep speed measured"
-    if speed < lim:
-        return True, f"creep {speed:.3g} d/s < {lim:g} d/s"
-    return False, f"creep {speed:.3g} d/s >= {lim:g} d/s"
+    if abs(speed) < lim:
+        return True, f"creep {speed:.3g} d/s, slower than {lim:g} d/s"
+    return False, f"creep {speed:.3g} d/s, not slower than {lim:g} d/s"
 
 
 #: a point whose creep speed lies between limit/RECHECK_BAND[0] and limit*RECHECK_BAND[1]
@@ -179,7 +180,7 @@ def needs_recheck(speed: float, *, limit: float = CREEP_LIMIT) -> bool:
     """Whether a creep speed [d/s] lies in the recheck band around the limit
     (:data:`RECHECK_BAND`: a decade below it to two decades above it)."""
     lo, hi = limit / RECHECK_BAND[0], limit * RECHECK_BAND[1]
-    return bool(math.isfinite(speed) and lo <= speed < hi)
+    return bool(math.isfinite(speed) and lo <= abs(speed) < hi)
 
 
 def point_geometry(
