@@ -572,11 +572,11 @@ def _der(
         ran = bool(p.get("ran_to_end", math.isfinite(speed)))
         creep = _creep_dict("DER simulation of this geometry", speed, d, limit=lim, ran_to_end=ran)
         crept = (
-            f"loose end creeps {speed:.3g} d/s over the last {pt.CREEP_WINDOW:g} s of the hold"
+            f"loaded end creeps {speed:.3g} d/s over the last {pt.CREEP_WINDOW:g} s of the hold"
             if creep["speed_d_per_s"] is not None
             else "the loaded end ran off before the hold's measuring window"
         )
-        reason = p.get("reason", "")
+        reason = "" if creep["speed_d_per_s"] is not None else p.get("reason", "")
         out.update(
             source="simulation",
             holds=bool(p["holds"]),
