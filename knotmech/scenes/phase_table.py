@@ -1021,7 +1021,7 @@ class HoldTable:
         votes = [p.holds(lim) for p in corners]
         pts = "; ".join(p.describe(lim) for p in corners)
         speeds = [p.creep_speed for p, v in zip(corners, votes, strict=True) if v]
-        speed = max(speeds) if speeds else float("nan")
+        speed = max(speeds, key=abs) if speeds else float("nan")
         cap, first_slip = self._capacity(xi, mi, y, lim)
         common = dict(corners=tuple(corners), creep_speed=speed, capacity_t_over_EA=cap,
                       first_slip_t_over_EA=first_slip, mu_tables=mus_used)  # fmt: skip

@@ -89,12 +89,15 @@ def test_issue_example_no_longer_decided_by_a_model_outside_its_validity(capsys)
     assert first.startswith("verdict: HOLDS") and "thick-nip" in first
     assert "ideal-rope slips (outside its validity)" in out
     # with the rope's material: nylon kernmantle E = 0.25 GPa, EA = 7.07 kN, 200 N is
-    # 0.0283 EA (below the DER tables' lightest load 0.03): still thick-nip, strain checked
+    # 0.0283 EA at d/2R = 6/46 = 0.130, mu 0.4: inside the anchor-law hold table, whose
+    # eight neighbouring points (d/2R 0.1176, 0.2308 x 0.01, 0.1 EA x mu 0.3, 0.5) all held
     data = _json(ISSUE + ["--material", "nylon"], capsys)
-    assert data["holds"] is True and data["decided_by"] == "thick-nip"
+    assert data["holds"] is True and data["decided_by"] == "DER-table"
+    assert data["der"]["rule"] == "grid" and data["der"]["mu_tables"] == [0.3, 0.5]
     assert data["inputs"]["youngs_modulus"] == 0.25e9
     assert data["der"]["t_over_EA"] == pytest.approx(200 / (0.25e9 * math.pi * 0.006**2 / 4))
-    assert "--simulate" in data["next_step"]
+    # the largest creep of the eight (d/2R 0.1176, 0.1 EA, mu 0.5), over the last second
+    assert data["creep"]["speed_d_per_s"] == pytest.approx(6.5e-5, rel=0.02)
     assert data["warnings"] == []
 
 
