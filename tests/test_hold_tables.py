@@ -141,6 +141,18 @@ def test_two_half_hitches_from_their_table():
     w = knotmech.hold("two-half-hitches", mu=0.3, **kw)
     assert w.holds is False and w.decided_by == "DER-table" and w.creep["ran_off"] is True
     assert next(a for a in w.answers if a.model == "thick-nip").holds is True
-    # the round turn has no table yet: the closed forms answer as before
-    r = knotmech.hold("round-turn-two-half-hitches", mu=0.3, **kw)
-    assert r.decided_by == "thick-nip"
+
+
+def test_round_turn_two_half_hitches_from_its_table():
+    """The same small grid for the round turn and two half hitches: on a 30 mm post at
+    0.5 N it holds at mu = 0.8 (0.01 and 0.1 EA held, the first after the 3 s recheck:
+    -1.0e-3 d/s after 1.5 s, -4.8e-7 after 3 s; the largest creep 1.7e-5 d/s) and slips at
+    0.3 (0.01 EA changed topology, 0.1 EA ran off)."""
+    t = pt.load_hold_tables()["round-turn-two-half-hitches"]
+    assert len(t.points) == 12 and len(t.meta["rechecked"]["points"]) == 7
+    kw = dict(rod_diameter=4e-3, post_diameter=30e-3, load=0.5, material="vps32")
+    v = knotmech.hold("round-turn-two-half-hitches", mu=0.8, **kw)
+    assert v.holds is True and v.decided_by == "DER-table"
+    assert v.creep["speed_d_per_s"] == pytest.approx(1.7e-5, rel=0.02)
+    w = knotmech.hold("round-turn-two-half-hitches", mu=0.3, **kw)
+    assert w.holds is False and w.decided_by == "DER-table"
