@@ -722,11 +722,12 @@ def hold(
     ----------
     knot : str
         One of :data:`KNOT_NAMES` (``capstan``, ``clove-hitch``, ``two-half-hitches``,
-        ``round-turn``, ``round-turn-two-half-hitches``). Other knots (bowline,
-        figure-eight, sheet bend, reef, cow hitch, ...) raise a one-line
-        :class:`~knotmech.errors.InputError` listing these.
+        ``round-turn``, ``round-turn-two-half-hitches``, and the bends ``reef``,
+        ``granny``, ``thief``, ``grief``). Other knots (bowline, figure-eight, sheet bend,
+        cow hitch, ...) raise a one-line :class:`~knotmech.errors.InputError` listing
+        these.
     rod_diameter, post_diameter : float
-        Rope diameter d and post diameter D [m], > 0.
+        Rope diameter d and post diameter D [m], > 0 (no post for a bend: None).
     mu : float
         Rope-post friction coefficient [-], >= 0.
     load : float
@@ -743,8 +744,10 @@ def hold(
     youngs_modulus : float, optional
         The rope's effective axial modulus E [Pa] (overrides the material's).
     simulate : bool
-        Clove hitch with a free end: one DER run of this geometry (about a minute)
-        instead of the tables; needs E.
+        One DER run of this geometry instead of the tables (about 20 s of CPU; a second,
+        3 s hold when the creep lies near the limit): the clove hitch and the hitches
+        with a DER scene with a free end, or a bend's pull (its slip load against the
+        load); needs E.
     phase_table : path, optional
         Clove hitch: read the DER table from this file (it must exist and parse).
     progress : bool
