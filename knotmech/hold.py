@@ -773,8 +773,10 @@ def hold(
     --------
     >>> v = hold("clove-hitch", rod_diameter=6e-3, post_diameter=40e-3, mu=0.4,
     ...          load=200.0, material="nylon")
-    >>> v.holds, v.decided_by
-    (True, 'thick-nip')
+    >>> v.holds, v.decided_by, v.der["rule"]
+    (True, 'DER-table', 'grid')
+    >>> round(v.creep["speed_d_per_s"], 6)
+    6.5e-05
     """
     from knotmech.analytic.hitch import hold_verdict as closed_forms
     from knotmech.errors import check_nonnegative, check_positive
