@@ -6,20 +6,28 @@ answer and decides by one rule (:data:`RULE`):
 
 - the closed forms of :mod:`knotmech.analytic.hitch` (ideal rope, thick nip;
   ideal and finite-thickness capstan), always;
-- for the clove hitch with a free end, the DER phase diagram of the clove-hitch
-  paper (Extreme Mech. Lett., DOI 10.1016/j.eml.2022.101788, sec. 8 and Fig. 4):
-  the shipped tables (:mod:`knotmech.scenes.phase_table`), a table the user names,
-  or with ``simulate=True`` one DER run of the user's geometry. The tables are in
-  :math:`T_\mathrm{high}/EA`, so they need the rope's Young's modulus: from
-  ``youngs_modulus`` or ``material`` (:mod:`knotmech.materials`); with neither, the
-  DER is not consulted and the verdict says so (nothing is assumed silently).
+- for the hitches with a free end, the DER hold/slip diagram (the clove-hitch paper,
+  Extreme Mech. Lett., DOI 10.1016/j.eml.2022.101788, sec. 8 and Fig. 4): the shipped
+  anchor-law hold tables over real-rope ranges (:class:`knotmech.scenes.phase_table.
+  HoldTable`; d/2R, T_high/EA from 1e-4 to 0.3, mu = mu_rr from 0.1 to 0.8), a table the
+  user names, or with ``simulate=True`` one DER run of the user's geometry. The hold
+  criterion is a creep speed: the hitch holds when its loaded end creeps slower than
+  ``creep_limit`` (default 1e-3 rope diameters per second) over the last second of the
+  hold once the load is on, with its topology kept; the verdict reports the creep speed
+  measured. The tables are in :math:`T_\mathrm{high}/EA`, so they need the rope's
+  Young's modulus: from ``youngs_modulus`` or ``material`` (:mod:`knotmech.materials`);
+  with neither, the DER is not consulted and the verdict says so;
+- for the bends (reef, granny, thief, grief) no closed form and no table: undecided with
+  the command that decides, or with ``simulate=True`` one DER pull of the bend (its slip
+  load against the load).
 
 **The rule.** The most faithful model whose inputs lie inside its validity and that
 gives a definite answer decides, in the order DER simulation, DER table, then the
 closed forms (hitches: ideal rope, then thick nip; capstan: finite-thickness, then
 ideal capstan). A model outside its validity never decides; when no model inside its
 validity answers, the verdict is undecided (``holds is None``) and ``next_step``
-names what decides it (``--simulate`` for the clove hitch with a free end).
+names what decides it (the full ``knotmech hold ... --simulate`` command where a DER
+scene exists).
 
 Validity used by the rule (beyond each closed form's own statement):
 
@@ -27,8 +35,11 @@ Validity used by the rule (beyond each closed form's own statement):
   standing part, of diameter d itself);
 - thick nip: a rope no thicker than its post, and a strain :math:`T_\mathrm{high}/EA
   \le 10\,\%` (the model's inextensible rope) when E is known;
-- DER table: inside the table's grid (d/2R, T_high/EA) and friction range, decided
-  only where the surrounding grid points agree.
+- DER table: between grid points decided only where every neighbouring point agrees;
+  beyond the grid only one way, where monotonicity says so (a load lighter than the
+  lightest where the two lightest agree; a heavier load where the heaviest slipped; more
+  friction where the largest held; less where the smallest slipped); outside the d/2R
+  range never (:meth:`knotmech.scenes.phase_table.HoldTable.lookup`).
 
 Implausible inputs (mu or mu_rr > 2, strain above 10 %, a wrap beyond 20 turns, a
 rope thicker than its post) give an :class:`InputWarning` naming the input.
@@ -79,14 +90,38 @@ MU_PLAUSIBLE = 2.0  #: a friction coefficient above this is implausible for rope
 WRAP_TURNS_PLAUSIBLE = 20.0  #: a capstan wrap beyond this many turns is implausible
 
 _HITCHES = ("clove-hitch", "two-half-hitches", "round-turn", "round-turn-two-half-hitches")
+#: the bends of Patil et al. (Science 2020): two ropes joined and pulled apart
+_BENDS = ("reef", "granny", "thief", "grief")
+#: hitches that may have a DER answer (a hold table or a DER scene,
+#: :data:`knotmech.scenes.phase_table.HOLD_SCENE_NAMES`); the clove hitch always has one
+_DER_HITCHES = ("clove-hitch", "two-half-hitches", "round-turn-two-half-hitches")
+
+
+def _der_knot(key) -> bool:
+    """Whether ``key`` has a DER answer here: a shipped hold table or an importable scene."""
+    if key == "clove-hitch":
+        return True
+    if key not in _DER_HITCHES:
+        return False
+    from knotmech.scenes import phase_table as pt
+
+    return key in _shipped_hold_tables() or pt.has_hold_scene(key)
+
+
 #: knots :func:`hold` answers
-KNOT_NAMES = ("capstan",) + _HITCHES
+KNOT_NAMES = ("capstan",) + _HITCHES + _BENDS
 _ALIASES = {
     "clove": "clove-hitch",
     "round-turn-and-two-half-hitches": "round-turn-two-half-hitches",
     "round-turn-&-two-half-hitches": "round-turn-two-half-hitches",
     "rt2hh": "round-turn-two-half-hitches",
     "2hh": "two-half-hitches",
+    "reef-knot": "reef",
+    "square-knot": "reef",
+    "square": "reef",
+    "granny-knot": "granny",
+    "thief-knot": "thief",
+    "grief-knot": "grief",
 }
 #: knots people ask about that hold does not answer, and what they are
 _NOT_ANSWERED = {
@@ -94,15 +129,26 @@ _NOT_ANSWERED = {
     "figure-eight": "a stopper / loop knot (no post, no closed form or DER table here)",
     "figure-8": "a stopper / loop knot (no post, no closed form or DER table here)",
     "sheet-bend": "a bend joining two ropes (no post, no closed form or DER table here)",
-    "reef": "a bend joining two ropes (no closed form or DER table here)",
-    "reef-knot": "a bend joining two ropes (no closed form or DER table here)",
-    "square-knot": "a bend joining two ropes (no closed form or DER table here)",
-    "granny": "a bend joining two ropes (no closed form or DER table here)",
-    "granny-knot": "a bend joining two ropes (no closed form or DER table here)",
     "cow-hitch": "a hitch (girth hitch) with no closed form or DER table here yet",
     "girth-hitch": "a hitch (cow hitch) with no closed form or DER table here yet",
     "overhand": "a stopper knot (see `knotmech simulate overhand`), not a hitch on a post",
 }
+
+
+def is_bend(knot) -> bool:
+    """Whether ``knot`` (a canonical name) is a bend: two ropes pulled apart, no post."""
+    return knot in _BENDS
+
+
+def can_simulate(knot) -> bool:
+    """Whether ``simulate=True`` runs a DER scene for ``knot`` (a canonical name)."""
+    if knot in _BENDS or knot == "clove-hitch":
+        return True
+    if knot not in _DER_HITCHES:
+        return False
+    from knotmech.scenes import phase_table as pt
+
+    return pt.has_hold_scene(knot)
 
 
 def knot_key(knot) -> str:
@@ -355,6 +401,12 @@ def _warnings(mu, mu_rr, d, D, load, E, theta):
 def _load_user_table(path):
     from knotmech.scenes import phase_table as pt
 
+    try:
+        head = json.loads(Path(path).read_text())
+    except (OSError, ValueError):
+        head = None  # load_table says what is wrong
+    if isinstance(head, dict) and head.get("format") == pt.HOLD_TABLE_FORMAT:
+        return pt.read_hold_table(path)  # a 3-axis hold table (checked when read)
     t = pt.load_table(path)  # InputError when missing or not a table
     pts = t.points
     if not pts:
@@ -382,35 +434,110 @@ def _shape(result, *, d, D):
 
 @functools.lru_cache(maxsize=1)
 def _shipped_tables():
-    """The shipped DER tables, read once per process (they are package data)."""
+    """The shipped smooth-law (imc) DER tables, read once per process (package data)."""
     from knotmech.scenes import phase_table as pt
 
     return pt.load_tables()
 
 
-def _nearest_hold_creep(table, x, y):
-    """Creep [m] of the grid point that held nearest to (x, y), from the table's meta."""
-    rows = table.meta.get("creep_m_of_holds") or []
-    best = None
-    for row in rows:
-        try:
-            px, py, c = (float(v) for v in row)
-        except (TypeError, ValueError):
-            continue
-        if not (px > 0 and py > 0 and math.isfinite(c)):
-            continue
-        dist = ((px - x) / 0.1) ** 2 + math.log(py / y) ** 2
-        if best is None or dist < best[0]:
-            best = (dist, px, py, c)
-    return None if best is None else best[1:]
+@functools.lru_cache(maxsize=1)
+def _shipped_hold_tables():
+    """The shipped anchor-law hold tables {knot: HoldTable}, read once per process."""
+    from knotmech.scenes import phase_table as pt
+
+    return pt.load_hold_tables()
 
 
-def _der(*, d, D, mu, mu_rr, load, E, simulate, phase_table, progress, ideal_holds):
-    """The DER answer for a clove hitch with a free end: (details dict, ModelAnswer or None,
-    creep dict or None)."""
+def _q(value: float, unit: str) -> str:
+    """A quantity as a command-line token with its unit (4mm, 1.47N, 1.26MPa)."""
+    if unit == "m":
+        return f"{value * 1e3:.6g}mm"
+    if unit == "Pa":
+        return f"{value / 1e6:.6g}MPa"
+    return f"{value:.6g}{unit}"
+
+
+def simulate_command(
+    knot, *, d, D, mu, mu_rr=None, load, material=None, youngs_modulus=None, creep_limit=None
+) -> str:
+    """The full ``knotmech hold ... --simulate`` command that decides this case by one DER run."""
+    parts = ["knotmech", "hold", knot, "--rod-diameter", _q(d, "m")]
+    if D is not None:
+        parts += ["--post-diameter", _q(D, "m")]
+    parts += ["--mu", f"{mu:g}"]
+    if mu_rr is not None and mu_rr != mu:
+        parts += ["--mu-rr", f"{mu_rr:g}"]
+    parts += ["--load", _q(load, "N")]
+    if youngs_modulus is not None:
+        parts += ["--youngs-modulus", _q(youngs_modulus, "Pa")]
+    elif material is not None:
+        parts += ["--material", str(material)]
+    else:  # a DER run needs the stiffness: the user picks it
+        parts += ["--material", "MATERIAL"]
+    if creep_limit is not None:
+        parts += ["--creep-limit", f"{creep_limit:g}"]
+    return " ".join(parts + ["--simulate"])
+
+
+def _criterion_text(limit: float) -> str:
+    from knotmech.scenes import phase_table as pt
+
+    return (
+        f"{pt.CREEP_CRITERION} criterion: holds when the loose end creeps slower than "
+        f"{limit:g} d/s over the last {pt.CREEP_WINDOW:g} s of the hold once the load is on, "
+        "topology kept"
+    )
+
+
+def _creep_dict(source, speed, d, *, limit, ran_to_end=True):
+    """The measured creep as the verdict reports it (speed in d/s and m/s)."""
+    from knotmech.scenes import phase_table as pt
+
+    ok = ran_to_end and speed is not None and math.isfinite(speed)
+    return {
+        "source": source,
+        "criterion": pt.CREEP_CRITERION,
+        "limit_d_per_s": limit,
+        "window_s": pt.CREEP_WINDOW,
+        "speed_d_per_s": float(speed) if ok else None,
+        "speed_m_per_s": float(speed) * d if ok else None,
+        "creep_m": float(speed) * d * pt.CREEP_WINDOW if ok else None,
+        "ran_off": not ran_to_end,
+    }
+
+
+def _table_validity_imc(tables, a):
+    used = [tables.table(m) for m in a.mu_tables]
+    xs, ys = used[0].d_over_2R, used[0].t_over_EA
+    return (
+        f"table grid d/2R {xs[0]:.3g}-{xs[-1]:.3g}, T_high/EA {ys[0]:.3g}-{ys[-1]:.3g}, "
+        f"mu = mu_rr = {' and '.join(f'{t.mu:g}' for t in used)}"
+        + (" (bracketing the user's friction)" if len(used) > 1 else "")
+        + "; boundary resolved to one grid step"
+    )
+
+
+def _der(
+    *,
+    knot="clove-hitch",
+    d,
+    D,
+    mu,
+    mu_rr,
+    load,
+    E,
+    simulate,
+    phase_table,
+    progress,
+    ideal_holds,
+    creep_limit=None,
+):
+    """The DER answer for a hitch with a free end: (details dict, ModelAnswer or None,
+    creep dict or None, shape)."""
     from knotmech.analytic.hitch import ModelAnswer
     from knotmech.scenes import phase_table as pt
 
+    lim = pt.CREEP_LIMIT if creep_limit is None else float(creep_limit)
     x = d / (D + d)  # d/2R with R = (D + d)/2
     EA = E * math.pi * d * d / 4
     y = load / EA
@@ -425,86 +552,110 @@ def _der(*, d, D, mu, mu_rr, load, E, simulate, phase_table, progress, ideal_hol
         "mu_tables": [],
         "message": "",
         "agrees_with_ideal_rope": None,
+        "criterion": _criterion_text(lim),
     }
     creep = None
     shape = None
     capacity = math.nan
+    law = "anchor"
     if simulate:
         p = pt.simulate_point(
             d_over_2R=x, t_over_EA=y, mu=mu, mu_rr=mu_rr, rod_diameter=d, youngs_modulus=E,
-            progress=progress, keep_result=True,
+            creep_limit=lim, recheck=True, progress=progress, keep_result=True,
+            **({} if knot == "clove-hitch" else {"knot": knot}),
         )  # fmt: skip
         shape = _shape(p.get("result"), d=d, D=D)
         if p["holds"] is None:
             out["message"] = f"the DER simulation failed: {p['message']}"
             return out, None, None, shape
-        window = pt.PROTOCOL["hold_time"] / 2
-        if math.isfinite(float(p["creep"])):  # a run that slipped early measured none
-            creep = {
-                "source": "DER simulation of this geometry",
-                "creep_m": float(p["creep"]),
-                "window_s": window,
-                "speed_m_per_s": float(p["creep"]) / window,
-                "speed_d_per_s": float(p["creep"]) / window / d,
-            }
+        speed = float(p.get("creep_speed", math.nan))
+        ran = bool(p.get("ran_to_end", math.isfinite(speed)))
+        creep = _creep_dict("DER simulation of this geometry", speed, d, limit=lim, ran_to_end=ran)
         crept = (
-            f"end creep {p['creep'] * 1e3:.3g} mm over the last {window:g} s of the hold"
-            if creep is not None
-            else "the end ran off before the hold's measuring window"
+            f"loaded end creeps {speed:.3g} d/s over the last {pt.CREEP_WINDOW:g} s of the hold"
+            if creep["speed_d_per_s"] is not None
+            else "the loaded end ran off before the hold's measuring window"
         )
+        reason = "" if creep["speed_d_per_s"] is not None else p.get("reason", "")
         out.update(
             source="simulation",
             holds=bool(p["holds"]),
             message=(
                 f"DER simulation at d/2R = {x:.4g}, T_high/EA = {y:.4g}: {p['verdict']} "
-                f"({crept}; {p['wall_s']:.0f} s)"
+                f"({crept}{'; ' + reason if reason else ''}; {p['wall_s']:.0f} s)"
             ),
         )
         run_s = sum(pt.PROTOCOL[k] for k in ("settle_time", "load_time", "hold_time"))
         validity = f"one run of the user's geometry ({run_s:g} s of simulated time)"
     else:
-        tables = _shipped_tables() if phase_table is None else _load_user_table(phase_table)
-        a = tables.lookup(x, y, mu=mu, mu_rr=mu_rr)
-        out.update(
-            source="table",
-            holds=a.holds,
-            inside_table=bool(a.inside),
-            message=a.message,
-            critical_t_over_EA=a.critical if math.isfinite(a.critical) else None,
-            mu_tables=[float(m) for m in a.mu_tables],
-            mu_tables_available=[float(m) for m in tables.mus],
-            table=("shipped" if phase_table is None else str(phase_table)),
-        )
-        if a.inside and a.bracket[0] > 0:
-            capacity = a.bracket[0] * EA  # the largest load that held (interpolated)
-        if a.holds is None:
-            return out, None, None, shape
-        used = [tables.table(m) for m in a.mu_tables]
-        xs, ys = used[0].d_over_2R, used[0].t_over_EA
-        validity = (
-            f"table grid d/2R {xs[0]:.3g}-{xs[-1]:.3g}, T_high/EA {ys[0]:.3g}-{ys[-1]:.3g}, "
-            f"mu = mu_rr = {' and '.join(f'{t.mu:g}' for t in used)}"
-            + (" (bracketing the user's friction)" if len(used) > 1 else "")
-            + "; boundary resolved to one grid step"
-        )
-        if a.holds:
-            near = _nearest_hold_creep(used[0], x, y)
-            if near is not None:
-                px, py, c = near
-                proto = used[0].meta.get("protocol", pt.PROTOCOL)
-                window = float(proto.get("hold_time", pt.PROTOCOL["hold_time"])) / 2
-                d_table = float(used[0].meta.get("rod", {}).get("d_m", pt.ROD_DIAMETER))
-                creep = {
-                    "source": f"DER table grid point d/2R = {px:g}, T_high/EA = {py:g} "
-                    f"(mu = {used[0].mu:g})",
-                    "creep_m": c,
-                    "window_s": window,
-                    "speed_m_per_s": c / window,
-                    "speed_d_per_s": c / window / d_table,
-                }
+        user = None if phase_table is None else _load_user_table(phase_table)
+        if user is not None and not isinstance(user, pt.HoldTable):
+            law = "imc"
+            a = user.lookup(x, y, mu=mu, mu_rr=mu_rr)
+            out.update(
+                source="table", holds=a.holds, inside_table=bool(a.inside), message=a.message,
+                critical_t_over_EA=a.critical if math.isfinite(a.critical) else None,
+                mu_tables=[float(m) for m in a.mu_tables],
+                mu_tables_available=[float(m) for m in user.mus], table=str(phase_table),
+                law=law,
+                criterion="distance: end 0 creeps less than d over the last half of the hold "
+                "(the smooth-law tables' criterion)",
+            )  # fmt: skip
+            if a.inside and a.bracket[0] > 0:
+                capacity = a.bracket[0] * EA
+            if a.holds is None:
+                return out, None, None, shape
+            validity = _table_validity_imc(user, a)
+        else:
+            table = user if user is not None else _shipped_hold_tables().get(knot)
+            if table is None:
+                out["message"] = f"no DER hold table for {knot} is shipped"
+                return out, None, None, shape
+            law = table.law
+            a = table.lookup(x, y, mu=mu, mu_rr=mu_rr, creep_limit=lim)
+            ax = table.axes
+            out.update(
+                source="table", holds=a.holds, inside_table=bool(a.inside), message=a.message,
+                rule=a.rule,
+                critical_t_over_EA=a.critical if math.isfinite(a.critical) else None,
+                capacity_t_over_EA=(a.capacity_t_over_EA
+                                    if math.isfinite(a.capacity_t_over_EA) else None),
+                mu_tables=[float(m) for m in a.mu_tables], mu_tables_available=table.mus,
+                table=("shipped" if user is None else str(phase_table)), law=law,
+                grid={k: [float(v) for v in ax[k]] for k in ax},
+            )  # fmt: skip
+            finite = [c.creep_speed for c in a.corners if math.isfinite(c.creep_speed)]
+            if a.corners:
+                n = len(a.corners)
+                src = f"DER {knot} table, {n} neighbouring grid point{'s' if n > 1 else ''}"
+                if a.holds and math.isfinite(a.creep_speed):
+                    creep = _creep_dict(
+                        src + " (largest creep of the points that held)", a.creep_speed, d,
+                        limit=lim,
+                    )  # fmt: skip
+                elif finite:
+                    creep = _creep_dict(src + " (smallest creep measured)", min(finite), d,
+                                        limit=lim)  # fmt: skip
+                else:
+                    creep = _creep_dict(src, math.nan, d, limit=lim, ran_to_end=False)
+            if a.holds and math.isfinite(a.capacity_t_over_EA):
+                capacity = a.capacity_t_over_EA * EA
+            if a.holds is None:
+                return out, None, creep, shape
+            validity = (
+                f"{knot} table grid d/2R {ax['d_over_2R'][0]:.3g}-{ax['d_over_2R'][-1]:.3g}, "
+                f"T_high/EA {ax['t_over_EA'][0]:.3g}-{ax['t_over_EA'][-1]:.3g}, mu = mu_rr "
+                f"{ax['mu'][0]:g}-{ax['mu'][-1]:g} ({law} rod-rod law); decided by the rule "
+                f"{a.rule!r} (neighbours agree, or beyond the grid where monotonicity says so)"
+            )
     holds = bool(out["holds"])
     if ideal_holds is not None:
         out["agrees_with_ideal_rope"] = holds == bool(ideal_holds)
+    hold_rule = (
+        _criterion_text(lim)
+        if law == "anchor"
+        else "free end: held if the end creeps less than d over the last half of the hold"
+    )
     answer = ModelAnswer(
         model=f"DER-{out['source']}",
         holds=holds,
@@ -515,10 +666,10 @@ def _der(*, d, D, mu, mu_rr, load, E, simulate, phase_table, progress, ideal_hol
         inside_validity=True,
         assumptions=(
             "discrete elastic rod (centreline, circular cross-section, no flattening in "
-            "the nips), rigid post, Coulomb-type friction at the rod surface",
+            "the nips), rigid post, Coulomb-type friction at the rod surface"
+            + (" (sticking rod-rod anchor law)" if law == "anchor" else " (smooth rod-rod law)"),
             "solid-rod bending stiffness EI = E pi d^4/64 (a fibre rope bends far more easily)",
-            "free end: T_high hung on one end, held if the end creeps less than d over "
-            "the last half of the hold after the load is applied",
+            hold_rule,
         ),
         validity=(validity,),
         reference=(
@@ -552,7 +703,7 @@ def hold(
     knot,
     *,
     rod_diameter,
-    post_diameter,
+    post_diameter=None,
     mu,
     load,
     free_end_load=0.0,
@@ -563,6 +714,7 @@ def hold(
     simulate=False,
     phase_table=None,
     progress=False,
+    creep_limit=None,
 ) -> Verdict:
     r"""Does a rope tied to a post hold a load? The verdict, every model's answer and why.
 
@@ -570,11 +722,12 @@ def hold(
     ----------
     knot : str
         One of :data:`KNOT_NAMES` (``capstan``, ``clove-hitch``, ``two-half-hitches``,
-        ``round-turn``, ``round-turn-two-half-hitches``). Other knots (bowline,
-        figure-eight, sheet bend, reef, cow hitch, ...) raise a one-line
-        :class:`~knotmech.errors.InputError` listing these.
+        ``round-turn``, ``round-turn-two-half-hitches``, and the bends ``reef``,
+        ``granny``, ``thief``, ``grief``). Other knots (bowline, figure-eight, sheet bend,
+        cow hitch, ...) raise a one-line :class:`~knotmech.errors.InputError` listing
+        these.
     rod_diameter, post_diameter : float
-        Rope diameter d and post diameter D [m], > 0.
+        Rope diameter d and post diameter D [m], > 0 (no post for a bend: None).
     mu : float
         Rope-post friction coefficient [-], >= 0.
     load : float
@@ -591,12 +744,20 @@ def hold(
     youngs_modulus : float, optional
         The rope's effective axial modulus E [Pa] (overrides the material's).
     simulate : bool
-        Clove hitch with a free end: one DER run of this geometry (about a minute)
-        instead of the tables; needs E.
+        One DER run of this geometry instead of the tables (about 20 s of CPU; a second,
+        3 s hold when the creep lies near the limit): the clove hitch and the hitches
+        with a DER scene with a free end, or a bend's pull (its slip load against the
+        load); needs E.
     phase_table : path, optional
         Clove hitch: read the DER table from this file (it must exist and parse).
     progress : bool
         Progress bar on stderr for ``simulate``.
+    creep_limit : float, optional
+        The DER hold criterion's limit [rod diameters per second]: the hitch holds when
+        its loose end creeps slower than this over the last second of the hold once the
+        load is on (default :data:`knotmech.scenes.phase_table.CREEP_LIMIT`, 1e-3 d/s).
+        The tables store each point's measured creep speed, so they are re-judged at
+        this limit.
 
     Returns
     -------
@@ -612,27 +773,43 @@ def hold(
     --------
     >>> v = hold("clove-hitch", rod_diameter=6e-3, post_diameter=40e-3, mu=0.4,
     ...          load=200.0, material="nylon")
-    >>> v.holds, v.decided_by
-    (True, 'thick-nip')
+    >>> v.holds, v.decided_by, v.der["rule"]
+    (True, 'DER-table', 'grid')
+    >>> round(v.creep["speed_d_per_s"], 6)
+    6.5e-05
     """
     from knotmech.analytic.hitch import hold_verdict as closed_forms
     from knotmech.errors import check_nonnegative, check_positive
 
     key = knot_key(knot)
+    if key in _BENDS:
+        return _hold_bend(
+            key, rod_diameter=rod_diameter, post_diameter=post_diameter, mu=mu, load=load,
+            free_end_load=free_end_load, mu_rr=mu_rr, wrap_angle=wrap_angle, material=material,
+            youngs_modulus=youngs_modulus, simulate=simulate, phase_table=phase_table,
+            progress=progress,
+        )  # fmt: skip
+    if post_diameter is None:
+        raise InputError(f"post_diameter is required for {key}")
     d = float(check_positive("rod_diameter", rod_diameter))
     D = float(check_positive("post_diameter", post_diameter))
     mu = float(check_nonnegative("mu", mu))
     load = float(check_positive("load", load))
     free = float(check_nonnegative("free_end_load", free_end_load))
+    if creep_limit is not None:
+        creep_limit = float(check_positive("creep_limit", creep_limit))
     if key == "capstan" and mu_rr is not None:
         raise InputError("mu_rr (rope-on-rope friction) applies to hitches, not to capstan")
-    if simulate and key != "clove-hitch":
-        raise InputError(f"simulate is available for clove-hitch only, not for {key}")
+    if simulate and not can_simulate(key):
+        raise InputError(
+            f"simulate is available for the clove hitch, the hitches with a DER scene and the "
+            f"bends, not for {key}"
+        )
     if simulate and free > 0:
         raise InputError("simulate covers the clove hitch with a free end only (free_end_load 0)")
     if simulate and phase_table is not None:
         raise InputError("give either simulate or phase_table, not both")
-    if phase_table is not None and key != "clove-hitch":
+    if phase_table is not None and not _der_knot(key):
         raise InputError(f"phase_table applies to clove-hitch only, not to {key}")
     E, mat, e_source = _youngs_modulus(material, youngs_modulus)
     if simulate and E is None:
@@ -685,8 +862,8 @@ def hold(
     creep = None
     shape = None
     next_step = ""
-    if key == "clove-hitch":
-        ideal = next(a.holds for a in answers if a.model == "ideal-rope")
+    if _der_knot(key):
+        ideal = next((a.holds for a in answers if a.model == "ideal-rope"), None)
         if free > 0:
             der = {
                 "source": "none",
@@ -705,9 +882,9 @@ def hold(
             )
         else:
             der, der_answer, creep, shape = _der(
-                d=d, D=D, mu=mu, mu_rr=mu if mu_rr is None else float(mu_rr), load=load, E=E,
-                simulate=bool(simulate), phase_table=phase_table, progress=progress,
-                ideal_holds=ideal,
+                knot=key, d=d, D=D, mu=mu, mu_rr=mu if mu_rr is None else float(mu_rr),
+                load=load, E=E, simulate=bool(simulate), phase_table=phase_table,
+                progress=progress, ideal_holds=ideal, creep_limit=creep_limit,
             )  # fmt: skip
             if der_answer is not None:
                 answers.append(der_answer)
@@ -717,22 +894,28 @@ def hold(
     dec = None if i is None else answers[i]
     # next step
     der_silent = der is not None and der.get("holds") is None and free == 0
+    simulable = can_simulate(key) and free == 0
+    cmd = simulate_command(
+        key, d=d, D=D, mu=mu, mu_rr=None if mu_rr is None else float(mu_rr), load=load,
+        material=None if mat is None else mat.key, youngs_modulus=youngs_modulus,
+        creep_limit=creep_limit,
+    ) if simulable else ""  # fmt: skip
     if dec is None:
-        if key == "clove-hitch" and free == 0:
+        if simulable:
             next_step = (
-                "next: --simulate (simulate=True: one DER run of this geometry, about a "
-                "minute) decides it"
-                + ("" if E is not None else "; give --material or --youngs-modulus with it")
-            )
+                f"next: {cmd} (one DER run of this geometry, about a minute) decides it"
+                + ("" if E is not None else "; MATERIAL: one of the presets, or give "
+                   "--youngs-modulus")
+            )  # fmt: skip
         else:
             next_step = "next: no model here applies inside its validity; test the knot"
-    elif key == "clove-hitch" and free == 0 and E is None:
+    elif _der_knot(key) and free == 0 and E is None:
         next_step = (
             "next: give --material or --youngs-modulus (material=, youngs_modulus=) to "
             "check against the DER phase table"
         )
-    elif key == "clove-hitch" and der_silent and not simulate and dec.model != "DER-table":
-        next_step = "next: --simulate (simulate=True) checks it with one DER run of this geometry"
+    elif simulable and der_silent and not simulate and dec.model != "DER-table":
+        next_step = f"next: {cmd} checks it with one DER run of this geometry"
     warns = _warnings(mu, mu_rr, d, D, load, E, theta)
     return Verdict(
         knot=key,
@@ -751,6 +934,111 @@ def hold(
         notes=tuple(notes),
         shape=shape,
     )
+
+
+def _hold_bend(
+    key, *, rod_diameter, post_diameter, mu, load, free_end_load, mu_rr, wrap_angle, material,
+    youngs_modulus, simulate, phase_table, progress,
+):  # fmt: skip
+    """A bend (two ropes joined, pulled apart): no closed form and no table; with
+    ``simulate`` one DER pull of the bend scene, its slip load against the load."""
+    from knotmech.analytic.hitch import ModelAnswer
+    from knotmech.errors import check_nonnegative, check_positive
+
+    d = float(check_positive("rod_diameter", rod_diameter))
+    mu = float(check_nonnegative("mu", mu))
+    load = float(check_positive("load", load))
+    for name, val in (("post_diameter", post_diameter), ("mu_rr", mu_rr),
+                      ("wrap_angle", wrap_angle), ("phase_table", phase_table)):  # fmt: skip
+        if val is not None:
+            raise InputError(
+                f"{name} does not apply to a bend ({key}: two ropes pulled apart, no post; "
+                "mu is the rope-rope friction)"
+            )
+    if float(free_end_load or 0.0) != 0.0:
+        raise InputError(f"free_end_load does not apply to a bend ({key}: no free end)")
+    E, mat, e_source = _youngs_modulus(material, youngs_modulus)
+    inputs = {"rod_diameter": d, "mu": mu, "load": load}
+    if mat is not None:
+        inputs["material"] = mat.key
+    if E is not None:
+        inputs["youngs_modulus"] = E
+    cmd = simulate_command(key, d=d, D=None, mu=mu, load=load,
+                           material=None if mat is None else mat.key,
+                           youngs_modulus=youngs_modulus)  # fmt: skip
+    warns = _warnings(mu, None, d, math.inf, load, E, None)
+    assumptions = [e_source] if e_source else []
+    note = (
+        f"{key} is a bend (Patil et al., Science 2020): no closed form and no DER table; "
+        "one DER pull of the bend scene (knotmech.scenes.bends.bend) gives its slip load"
+    )
+    if not simulate:
+        return Verdict(
+            knot=key, holds=None, margin=math.nan, decided_by=None, inside_validity=False,
+            answers=(), assumptions=tuple(assumptions), warnings=warns,
+            next_step=f"next: {cmd} (one DER pull of the bend, 1-3 minutes) decides it",
+            inputs=inputs, notes=(note,),
+        )  # fmt: skip
+    if E is None:
+        from knotmech.materials import material_names
+
+        raise InputError(
+            "simulate needs the rope's stiffness: give material (one of "
+            f"{', '.join(material_names())}) or youngs_modulus"
+        )
+    from knotmech.scenes.bends import bend
+
+    kw = {"density": mat.density} if mat is not None else {}
+    r = bend(key, rod_diameter=d, youngs_modulus=E, mu_rod_rod=mu, progress=progress, **kw)
+    der = {
+        "source": "simulation", "scene": "knotmech.scenes.bends.bend", "kind": key,
+        "verdict": r.verdict, "slip_load": r.slip_load, "max_force": r.max_force,
+        "pull_speed": r.pull_speed, "status": r.status, "message": r.message,
+        "topology_preserved": bool(r.topology_preserved),
+        "wall_s": float(r.stats.get("wall_s", math.nan)),
+    }  # fmt: skip
+    if r.verdict == "slips" and math.isfinite(r.slip_load):
+        holds, capacity = load < r.slip_load, float(r.slip_load)
+        der["message"] = (f"DER pull of the {key}: slips at {r.slip_load:.4g} N "
+                          f"(the largest pull force before its tail drew in)")  # fmt: skip
+    elif r.verdict == "holds" and load <= r.max_force:
+        holds, capacity = True, float(r.max_force)
+        der["message"] = (f"DER pull of the {key}: did not slip up to {r.max_force:.4g} N, "
+                          "the largest force of the pull")  # fmt: skip
+    else:
+        holds, capacity = None, math.nan
+        der["message"] = (
+            f"DER pull of the {key}: {r.verdict or 'failed'} ({r.message}); the load "
+            + (f"{load:.4g} N is above the largest pull force {r.max_force:.4g} N"
+               if r.verdict == "holds" else "is not decided")
+        )  # fmt: skip
+    der["holds"] = holds
+    answers = ()
+    if holds is not None:
+        answers = (
+            ModelAnswer(
+                model="DER-simulation", holds=bool(holds), margin=capacity / load - 1,
+                capacity=capacity, critical_mu=math.nan, decides=True, inside_validity=True,
+                assumptions=(
+                    "two solid elastic rods (EI = E pi d^4/64), sticking rod-rod friction, "
+                    f"set by hand then pulled apart at {r.pull_speed * 1e3:g} mm/s",
+                    "slip: a tail draws in by more than 2 d while the pull force stays "
+                    "within 10 % of its largest value",
+                ),
+                validity=("one DER pull of the bend at this d, E and mu",),
+                reference="Patil, Sandt, Kolle & Dunkel, Science 367, 71 (2020); "
+                "knotmech.scenes.bends",
+                notes=(der["message"],),
+            ),
+        )  # fmt: skip
+    return Verdict(
+        knot=key, holds=holds, margin=answers[0].margin if answers else math.nan,
+        decided_by="DER-simulation" if answers else None, inside_validity=bool(answers),
+        answers=answers, validity=answers[0].validity if answers else (),
+        assumptions=tuple(assumptions), warnings=warns,
+        next_step="" if answers else "next: test the knot (the DER pull did not decide)",
+        inputs=inputs, der=der, notes=(note,),
+    )  # fmt: skip
 
 
 def hold_verdict(
@@ -828,8 +1116,15 @@ def plot_verdict(verdict: Verdict, path, *, phase_table=None) -> Path:
     import matplotlib.pyplot as plt
     import numpy as np
 
-    tables = _shipped_tables() if phase_table is None else _load_user_table(phase_table)
-    used = [tables.table(m) for m in der["mu_tables"]]
+    tables = (_shipped_hold_tables().get(verdict.knot) if phase_table is None
+              else _load_user_table(phase_table))  # fmt: skip
+    from knotmech.scenes import phase_table as pt
+
+    if isinstance(tables, pt.HoldTable):
+        lim = (verdict.creep or {}).get("limit_d_per_s") or pt.CREEP_LIMIT
+        used = [tables.slice(m, creep_limit=lim) for m in der["mu_tables"]]
+    else:
+        used = [tables.table(m) for m in der["mu_tables"]]
     fig, axes = plt.subplots(1, len(used), figsize=(5.2 * len(used), 4.2), squeeze=False)
     for ax, t in zip(axes[0], used, strict=True):
         held = [(q.d_over_2R, q.t_over_EA) for q in t.points if q.holds]

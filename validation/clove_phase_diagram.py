@@ -573,7 +573,8 @@ def write_table(
             "generator": gen,
             "grid": GRID_FULL,
             "rod": {"d_m": pt.ROD_DIAMETER, "E_Pa": pt.YOUNGS_MODULUS, "rho": pt.DENSITY},
-            "protocol": pt.PROTOCOL,
+            "protocol": pt.IMC_PROTOCOL,
+            "law": "imc",
             "hold_criterion": "end 0 creeps < d over the last half of the hold",
             "runs": len(points),
             "cpu_s_total": round(float(np.sum(wall)), 1),
@@ -591,6 +592,27 @@ def write_table(
             **({"note": note} if note else {}),
         },
     )
+    Path(path).parent.mkdir(parents=True, exist_ok=True)
+    table.write(path)
+    return table
+
+
+def write_hold_table(path=None, *, knot="clove-hitch", cache_dir=None, processes=2,
+                     progress=True, note=None):  # fmt: skip
+    """Run the anchor-law hold-table grid of ``knot`` (:data:`knotmech.scenes.phase_table.
+    HOLD_GRID`) through the sweep and write the shipped table (default
+    ``knotmech/data/hold_phase_table_<knot>.json``)."""
+    t0 = datetime.datetime.now()
+    path = TABLE_PATH.parent / pt.hold_table_resource(knot) if path is None else Path(path)
+    gen = f"python -m validation.clove_phase_diagram --write-hold-table --knot {knot}"
+    meta = {"generator": gen}
+    if note:
+        meta["note"] = note
+    table = pt.build_hold_table(knot, processes=processes, cache_dir=cache_dir,
+                                progress=progress, meta=meta)  # fmt: skip
+    table.meta["written"] = datetime.datetime.now(datetime.timezone.utc).isoformat(
+        timespec="seconds")  # fmt: skip
+    table.meta["elapsed_s"] = round((datetime.datetime.now() - t0).total_seconds(), 1)
     Path(path).parent.mkdir(parents=True, exist_ok=True)
     table.write(path)
     return table
@@ -614,7 +636,24 @@ def _main(argv=None) -> int:
     )
     parser.add_argument("--cache", default=None, help="sweep cache folder for --write-table")
     parser.add_argument("--note", default=None, help="--write-table: a note kept in the meta")
+    parser.add_argument(
+        "--write-hold-table",
+        nargs="?",
+        const="",
+        default=None,
+        metavar="PATH",
+        help="run the anchor-law hold-table grid of --knot (d/2R x T_high/EA x mu) and write "
+        f"it (default {TABLE_PATH.parent}/hold_phase_table_<knot>.json)",
+    )
+    parser.add_argument("--knot", default="clove-hitch", help="--write-hold-table: the knot")
+    parser.add_argument("--processes", type=int, default=2, help="sweep worker processes")
     args = parser.parse_args(argv)
+    if args.write_hold_table is not None:
+        table = write_hold_table(args.write_hold_table or None, knot=args.knot,
+                                 cache_dir=args.cache, processes=args.processes,
+                                 note=args.note)  # fmt: skip
+        print(f"wrote the {table.knot} hold table: {len(table.points)} points")
+        return 0
     if args.write_table is not None:
         path = args.write_table or table_path(args.mu)
         table = write_table(path, mu=args.mu, cache_dir=args.cache, note=args.note)

@@ -25,7 +25,7 @@ from pathlib import Path
 from knotmech.errors import InputError
 from knotmech.units import format_quantity, parse_quantity
 
-__all__ = ["register", "run", "format_verdict"]
+__all__ = ["register", "run", "format_verdict", "format_creep"]
 
 #: the library's parameter names -> the options that set them (for warnings)
 _FLAGS = {
@@ -59,7 +59,12 @@ def register(subparsers) -> None:
     )
     p.add_argument("knot", help=f"one of: {', '.join(KNOT_NAMES)}")
     p.add_argument("--rod-diameter", required=True, help="rope diameter d, e.g. 6mm")
-    p.add_argument("--post-diameter", required=True, help="post diameter D, e.g. 40mm")
+    p.add_argument(
+        "--post-diameter",
+        default=None,
+        help="post diameter D, e.g. 40mm (required except for the bends reef, granny, thief, "
+        "grief)",
+    )
     p.add_argument("--mu", required=True, help="rope-post friction coefficient, e.g. 0.3")
     p.add_argument(
         "--mu-rr", default=None, help="hitches: rope-rope friction coefficient (default: --mu)"
@@ -85,6 +90,13 @@ def register(subparsers) -> None:
         action="store_true",
         help="clove hitch with a free end: run one DER simulation of this geometry "
         "(about a minute) instead of reading the shipped tables; needs E",
+    )
+    p.add_argument(
+        "--creep-limit",
+        default=None,
+        metavar="D_PER_S",
+        help="DER hold criterion: holds when the loose end creeps slower than this many "
+        "rope diameters per second over the last second of the hold (default 1e-3)",
     )
     p.add_argument(
         "--phase-table",
@@ -118,11 +130,17 @@ def _json_path(text) -> Path | None:
 
 
 def run(args) -> int:
-    from knotmech.hold import check_plot_path, hold, knot_key, plot_verdict
+    from knotmech.hold import can_simulate, check_plot_path, hold, knot_key, plot_verdict
 
     knot = knot_key(args.knot)
     d = parse_quantity(args.rod_diameter, "length", name="--rod-diameter")
-    D = parse_quantity(args.post_diameter, "length", name="--post-diameter")
+    from knotmech.hold import is_bend
+
+    bend = is_bend(knot)
+    if args.post_diameter is None and not bend:
+        raise InputError(f"--post-diameter is required for {knot} (e.g. --post-diameter 30mm)")
+    D = (None if args.post_diameter is None
+         else parse_quantity(args.post_diameter, "length", name="--post-diameter"))  # fmt: skip
     mu = parse_quantity(args.mu, "dimensionless", name="--mu")
     mu_rr = (
         None if args.mu_rr is None else parse_quantity(args.mu_rr, "dimensionless", name="--mu-rr")
@@ -138,7 +156,7 @@ def run(args) -> int:
         raise InputError("--wrap-angle is required for capstan (e.g. --wrap-angle 360deg)")
     # range checks here so that messages name the command-line option
     for name, value in (("--rod-diameter", d), ("--post-diameter", D), ("--load", load)):
-        if value <= 0:
+        if value is not None and value <= 0:
             raise InputError(f"{name} must be > 0, got {value:g}")
     for name, value in (("--mu", mu), ("--mu-rr", mu_rr), ("--free-end-load", free)):
         if value is not None and value < 0:
@@ -157,12 +175,21 @@ def run(args) -> int:
         E = parse_quantity(args.youngs_modulus, "pressure", name="--youngs-modulus")
         if not E > 0:
             raise InputError(f"--youngs-modulus must be > 0, got {E:g}")
-    if args.simulate and knot != "clove-hitch":
-        raise InputError(f"--simulate is available for clove-hitch only, not for {knot}")
-    if args.simulate and free > 0:
+    if args.simulate and not can_simulate(knot):
+        raise InputError(
+            f"--simulate is available for the clove hitch, the hitches with a DER scene "
+            f"(two half hitches, round turn and two half hitches) and the bends, not for {knot}"
+        )
+    if args.simulate and free > 0 and not bend:
         raise InputError(
             "--simulate covers the clove hitch with a free end only (--free-end-load 0)"
         )
+    creep_limit = None
+    if args.creep_limit is not None:
+        creep_limit = parse_quantity(args.creep_limit, "dimensionless", name="--creep-limit")
+        if not creep_limit > 0:
+            raise InputError(f"--creep-limit must be > 0 (rope diameters per second), got "
+                             f"{creep_limit:g}")  # fmt: skip
     json_path = _json_path(args.json)
     if args.plot is not None:
         try:
@@ -189,6 +216,7 @@ def run(args) -> int:
             simulate=bool(args.simulate),
             phase_table=args.phase_table,
             progress=bool(args.simulate) and args.json != "-",
+            creep_limit=creep_limit,
         )
     except InputError as exc:
         raise InputError(_flag_names(str(exc))) from None
@@ -217,7 +245,7 @@ def _flag_names(message: str) -> str:
     import re
 
     names = ("rod_diameter", "post_diameter", "mu_rr", "free_end_load", "wrap_angle",
-             "material", "youngs_modulus", "simulate", "phase_table")  # fmt: skip
+             "material", "youngs_modulus", "simulate", "phase_table", "creep_limit")  # fmt: skip
     pattern = r"(?<![\w-])(" + "|".join(names) + r")(?!\w)"
     return re.sub(pattern, lambda m: "--" + m.group(1).replace("_", "-"), message)
 
@@ -245,6 +273,24 @@ def _wrap(theta: float) -> str:
     return f"{math.degrees(theta):.4g} deg ({turns:.4g} {'turn' if turns == 1 else 'turns'})"
 
 
+def format_creep(c: dict) -> str:
+    """The measured creep in one line: speed in d/s (and mm/s), the criterion, the source."""
+    if c.get("speed_d_per_s") is None:
+        what = "the loaded end ran off (no creep speed: a slip)" if c.get("ran_off") else (
+            "not measured")  # fmt: skip
+        return f"creep: {what}; {c['source']}"
+    if "limit_d_per_s" not in c:  # a smooth-law table's distance criterion
+        return (f"creep: {c['creep_m'] * 1e3:.3g} mm over {c['window_s']:g} s "
+                f"({c['speed_d_per_s']:.3g} d/s; {c['source']})")  # fmt: skip
+    v = c["speed_d_per_s"]
+    rel = "slower than" if abs(v) < c["limit_d_per_s"] else "not slower than"
+    return (
+        f"creep: {v:.3g} d/s ({c['speed_m_per_s'] * 1e3:.3g} mm/s) over the last "
+        f"{c['window_s']:g} s of the hold, {rel} the {c['limit_d_per_s']:g} d/s of the "
+        f"{c['criterion']} criterion; {c['source']}"
+    )
+
+
 def format_verdict(verdict, *, verbose: bool = False) -> str:
     """The verdict for people: one line first, then warnings, assumptions, next step.
 
@@ -259,11 +305,7 @@ def format_verdict(verdict, *, verbose: bool = False) -> str:
     for s in verdict.assumptions:
         lines.append(f"assumed: {s}")
     if verdict.creep is not None:
-        c = verdict.creep
-        lines.append(
-            f"creep: {c['creep_m'] * 1e3:.3g} mm over {c['window_s']:g} s "
-            f"({c['speed_d_per_s']:.3g} d/s; {c['source']})"
-        )
+        lines.append(format_creep(verdict.creep))
     if verdict.next_step and verdict.holds is not None:
         lines.append(verdict.next_step)
     if not verbose:

@@ -29,9 +29,22 @@ This module
   tables bracketing the user's (mu, mu_rr) decide when they agree, assuming that more
   friction does not turn a hold into a slip (true of every shipped table pair).
 
-Shipped tables (d = 4 mm VPS32 rod, 4 x 4 grid): mu = 0.2 and 0.25 slip at every
-point, 0.3 holds 6 of 16 (interior boundary), 0.35 holds 13 (slips only at 0.3 EA off
-the paper's d/2R), 0.4 and 0.5 hold all 16.
+Shipped smooth-law tables (``friction="imc"``, d = 4 mm VPS32 rod, 4 x 4 grid, kept
+for validation): mu = 0.2 and 0.25 slip at every point, 0.3 holds 6 of 16 (interior
+boundary), 0.35 holds 13 (slips only at 0.3 EA off the paper's d/2R), 0.4 and 0.5 hold
+all 16.
+
+**Hold tables** (what ``knotmech hold`` reads): the sticking (anchor) rod-rod law, three
+axes (d/2R, T_high/EA, mu = mu_rr; :data:`HOLD_GRID`, real-rope ranges), one file per knot
+(``knotmech/data/hold_phase_table_<knot>.json``, :class:`HoldTable`,
+:func:`load_hold_tables`), built by :func:`build_hold_table` from one
+:func:`simulate_point` per point (the scene of each knot is one entry of
+:data:`HOLD_SCENE_NAMES`). Each point stores the creep speed of its loose end over the last
+second of the hold (:func:`creep_speed`), so the hold criterion (:func:`creep_verdict`,
+:data:`CREEP_CRITERION`: slower than :data:`CREEP_LIMIT` = 1e-3 d/s, topology kept, the
+run not stopped by a runaway end) can be applied at another limit when read.
+:meth:`HoldTable.lookup` decides between points only where the neighbours agree and
+beyond the grid only one way where monotonicity says so.
 """
 
 from __future__ import annotations
@@ -56,6 +69,19 @@ __all__ = [
     "load_tables",
     "PhaseTableSet",
     "TABLE_RESOURCE",
+    "HoldPoint",
+    "HoldTable",
+    "HoldAnswer",
+    "HOLD_GRID",
+    "HOLD_SCENE_NAMES",
+    "hold_scene",
+    "build_hold_table",
+    "load_hold_tables",
+    "read_hold_table",
+    "creep_speed",
+    "creep_verdict",
+    "PROTOCOL",
+    "CREEP_LIMIT",
     "ROD_DIAMETER",
     "YOUNGS_MODULUS",
     "DENSITY",
@@ -73,17 +99,102 @@ MU = 0.3  #: rod-post and rod-rod friction of the table (the paper's sec. 7 valu
 TAIL = 0.064  #: [m] straight tail at each end (the paper's L = 374 mm at D = 30 mm)
 EDGE = 0.374 / 119  #: [m] rest edge length (120 nodes on 374 mm)
 SNAP = 1e-3  #: relative distance in d/2R within which a query lies on a table column
-#: run protocol of a point (settle, ramp, hold [s]; time step [s])
-PROTOCOL = dict(settle_time=0.2, load_time=0.2, hold_time=0.4, dt=2e-3, n_frames=21)
+#: run protocol of a point with the sticking (anchor) rod-rod law: settle, ramp, hold [s];
+#: time step [s]; frames every 0.05 s. The hold is long enough for the creep-speed
+#: criterion's window (:data:`CREEP_WINDOW`) after a loaded hitch has re-seated (a finite
+#: slide of up to ~0.5 s, then it locks).
+PROTOCOL = dict(settle_time=0.2, load_time=0.3, hold_time=1.5, dt=2e-3, n_frames=41)
+#: the protocol of the smooth-law (``friction="imc"``) tables shipped first, kept so those
+#: tables can be reproduced (hold: end 0 creeps less than d over the last half of the hold)
+IMC_PROTOCOL = dict(settle_time=0.2, load_time=0.2, hold_time=0.4, dt=2e-3, n_frames=21)
+#: name of the hold criterion of the anchor-law tables and of ``hold --simulate``
+CREEP_CRITERION = "creep-speed"
+CREEP_LIMIT = 1e-3  #: [d/s] default: holds when the loose end creeps slower than this
+CREEP_WINDOW = 1.0  #: [s] the creep speed is measured over the last this-long of the hold
+MAX_NODES = 200  #: node cap of :func:`point_geometry` (large posts get longer edges)
 
 
-def point_geometry(d_over_2R: float, *, rod_diameter: float = ROD_DIAMETER) -> dict:
+def creep_speed(times, end_displacement, *, rod_diameter, window=CREEP_WINDOW) -> float:
+    r"""Mean creep speed of the loaded end along its load over the last ``window`` s [d/s].
+
+    :math:`(u(t_\mathrm{end}) - u(t_\mathrm{end} - w)) / (w\,d)`, with :math:`u` the
+    displacement of end 0 along its load [m] (the frame nearest to
+    :math:`t_\mathrm{end} - w` at or after it) and :math:`d` the rod diameter [m].
+    Positive when the rope is drawn out along the load (through the knot: a slip);
+    negative when the end moves back (the knot settling). NaN when the run has fewer
+    than two frames in the window.
+    """
+    t = np.asarray(times, dtype=float)
+    u = np.asarray(end_displacement, dtype=float)
+    d = float(check_positive("rod_diameter", rod_diameter))
+    w = float(check_positive("window", window))
+    if t.size < 2:
+        return float("nan")
+    sel = np.flatnonzero(t >= t[-1] - w - 1e-9)
+    if sel.size < 2:
+        return float("nan")
+    i = int(sel[0])
+    return float((u[-1] - u[i]) / (t[-1] - t[i]) / d)
+
+
+def creep_verdict(
+    speed: float,
+    *,
+    ran_to_end: bool,
+    topology_preserved: bool,
+    solver_ok: bool = True,
+    limit: float = CREEP_LIMIT,
+):
+    """The creep-speed criterion (:data:`CREEP_CRITERION`) of one run.
+
+    Holds when the run reached the end of its hold (a slipping end that runs off stops the
+    run early: a slip), kept the knot's topology, and its loaded end crept slower than
+    ``limit`` [d/s] either way over the last :data:`CREEP_WINDOW` of the hold (at rest: an
+    end still moving back fast, a stiff rod springing open, is not a hold). Returns ``(holds,
+    reason)``; ``holds`` is None when the solver failed (no verdict).
+    """
+    lim = float(check_positive("creep limit", limit))
+    if not solver_ok:
+        return None, "solver failed"
+    if not ran_to_end:
+        return False, "the loaded end ran off (run stopped early)"
+    if not topology_preserved:
+        return False, "the knot's topology changed"
+    if not math.isfinite(speed):
+        return None, "no creep speed measured"
+    if abs(speed) < lim:
+        return True, f"creep {speed:.3g} d/s, slower than {lim:g} d/s"
+    return False, f"creep {speed:.3g} d/s, not slower than {lim:g} d/s"
+
+
+#: a point whose creep speed lies between limit/RECHECK_BAND[0] and limit*RECHECK_BAND[1]
+#: is run again with a hold :data:`RECHECK_HOLD_FACTOR` times as long, and the longer run
+#: decides: light loads and thick rods settle slowly (a settling hitch's creep decays by
+#: ~80x per second at 1e-4 EA; at d/2R 0.23, 1e-3 EA, mu 0.3 it read 4.5e-3 d/s after the
+#: 1.5 s hold and 8e-7 d/s after 3 s)
+RECHECK_BAND = (10.0, 100.0)
+RECHECK_HOLD_FACTOR = 2.0
+
+
+def needs_recheck(speed: float, *, limit: float = CREEP_LIMIT) -> bool:
+    """Whether a creep speed [d/s] lies in the recheck band around the limit
+    (:data:`RECHECK_BAND`: a decade below it to two decades above it)."""
+    lo, hi = limit / RECHECK_BAND[0], limit * RECHECK_BAND[1]
+    return bool(math.isfinite(speed) and lo <= abs(speed) < hi)
+
+
+def point_geometry(
+    d_over_2R: float, *, rod_diameter: float = ROD_DIAMETER, max_nodes: int | None = MAX_NODES
+) -> dict:
     r"""Post diameter, rod length and node count of a phase point.
 
     :math:`d/2R = d/(D+d)` gives :math:`D = d(1/(d/2R) - 1)`; the rod is two wraps
     (:math:`4\pi R` plus 15 % slack for the crossing, as the scene requires) plus a
-    64 mm tail at each end (the paper's 374 mm rod at D = 30 mm), discretised with a
-    fixed edge length of about 3.1 mm.
+    64 mm tail at each end (the paper's 374 mm rod at D = 30 mm), discretised with an
+    edge length of about 3.1 mm (0.78 d at d = 4 mm), capped at ``max_nodes`` nodes
+    (default :data:`MAX_NODES`; None: no cap): on a large post (d/2R < 0.05) the edges
+    grow, to 2 d at d/2R = 0.0196 (checked there: 200 and 300 nodes give the same
+    verdict, creep speeds within 7 %).
     """
     x = float(d_over_2R)
     if not 0.0 < x < 0.5:
@@ -92,7 +203,42 @@ def point_geometry(d_over_2R: float, *, rod_diameter: float = ROD_DIAMETER) -> d
     D = d * (1.0 / x - 1.0)
     R = 0.5 * (D + d)
     L = 4 * np.pi * R * 1.15 + 2 * TAIL
-    return {"post_diameter": D, "rod_length": L, "n_nodes": int(round(L / EDGE)) + 1}
+    n = int(round(L * (ROD_DIAMETER / d) / EDGE)) + 1
+    if max_nodes is not None:
+        n = min(n, int(max_nodes))
+    return {"post_diameter": D, "rod_length": L, "n_nodes": n}
+
+
+#: knot -> name of its DER scene function in :mod:`knotmech.scenes` (keywords of
+#: :func:`~knotmech.scenes.clove_hitch.clove_hitch`); a new hitch is one entry here
+HOLD_SCENE_NAMES = {
+    "clove-hitch": "clove_hitch",
+    "two-half-hitches": "two_half_hitches",
+    "round-turn-two-half-hitches": "round_turn_two_half_hitches",
+    "cow-hitch": "cow_hitch",
+}
+
+
+def hold_scene(knot: str):
+    """The DER scene function of ``knot`` (one of :data:`HOLD_SCENE_NAMES`)."""
+    import importlib
+
+    name = HOLD_SCENE_NAMES.get(knot)
+    if name is None:
+        raise InputError(f"no DER hold scene for {knot!r}; known: {', '.join(HOLD_SCENE_NAMES)}")
+    try:
+        module = importlib.import_module(f"knotmech.scenes.{name}")
+    except ImportError:
+        raise InputError(f"the DER scene of {knot} (knotmech.scenes.{name}) is not here") from None
+    return getattr(module, name)
+
+
+def has_hold_scene(knot: str) -> bool:
+    """Whether the DER scene of ``knot`` is importable (without importing it)."""
+    from importlib.util import find_spec
+
+    name = HOLD_SCENE_NAMES.get(knot)
+    return name is not None and find_spec(f"knotmech.scenes.{name}") is not None
 
 
 def simulate_point(
@@ -105,76 +251,151 @@ def simulate_point(
     youngs_modulus: float = YOUNGS_MODULUS,
     density: float = DENSITY,
     friction: str = "anchor",
+    n_nodes: int | None = None,
+    creep_limit: float = CREEP_LIMIT,
+    hold_time: float | None = None,
+    recheck: bool = False,
+    knot: str = "clove-hitch",
     progress: bool = False,
     keep_result: bool = False,
 ) -> dict:
     r"""One DER run of a clove hitch with a free end: does it hold :math:`T_\mathrm{high}`?
 
     Ties the hitch on a post of diameter :math:`D = d(1/(d/2R) - 1)`, hangs
-    :math:`T_\mathrm{high} = (T_\mathrm{high}/EA)\,E\pi d^2/4` on end 0, leaves the other
-    end free, and returns the scene's verdict (hold: end 0 creeps less than one rod
-    diameter over the second half of a 0.4 s hold; protocol :data:`PROTOCOL`).
+    :math:`T_\mathrm{high} = (T_\mathrm{high}/EA)\,E\pi d^2/4` on end 0 and leaves the
+    other end free.
 
-    ``friction`` is the rod-rod law passed to the scene (``"anchor"``, the scene's
-    default, or ``"imc"``, the law of the shipped tables); it is passed explicitly so a
-    change of the scene's default does not silently change a table.
+    ``friction`` is the rod-rod law passed to the scene: ``"anchor"`` (the scene's
+    default, the law of the anchor tables and of ``hold --simulate``) runs
+    :data:`PROTOCOL` and decides by the creep-speed criterion (:func:`creep_verdict`:
+    holds when end 0 creeps slower than ``creep_limit`` d/s over the last
+    :data:`CREEP_WINDOW` of the hold, topology kept, run not stopped by a runaway end);
+    ``"imc"`` (the law of the first shipped tables) runs :data:`IMC_PROTOCOL` and keeps
+    those tables' criterion (end 0 creeps less than d over the second half of the hold),
+    so they can be reproduced. It is passed explicitly so a change of the scene's
+    default does not silently change a table.
+
+    ``hold_time`` [s] replaces the protocol's hold. With ``recheck`` (what ``hold
+    --simulate`` uses), a run whose creep speed lies in :data:`RECHECK_BAND` around the
+    limit (:func:`needs_recheck`) is run again with a hold :data:`RECHECK_HOLD_FACTOR`
+    times as long, and that run decides (``first_creep_speed`` keeps the first speed).
 
     Returns
     -------
     dict
-        ``d_over_2R, t_over_EA, t_high [N], post_diameter [m], friction, verdict
-        ("hold"/"slip"), holds (bool), creep [m], creep_speed [d/s] (creep over the last
-        half of the hold divided by that time and by d), status, topology_preserved,
-        wall_s``. A run whose solver
-        failed has ``holds = None``. With ``keep_result``, also ``result``: the scene's
-        :class:`~knotmech.scenes.clove_hitch.CloveHitchResult` (positions, tension).
+        ``d_over_2R, t_over_EA, t_high [N], post_diameter [m], n_nodes, mu, mu_rr,
+        friction, criterion, creep_limit [d/s], verdict ("hold"/"slip"), holds (bool),
+        reason, creep [m] (end 0 over the last half of the hold), creep_speed [d/s]
+        (:func:`creep_speed` over the last :data:`CREEP_WINDOW`; NaN when the run stopped
+        early), ran_to_end, status, message, topology_preserved, wall_s, cpu_s``. A run
+        whose solver failed has ``holds = None``. With ``keep_result``, also ``result``:
+        the scene's :class:`~knotmech.scenes.clove_hitch.CloveHitchResult`.
     """
+    import time
+
     d = float(check_positive("rod_diameter", rod_diameter))
     E = float(check_positive("youngs_modulus", youngs_modulus))
     tea = float(check_positive("t_over_EA", t_over_EA))
-    from knotmech.scenes.clove_hitch import clove_hitch
-
+    lim = float(check_positive("creep_limit", creep_limit))
+    if friction not in ("anchor", "imc"):
+        raise InputError(f"friction must be 'anchor' or 'imc', got {friction!r}")
+    scene = hold_scene(knot)
     geo = point_geometry(d_over_2R, rod_diameter=d)
+    if knot == "clove-hitch":
+        nn = geo["n_nodes"] if n_nodes is None else int(n_nodes)
+        length = geo["rod_length"]
+    else:  # the knot's curve picks its length and (n_nodes None) its edges
+        nn = None if n_nodes is None else int(n_nodes)
+        length = None
+    proto = dict(PROTOCOL if friction == "anchor" else IMC_PROTOCOL)
+    if hold_time is not None:
+        h = float(check_positive("hold_time", hold_time))
+        proto["hold_time"] = h
+        proto["n_frames"] = int(round((proto["settle_time"] + proto["load_time"] + h) / 0.05)) + 1
     t_high = tea * E * np.pi * d * d / 4
-    r = clove_hitch(
+    c0 = time.process_time()
+    r = scene(
         loading="free",
         t_high=t_high,
         rod_diameter=d,
         post_diameter=geo["post_diameter"],
-        rod_length=geo["rod_length"],
-        n_nodes=geo["n_nodes"],
+        rod_length=length,
+        n_nodes=nn,
         youngs_modulus=E,
         density=float(density),
         mu_rod_post=float(mu),
         mu_rod_rod=float(mu if mu_rr is None else mu_rr),
         friction=friction,
         progress=progress,
-        **PROTOCOL,
+        **proto,
     )
-    ok = r.status == "success" or r.verdict == "slip"
+    cpu = time.process_time() - c0
+    t_end = sum(proto[k] for k in ("settle_time", "load_time", "hold_time"))
+    times = np.asarray(r.times, dtype=float)
+    ran = bool(times.size and times[-1] >= t_end - 1e-9)
+    solver_ok = r.status == "success" or r.verdict == "slip"
+    window = min(CREEP_WINDOW, proto["hold_time"])
+    if not ran:
+        speed = float("nan")
+    elif knot == "clove-hitch":
+        speed = creep_speed(r.times, r.end_displacement, rod_diameter=d, window=window)
+    else:  # the hitch scenes' own creep speed: the least-squares slope over the window
+        speed = float(r.creep_speed_d)  # (their hold runs with a tenth of the drag and rings)
+    if friction == "anchor":
+        holds, reason = creep_verdict(
+            speed, ran_to_end=ran, topology_preserved=bool(r.topology_preserved),
+            solver_ok=solver_ok, limit=lim,
+        )  # fmt: skip
+        criterion = CREEP_CRITERION
+    else:
+        holds = (r.verdict == "hold") if solver_ok else None
+        reason = "end 0 moved less than d over the last half of the hold" if holds else (
+            "end 0 moved d or more over the last half of the hold (or ran off)")  # fmt: skip
+        criterion = "distance"
     out = {
         "d_over_2R": float(d_over_2R),
         "t_over_EA": tea,
         "t_high": float(t_high),
         "post_diameter": geo["post_diameter"],
+        "n_nodes": int(np.asarray(r.positions).shape[1]) if nn is None else nn,
+        "knot": knot,
         "mu": float(mu),
         "mu_rr": float(mu if mu_rr is None else mu_rr),
-        "verdict": r.verdict if ok else "",
-        "holds": (r.verdict == "hold") if ok else None,
         "friction": friction,
+        "criterion": criterion,
+        "creep_limit": lim,
+        "creep_window_s": window,
+        "hold_time": proto["hold_time"],
+        "creep_speed_signed": True,
+        "verdict": "" if holds is None else ("hold" if holds else "slip"),
+        "holds": holds,
+        "reason": reason,
         "creep": float(r.creep),
-        "creep_speed": float(r.creep) / (0.5 * PROTOCOL["hold_time"] * d),
+        "creep_speed": speed,
+        "ran_to_end": ran,
         "status": r.status,
         "message": r.message,
         "topology_preserved": bool(r.topology_preserved),
         "wall_s": float(r.stats.get("wall_s", float("nan"))),
+        "cpu_s": float(cpu),
     }
     if keep_result:
         out["result"] = r
+    if recheck and friction == "anchor" and ran and needs_recheck(speed, limit=lim):
+        again = simulate_point(
+            d_over_2R=d_over_2R, t_over_EA=t_over_EA, mu=mu, mu_rr=mu_rr, rod_diameter=d,
+            youngs_modulus=E, density=density, friction=friction, n_nodes=n_nodes,
+            creep_limit=lim, hold_time=RECHECK_HOLD_FACTOR * proto["hold_time"], knot=knot,
+            progress=progress, keep_result=keep_result,
+        )  # fmt: skip
+        again["first_creep_speed"] = speed
+        again["first_hold_time"] = proto["hold_time"]
+        again["cpu_s"] += out["cpu_s"]
+        return again
     return out
 
 
-simulate_point.__sweep_version__ = "2"
+simulate_point.__sweep_version__ = "3"
 
 
 @dataclass(frozen=True)
@@ -571,3 +792,588 @@ def _read_table(text: str, name: str) -> PhaseTable:
     except json.JSONDecodeError as exc:
         raise InputError(f"phase table {name} is not JSON: {exc}") from None
     return PhaseTable.from_dict(data)
+
+
+# --------------------------------------------------------------------------- hold tables
+#: file names of the shipped anchor-law hold tables, one per knot:
+#: ``hold_phase_table_<knot>.json`` (three axes d/2R, T_high/EA, mu = mu_rr)
+HOLD_TABLE_GLOB = "hold_phase_table_*.json"
+HOLD_TABLE_FORMAT = "knotmech-hold-table"
+#: the columns of a hold table's points
+HOLD_COLUMNS = ("d_over_2R", "t_over_EA", "mu", "creep_speed", "ran_to_end", "topology", "solved")
+_AXES = ("d_over_2R", "t_over_EA", "mu")
+_AXIS_TEXT = {"d_over_2R": "d/2R", "t_over_EA": "T_high/EA", "mu": "mu = mu_rr"}
+
+
+@dataclass(frozen=True)
+class HoldPoint:
+    """One DER run of a hold table.
+
+    ``creep_speed`` [d/s] over the last :data:`CREEP_WINDOW` of the hold (NaN when the run
+    stopped early), ``ran_to_end`` (False: the loaded end ran off), ``topology`` (the knot
+    kept its topology), ``solved`` (the solver did not fail).
+    """
+
+    d_over_2R: float
+    t_over_EA: float
+    mu: float
+    creep_speed: float
+    ran_to_end: bool
+    topology: bool
+    solved: bool = True
+
+    def holds(self, limit: float = CREEP_LIMIT):
+        """The creep-speed criterion at ``limit`` [d/s] (:func:`creep_verdict`)."""
+        return creep_verdict(
+            self.creep_speed, ran_to_end=self.ran_to_end, topology_preserved=self.topology,
+            solver_ok=self.solved, limit=limit,
+        )[0]  # fmt: skip
+
+    def describe(self, limit: float = CREEP_LIMIT) -> str:
+        h = self.holds(limit)
+        state = {True: "held", False: "slipped", None: "failed"}[h]
+        if not self.ran_to_end:
+            why = "ran off"
+        elif not self.topology:
+            why = "topology changed"
+        elif math.isfinite(self.creep_speed):
+            why = f"{self.creep_speed:.2g} d/s"
+        else:
+            why = "no creep"
+        return f"({self.d_over_2R:.4g}, {self.t_over_EA:.3g}, mu {self.mu:g}) {state}, {why}"
+
+
+@dataclass(frozen=True)
+class HoldAnswer:
+    """Answer of :meth:`HoldTable.lookup`.
+
+    ``holds`` True / False / None (undecided); ``rule``: ``"grid"`` (the neighbouring
+    points agree), ``"settled-light-load"`` (below the lightest load: the two lightest agree),
+    ``"heavier-slips"`` (above the heaviest load, which slipped), ``"more-friction-holds"``,
+    ``"less-friction-slips"``, or ``"undecided"``; ``corners`` the grid points used;
+    ``creep_speed`` the largest creep speed measured among those points that held [d/s]
+    (NaN if none); ``capacity_t_over_EA`` the largest tabulated load held in every corner
+    column, with every lighter tabulated load above the query's also held (a lower bound of
+    the capacity; NaN if none), ``first_slip_t_over_EA`` the smallest load above the query
+    that slipped in any corner column (inf if none).
+    """
+
+    holds: bool | None
+    inside: bool
+    rule: str
+    message: str
+    corners: tuple = ()
+    creep_speed: float = float("nan")
+    capacity_t_over_EA: float = float("nan")
+    first_slip_t_over_EA: float = float("inf")
+    mu_tables: tuple = ()
+
+    @property
+    def critical(self) -> float:
+        """Midpoint of (capacity, first slip) [T_high/EA]; inf when nothing slipped above."""
+        lo, hi = self.capacity_t_over_EA, self.first_slip_t_over_EA
+        if not math.isfinite(lo):
+            return float("nan")
+        return 0.5 * (lo + hi) if math.isfinite(hi) else math.inf
+
+    @property
+    def bracket(self) -> tuple:
+        return (self.capacity_t_over_EA, self.first_slip_t_over_EA)
+
+
+def _axis(values, lo, hi, *, rel=SNAP):
+    """Grid indices around [lo, hi] on one sorted axis and where the query lies.
+
+    Returns (indices, where): where is "on" (one grid value), "between", "below" or
+    "above" the axis (then the indices are the end value(s)).
+    """
+    v = np.asarray(values, dtype=float)
+    near_lo = np.flatnonzero(np.isclose(v, lo, rtol=rel, atol=0))
+    near_hi = np.flatnonzero(np.isclose(v, hi, rtol=rel, atol=0))
+    if near_lo.size and near_hi.size and near_lo[0] == near_hi[0]:
+        return [int(near_lo[0])], "on"
+    if hi < v[0] * (1 - rel):
+        return [0], "below"
+    if lo > v[-1] * (1 + rel):
+        return [v.size - 1], "above"
+    i = int(near_lo[0]) if near_lo.size else int(np.searchsorted(v, lo) - 1)
+    j = int(near_hi[0]) if near_hi.size else int(np.searchsorted(v, hi))
+    if i < 0:
+        return [0], "below"
+    if j >= v.size:
+        return [v.size - 1], "above"
+    return sorted({i, j}), "between"
+
+
+@dataclass
+class HoldTable:
+    r"""DER hold/slip runs of one knot with a free end on a (d/2R, T_high/EA, mu) grid.
+
+    Every point stores the creep speed it measured, so the criterion's limit can be
+    changed at lookup (:meth:`lookup`, ``creep_limit``). mu is the rope-post and the
+    rope-rope coefficient alike (mu = mu_rr).
+
+    **Deciding** (:meth:`lookup`). Between grid points the answer is decided only where
+    every neighbouring point (up to two values on each axis) agrees. Beyond the grid only
+    where monotonicity says so:
+
+    - a load lighter than the lightest tabulated one takes that load's answer when the
+      two lightest loads agree at every neighbouring (d/2R, mu) (the verdict has settled as
+      the load falls);
+    - a load heavier than the heaviest: slips where that load slipped (a hold there says
+      nothing about heavier loads);
+    - a friction above the largest: holds where that friction held; below the smallest:
+      slips where that friction slipped;
+    - outside the d/2R range: never decided (no monotonicity in d/2R is assumed).
+
+    A rope-rope friction ``mu_rr`` other than ``mu`` brackets the mu axis by
+    ``[min(mu, mu_rr), max(mu, mu_rr)]`` (assumes more friction of either kind does not
+    turn a hold into a slip). Everything else is undecided, with the reason.
+    """
+
+    knot: str
+    points: list
+    meta: dict = field(default_factory=dict)
+    law: str = "anchor"
+    criterion: dict = field(
+        default_factory=lambda: {
+            "name": CREEP_CRITERION, "limit_d_per_s": CREEP_LIMIT, "window_s": CREEP_WINDOW,
+        }
+    )  # fmt: skip
+
+    def __post_init__(self):
+        if not self.points:
+            raise InputError(f"hold table of {self.knot}: no points")
+        self._index = {}
+        for p in self.points:
+            if not (0 < p.d_over_2R < 0.5 and p.t_over_EA > 0 and p.mu >= 0):
+                raise InputError(
+                    f"hold table of {self.knot}: point ({p.d_over_2R:g}, {p.t_over_EA:g}, "
+                    f"{p.mu:g}) is outside 0 < d/2R < 0.5, T_high/EA > 0, mu >= 0"
+                )
+            key = self._key(p.d_over_2R, p.t_over_EA, p.mu)
+            if key in self._index:
+                raise InputError(f"hold table of {self.knot}: point {key} appears twice")
+            self._index[key] = p
+        self.axes = {a: np.unique([getattr(p, a) for p in self.points]) for a in _AXES}
+        n = int(np.prod([v.size for v in self.axes.values()]))
+        if n != len(self.points):
+            raise InputError(
+                f"hold table of {self.knot}: {len(self.points)} points do not fill the "
+                f"{' x '.join(str(v.size) for v in self.axes.values())} grid"
+            )
+
+    @staticmethod
+    def _key(x, y, m):
+        return (round(float(x), 9), round(float(y), 12), round(float(m), 9))
+
+    def point(self, x, y, m) -> HoldPoint:
+        """The grid point at (d/2R, T_high/EA, mu) (exact grid values)."""
+        return self._index[self._key(x, y, m)]
+
+    @property
+    def mus(self) -> list:
+        return [float(m) for m in self.axes["mu"]]
+
+    def slice(self, mu: float, *, creep_limit: float = CREEP_LIMIT) -> PhaseTable:
+        """The (d/2R, T_high/EA) slice at a tabulated ``mu`` as a :class:`PhaseTable`."""
+        m = [v for v in self.mus if abs(v - float(mu)) <= MU_TOL]
+        if not m:
+            raise InputError(f"no mu = {float(mu):g} in the {self.knot} hold table ({self.mus})")
+        pts = [PhasePoint(p.d_over_2R, p.t_over_EA, bool(p.holds(creep_limit)))
+               for p in self.points if p.mu == m[0]]  # fmt: skip
+        return PhaseTable(pts, m[0], m[0], {"law": self.law, "knot": self.knot})
+
+    def lookup(
+        self,
+        d_over_2R: float,
+        t_over_EA: float,
+        *,
+        mu: float,
+        mu_rr: float | None = None,
+        creep_limit: float = CREEP_LIMIT,
+    ) -> HoldAnswer:
+        """Hold, slip or undecided at (d/2R, T_high/EA, mu, mu_rr) by the rules above."""
+        x, y, m = float(d_over_2R), float(t_over_EA), float(mu)
+        mr = m if mu_rr is None else float(mu_rr)
+        lim = float(check_positive("creep_limit", creep_limit))
+        for name, v in (("d_over_2R", x), ("t_over_EA", y), ("mu", m), ("mu_rr", mr)):
+            if not math.isfinite(v) or v < 0:
+                raise InputError(f"{name} must be finite and >= 0, got {v}")
+        ax = self.axes
+        xi, xw = _axis(ax["d_over_2R"], x, x)
+        yi, yw = _axis(ax["t_over_EA"], y, y, rel=1e-9)
+        mi, mw = _axis(ax["mu"], min(m, mr), max(m, mr), rel=MU_TOL / max(m, mr, 1e-9))
+        if yw == "below":
+            yi = [0, 1] if ax["t_over_EA"].size > 1 else [0]
+        where = f"d/2R = {x:.4g}, T_high/EA = {y:.3g}, mu = {m:g}" + (
+            "" if mr == m else f", mu_rr = {mr:g}")  # fmt: skip
+        mus_used = tuple(float(ax["mu"][k]) for k in mi)
+        if xw in ("below", "above"):
+            return HoldAnswer(
+                None, False, "undecided",
+                f"{where}: d/2R is {xw} the {self.knot} table ({ax['d_over_2R'][0]:.4g} to "
+                f"{ax['d_over_2R'][-1]:.4g}), where nothing is assumed about how d/2R "
+                "changes the verdict: undecided", mu_tables=mus_used,
+            )  # fmt: skip
+        corners = [self.point(ax["d_over_2R"][i], ax["t_over_EA"][j], ax["mu"][k])
+                   for i in xi for j in yi for k in mi]  # fmt: skip
+        votes = [p.holds(lim) for p in corners]
+        pts = "; ".join(p.describe(lim) for p in corners)
+        speeds = [p.creep_speed for p, v in zip(corners, votes, strict=True) if v]
+        speed = max(speeds, key=abs) if speeds else float("nan")
+        cap, first_slip = self._capacity(xi, mi, y, lim)
+        common = dict(corners=tuple(corners), creep_speed=speed, capacity_t_over_EA=cap,
+                      first_slip_t_over_EA=first_slip, mu_tables=mus_used)  # fmt: skip
+        inside = yw in ("on", "between") and mw in ("on", "between")
+        if None in votes:
+            return HoldAnswer(None, inside, "undecided",
+                              f"{where}: a neighbouring DER run failed ({pts}): undecided",
+                              **common)  # fmt: skip
+        if len(set(votes)) > 1:
+            return HoldAnswer(
+                None, inside, "undecided",
+                f"{where} lies between DER points that disagree ({pts}): undecided", **common,
+            )  # fmt: skip
+        v = votes[0]
+        state = "holds" if v else "slips"
+        rules = []
+        if yw == "below":
+            rules.append(
+                (
+                    "settled-light-load",
+                    True,
+                    f"the load is below the lightest tabulated ({ax['t_over_EA'][0]:.3g} "
+                    "EA), where the two lightest loads agree (the verdict has settled)",
+                )
+            )
+        if yw == "above":
+            rules.append(
+                (
+                    "heavier-slips",
+                    not v,
+                    f"the load is above the heaviest tabulated ({ax['t_over_EA'][-1]:.3g} "
+                    "EA)"
+                    + (
+                        ", which slipped: a heavier load slips"
+                        if not v
+                        else ", which held: that says nothing about a heavier load"
+                    ),
+                )
+            )
+        if mw == "above":
+            rules.append(
+                (
+                    "more-friction-holds",
+                    v,
+                    f"the friction is above the largest tabulated (mu = {ax['mu'][-1]:g})"
+                    + (
+                        ", which held: more friction holds"
+                        if v
+                        else ", which slipped: that says nothing about more friction"
+                    ),
+                )
+            )
+        if mw == "below":
+            rules.append(
+                (
+                    "less-friction-slips",
+                    not v,
+                    f"the friction is below the smallest tabulated (mu = {ax['mu'][0]:g})"
+                    + (
+                        ", which slipped: less friction slips"
+                        if not v
+                        else ", which held: that says nothing about less friction"
+                    ),
+                )
+            )
+        bad = [text for _, ok, text in rules if not ok]
+        if bad:
+            return HoldAnswer(None, False, "undecided",
+                              f"{where}: {'; '.join(bad)}: undecided (DER points: {pts})",
+                              **common)  # fmt: skip
+        rule = rules[0][0] if rules else "grid"
+        why = "; ".join(text for _, _, text in rules)
+        msg = (f"{state} in the DER {self.knot} table at {where} (" + (why + "; " if why else "")
+               + f"DER points: {pts})")  # fmt: skip
+        return HoldAnswer(v, inside, rule, msg, **common)
+
+    def _capacity(self, xi, mi, y, lim):
+        """(largest tabulated load held in every corner column with every tabulated load
+        from the query's up to it held; smallest load >= the query's that slipped in any)."""
+        ys = self.axes["t_over_EA"]
+        cap = math.inf
+        first = math.inf
+        for i in xi:
+            for k in mi:
+                col_cap = float("nan")
+                for y_t in ys:
+                    if y_t < y * (1 - 1e-9) and y_t != ys[-1]:
+                        # loads below the query do not bound it (except the heaviest)
+                        continue
+                    h = self.point(self.axes["d_over_2R"][i], y_t, self.axes["mu"][k]).holds(lim)
+                    if h:
+                        col_cap = float(y_t)
+                    else:
+                        first = min(first, float(y_t))
+                        break
+                cap = min(cap, col_cap) if math.isfinite(col_cap) else float("nan")
+                if math.isnan(cap):
+                    break
+        return (cap if math.isfinite(cap) else float("nan")), first
+
+    # ----------------------------------------------------------------- file format
+    def to_dict(self) -> dict:
+        def num(v):
+            return None if not math.isfinite(v) else float(f"{v:.4g}")
+
+        return {
+            "format": HOLD_TABLE_FORMAT,
+            "version": 1,
+            "knot": self.knot,
+            "law": self.law,
+            "criterion": dict(self.criterion),
+            "axes": {a: [float(v) for v in self.axes[a]] for a in _AXES},
+            "columns": list(HOLD_COLUMNS),
+            "points": [
+                [
+                    p.d_over_2R,
+                    p.t_over_EA,
+                    p.mu,
+                    num(p.creep_speed),
+                    int(p.ran_to_end),
+                    int(p.topology),
+                    int(p.solved),
+                ]
+                for p in self.points
+            ],  # fmt: skip
+            "meta": self.meta,
+        }
+
+    @classmethod
+    def from_dict(cls, data: dict, *, name: str = "hold table") -> HoldTable:
+        try:
+            if data.get("format") != HOLD_TABLE_FORMAT:
+                raise ValueError(f"format is not {HOLD_TABLE_FORMAT!r}")
+            if list(data["columns"]) != list(HOLD_COLUMNS):
+                raise ValueError(f"columns must be {list(HOLD_COLUMNS)}")
+            pts = []
+            for row in data["points"]:
+                x, y, m, s, ran, topo, ok = row
+                pts.append(
+                    HoldPoint(
+                        float(x),
+                        float(y),
+                        float(m),
+                        float("nan") if s is None else float(s),
+                        bool(ran),
+                        bool(topo),
+                        bool(ok),
+                    )
+                )
+            return cls(str(data["knot"]), pts, dict(data.get("meta", {})), str(data["law"]),
+                       dict(data["criterion"]))  # fmt: skip
+        except (KeyError, TypeError, ValueError, AttributeError) as exc:
+            raise InputError(f"{name}: not a knotmech hold table: {exc}") from None
+
+    def write(self, path) -> None:
+        """Compact JSON (one point per line)."""
+        d = self.to_dict()
+        pts = d.pop("points")
+        text = json.dumps(d, separators=(",", ":"), allow_nan=False)
+        rows = ",\n".join(json.dumps(r, separators=(",", ":")) for r in pts)
+        Path(path).write_text(text[:-1] + ',"points":[\n' + rows + "]}\n")
+
+    @classmethod
+    def from_results(cls, knot: str, results, *, meta=None) -> HoldTable:
+        """A table from :func:`simulate_point`-like result dicts (anchor law)."""
+        pts = []
+        for r in results:
+            pts.append(HoldPoint(
+                float(r["d_over_2R"]), float(r["t_over_EA"]), float(r["mu"]),
+                float(r["creep_speed"]), bool(r["ran_to_end"]), bool(r["topology_preserved"]),
+                r["holds"] is not None,
+            ))  # fmt: skip
+        pts.sort(key=lambda p: (p.mu, p.d_over_2R, p.t_over_EA))
+        return cls(knot, pts, dict(meta or {}))
+
+
+def _num(v):
+    v = float(v)
+    return float(f"{v:.4g}") if math.isfinite(v) else None
+
+
+def read_hold_table(path) -> HoldTable:
+    """A hold table from a file (one-line :class:`InputError` when it does not read)."""
+    try:
+        text = Path(path).read_text()
+    except OSError as exc:
+        raise InputError(f"cannot read hold table {str(path)!r}: {exc.strerror}") from None
+    try:
+        data = json.loads(text)
+    except json.JSONDecodeError as exc:
+        raise InputError(f"hold table {str(path)!r} is not JSON: {exc}") from None
+    return HoldTable.from_dict(data, name=f"hold table {str(path)!r}")
+
+
+def load_hold_tables() -> dict:
+    """Every shipped hold table (``knotmech/data/hold_phase_table_*.json``): {knot: table}."""
+    try:
+        folder = resources.files("knotmech").joinpath("data")
+        names = sorted(
+            f.name for f in folder.iterdir() if Path(f.name).match(HOLD_TABLE_GLOB) and f.is_file()
+        )
+    except (FileNotFoundError, OSError) as exc:
+        raise InputError(f"the shipped hold tables are missing: {exc}") from None
+    out = {}
+    for n in names:
+        try:
+            data = json.loads(folder.joinpath(n).read_text())
+        except json.JSONDecodeError as exc:
+            raise InputError(f"hold table {n} is not JSON: {exc}") from None
+        t = HoldTable.from_dict(data, name=f"hold table {n}")
+        out[t.knot] = t
+    return out
+
+
+# --------------------------------------------------------------------------- building
+#: rope-size ratios d/D of the shipped hold tables (d/2R = (d/D)/(1 + d/D), rounded)
+HOLD_GRID_D_OVER_D = (0.02, 0.05, 4 / 30, 0.3)
+#: the shipped hold tables' grid: d/2R (d/D = 0.02, 0.05, 0.133 (the paper's), 0.3),
+#: T_high/EA (decades from 1e-4, and 0.3, the paper's upper bound), mu = mu_rr
+HOLD_GRID = {
+    "d_over_2R": (0.01961, 0.04762, 0.1176, 0.2308),
+    "t_over_EA": (1e-4, 1e-3, 1e-2, 0.1, 0.3),
+    "mu": (0.1, 0.2, 0.3, 0.5, 0.8),
+}
+
+
+def hold_table_resource(knot: str) -> str:
+    """File name in ``knotmech/data`` of the shipped hold table of ``knot``."""
+    return f"hold_phase_table_{knot}.json"
+
+
+def hold_table_params(grid=None, knot: str = "clove-hitch") -> list:
+    """The :func:`knotmech.sweep.sweep` parameter sets of a hold-table grid (mu outermost).
+
+    ``knot`` enters the parameters only for knots other than the clove hitch (so the
+    clove hitch's cached points keep their keys).
+    """
+    g = HOLD_GRID if grid is None else grid
+    extra = {} if knot == "clove-hitch" else {"knot": knot}
+    return [
+        {"d_over_2R": float(x), "t_over_EA": float(y), "mu": float(m), "friction": "anchor",
+         **extra}
+        for m in g["mu"]
+        for x in g["d_over_2R"]
+        for y in g["t_over_EA"]
+    ]  # fmt: skip
+
+
+def build_hold_table(
+    knot: str = "clove-hitch",
+    grid=None,
+    *,
+    processes: int | None = 2,
+    scheduler=None,
+    cache_dir=None,
+    progress: bool = False,
+    meta=None,
+) -> HoldTable:
+    """Run the DER points of a hold table through :func:`knotmech.sweep.sweep` and tabulate.
+
+    Every point is one :func:`simulate_point` of ``knot``'s scene (anchor law, :data:`PROTOCOL`,
+    creep-speed criterion); with ``cache_dir`` each result is stored as it arrives, so an
+    interrupted build recomputes only what is missing. The table's meta records the grid,
+    protocol, rod, criterion, the CPU time per point and in total.
+
+    Raises
+    ------
+    InputError
+        An unknown knot; a point whose run raised (the message names it).
+    """
+    from knotmech.sweep import sweep
+
+    hold_scene(knot)  # InputError for an unknown knot or a missing scene
+    params = hold_table_params(grid, knot)
+    res = sweep(
+        simulate_point,
+        params,
+        processes=processes,
+        scheduler=scheduler,
+        cache_dir=cache_dir,
+        progress=progress,
+        on_error="return",
+    )
+    if res.failures:
+        f = res.failures[0]
+        raise InputError(f"hold table of {knot}: {len(res.failures)} runs raised; first: {f}")
+    results = [_signed(r) for r in res]
+    # second pass: points within a decade of the limit, with a hold twice as long
+    again = [
+        i
+        for i, r in enumerate(results)
+        if r["ran_to_end"] and r["topology_preserved"] and needs_recheck(r["creep_speed"])
+    ]
+    if again:
+        hold2 = RECHECK_HOLD_FACTOR * PROTOCOL["hold_time"]
+        res2 = sweep(
+            simulate_point,
+            [{**params[i], "hold_time": hold2} for i in again],
+            processes=processes, scheduler=scheduler, cache_dir=cache_dir, progress=progress,
+            on_error="return",
+        )  # fmt: skip
+        if res2.failures:
+            raise InputError(f"hold table of {knot}: a recheck run raised: {res2.failures[0]}")
+        for i, r2 in zip(again, res2, strict=True):
+            r2 = dict(_signed(r2))
+            r2["first_creep_speed"] = results[i]["creep_speed"]
+            r2["cpu_s"] = float(r2.get("cpu_s", 0.0)) + float(results[i].get("cpu_s", 0.0))
+            results[i] = r2
+    return hold_table_from_results(knot, results, meta=meta)
+
+
+def _signed(r: dict) -> dict:
+    """A point result with a signed creep speed (results of ``__sweep_version__`` 3 from
+    before ``creep_speed_signed`` stored |speed|: the sign is that of ``creep``, end 0's
+    creep over the last half of the hold, which ends with the same window)."""
+    if r.get("creep_speed_signed") or not math.isfinite(r.get("creep_speed", math.nan)):
+        return r
+    c = float(r.get("creep", math.nan))
+    s = abs(float(r["creep_speed"]))
+    return {**r, "creep_speed": math.copysign(s, c) if math.isfinite(c) and c != 0 else s,
+            "creep_speed_signed": True}  # fmt: skip
+
+
+def hold_table_from_results(knot: str, results, *, meta=None) -> HoldTable:
+    """A hold table (with its cost and grid in the meta) from point result dicts."""
+    results = list(results)
+    cpu = [float(r.get("cpu_s", float("nan"))) for r in results]
+    g = {a: sorted({float(r[a]) for r in results}) for a in _AXES}
+    rechecked = [[r["d_over_2R"], r["t_over_EA"], r["mu"], _num(r["first_creep_speed"]),
+                  _num(r["creep_speed"])] for r in results if "first_creep_speed" in r]  # fmt: skip
+    m = {
+        "rechecked": {
+            "rule": f"creep speed from limit/{RECHECK_BAND[0]:g} to limit x "
+            f"{RECHECK_BAND[1]:g} after the "
+            f"{PROTOCOL['hold_time']:g} s hold: run again with a "
+            f"{RECHECK_HOLD_FACTOR * PROTOCOL['hold_time']:g} s hold, which decides",
+            "points": rechecked,
+            "columns": ["d_over_2R", "t_over_EA", "mu", "first_d_per_s", "final_d_per_s"],
+        },
+        "what": f"DER {knot} with a free end: creep speed of the loaded end at "
+        "(d/2R, T_high/EA, mu = mu_rr)",
+        "law": "anchor (rod-rod AnchorFriction, rod-post anchor friction)",
+        "generator": "knotmech.scenes.phase_table.build_hold_table (simulate_point per point)",
+        "grid": g,
+        "rod": {"d_m": ROD_DIAMETER, "E_Pa": YOUNGS_MODULUS, "rho": DENSITY},
+        "protocol": dict(PROTOCOL),
+        "n_nodes": {
+            f"{float(r['d_over_2R']):g}": int(r["n_nodes"]) for r in results if "n_nodes" in r
+        },  # fmt: skip
+        "runs": len(results),
+        "cpu_s_total": round(float(np.nansum(cpu)), 1),
+        "cpu_s_per_point": [round(float(np.nanmin(cpu)), 1), round(float(np.nanmax(cpu)), 1)],
+    }
+    m.update(meta or {})
+    return HoldTable.from_results(knot, results, meta=m)

@@ -1,0 +1,91 @@
+"""``knotmech hold`` for the bends (reef, granny, thief, grief): undecided with the full
+``--simulate`` command, and ``--simulate`` running the bend scene (stubbed here: the bend
+pull itself is tested in tests/scenes/test_bends.py)."""
+
+import json
+import math
+from types import SimpleNamespace
+
+import pytest
+
+import knotmech
+from knotmech.cli.main import main
+from knotmech.errors import InputError
+
+BEND = ["--rod-diameter", "4mm", "--mu", "0.3", "--load", "2N", "--material", "vps32"]
+
+
+def _fake_bend(verdict, slip_load, max_force, seen=None):
+    def fake(kind, **kw):
+        if seen is not None:
+            seen.update(kw, kind=kind)
+        return SimpleNamespace(verdict=verdict, slip_load=slip_load, max_force=max_force,
+                               pull_speed=0.04, status="success", message="", stats={"wall_s": 1.0},
+                               topology_preserved=True)  # fmt: skip
+
+    return fake
+
+
+@pytest.mark.parametrize("knot", ["reef", "granny", "thief", "grief", "square knot"])
+def test_bend_without_simulate_is_undecided_with_the_command(knot, capsys):
+    assert main(["hold", knot, *BEND, "--json", "-"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["holds"] is None and data["decided_by"] is None
+    key = {"square knot": "reef"}.get(knot, knot)
+    cmd = f"knotmech hold {key} --rod-diameter 4mm --mu 0.3 --load 2N --material vps32 --simulate"
+    assert cmd in data["next_step"]
+
+
+def test_bend_simulate_compares_the_slip_load(monkeypatch, capsys):
+    from knotmech.scenes import bends
+
+    seen = {}
+    monkeypatch.setattr(bends, "bend", _fake_bend("slips", 3.0, 3.1, seen))
+    v = knotmech.hold("reef", rod_diameter=4e-3, mu=0.3, load=2.0, material="vps32",
+                      simulate=True)  # fmt: skip
+    assert v.holds is True and v.decided_by == "DER-simulation"
+    assert v.margin == pytest.approx(3.0 / 2.0 - 1)
+    assert seen["kind"] == "reef" and seen["mu_rod_rod"] == 0.3
+    assert seen["youngs_modulus"] == 1.26e6 and seen["rod_diameter"] == 4e-3
+    v2 = knotmech.hold("reef", rod_diameter=4e-3, mu=0.3, load=4.0, material="vps32",
+                       simulate=True)  # fmt: skip
+    assert v2.holds is False and v2.margin == pytest.approx(-0.25)
+    # did not slip up to 3.1 N: holds 2 N, undecided at 4 N (above what the pull reached)
+    monkeypatch.setattr(bends, "bend", _fake_bend("holds", math.nan, 3.1))
+    assert knotmech.hold("granny", rod_diameter=4e-3, mu=0.3, load=2.0, youngs_modulus=1e6,
+                         simulate=True).holds is True  # fmt: skip
+    v3 = knotmech.hold("granny", rod_diameter=4e-3, mu=0.3, load=4.0, youngs_modulus=1e6,
+                       simulate=True)  # fmt: skip
+    assert v3.holds is None and "above the largest pull force" in v3.der["message"]
+    assert main(["hold", "reef", *BEND, "--simulate"]) == 0
+    assert capsys.readouterr().out.startswith("verdict: HOLDS")
+
+
+@pytest.mark.parametrize(
+    ("extra", "words"),
+    [
+        (["--post-diameter", "30mm"], "--post-diameter does not apply to a bend"),
+        (["--mu-rr", "0.2"], "--mu-rr does not apply to a bend"),
+        (["--free-end-load", "1N"], "--free-end-load does not apply to a bend"),
+    ],
+)
+def test_bend_refuses_post_inputs(extra, words, capsys):
+    assert main(["hold", "thief", *BEND, *extra]) == 2
+    err = capsys.readouterr().err.strip()
+    assert words in err and len(err.splitlines()) == 1
+
+
+def test_bend_simulate_needs_a_stiffness():
+    with pytest.raises(InputError, match="simulate needs the rope's stiffness"):
+        knotmech.hold("grief", rod_diameter=4e-3, mu=0.3, load=2.0, simulate=True)
+
+
+def test_hitches_still_need_a_post(capsys):
+    assert main(["hold", "clove-hitch", *BEND]) == 2
+    assert "--post-diameter is required for clove-hitch" in capsys.readouterr().err
+
+
+def test_creep_limit_must_be_positive(capsys):
+    args = ["hold", "clove-hitch", "--post-diameter", "30mm", *BEND, "--creep-limit", "0"]
+    assert main(args) == 2
+    assert "--creep-limit must be > 0" in capsys.readouterr().err

@@ -1,0 +1,158 @@
+"""``knotmech.hold`` on the shipped anchor-law hold tables: their real numbers.
+
+The clove-hitch table (knotmech/data/hold_phase_table_clove-hitch.json, built by
+``python -m validation.clove_phase_diagram --write-hold-table``; grid, costs and verdict
+maps in docs/notes/holdtab.md): d = 4 mm VPS32 rod (E = 1.26 MPa, EA = 15.83 N),
+d/2R = 0.01961, 0.04762, 0.1176, 0.2308 (d/D = 0.02, 0.05, 0.133, 0.3), T_high/EA = 1e-4,
+1e-3, 1e-2, 0.1, 0.3, mu = mu_rr = 0.1, 0.2, 0.3, 0.5, 0.8.
+"""
+
+import json
+import math
+
+import pytest
+
+import knotmech
+from knotmech.cli.main import main
+from knotmech.scenes import phase_table as pt
+
+EA = 1.26e6 * math.pi * 0.004**2 / 4  # 15.83 N
+
+
+@pytest.fixture(scope="module")
+def clove():
+    return pt.load_hold_tables()["clove-hitch"]
+
+
+def _post(d_over_2R, d=4e-3):
+    return d * (1 / d_over_2R - 1)
+
+
+def _hold(d_over_2R, t_over_EA, mu, **kw):
+    return knotmech.hold(
+        "clove-hitch", rod_diameter=4e-3, post_diameter=_post(d_over_2R), mu=mu,
+        load=t_over_EA * EA, material="vps32", **kw,
+    )  # fmt: skip
+
+
+def test_the_shipped_table_covers_real_rope_ranges(clove):
+    ax = clove.axes
+    assert clove.law == "anchor" and clove.criterion["name"] == "creep-speed"
+    assert clove.criterion["limit_d_per_s"] == 1e-3 and clove.criterion["window_s"] == 1.0
+    assert ax["t_over_EA"][0] <= 1e-4 and ax["t_over_EA"][-1] >= 0.3 and ax["t_over_EA"].size >= 5
+    d_over_D = ax["d_over_2R"] / (1 - ax["d_over_2R"])
+    assert d_over_D[0] == pytest.approx(0.02, rel=1e-3) and d_over_D[-1] == pytest.approx(
+        0.3, rel=2e-3
+    )
+    assert ax["d_over_2R"].size >= 4
+    assert ax["mu"][0] == 0.1 and ax["mu"][-1] == 0.8 and ax["mu"].size >= 5
+    assert len(clove.points) == ax["d_over_2R"].size * ax["t_over_EA"].size * ax["mu"].size
+    # one run failed (the solver's stall guard at d/D 0.05, 0.1 EA, mu 0.8): no verdict
+    # there, its neighbourhood is undecided
+    failed = [(p.d_over_2R, p.t_over_EA, p.mu) for p in clove.points if not p.solved]
+    assert failed == [(0.04762, 0.1, 0.8)]
+    assert clove.lookup(0.04762, 0.1, mu=0.8).holds is None
+    assert clove.meta["cpu_s_total"] > 0 and clove.meta["protocol"]["hold_time"] == 1.5
+
+
+def test_the_table_ships_as_package_data():
+    from importlib import resources
+
+    names = [f.name for f in resources.files("knotmech").joinpath("data").iterdir()]
+    assert pt.hold_table_resource("clove-hitch") in names
+    text = resources.files("knotmech").joinpath("data", "hold_phase_table_clove-hitch.json")
+    assert len(text.read_text()) < 20000  # compact
+
+
+def test_papers_case_holds_from_the_table_with_its_creep():
+    """d = 4 mm, D = 30 mm, mu = 0.3, 1.47 N = 0.0928 EA: between the grid loads 0.01 and
+    0.1 EA on the paper's column, both held (creep 6.24e-5 and -4e-9 d/s)."""
+    v = knotmech.hold("clove-hitch", rod_diameter=4e-3, post_diameter=30e-3, mu=0.3,
+                      load=1.47, material="vps32")  # fmt: skip
+    assert v.holds is True and v.decided_by == "DER-table" and v.der["rule"] == "grid"
+    assert v.creep["speed_d_per_s"] == pytest.approx(6.24e-5, rel=0.01)
+    assert v.creep["limit_d_per_s"] == 1e-3 and v.creep["window_s"] == 1.0
+    # the whole column held up to 0.3 EA: margin at least 0.3 EA / 1.47 N - 1
+    assert v.margin == pytest.approx(0.3 * EA / 1.47 - 1, rel=1e-6)
+    # a stricter limit than the 6.24e-5 d/s crept makes (0.1176, 0.01) a slip: undecided
+    w = knotmech.hold("clove-hitch", rod_diameter=4e-3, post_diameter=30e-3, mu=0.3,
+                      load=1.47, material="vps32", creep_limit=1e-5)  # fmt: skip
+    assert w.der["holds"] is None and "disagree" in w.der["message"]
+
+
+def test_large_post_slips_where_the_thick_nip_says_it_holds():
+    """d/D = 0.05 (D = 80 mm), 1.47 N: both neighbouring loads slipped (0.23 and 2.2 d/s)."""
+    v = _hold(4 / 84, 1.47 / EA, 0.3)
+    assert v.holds is False and v.decided_by == "DER-table"
+    thick = next(a for a in v.answers if a.model == "thick-nip")
+    assert thick.holds is True  # the closed form disagrees; the DER decides (the rule)
+    assert v.creep["speed_d_per_s"] == pytest.approx(0.229, rel=0.01)
+
+
+def test_beyond_the_loads(clove):
+    # lighter than 1e-4 EA on the paper's column: 1e-4 and 1e-3 held -> holds
+    v = _hold(0.1176, 1e-6, 0.3)
+    assert v.holds is True and v.der["rule"] == "settled-light-load"
+    # heavier than 0.3 EA at d/D = 0.3: 0.3 EA ran off -> slips
+    v = _hold(0.2308, 0.5, 0.3)
+    assert v.holds is False and v.der["rule"] == "heavier-slips"
+    # heavier than 0.3 EA on the paper's column, which held 0.3 EA: undecided, and the
+    # next step is the full command that decides
+    v = _hold(0.1176, 0.5, 0.3)
+    assert v.der["holds"] is None and "says nothing about a heavier load" in v.der["message"]
+
+
+def test_undecided_gives_the_full_simulate_command():
+    v = knotmech.hold("clove-hitch", rod_diameter=4e-3, post_diameter=200e-3, mu=0.3,
+                      load=1.47, youngs_modulus=1e6)  # fmt: skip
+    # d/D = 0.02 lies on the table; the ideal rope (inside its validity) decides there
+    # unless the DER decides first: the DER table at 0.116 EA, between 0.1 and 0.3, slipped
+    assert v.holds is False
+    u = knotmech.hold("clove-hitch", rod_diameter=4e-3, post_diameter=400e-3, mu=0.3,
+                      load=1.47, material="vps32")  # fmt: skip
+    assert u.der["holds"] is None and "d/2R is below" in u.der["message"]
+
+
+def test_cli_prints_the_creep_speed(capsys):
+    args = ["hold", "clove-hitch", "--rod-diameter", "4mm", "--post-diameter", "30mm",
+            "--mu", "0.3", "--load", "1.47N", "--material", "vps32"]  # fmt: skip
+    assert main(args) == 0
+    out = capsys.readouterr().out.splitlines()
+    assert out[0].startswith("verdict: HOLDS") and "DER-table" in out[0]
+    creep = next(line for line in out if line.startswith("creep:"))
+    assert "6.24e-05 d/s" in creep and "creep-speed criterion" in creep
+    assert main(args + ["--json", "-"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["creep"]["speed_d_per_s"] == pytest.approx(6.24e-5, rel=0.01)
+    assert data["creep"]["criterion"] == "creep-speed"
+
+
+def test_two_half_hitches_from_their_table():
+    """The smaller two-half-hitches table (d/2R 0.1176, 0.2308 x 1e-3, 1e-2, 0.1 EA x mu 0.3,
+    0.8): on a 30 mm post at 0.5 N (0.0316 EA) it holds at mu = 0.8 (creep 4.1e-6 d/s) and
+    slips at 0.3 (both neighbouring loads ran off), where the thick-nip closed form, which
+    answered before, says it holds."""
+    t = pt.load_hold_tables()["two-half-hitches"]
+    assert len(t.points) == 12 and t.mus == [0.3, 0.8]
+    kw = dict(rod_diameter=4e-3, post_diameter=30e-3, load=0.5, material="vps32")
+    v = knotmech.hold("two-half-hitches", mu=0.8, **kw)
+    assert v.holds is True and v.decided_by == "DER-table"
+    assert v.creep["speed_d_per_s"] == pytest.approx(4.14e-6, rel=0.01)
+    w = knotmech.hold("two-half-hitches", mu=0.3, **kw)
+    assert w.holds is False and w.decided_by == "DER-table" and w.creep["ran_off"] is True
+    assert next(a for a in w.answers if a.model == "thick-nip").holds is True
+
+
+def test_round_turn_two_half_hitches_from_its_table():
+    """The same small grid for the round turn and two half hitches: on a 30 mm post at
+    0.5 N it holds at mu = 0.8 (0.01 and 0.1 EA held, the first after the 3 s recheck:
+    -1.0e-3 d/s after 1.5 s, -4.8e-7 after 3 s; the largest creep 1.7e-5 d/s) and slips at
+    0.3 (0.01 EA changed topology, 0.1 EA ran off)."""
+    t = pt.load_hold_tables()["round-turn-two-half-hitches"]
+    assert len(t.points) == 12 and len(t.meta["rechecked"]["points"]) == 7
+    kw = dict(rod_diameter=4e-3, post_diameter=30e-3, load=0.5, material="vps32")
+    v = knotmech.hold("round-turn-two-half-hitches", mu=0.8, **kw)
+    assert v.holds is True and v.decided_by == "DER-table"
+    assert v.creep["speed_d_per_s"] == pytest.approx(1.7e-5, rel=0.02)
+    w = knotmech.hold("round-turn-two-half-hitches", mu=0.3, **kw)
+    assert w.holds is False and w.decided_by == "DER-table"
