@@ -514,11 +514,15 @@ class Stepper:
         return d
 
     def load_linear_state(self, d: dict | None) -> None:
-        """Restore what :meth:`linear_state` returned (None: keep the fresh solver's)."""
+        """Restore what :meth:`linear_state` returned (None, or written for other free
+        dofs: keep the fresh solver's)."""
         if not d:
             return
-        if np.asarray(d["gmap"]).shape != (self.system.n_dof,):
-            raise InputError("state.linear was written for a system of another size")
+        gm = np.asarray(d["gmap"])
+        if gm.shape != (self.system.n_dof,) or not np.array_equal(gm >= 0, self.free):
+            # another system or other constrained dofs (e.g. the next phase of a scene):
+            # that ordering and those factors do not apply, start afresh
+            return
         for k in self._LIN_SCALARS:
             v = np.asarray(d[k]).item()
             setattr(self, "_" + k, v)

@@ -121,3 +121,18 @@ def test_state_with_friction_needs_the_interactions_that_wrote_it():
     half = simulate(system, t_end=0.01, interactions=interactions(), **kw)
     with pytest.raises(InputError, match="interaction 0"):
         simulate(system, half.final_state, t_end=0.02, **kw)
+
+
+def test_solver_state_for_other_constraints_is_not_applied():
+    """A checkpoint resumed with other constrained dofs (the next phase of a scene) starts
+    with a fresh ordering: the saved one numbers other free dofs (it used to corrupt memory)."""
+    system, cons, loads, interactions = rodrod_problem()
+    kw = dict(dt=2e-3, loads=loads, options=SolverOptions(save_every=0.01))
+    half = simulate(system, t_end=0.02, constraints=cons, interactions=interactions(), **kw)
+    assert half.final_state.linear is not None
+    more = cons + [Clamp(nodes=[10])]
+    rest = simulate(system, half.final_state, t_end=0.04, constraints=more,
+                    interactions=interactions(), **kw)  # fmt: skip
+    fresh = simulate(system, replace(half.final_state, linear=None), t_end=0.04,
+                     constraints=more, interactions=interactions(), **kw)  # fmt: skip
+    assert rest.success and np.array_equal(rest.final_state.q, fresh.final_state.q)
