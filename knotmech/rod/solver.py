@@ -496,15 +496,16 @@ class Stepper:
     _LIN_ARRAYS = ("gmap", "ab", "ab_orig", "env_first", "env_last")
 
     def linear_state(self) -> dict | None:
-        """The ordering and reusable LU factors of the contact Jacobian as {name: array}
+        """The ordering and reusable LU factors of the contact Jacobian as {name: array or scalar}
         (for :attr:`State.linear`; the arrays are shared: the solver only ever replaces
         them), or None while the plain band solver is in use (it keeps no state)."""
         if self._gmap is None:
             return None
-        d = {k: np.asarray(getattr(self, "_" + k)) for k in self._LIN_SCALARS}
+        # plain scalars (State.save turns them into arrays): this runs after every step
+        d = {k: getattr(self, "_" + k) for k in self._LIN_SCALARS}
         if self._factors_dt is None:
-            d["factors_dt"] = np.asarray(np.nan)
-        d["mode"] = np.asarray(self._mode)
+            d["factors_dt"] = np.nan
+        d["mode"] = self._mode
         for k in self._LIN_ARRAYS:
             v = getattr(self, "_" + k, None)
             if v is not None:
