@@ -185,7 +185,7 @@ class State:
         known, the interactions keep theirs); a checkpoint carries it so that a new process
         resumes bit-identically
     linear : dict or None  the solver's linear-algebra state after the step ({name:
-        array}): the RCM ordering of the contact Jacobian with its counters and the LU
+        array or scalar}): the RCM ordering of the contact Jacobian with its counters and the LU
         factors that the next step may reuse (chord iterations). Not physics, but it decides
         the round-off of the next steps: with it a resumed run with rod-rod contact repeats
         the uninterrupted one bit for bit (None: a new solver orders and factors afresh,
