@@ -26,7 +26,10 @@ issue #4 (pair pruning, envelope LU, Jacobian reuse with lazy Hessians, second-o
 predictor): ``--turns 1``: wall_s 29.0, cpu_s 28.7, 24800 steps, 39200 Newton iterations,
 final pull force 0.07405255 N (before: 429 s under load, nominally 260-320 s; 31603
 iterations; 0.07405254 N); ``--turns 2``: wall_s 47.1, cpu_s 46.4, 24815 steps (4 rejected).
-Both laws: see docs/notes/fric.md.
+Both laws in one run (load 15, docs/notes/fricspeed.md): imc cpu_s 31.1, anchor cpu_s 33.0
+(1.06x; a second run 36.9 / 42.7 s, 1.16x); anchor 24893 steps, 39901 iterations, 36
+rejected, final force 0.07310 N; tight-phase force ratio anchor/imc 0.923 / 0.989 / 1.007
+(min / median / max); post-processing 0.5 % of the wall.
 """
 
 from __future__ import annotations

@@ -179,6 +179,18 @@ class RodContact:
     def _anchored(self) -> bool:
         return isinstance(self.friction, AnchorFriction)
 
+    @property
+    def newton_stagnation(self) -> int | None:
+        """Hint for :class:`knotmech.rod.SolverOptions` ``stagnation="auto"``: with the
+        anchor law, an attempt whose residual has not halved in 4 Newton iterations is
+        given up (retried, then halved). A sliding pair whose tangential gap passes near
+        zero during the solve (a lightly loaded pair: the cap's width mu |F_n|/k_t is then
+        much smaller than the motion of a step) can make Newton cycle; measured on the
+        first 12 s of the overhand benchmark (n = 1, 301 nodes), 88 attempts spent 21 % of
+        all residual evaluations and 63 % of the LU factorizations so, and the cut brings
+        the law's CPU time from 1.42x to 1.18x the regularised law's. None otherwise."""
+        return 4 if self._anchored else None
+
     def reset(self):
         """Forget the friction state (the anchors of the pairs in contact)."""
         self._store = (np.zeros(0, dtype=np.int64), np.zeros((0, 2)), np.zeros(0, dtype=bool))

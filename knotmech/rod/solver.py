@@ -110,6 +110,12 @@ class SolverOptions:
         exceeds this ends the run with status "failed" (last good state kept): a rod
         stretched to many times its length, or crushed to a point, is no longer a result of
         the model (default 1.0; None turns the check off)
+    stagnation : int, "auto" or None  an attempt whose residual has not halved in this
+        many Newton iterations fails at once ("Newton stagnated"; the step is then retried
+        from the linear predictor, then with dt/2) instead of spending the rest of
+        ``max_newton`` iterations, each with a fresh LU, on a Newton cycle; "auto"
+        (default): the smallest ``newton_stagnation`` hint of the interactions (rod-rod
+        anchor friction: 4, see :class:`knotmech.rod.RodContact`), else off; None: off
     """
 
     dt_min: float = 1e-9
@@ -130,6 +136,7 @@ class SolverOptions:
     max_wall_per_sim_second: float | None = 3600.0
     stall_wall_window: float = 60.0
     max_strain: float | None = 1.0
+    stagnation: int | str | None = "auto"
 
     def __post_init__(self):
         check_positive("dt_min", self.dt_min)
@@ -155,6 +162,13 @@ class SolverOptions:
         check_positive("stall_wall_window", self.stall_wall_window)
         if self.max_strain is not None:
             check_positive("max_strain", self.max_strain)
+        sg = self.stagnation
+        if (
+            sg is not None
+            and sg != "auto"
+            and (isinstance(sg, (str, bool)) or int(sg) != sg or sg < 1)
+        ):
+            raise InputError(f"stagnation must be an integer >= 1, 'auto' or None, got {sg!r}")
         if self.predictor not in ("quadratic", "linear"):
             raise InputError(f"predictor must be 'quadratic' or 'linear', got {self.predictor!r}")
         if self.linear_solver not in ("auto", "banded", "sparse"):
@@ -167,10 +181,11 @@ class _StepFailed(Exception):
     """A step attempt failed; ``iterations`` spent on it; ``guard``: rejected by an
     interaction's step check (a smaller dt is needed, not a better start)."""
 
-    def __init__(self, msg, iterations: int = 0, guard: bool = False):
+    def __init__(self, msg, iterations: int = 0, guard: bool = False, stalled: bool = False):
         super().__init__(msg)
         self.iterations = iterations
         self.guard = guard
+        self.stalled = stalled
 
 
 class Stepper:
@@ -230,7 +245,18 @@ class Stepper:
         self._order_stale = True
         self._order_fresh = False
         self._kd_ordered = 0
+        self._kd = 0
+        self._anorm = 0.0
+        self._lu_checked = False
+        self._lu_piv = None
+        self._ab = self._ab_orig = self._env_first = self._env_last = self._work = None
         nf = self.free_idx.size
+        sg = options.stagnation
+        if sg == "auto":
+            hints = [getattr(it, "newton_stagnation", None) for it in self.interactions]
+            hints = [int(h) for h in hints if h is not None]
+            sg = min(hints) if hints else None
+        self._stagnation = sg
         self._fmap = -np.ones(n, dtype=np.int64)
         self._fmap[self.free_idx] = np.arange(nf)
         self._gmap = None  # dof -> row of the reordered free system (-1: constrained)
@@ -381,10 +407,7 @@ class Stepper:
             _asm.band_scatter_mapped(fi, fi, dv, gm, 1.0, kd, ab)
             _asm.band_scatter_mapped(trip.rows, trip.cols, trip.vals, gm, -1.0, kd, ab)
             self._ab, self._kd = ab, kd
-            first = getattr(self, "_env_first", None)
-            if first is None or first.size != nf:
-                first = self._env_first = np.empty(nf, dtype=np.int64)
-            first[:] = first0
+            first = self._env_first = first0.copy()  # new: the last one may be held
             _env.pattern_first_mapped(trip.rows, trip.cols, gm, first)
             self._factor_band()
             self._mode = "sparse-band"
@@ -407,11 +430,11 @@ class Stepper:
         entry, LAPACK's pivoted band LU (dgbtrf) on the kept copy of the matrix."""
         ab, kd = self._ab, self._kd
         nf = ab.shape[1]
-        orig = getattr(self, "_ab_orig", None)
-        if orig is None or orig.shape != ab.shape:
-            orig = np.empty_like(ab, order="F")
-            self._ab_orig = orig
-            self._env_last = np.empty(nf, dtype=np.int64)
+        # new arrays for each factorization: the last ones may be held by a State
+        orig = np.empty_like(ab, order="F")
+        self._ab_orig = orig
+        self._env_last = np.empty(nf, dtype=np.int64)
+        if getattr(self, "_work", None) is None or self._work.size != nf:
             self._work = np.empty(nf)
         if self._lcol.size < kd + 1:
             self._lcol = np.empty(2 * kd + 2)
@@ -461,14 +484,60 @@ class Stepper:
         return y
 
     def _band_buffer(self, nrow: int, ncol: int) -> np.ndarray:
-        """A zeroed Fortran-ordered (nrow, ncol) band matrix, reusing the last buffer."""
-        buf = getattr(self, "_ab_buf", None)
-        if buf is None or buf.shape != (nrow, ncol):
-            buf = np.zeros((nrow, ncol), order="F")
-            self._ab_buf = buf
-        else:
-            buf.fill(0.0)
-        return buf
+        """A zeroed Fortran-ordered (nrow, ncol) band matrix. A new one each time (as cheap
+        as zeroing the last one): the factors of earlier Jacobians may be held by a
+        :class:`State` (:meth:`linear_state`) and are never written into."""
+        return np.zeros((nrow, ncol), order="F")
+
+    # the solver's linear-algebra state carried by State.linear (see linear_state)
+    _LIN_SCALARS = ("n_on_order", "kd_ordered", "work_ordered", "order_stale",
+                    "order_fresh", "factors_valid", "factors_dt", "last_ratio", "kd",
+                    "anorm", "lu_checked")  # fmt: skip
+    _LIN_ARRAYS = ("gmap", "ab", "ab_orig", "env_first", "env_last")
+
+    def linear_state(self) -> dict | None:
+        """The ordering and reusable LU factors of the contact Jacobian as {name: array or scalar}
+        (for :attr:`State.linear`; the arrays are shared: the solver only ever replaces
+        them), or None while the plain band solver is in use (it keeps no state)."""
+        if self._gmap is None:
+            return None
+        # plain scalars (State.save turns them into arrays): this runs after every step
+        d = {k: getattr(self, "_" + k) for k in self._LIN_SCALARS}
+        if self._factors_dt is None:
+            d["factors_dt"] = np.nan
+        d["mode"] = self._mode
+        for k in self._LIN_ARRAYS:
+            v = getattr(self, "_" + k, None)
+            if v is not None:
+                d[k] = v
+        if self._lu_piv is not None:
+            d["lu"], d["piv"] = self._lu_piv
+        return d
+
+    def load_linear_state(self, d: dict | None) -> None:
+        """Restore what :meth:`linear_state` returned (None, or written for other free
+        dofs: keep the fresh solver's)."""
+        if not d:
+            return
+        gm = np.asarray(d["gmap"])
+        if gm.shape != (self.system.n_dof,) or not np.array_equal(gm >= 0, self.free):
+            # another system or other constrained dofs (e.g. the next phase of a scene):
+            # that ordering and those factors do not apply, start afresh
+            return
+        for k in self._LIN_SCALARS:
+            v = np.asarray(d[k]).item()
+            setattr(self, "_" + k, v)
+        self._mode = str(np.asarray(d["mode"]))
+        for k in self._LIN_ARRAYS:
+            if k in d:
+                setattr(self, "_" + k, np.array(d[k], order="F" if k.startswith("ab") else "C"))
+        self._lu_piv = (np.array(d["lu"], order="F"), np.array(d["piv"])) if "lu" in d else None
+        self._elastic_rc = None  # derived from the ordering
+        kd = int(self._kd)
+        if self._lcol.size < kd + 1:
+            self._lcol = np.empty(2 * kd + 2)
+        if "ab" in d:
+            self._work = np.empty(self._ab.shape[1])
 
     def solve(self, rhs: np.ndarray, reuse: bool = False) -> np.ndarray:
         """Solve J x = rhs with x = 0 on constrained dofs; ``reuse``: with the factors of
@@ -559,9 +628,10 @@ class Stepper:
         for c, dofs in zip(self.constraints, self._cdof_list, strict=True):
             q[dofs] = c.values(self.system, t_new, dt, st.q)
         try:
-            scales = self.evaluate(q, st, dt, t_new)
             # the last factors of the previous step start this one if their last iteration
-            # still cut the residual by jacobian_reuse_steps (and dt is the same)
+            # still cut the residual by jacobian_reuse_steps (and dt is the same); decided
+            # before the first evaluation, so that a step which needs a fresh Jacobian
+            # builds its Hessians there instead of evaluating twice (same residual)
             cross = (
                 self._factors_valid
                 and self._factors_dt == dt
@@ -569,6 +639,7 @@ class Stepper:
             )
             if not cross:
                 self._factors_valid = False
+            scales = self.evaluate(q, st, dt, t_new)
             return self._iterate(q, st, dt, t_new, scales, cross)
         except _StepFailed:
             self._factors_valid = False
@@ -584,6 +655,8 @@ class Stepper:
     def _iterate(self, q, st, dt, t_new, scales, cross):
         opt = self.opt
         rel_prev = np.inf
+        stag = self._stagnation
+        best, k_best = np.inf, 0
         for k in range(opt.max_newton + 1):
             if not np.all(np.isfinite(self.f)):
                 raise _StepFailed("non-finite residual", k)
@@ -595,6 +668,15 @@ class Stepper:
                 return q, k
             if k == opt.max_newton:
                 break
+            if rel <= 0.5 * best:
+                best, k_best = rel, k
+            elif stag is not None and k - k_best >= stag:
+                raise _StepFailed(
+                    f"Newton stagnated: the residual did not halve in {stag} iterations "
+                    f"(residual {rel:.2e} of the tolerance)",
+                    k,
+                    stalled=True,
+                )
             # chord step (the last factors of this step) while they still cut the
             # residual by the factor jacobian_reuse per iteration
             reuse = cross if k == 0 else rel <= opt.jacobian_reuse * rel_prev
@@ -744,6 +826,7 @@ def simulate(
     stepper = Stepper(system, _as_tuple(loads, "loads"), _as_tuple(constraints, "constraints"),
                       _as_tuple(interactions, "interactions"), opt)  # fmt: skip
     restore_interaction_state(stepper.interactions, st.interactions)  # friction anchors
+    stepper.load_linear_state(st.linear)  # ordering and LU factors (bit-identical resume)
 
     node_lists = [c.node_indices(system) for c in stepper.constraints]
     edge_lists = [c.edge_indices(system) for c in stepper.constraints]
@@ -858,6 +941,7 @@ def simulate(
                 accel=accel,
                 h_last=h_step,
                 interactions=interaction_state(stepper.interactions),
+                linear=stepper.linear_state(),
             )
             residual = stepper.f.copy()
             if bar is not None:

@@ -184,6 +184,13 @@ class State:
         ``{k: {name: array}}`` for the k-th interaction passed to ``simulate`` (None: not
         known, the interactions keep theirs); a checkpoint carries it so that a new process
         resumes bit-identically
+    linear : dict or None  the solver's linear-algebra state after the step ({name:
+        array or scalar}): the RCM ordering of the contact Jacobian with its counters and the LU
+        factors that the next step may reuse (chord iterations). Not physics, but it decides
+        the round-off of the next steps: with it a resumed run with rod-rod contact repeats
+        the uninterrupted one bit for bit (None: a new solver orders and factors afresh,
+        which agrees to round-off only). The arrays are shared, not copied: the solver never
+        writes into factors it has handed out
     """
 
     t: float
@@ -197,6 +204,7 @@ class State:
     accel: np.ndarray | None = None
     h_last: float = float("nan")
     interactions: dict | None = None
+    linear: dict | None = None
 
     def as_dict(self) -> dict:
         out = {
@@ -217,6 +225,9 @@ class State:
             for k, arrays in self.interactions.items():
                 for name, v in arrays.items():
                     out[f"interaction{int(k)}__{name}"] = v
+        if self.linear is not None:
+            for name, v in self.linear.items():
+                out[f"linear__{name}"] = v
         return out
 
     @classmethod
@@ -233,7 +244,9 @@ class State:
             accel=np.array(d["accel"], dtype=float) if "accel" in d else None,
             h_last=float(d["h_last"]) if "h_last" in d else float("nan"),
             interactions=_interaction_arrays(d),
-        )
+            linear={k[len("linear__") :]: np.array(d[k]) for k in d.keys()
+                    if k.startswith("linear__")} or None,
+        )  # fmt: skip
 
     def save(self, path) -> None:
         """Write the state to an .npz file (checkpoint)."""

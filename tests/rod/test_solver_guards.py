@@ -148,3 +148,32 @@ def test_cylinder_guard_reason_names_the_node():
     q2 = system.initial_state().q
     q2[nd[:, 0]] += 0.04  # the whole rod slides 40 mm along x, 20 mm above the axis
     assert c.check_step(system, q2, system.initial_state().q, 1e-3) is None
+
+
+def test_stagnation_option_is_checked_and_auto_takes_the_anchor_laws_hint():
+    """SolverOptions.stagnation: an integer >= 1, "auto" or None; "auto" gives 4 with rod-rod
+    anchor friction (RodContact.newton_stagnation) and off with the regularised law."""
+    import pytest
+
+    from knotmech.errors import InputError
+    from knotmech.rod import Rod, RodSystem, SolverOptions
+    from knotmech.rod.contact import RodContact
+    from knotmech.rod.friction import AnchorFriction, SmoothFriction
+    from knotmech.rod.solver import Stepper
+
+    for bad in (0, 2.5, "yes", True):
+        with pytest.raises(InputError, match="stagnation"):
+            SolverOptions(stagnation=bad)
+    pts = np.stack([np.linspace(0, 0.1, 11), np.zeros(11), np.zeros(11)], 1)
+    system = RodSystem([Rod(positions=pts, radius=1e-3, youngs_modulus=1e6, density=1e3)])
+    anchor = RodContact(stiffness=50.0, sharpness=2e4, friction=AnchorFriction(0.3))
+    smooth = RodContact(stiffness=50.0, sharpness=2e4, friction=SmoothFriction(0.3))
+    assert Stepper(system, interactions=[anchor])._stagnation == 4
+    assert Stepper(system, interactions=[smooth])._stagnation is None
+    assert (
+        Stepper(system, interactions=[anchor], options=SolverOptions(stagnation=None))._stagnation
+        is None
+    )
+    assert (
+        Stepper(system, interactions=[smooth], options=SolverOptions(stagnation=7))._stagnation == 7
+    )
