@@ -62,10 +62,10 @@ from knotmech.diagnose.fitting import (
 )
 from knotmech.diagnose.locate import flexible_mismatch, regions_from_mask
 from knotmech.diagnose.noisefloor import (
-    OUTLIER_SD,
     find_outliers,
     noise_floor,
     noise_floor_verdict,
+    outlier_threshold,
     without_rows,
 )
 from knotmech.diagnose.recording import Recording, read_recording, recording_from_arrays
@@ -254,6 +254,9 @@ def diagnose(
     floor, floor_reason = None, ""
     if verdict == "none":
         floor, verdict, floor_reason, regions = _noise_floor_check(rec, final, starts, rng, alpha)
+    leftover = None
+    if accepted and verdict != "unexplained":
+        leftover = _leftover_check(rec, final, starts, seed, alpha)
     fin_public = public_parameters(final.params, final.model.effect_objects, rec)
     base_public = public_parameters(base.params, (), rec)
     effects_out = []
@@ -308,6 +311,7 @@ def diagnose(
         ),
         **({"reduced": reduced} if reduced else {}),
         **({"outliers": outliers} if outliers else {}),
+        **({"leftover": leftover} if leftover else {}),
         "alpha": alpha,
         "seed": seed,
         **({"der": der[0].settings()} if der is not None else {}),
@@ -353,7 +357,7 @@ def _drop_outliers(rec):
         rec.columns[1]: [float(f"{v:.6g}") for v in rec.y[rows]],
         "size_sd": [float(f"{v:.3g}") for v in size],
         "note": "left out of every fit: farther than "
-        f"{OUTLIER_SD:g} high-frequency noise sd from the running median of 5 rows",
+        f"{outlier_threshold(rec.n):.3g} noise sd from the running median of 5 rows",
     }
     return without_rows(rec, rows), out
 
@@ -381,6 +385,28 @@ def _noise_floor_check(rec, final, starts, rng, alpha):
         )
         regions = mis.regions or [(float(np.min(rec.x)), float(np.max(rec.x)))]
     return floor, verdict, reason, regions
+
+
+def _leftover_check(rec, final, starts, seed, alpha):
+    """The remainder of an accepted effect judged by the noise floor, as a ``none`` is.
+
+    An accepted effect can leave a large structured remainder (a second, uncatalogued
+    mismatch); the structure test of step 4 may miss it when the fitted noise absorbs
+    it. Returns the floor's numbers, reason and located regions when the floor calls
+    the remainder ``unexplained`` (white high-frequency noise, remainder above it and
+    not described by the noise model), else None. Its own random stream (seeded from
+    ``seed``), so the verdict's draws do not change.
+    """
+    rng = np.random.default_rng([int(seed), 14])
+    floor, verdict, reason, regions = _noise_floor_check(rec, final, starts, rng, alpha)
+    if verdict != "unexplained":
+        return None
+    return {
+        **floor.describe(),
+        "verdict": verdict,
+        "reason": reason,
+        "regions": [{"start": float(a), "end": float(b)} for a, b in regions],
+    }
 
 
 def _select_closed_form(base, rec, data, starts, gs, rng, alpha, effects, max_effects):
@@ -590,6 +616,13 @@ def _summary(report: Report, rec, fin_mis, base_mis, effect) -> str:
             for i, v, z in zip(out["rows"], out[rec.columns[1]], out["size_sd"], strict=True)
         )
         lines.append(f"  outliers left out of the fit: {len(out['rows'])}: {shown}")
+    lo = report.details.get("leftover")
+    if lo:
+        where = ", ".join(f"[{_fmt(r['start'])}, {_fmt(r['end'])}]" for r in lo["regions"])
+        lines.append(
+            f"  warning: the accepted effects leave an unexplained remainder at "
+            f"{rec.columns[0]} in {where}: {lo['reason']}"
+        )
     nf = report.details.get("noise_floor")
     if nf:
         lines.append(

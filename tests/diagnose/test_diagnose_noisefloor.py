@@ -16,6 +16,7 @@ from knotmech.diagnose.noisefloor import (
     hf_sigma,
     noise_floor,
     noise_floor_verdict,
+    outlier_threshold,
 )
 from knotmech.diagnose.recording import recording_from_arrays
 from knotmech.diagnose.stats import NoiseModel, trial_starts
@@ -138,10 +139,10 @@ def test_two_percent_outliers_at_ten_sd_make_no_nip():
     sd = np.asarray(truth["noise_sd"])
     y[rows] += 10.0 * sd[rows] * rng.choice([-1.0, 1.0], rows.size)
     found, size = find_outliers(y, rec.x, rec.trial)
-    # 10 sd plus the row's own noise against a threshold of 8 sd: 3 of the 4 here (the
-    # fourth, with its own noise, stays under 8 sd); nothing else is called an outlier
-    assert set(found.tolist()) <= set(rows.tolist()) and found.size >= 3
-    assert np.all(np.abs(size) > 8.0)
+    # 10 sd plus the row's own noise against a threshold of outlier_threshold(240) = 4.78
+    # sd: all 4 (the old 8-sd running-median rule found 3), nothing else
+    assert sorted(found.tolist()) == sorted(rows.tolist())
+    assert np.all(np.abs(size) > outlier_threshold(rec.n))
     rec2 = recording_from_arrays(
         "tension_profile", rec.x, y, metadata=dict(rec.metadata), trial=rec.trial
     )
