@@ -66,6 +66,7 @@ from knotmech.diagnose.noisefloor import (
     noise_floor,
     noise_floor_verdict,
     outlier_threshold,
+    outliers_of_remainder,
     without_rows,
 )
 from knotmech.diagnose.recording import Recording, read_recording, recording_from_arrays
@@ -189,6 +190,7 @@ def diagnose(
     )
     get_baseline(baseline).check(rec)
     rec, reduced = get_experiment(rec.experiment).reduce(rec)
+    rec_all = rec
     rec, outliers = _drop_outliers(rec)
     only = _resolve_effects(effects)
     if not 0 < alpha < 1:
@@ -207,6 +209,15 @@ def diagnose(
         der, base = fit_der_baseline(rec, data, starts, gs)
     else:
         base = fit_baseline(rec, data, starts, given_sigma=gs)
+        # the outliers again, on the remainder of this baseline (kinks and curvature of
+        # the signal no longer hide any); refit when more are found
+        rec2, outliers2 = _outliers_of_remainder(rec_all, rec, outliers, base.mean)
+        if rec2 is not rec:
+            rec, outliers = rec2, outliers2
+            starts = trial_starts(rec.trial)
+            gs = rec.sigma
+            data = Data(rec.y, rec.mu_nominal, rec.mu_nominal_sigma)
+            base = fit_baseline(rec, data, starts, given_sigma=gs)
     base_mis = flexible_mismatch(
         rec.x,
         rec.y - base.mean,
@@ -349,6 +360,22 @@ def _drop_outliers(rec):
     recording as diagnosed (after any reduction), counted from 0.
     """
     rows, size = find_outliers(rec.y, rec.x, rec.trial)
+    return _without_outliers(rec, rows, size)
+
+
+def _outliers_of_remainder(rec_all, rec, outliers, mean):
+    """The outlier search repeated on the baseline's remainder
+    (:func:`knotmech.diagnose.noisefloor.outliers_of_remainder`): ``rec`` (a new
+    recording when more rows were found) and the report."""
+    rows = np.array(outliers["rows"] if outliers else [], int)
+    size = np.array(outliers["size_sd"] if outliers else [], float)
+    rows2, size2 = outliers_of_remainder(rec_all, rows, size, mean)
+    if set(rows2.tolist()) == set(rows.tolist()):
+        return rec, outliers
+    return _without_outliers(rec_all, rows2, size2)
+
+
+def _without_outliers(rec, rows, size):
     if rows.size == 0 or rec.n - rows.size < 8:
         return rec, None
     out = {
@@ -357,7 +384,8 @@ def _drop_outliers(rec):
         rec.columns[1]: [float(f"{v:.6g}") for v in rec.y[rows]],
         "size_sd": [float(f"{v:.3g}") for v in size],
         "note": "left out of every fit: farther than "
-        f"{outlier_threshold(rec.n):.3g} noise sd from the running median of 5 rows",
+        f"{outlier_threshold(rec.n):.3g} noise sd from their neighbours (in the readings "
+        "or in the remainder of the baseline)",
     }
     return without_rows(rec, rows), out
 

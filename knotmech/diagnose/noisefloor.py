@@ -62,6 +62,7 @@ __all__ = [
     "noise_floor_verdict",
     "find_outliers",
     "without_rows",
+    "outliers_of_remainder",
     "hf_sigma",
     "N_EFF_MIN",
     "OUTLIER_SD",
@@ -77,7 +78,7 @@ N_EFF_MIN = 5.0
 #: an outlier lies farther than this many noise sd from its neighbours (up to 100
 #: rows; more beyond, see :func:`outlier_threshold`)
 OUTLIER_SD = 4.5
-#: rows of the running noise scale of :func:`find_outliers`
+#: most rows of the running noise scale of :func:`find_outliers`
 _LOCAL_ROWS = 201
 #: rows on each side through which :func:`find_outliers` draws a line
 _SIDE_ROWS = 4
@@ -415,7 +416,8 @@ def outlier_threshold(n: int) -> float:
 
 
 def _local_scale(ys: np.ndarray, seg: np.ndarray, kept: np.ndarray) -> np.ndarray:
-    """Running high-frequency sd of each kept row (MAD-type, :data:`_LOCAL_ROWS` rows)."""
+    """Running high-frequency sd of each kept row (MAD-type, over a quarter of the
+    trial's rows, at least 31, at most :data:`_LOCAL_ROWS`)."""
     out = np.zeros(ys.size)
     for s_ in np.unique(seg[kept]):
         idx = np.flatnonzero((seg == s_) & kept)
@@ -423,8 +425,14 @@ def _local_scale(ys: np.ndarray, seg: np.ndarray, kept: np.ndarray) -> np.ndarra
             continue
         v = ys[idx]
         d2 = np.abs(v[2:] - 2.0 * v[1:-1] + v[:-2])
-        w = min(_LOCAL_ROWS, d2.size)
-        loc = ndimage.median_filter(d2, size=w, mode="nearest") * _MAD / np.sqrt(6.0)
+        # a quarter of the trial, 31-201 rows (mirrored at the ends: a padded window
+        # would repeat the end values)
+        w = int(min(_LOCAL_ROWS, max(31, idx.size // 4)))
+        if d2.size <= w:
+            loc = np.full(d2.size, np.median(d2))
+        else:
+            loc = ndimage.median_filter(d2, size=w, mode="mirror")
+        loc = loc * _MAD / np.sqrt(6.0)
         out[idx] = np.concatenate([[loc[0]], loc, [loc[-1]]])
     return out
 
@@ -557,6 +565,52 @@ def find_outliers(y: np.ndarray, x: np.ndarray, trial: np.ndarray):
     z = dev[flagged]
     k = np.argsort(-np.abs(z))
     return o[flagged][k], z[k]
+
+
+def outliers_of_remainder(rec: Recording, rows, size, mean_kept: np.ndarray):
+    """The outliers of ``rec`` again, from the remainder of a baseline fitted without them.
+
+    The first search (:func:`find_outliers` on the readings) must look past the
+    signal's own shape: a row next to a kink of the baseline (the capstan's plateau
+    onset) or on a strongly curved stretch can hide behind the reference on the wrong
+    side. The remainder ``y - f`` of the baseline fitted without the rows found has
+    neither; the search is repeated on it (the mean at the rows left out interpolated
+    in the control within their trial) and the union kept, at most
+    :data:`OUTLIER_SHARE` of the rows (else the first search's rows alone).
+
+    Parameters
+    ----------
+    rec : Recording
+        The recording with every row.
+    rows, size : arrays
+        The first search's rows (of ``rec``) and sizes.
+    mean_kept : (n - k,) array
+        The baseline mean at the rows kept, in ``rec``'s order.
+
+    Returns
+    -------
+    rows, size : arrays
+        Rows (largest first) and signed sizes [noise sd]; the remainder search's size
+        where it found the row.
+    """
+    rows = np.asarray(rows, int)
+    keep = np.ones(rec.n, bool)
+    keep[rows] = False
+    mean = np.empty(rec.n)
+    mean[keep] = mean_kept
+    for t in np.unique(rec.trial[~keep]):
+        cur = rec.trial == t
+        kx, km = rec.x[cur & keep], mean[cur & keep]
+        o = np.argsort(kx)
+        lost = np.flatnonzero(cur & ~keep)
+        mean[lost] = np.interp(rec.x[lost], kx[o], km[o]) if kx.size else 0.0
+    rows2, size2 = find_outliers(rec.y - mean, rec.x, rec.trial)
+    found = dict(zip(rows.tolist(), np.asarray(size, float).tolist(), strict=True))
+    found.update(zip(rows2.tolist(), size2.tolist(), strict=True))
+    if len(found) > OUTLIER_SHARE * rec.n:
+        return rows, np.asarray(size, float)
+    r = np.array(sorted(found, key=lambda i: -abs(found[i])), int)
+    return r, np.array([found[i] for i in r], float)
 
 
 def without_rows(rec: Recording, rows) -> Recording:
