@@ -71,15 +71,15 @@ SETTINGS = {
     False: {
         "kinds": KINDS,
         "shapes": SHAPES,
-        "seeds": 6,
-        "null_seeds": 40,
+        "seeds": 4,
+        "null_seeds": 20,
         "n": 120,
         # power under coloured noise: these shapes, these noises, these seeds
         "coloured_shapes": ("ripple", "bump"),
         "coloured_noises": ("ar2", "pink"),
-        "coloured_seeds": 3,
+        "coloured_seeds": 2,
         # row sweep: (rows, seeds) with a 30-sd ripple and white and AR(2) nulls
-        "rows": ((8, 4), (20, 4), (1000, 2), (10_000, 2), (100_000, 1)),
+        "rows": ((8, 4), (20, 4), (1000, 2), (10_000, 1), (100_000, 1)),
     },
 }
 
