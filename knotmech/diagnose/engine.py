@@ -63,10 +63,11 @@ from knotmech.diagnose.fitting import (
 )
 from knotmech.diagnose.locate import flexible_mismatch, regions_from_mask, smooth_mismatch
 from knotmech.diagnose.noisefloor import (
-    OUTLIER_SD,
     find_outliers,
     noise_floor,
     noise_floor_verdict,
+    outlier_threshold,
+    outliers_of_remainder,
     without_rows,
 )
 from knotmech.diagnose.recording import Recording, read_recording, recording_from_arrays
@@ -201,6 +202,7 @@ def diagnose(
     )
     get_baseline(baseline).check(rec)
     rec, reduced = get_experiment(rec.experiment).reduce(rec)
+    rec_all = rec
     rec, outliers = _drop_outliers(rec)
     only = _resolve_effects(effects)
     if not 0 < alpha < 1:
@@ -219,6 +221,15 @@ def diagnose(
         der, base = fit_der_baseline(rec, data, starts, gs)
     else:
         base = fit_baseline(rec, data, starts, given_sigma=gs)
+        # the outliers again, on the remainder of this baseline (kinks and curvature of
+        # the signal no longer hide any); refit when more are found
+        rec2, outliers2 = _outliers_of_remainder(rec_all, rec, outliers, base.mean)
+        if rec2 is not rec:
+            rec, outliers = rec2, outliers2
+            starts = trial_starts(rec.trial)
+            gs = rec.sigma
+            data = Data(rec.y, rec.mu_nominal, rec.mu_nominal_sigma)
+            base = fit_baseline(rec, data, starts, given_sigma=gs)
     base_mis = flexible_mismatch(
         rec.x,
         rec.y - base.mean,
@@ -266,6 +277,9 @@ def diagnose(
     floor, floor_reason = None, ""
     if verdict == "none":
         floor, verdict, floor_reason, regions = _noise_floor_check(rec, final, starts, rng, alpha)
+    leftover = None
+    if accepted and verdict != "unexplained":
+        leftover = _leftover_check(rec, final, starts, seed, alpha)
     fin_public = public_parameters(final.params, final.model.effect_objects, rec)
     base_public = public_parameters(base.params, (), rec)
     effects_out = []
@@ -320,6 +334,7 @@ def diagnose(
         ),
         **({"reduced": reduced} if reduced else {}),
         **({"outliers": outliers} if outliers else {}),
+        **({"leftover": leftover} if leftover else {}),
         "alpha": alpha,
         "seed": seed,
         **({"der": der[0].settings()} if der is not None else {}),
@@ -365,6 +380,22 @@ def _drop_outliers(rec):
     recording as diagnosed (after any reduction), counted from 0.
     """
     rows, size = find_outliers(rec.y, rec.x, rec.trial)
+    return _without_outliers(rec, rows, size)
+
+
+def _outliers_of_remainder(rec_all, rec, outliers, mean):
+    """The outlier search repeated on the baseline's remainder
+    (:func:`knotmech.diagnose.noisefloor.outliers_of_remainder`): ``rec`` (a new
+    recording when more rows were found) and the report."""
+    rows = np.array(outliers["rows"] if outliers else [], int)
+    size = np.array(outliers["size_sd"] if outliers else [], float)
+    rows2, size2 = outliers_of_remainder(rec_all, rows, size, mean)
+    if set(rows2.tolist()) == set(rows.tolist()):
+        return rec, outliers
+    return _without_outliers(rec_all, rows2, size2)
+
+
+def _without_outliers(rec, rows, size):
     if rows.size == 0 or rec.n - rows.size < 8:
         return rec, None
     out = {
@@ -373,7 +404,8 @@ def _drop_outliers(rec):
         rec.columns[1]: [float(f"{v:.6g}") for v in rec.y[rows]],
         "size_sd": [float(f"{v:.3g}") for v in size],
         "note": "left out of every fit: farther than "
-        f"{OUTLIER_SD:g} high-frequency noise sd from the running median of 5 rows",
+        f"{outlier_threshold(rec.n):.3g} noise sd from their neighbours (in the readings "
+        "or in the remainder of the baseline)",
     }
     return without_rows(rec, rows), out
 
@@ -420,6 +452,28 @@ def _noise_floor_check(rec, final, starts, rng, alpha):
         )
         regions = mis.regions or [(float(np.min(rec.x)), float(np.max(rec.x)))]
     return floor, verdict, reason, regions
+
+
+def _leftover_check(rec, final, starts, seed, alpha):
+    """The remainder of an accepted effect judged by the noise floor, as a ``none`` is.
+
+    An accepted effect can leave a large structured remainder (a second, uncatalogued
+    mismatch); the structure test of step 4 may miss it when the fitted noise absorbs
+    it. Returns the floor's numbers, reason and located regions when the floor calls
+    the remainder ``unexplained`` (white high-frequency noise, remainder above it and
+    not described by the noise model), else None. Its own random stream (seeded from
+    ``seed``), so the verdict's draws do not change.
+    """
+    rng = np.random.default_rng([int(seed), 14])
+    floor, verdict, reason, regions = _noise_floor_check(rec, final, starts, rng, alpha)
+    if verdict != "unexplained":
+        return None
+    return {
+        **floor.describe(),
+        "verdict": verdict,
+        "reason": reason,
+        "regions": [{"start": float(a), "end": float(b)} for a, b in regions],
+    }
 
 
 def _select_closed_form(base, rec, data, starts, gs, rng, alpha, effects, max_effects):
@@ -631,6 +685,13 @@ def _summary(report: Report, rec, fin_mis, base_mis, effect) -> str:
             for i, v, z in zip(out["rows"], out[rec.columns[1]], out["size_sd"], strict=True)
         )
         lines.append(f"  outliers left out of the fit: {len(out['rows'])}: {shown}")
+    lo = report.details.get("leftover")
+    if lo:
+        where = ", ".join(f"[{_fmt(r['start'])}, {_fmt(r['end'])}]" for r in lo["regions"])
+        lines.append(
+            f"  warning: the accepted effects leave an unexplained remainder at "
+            f"{rec.columns[0]} in {where}: {lo['reason']}"
+        )
     nf = report.details.get("noise_floor")
     if nf:
         lines.append(

@@ -37,18 +37,22 @@ Three statistics of the remainder ``r`` of the would-be ``none`` model:
 :func:`noise_floor_verdict` turns them into ``none``, ``unexplained`` or
 ``undetermined`` (with the reason), see its docstring.
 
-Outliers (:func:`find_outliers`): rows farther than :data:`OUTLIER_SD` high-frequency sd
-from the running median of 5 consecutive rows (per trial, sorted by the control), at
+Outliers (:func:`find_outliers`): rows farther than :func:`outlier_threshold` noise sd
+(4.5 up to 100 rows, 6 at 1e4; the larger of the high-frequency sd and its local value)
+from all of their neighbours' references (the median of three rows each side, the lines
+through four rows on either side; rows sorted by the control within each trial), at
 most 5 % of the rows; the engine fits without them and reports them.
 """
 
 from __future__ import annotations
 
+import warnings
 from dataclasses import dataclass, replace
 
 import numpy as np
 from scipy import ndimage, stats
 
+from knotmech.diagnose.arnoise import ARFit, fit_ar
 from knotmech.diagnose.recording import Recording
 from knotmech.diagnose.stats import NoiseModel
 
@@ -58,9 +62,11 @@ __all__ = [
     "noise_floor_verdict",
     "find_outliers",
     "without_rows",
+    "outliers_of_remainder",
     "hf_sigma",
     "N_EFF_MIN",
     "OUTLIER_SD",
+    "outlier_threshold",
 ]
 
 #: the fewest independent stretches, n (1 - rho)/(1 + rho), at which a fitted AR(1)
@@ -69,8 +75,13 @@ __all__ = [
 #: Measured: smooth misfits folded into the noise leave 3.0-3.7 (issue 14's nips of 30
 #: and 100 sd at 240 rows), AR(1) nulls at rho = 0.9 and 200-240 rows 7.8-8.9
 N_EFF_MIN = 5.0
-#: an outlier lies farther than this many high-frequency sd from its running median
-OUTLIER_SD = 8.0
+#: an outlier lies farther than this many noise sd from its neighbours (up to 100
+#: rows; more beyond, see :func:`outlier_threshold`)
+OUTLIER_SD = 4.5
+#: most rows of the running noise scale of :func:`find_outliers`
+_LOCAL_ROWS = 201
+#: rows on each side through which :func:`find_outliers` draws a line
+_SIDE_ROWS = 4
 #: most rows called outliers (a larger share is not outliers but the data)
 OUTLIER_SHARE = 0.05
 #: white-noise draws calibrating ``level`` and ``hf_white``
@@ -191,6 +202,9 @@ class NoiseFloor:
         n (1 - rho)/(1 + rho) of the final noise model's rho.
     n : int
         Rows used.
+    ar : ARFit or None
+        AR(p) fit of the standardised remainder (:mod:`knotmech.diagnose.arnoise`),
+        the coloured-noise explanation tried when the AR(1) one fails.
     """
 
     sigma_hf: float
@@ -203,12 +217,18 @@ class NoiseFloor:
     p_hf_white: float
     n_eff: float
     n: int
+    ar: ARFit | None = None
 
     def describe(self) -> dict:
         """JSON-ready numbers (3 significant digits)."""
-        return {
-            k: (float(f"{v:.3g}") if isinstance(v, float) else v) for k, v in vars(self).items()
+        out = {
+            k: (float(f"{v:.3g}") if isinstance(v, float) else v)
+            for k, v in vars(self).items()
+            if k != "ar"
         }
+        if self.ar is not None:
+            out["ar"] = self.ar.describe()
+        return out
 
 
 def noise_floor(
@@ -273,6 +293,9 @@ def noise_floor(
     rho = float(noise.rho)
     n_eff = n * (1.0 - rho) / (1.0 + rho) if rho > 0 else float(n)
     sd = _hf_sd(r, seg)[0]
+    # the coloured-noise explanation: an AR(p) of the standardised remainder, in row
+    # (time) order, restarted at every trial
+    ar = fit_ar(resid / noise.sd(mean), np.cumsum(starts))
     return NoiseFloor(
         sigma_hf=float(sd),
         level=level,
@@ -284,19 +307,50 @@ def noise_floor(
         p_hf_white=float(p_hf),
         n_eff=float(n_eff),
         n=int(n),
+        ar=ar,
     )
+
+
+def _ar_explains(nf: NoiseFloor, alpha: float) -> bool:
+    """The AR(p) fit explains the remainder: the high-frequency noise itself is
+    correlated (``p_hf_white < alpha``: white high-frequency noise leaves the excess to
+    structure), its innovations are white (Ljung-Box ``p_white >= alpha``) and the
+    slower of it and the engine's AR(1) model (:func:`_n_eff_coloured`) leaves at least
+    :data:`N_EFF_MIN` independent stretches."""
+    ar = nf.ar
+    return (
+        ar is not None
+        and nf.p_hf_white < alpha
+        and ar.p_white >= alpha
+        and _n_eff_coloured(nf) >= N_EFF_MIN
+    )
+
+
+def _n_eff_coloured(nf: NoiseFloor) -> float:
+    """Independent stretches under the slowest decay either noise model implies.
+
+    The smaller of the AR(p) count (largest root) and the AR(1) count of the final
+    noise model: conditional least squares on a short remainder underestimates a
+    correlation near 1 (40 rows of AR(1) noise at 0.97: AR(1) fitted at 0.6 by least
+    squares, 0.875 by the engine's joint likelihood), and a count from the smaller
+    correlation would let a short recording claim to tell noise from a smooth mismatch.
+    """
+    return float(min(nf.ar.n_eff, nf.n_eff)) if nf.ar is not None else nf.n_eff
 
 
 def noise_floor_verdict(nf: NoiseFloor, alpha: float) -> tuple[str, str]:
     """``none``, ``unexplained`` or ``undetermined`` for a remainder, and the reason.
 
     - ``none`` when the remainder is within the white high-frequency noise
-      (``p_level >= alpha``), or when the final noise model describes its own
+      (``p_level >= alpha``), or when the final AR(1) noise model describes its own
       innovations (``p_model >= alpha``) and leaves at least :data:`N_EFF_MIN`
-      independent stretches;
+      independent stretches, or when the high-frequency noise is correlated and an
+      AR(p) model (order by BIC, bounded by the rows; :mod:`knotmech.diagnose.arnoise`)
+      whitens the remainder and leaves at least :data:`N_EFF_MIN` stretches;
     - otherwise ``unexplained`` when the high-frequency noise is white
       (``p_hf_white >= alpha``: the excess cannot be correlated noise), else
-      ``undetermined`` (a smooth mismatch and correlated noise both fit).
+      ``undetermined`` (a smooth mismatch and correlated noise both fit; the reason
+      names the noise models tried and what they lack).
 
     Each branch is a test at level ``alpha``; ``none`` is overturned only when two
     (``level`` and ``model`` or ``n_eff``) reject.
@@ -309,6 +363,8 @@ def noise_floor_verdict(nf: NoiseFloor, alpha: float) -> tuple[str, str]:
         f"lag-one correlation of {nf.rho_needed:.3g} would explain it)"
     )
     if nf.p_model >= alpha and nf.n_eff >= N_EFF_MIN:
+        return "none", ""
+    if _ar_explains(nf, alpha):
         return "none", ""
     if nf.p_model < alpha:
         why = (
@@ -326,14 +382,133 @@ def noise_floor_verdict(nf: NoiseFloor, alpha: float) -> tuple[str, str]:
             f"{head}; {why}; the high-frequency noise is white (lag-one correlation of "
             f"differences {nf.hf_lag1:.2f}, white -0.5), so the excess is structure"
         )
+    ar = nf.ar
+    if ar is not None:
+        if ar.p_white < alpha:
+            ar_why = f"its innovations are not white (Ljung-Box p = {ar.p_white:.2g})"
+        else:
+            ar_why = (
+                f"it leaves only {_n_eff_coloured(nf):.3g} independent stretches (largest "
+                f"root {ar.root_modulus:.3g}, AR(1) count {nf.n_eff:.3g}; at least "
+                f"{N_EFF_MIN:g} needed): the recording is too short for its noise"
+            )
+        why += (
+            f"; the best AR(p) noise model (p = {ar.order} by BIC, at most {ar.max_order} "
+            f"for {nf.n} rows) does not either: {ar_why}"
+        )
     return "undetermined", (
         f"{head}; {why}; the recording cannot tell a smooth mismatch from correlated "
         f"noise (lag-one correlation of differences {nf.hf_lag1:.2f}, white -0.5)"
     )
 
 
+def outlier_threshold(n: int) -> float:
+    """Distance [noise sd] beyond which a row of a recording of ``n`` rows is an outlier.
+
+    :data:`OUTLIER_SD` (4.5) up to 100 rows, 0.75 more per decade beyond (5.25 at 1e3,
+    6 at 1e4, 7.5 at 1e6 rows). Counted on white-noise recordings of a straight line
+    (:func:`_deviation` against the estimated noise sd, its own scatter included), the
+    share with any row beyond it is 0.8 % at 40 rows (4000 recordings), 0.45 % at 120
+    (2000), 0.3 % at 1000 (400) and 0 of 60 at 1e4; the tail falls about 13-fold per sd,
+    about 0.01 expected rows at 1e6.
+    """
+    return OUTLIER_SD + 0.75 * max(0.0, np.log10(max(n, 1)) - 2.0)
+
+
+def _local_scale(ys: np.ndarray, seg: np.ndarray, kept: np.ndarray) -> np.ndarray:
+    """Running high-frequency sd of each kept row (MAD-type, over a quarter of the
+    trial's rows, at least 31, at most :data:`_LOCAL_ROWS`)."""
+    out = np.zeros(ys.size)
+    for s_ in np.unique(seg[kept]):
+        idx = np.flatnonzero((seg == s_) & kept)
+        if idx.size < 5:
+            continue
+        v = ys[idx]
+        d2 = np.abs(v[2:] - 2.0 * v[1:-1] + v[:-2])
+        # a quarter of the trial, 31-201 rows (mirrored at the ends: a padded window
+        # would repeat the end values)
+        w = int(min(_LOCAL_ROWS, max(31, idx.size // 4)))
+        if d2.size <= w:
+            loc = np.full(d2.size, np.median(d2))
+        else:
+            loc = ndimage.median_filter(d2, size=w, mode="mirror")
+        loc = loc * _MAD / np.sqrt(6.0)
+        out[idx] = np.concatenate([[loc[0]], loc, [loc[-1]]])
+    return out
+
+
+def _side_line(t: np.ndarray, v: np.ndarray, side: int) -> np.ndarray:
+    """Deviation of each row from the straight line fitted to its ``_SIDE_ROWS`` nearest
+    rows on one side (``side`` -1 left, +1 right; Theil-Sen in the control), NaN
+    where fewer than 2 such rows exist."""
+    n = v.size
+    k = _SIDE_ROWS
+    dt = np.full((n, k), np.nan)
+    dv = np.full((n, k), np.nan)
+    for m in range(1, k + 1):
+        if m >= n:
+            break
+        if side < 0:
+            dt[m:, m - 1] = t[:-m] - t[m:]
+            dv[m:, m - 1] = v[:-m] - v[m:]
+        else:
+            dt[:-m, m - 1] = t[m:] - t[:-m]
+            dv[:-m, m - 1] = v[m:] - v[:-m]
+    cnt = np.sum(np.isfinite(dv), axis=1)
+    # Theil-Sen line (median of the pairwise slopes, median intercept): one bad row of
+    # the k does not bend it
+    pairs = [(i, j) for i in range(k) for j in range(i + 1, k)]
+    with np.errstate(invalid="ignore", divide="ignore"), warnings.catch_warnings():
+        warnings.simplefilter("ignore", RuntimeWarning)  # rows without a side: NaN
+        sl = np.stack([(dv[:, j] - dv[:, i]) / (dt[:, j] - dt[:, i]) for i, j in pairs], 1)
+        slope = np.nanmedian(np.where(np.isfinite(sl), sl, np.nan), axis=1)
+        slope = np.where(np.isfinite(slope), slope, 0.0)
+        pred = np.nanmedian(dv - slope[:, None] * dt, axis=1)  # the line at the row itself
+    return np.where(cnt >= 2, -pred, np.nan)
+
+
+def _deviation(t: np.ndarray, v: np.ndarray) -> np.ndarray:
+    """Signed distance of each row from its neighbours (one trial, sorted rows).
+
+    Three references: the median of the three rows on each side, and the straight lines
+    through the :data:`_SIDE_ROWS` rows on the left and on the right, extrapolated to
+    the row. A row deviates only as far as the nearest of them, and only when all
+    available references agree in sign: a slope is followed by all three, a kink of
+    the signal by the line on its own side, a curved peak by the median. Rows with
+    a single reference (the first and last two of a trial) count half their distance
+    (the third rows have both lines but not the median).
+    """
+    n = v.size
+    refs = [_side_line(t, v, -1), _side_line(t, v, +1)]
+    if n >= 7:
+        sym = np.full(n, np.nan)
+        nb = np.stack([v[j : n - 6 + j] for j in (0, 1, 2, 4, 5, 6)], axis=1)
+        sym[3:-3] = v[3:-3] - np.median(nb, axis=1)
+        refs.append(sym)
+    r = np.stack(refs, axis=1)
+    fin = np.isfinite(r)
+    pos = np.all(np.where(fin, r > 0, True), axis=1)
+    neg = np.all(np.where(fin, r < 0, True), axis=1)
+    mag = np.nanmin(np.where(fin, np.abs(r), np.inf), axis=1)
+    # rows next to a trial's end have one reference only (a line from one side, which a
+    # curved signal bends away from): they count half as far
+    mag = np.where(np.sum(fin, axis=1) >= 2, mag, 0.5 * mag)
+    ok = np.any(fin, axis=1) & (pos | neg)
+    return np.where(ok, np.where(pos, mag, -mag), 0.0)
+
+
 def find_outliers(y: np.ndarray, x: np.ndarray, trial: np.ndarray):
     """Rows of isolated readings far from their neighbours (module docstring).
+
+    A row is an outlier when its distance from its neighbours (:func:`_deviation`:
+    the nearest of the median of the three rows each side and the lines through the
+    :data:`_SIDE_ROWS` rows on either side, all agreeing in sign; rows sorted by the
+    control within each trial) exceeds :func:`outlier_threshold` noise sd, the noise sd
+    being the larger of the recording's high-frequency sd and the local one of its
+    :data:`_LOCAL_ROWS` neighbours (noise that grows with the signal does not make its
+    loud rows outliers). Passes repeat without the rows already flagged, one local
+    maximum of the distance flagged per stretch of 5 rows and pass (a huge row does not
+    drag its neighbours' references).
 
     Parameters
     ----------
@@ -346,49 +521,96 @@ def find_outliers(y: np.ndarray, x: np.ndarray, trial: np.ndarray):
         Row indices (in the recording's order) of the outliers, largest first; empty
         when none or when more than :data:`OUTLIER_SHARE` of the rows would be.
     size : (k,) array
-        Their distance from the running median in high-frequency sd (signed).
+        Their distance from their neighbours in noise sd (signed).
     """
     empty = (np.zeros(0, int), np.zeros(0))
     y = np.asarray(y, float)
+    x = np.asarray(x, float)
     n = y.size
     if n < 8:
         return empty
     o = _order(x, trial)
     seg = np.unique(trial, return_inverse=True)[1][o]
-    ys = y[o]
+    ys, xs = y[o], x[o]
     sd = float(_hf_sd(ys[:, None], seg)[0])
+    if not sd > 0:
+        return empty
+    limit = outlier_threshold(n)
     flagged = np.zeros(n, bool)
     dev = np.zeros(n)
-    scale = None
     for _ in range(20):
         keep = ~flagged
-        med = np.empty(n)
+        # the local scale of the rows kept (flagged rows would inflate it near them)
+        local = np.maximum(_local_scale(ys, seg, keep), sd)
+        d = np.zeros(n)
         for s_ in np.unique(seg):
             idx = np.flatnonzero((seg == s_) & keep)
-            if idx.size:
-                med[idx] = ndimage.median_filter(ys[idx], size=min(5, idx.size), mode="nearest")
-        d = np.where(keep, ys - np.where(keep, med, 0.0), 0.0)
-        if scale is None:
-            scale = max(sd, _MAD * float(np.median(np.abs(d - np.median(d)))))
-            if not scale > 0:
-                return empty
-        a = np.abs(d)
-        # a local maximum of |deviation| among the kept rows within two of it
+            if idx.size >= 3:
+                d[idx] = _deviation(xs[idx], ys[idx])
+        a = np.abs(d) / local
+        # a local maximum of the distance among the kept rows within two of it
         kept = np.flatnonzero(keep)
         ak = a[kept]
         pad = np.pad(ak, 2, constant_values=0.0)
         peak = np.all([ak >= pad[2 + j : 2 + j + ak.size] for j in (-2, -1, 1, 2)], axis=0)
-        new = kept[peak & (ak > OUTLIER_SD * scale)]
+        new = kept[peak & (ak > limit)]
         if new.size == 0:
             break
         flagged[new] = True
-        dev[new] = d[new]
+        dev[new] = d[new] / local[new]
         if flagged.sum() > OUTLIER_SHARE * n:
             return empty
     if not np.any(flagged):
         return empty
-    k = np.argsort(-np.abs(dev[flagged]))
-    return o[flagged][k], dev[flagged][k] / scale
+    z = dev[flagged]
+    k = np.argsort(-np.abs(z))
+    return o[flagged][k], z[k]
+
+
+def outliers_of_remainder(rec: Recording, rows, size, mean_kept: np.ndarray):
+    """The outliers of ``rec`` again, from the remainder of a baseline fitted without them.
+
+    The first search (:func:`find_outliers` on the readings) must look past the
+    signal's own shape: a row next to a kink of the baseline (the capstan's plateau
+    onset) or on a strongly curved stretch can hide behind the reference on the wrong
+    side. The remainder ``y - f`` of the baseline fitted without the rows found has
+    neither; the search is repeated on it (the mean at the rows left out interpolated
+    in the control within their trial) and the union kept, at most
+    :data:`OUTLIER_SHARE` of the rows (else the first search's rows alone).
+
+    Parameters
+    ----------
+    rec : Recording
+        The recording with every row.
+    rows, size : arrays
+        The first search's rows (of ``rec``) and sizes.
+    mean_kept : (n - k,) array
+        The baseline mean at the rows kept, in ``rec``'s order.
+
+    Returns
+    -------
+    rows, size : arrays
+        Rows (largest first) and signed sizes [noise sd]; the remainder search's size
+        where it found the row.
+    """
+    rows = np.asarray(rows, int)
+    keep = np.ones(rec.n, bool)
+    keep[rows] = False
+    mean = np.empty(rec.n)
+    mean[keep] = mean_kept
+    for t in np.unique(rec.trial[~keep]):
+        cur = rec.trial == t
+        kx, km = rec.x[cur & keep], mean[cur & keep]
+        o = np.argsort(kx)
+        lost = np.flatnonzero(cur & ~keep)
+        mean[lost] = np.interp(rec.x[lost], kx[o], km[o]) if kx.size else 0.0
+    rows2, size2 = find_outliers(rec.y - mean, rec.x, rec.trial)
+    found = dict(zip(rows.tolist(), np.asarray(size, float).tolist(), strict=True))
+    found.update(zip(rows2.tolist(), size2.tolist(), strict=True))
+    if len(found) > OUTLIER_SHARE * rec.n:
+        return rows, np.asarray(size, float)
+    r = np.array(sorted(found, key=lambda i: -abs(found[i])), int)
+    return r, np.array([found[i] for i in r], float)
 
 
 def without_rows(rec: Recording, rows) -> Recording:
