@@ -44,6 +44,7 @@ SLOW_MARKERS = (
     "knotmech simulate clove-hitch",
     "knotmech simulate overhand",
     "knotmech simulate bend",
+    "knotmech simulate two-half-hitches",
     "knotmech validate",
     "benchmarks/",
 )
