@@ -35,6 +35,7 @@ calls the scene function of :mod:`knotmech.scenes`, prints a summary and writes:
 
 from __future__ import annotations
 
+import math
 import sys
 from dataclasses import dataclass
 from pathlib import Path
@@ -753,7 +754,14 @@ def _run_clove_hitch(kw, args, progress):
         verdict = f"; verdict: {res.verdict.upper()}" if res.verdict else ""
         print(
             f"clove-hitch ({res.loading}): status {res.status}; T_high = {res.t_high:.4g} N, "
-            f"T_low = {res.t_low:.4g} N, creep {res.creep:.3g} m{verdict}"
+            f"T_low = {res.t_low:.4g} N, creep {res.creep:.3g} m over the hold's last half"
+            + (
+                f", {res.creep_speed_d:.3g} d/s ({res.creep_speed:.3g} m/s) over the last "
+                f"{res.creep_window:.3g} s"
+                if math.isfinite(res.creep_speed_d)
+                else ""
+            )
+            + verdict
         )
     return res
 

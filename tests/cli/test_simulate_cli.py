@@ -375,3 +375,32 @@ def test_scene_warnings_are_printed_and_kept_in_the_json(monkeypatch, tmp_path, 
     assert "warning: strain: a\nwarning: step: b\n" in err
     assert json.loads(js.read_text())["warnings"] == ["strain: a", "step: b"]
     assert set(np.load(nz).files) == {"times"}
+
+
+def test_clove_hitch_free_prints_creep_distance_and_speed(monkeypatch, capsys):
+    """`simulate clove-hitch --loading free` prints the creep over the hold's last half [m]
+    and the creep speed over the criterion's window, in d/s and m/s (issue 11's done-when)."""
+    import types
+
+    class Fake(types.SimpleNamespace):  # read as a mapping by the CLI's scalar summary
+        def keys(self):
+            return vars(self).keys()
+
+        def __getitem__(self, key):
+            return vars(self)[key]
+
+    fake = Fake(
+        loading="free", status="success", t_high=1.47, t_low=0.0, creep=1.23e-11,
+        verdict="hold", creep_speed_d=1.6e-9, creep_speed=6.5e-12, creep_window=0.5,
+        warnings=[], message="",
+    )  # fmt: skip
+    module = __import__("knotmech.scenes.clove_hitch", fromlist=["x"])
+    monkeypatch.setattr(module, "clove_hitch", lambda **kw: fake)
+    code = main(["simulate", "clove-hitch", "--loading", "free", "--t-high", "1.47N",
+                 "--mu", "0.3", "--no-progress"])  # fmt: skip
+    out = capsys.readouterr().out
+    assert code == 0, out
+    assert (
+        "creep 1.23e-11 m over the hold's last half, 1.6e-09 d/s (6.5e-12 m/s) over the last" in out
+    )
+    assert "0.5 s; verdict: HOLD" in out
