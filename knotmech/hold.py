@@ -489,19 +489,22 @@ def _criterion_text(limit: float) -> str:
     )
 
 
-def _creep_dict(source, speed, d, *, limit, ran_to_end=True):
-    """The measured creep as the verdict reports it (speed in d/s and m/s)."""
+def _creep_dict(source, speed, d, *, limit, ran_to_end=True, window=None):
+    """The measured creep as the verdict reports it (speed in d/s and m/s; ``window`` [s]
+    the measuring window, default the clove hitch's :data:`~knotmech.scenes.phase_table.
+    CREEP_WINDOW`)."""
     from knotmech.scenes import phase_table as pt
 
     ok = ran_to_end and speed is not None and math.isfinite(speed)
+    w = pt.CREEP_WINDOW if window is None else float(window)
     return {
         "source": source,
         "criterion": pt.CREEP_CRITERION,
         "limit_d_per_s": limit,
-        "window_s": pt.CREEP_WINDOW,
+        "window_s": w,
         "speed_d_per_s": float(speed) if ok else None,
         "speed_m_per_s": float(speed) * d if ok else None,
-        "creep_m": float(speed) * d * pt.CREEP_WINDOW if ok else None,
+        "creep_m": float(speed) * d * w if ok else None,
         "ran_off": not ran_to_end,
     }
 
@@ -628,16 +631,18 @@ def _der(
             if a.corners:
                 n = len(a.corners)
                 src = f"DER {knot} table, {n} neighbouring grid point{'s' if n > 1 else ''}"
+                win = table.criterion.get("window_s")
                 if a.holds and math.isfinite(a.creep_speed):
                     creep = _creep_dict(
                         src + " (largest creep of the points that held)", a.creep_speed, d,
-                        limit=lim,
+                        limit=lim, window=win,
                     )  # fmt: skip
                 elif finite:
                     creep = _creep_dict(src + " (smallest creep measured)", min(finite), d,
-                                        limit=lim)  # fmt: skip
+                                        limit=lim, window=win)  # fmt: skip
                 else:
-                    creep = _creep_dict(src, math.nan, d, limit=lim, ran_to_end=False)
+                    creep = _creep_dict(src, math.nan, d, limit=lim, ran_to_end=False,
+                                        window=win)  # fmt: skip
             if a.holds and math.isfinite(a.capacity_t_over_EA):
                 capacity = a.capacity_t_over_EA * EA
             if a.holds is None:

@@ -341,6 +341,7 @@ def simulate_point(
         speed = creep_speed(r.times, r.end_displacement, rod_diameter=d, window=window)
     else:  # the hitch scenes' own creep speed: the least-squares slope over the window
         speed = float(r.creep_speed_d)  # (their hold runs with a tenth of the drag and rings)
+        window = float(r.creep_window)  # the scene's window: the last half of a 1.5 s hold
     if friction == "anchor":
         holds, reason = creep_verdict(
             speed, ran_to_end=ran, topology_preserved=bool(r.topology_preserved),
@@ -1376,4 +1377,10 @@ def hold_table_from_results(knot: str, results, *, meta=None) -> HoldTable:
         "cpu_s_per_point": [round(float(np.nanmin(cpu)), 1), round(float(np.nanmax(cpu)), 1)],
     }
     m.update(meta or {})
-    return HoldTable.from_results(knot, results, meta=m)
+    table = HoldTable.from_results(knot, results, meta=m)
+    windows = sorted({float(r["creep_window_s"]) for r in results if "creep_window_s" in r})
+    if knot != "clove-hitch" and windows:  # the hitch scenes measure over their own window
+        table.criterion = {**table.criterion, "window_s": windows[0],
+                           "window_note": "the scene's window: the last half of the hold, "
+                           "1 s for the longer re-runs"}  # fmt: skip
+    return table
