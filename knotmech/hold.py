@@ -573,9 +573,10 @@ def _der(
             return out, None, None, shape
         speed = float(p.get("creep_speed", math.nan))
         ran = bool(p.get("ran_to_end", math.isfinite(speed)))
-        creep = _creep_dict("DER simulation of this geometry", speed, d, limit=lim, ran_to_end=ran)
+        creep = _creep_dict("DER simulation of this geometry", speed, d, limit=lim,
+                            ran_to_end=ran, window=p.get("creep_window_s"))  # fmt: skip
         crept = (
-            f"loaded end creeps {speed:.3g} d/s over the last {pt.CREEP_WINDOW:g} s of the hold"
+            f"loaded end creeps {speed:.3g} d/s over the last {creep['window_s']:g} s of the hold"
             if creep["speed_d_per_s"] is not None
             else "the loaded end ran off before the hold's measuring window"
         )
