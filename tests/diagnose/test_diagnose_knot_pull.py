@@ -230,3 +230,63 @@ def test_der_baseline_finds_rate_dependence():
     assert r.verdict == "rate_dependent_friction"
     got = r.effects[0]["parameters"]["dmu_dlnv"]
     assert got == pytest.approx(truth["dmu_dlnv"], rel=0.3)
+
+
+# --- the DER baseline's surrogate error, on stored DER runs (fast: no simulation) ---------
+
+_RUNS = __import__("pathlib").Path(__file__).parent / "data"
+
+
+def _stored_runs(monkeypatch, name):
+    """Serve ``DERKnotLaw.run`` from DER runs stored by benchmarks/der_knot_null_size.py's
+    cache (the overhand knot of the IMC paper's rod, 79 nodes: the runs that made and
+    diagnosed that recording); a mu not stored fails the test."""
+    from knotmech.diagnose import der_knot
+
+    z = np.load(_RUNS / name)
+    runs = {}
+    for key in z.files:
+        _tag, mu, col = key.split("_")
+        runs.setdefault(float(mu), {})[col] = z[key]
+
+    def run(self, mu):
+        m = round(float(mu), 6)
+        if m not in self._raw:
+            assert m in runs, f"no stored DER run at mu = {m}"
+            self._raw[m] = (runs[m]["d"], runs[m]["f"])
+            self._refit()
+        return self._raw[m]
+
+    monkeypatch.setattr(der_knot.DERKnotLaw, "run", run)
+    return der_knot
+
+
+def test_cubic_basis_is_orthonormal_over_the_rows():
+    from knotmech.diagnose.der_knot import CubicBasis
+
+    z = np.log(np.linspace(0.25, 0.7, 90))
+    basis = CubicBasis(z)
+    phi = basis(z)
+    np.testing.assert_allclose(phi.T @ phi / z.size, np.eye(4), atol=1e-12)
+    # held at its end values beyond the rows
+    np.testing.assert_allclose(basis([z.min() - 1.0, z.max() + 1.0]), basis([z.min(), z.max()]))
+
+
+def test_der_null_with_a_surrogate_gap_is_none_with_the_surrogate_error(monkeypatch):
+    """A DER-made null whose two surrogates differ (seed 1022 of diag12.md's 67 fresh nulls:
+    `unexplained` there, structure p = 0.003): with the surrogate's own error in the
+    baseline it is `none`; without it (the law as it was) `unexplained` again. The prior
+    sd comes from the runs' scatter: 3.5 % of ln F for these runs (2 in the surface)."""
+    der_knot = _stored_runs(monkeypatch, "der_knot_runs_null_1022.npz")
+    rec, _ = der_knot.der_made_recording(1, 0.3, None, size=8.0, seed=1022)
+    rep = diagnose(rec, baseline="der", seed=1022)
+    assert rep.verdict == "none"
+    err = rep.details["der"]["surrogate_error"]
+    assert err["runs"] == 2
+    assert 0.02 < err["prior_sd_ln_force"] < 0.06
+    assert err["rms_ln_force"] < err["prior_sd_ln_force"]
+    assert rep.final["parameters"]["mu"] == pytest.approx(0.3, rel=0.01)
+    monkeypatch.setattr(der_knot, "SURROGATE_ERROR", False)
+    off = diagnose(rec, baseline="der", seed=1022)
+    assert off.verdict == "unexplained"
+    assert "surrogate_error" not in off.details["der"]
