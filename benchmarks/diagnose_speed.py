@@ -96,7 +96,7 @@ def main(argv=None) -> dict:
         out["big"] = _big_cases(args.big_rows, args.big_kinds, args.big_repeats)
         print(json.dumps(out, indent=2))
         return out
-    for exp, eff, noise in CASES:
+    for exp, eff, noise in CASES if args.repeats > 0 else ():
         times, cpus = [], []
         verdicts = set()
         for r in range(args.repeats):
@@ -115,6 +115,20 @@ def main(argv=None) -> dict:
             "median_cpu_seconds": float(np.median(cpus)),
             "verdicts": sorted(verdicts),
         }
+    if args.repeats > 0:  # --repeats 0: only the DER, joint and long cases
+        _yarn_and_summary(out)
+    out["load_average"] = round(os.getloadavg()[0], 1)
+    if args.der_repeats > 0:
+        out["knot_pull_der"] = _der_case(args.der_repeats)
+    if args.joint_repeats > 0:
+        out["joint_four_knots"] = _joint_case(args.joint_repeats, args.joint_rows)
+    if args.big_rows:
+        out["big"] = _big_cases(args.big_rows, args.big_kinds, args.big_repeats)
+    print(json.dumps(out, indent=2))
+    return out
+
+
+def _yarn_and_summary(out) -> None:
     from knotmech.diagnose import read_recording
 
     yarn = Path(__file__).parents[1] / "knotmech" / "data" / "recordings" / "capstan_yarn_rig.csv"
@@ -133,27 +147,19 @@ def main(argv=None) -> dict:
     out["worst_case_median_cpu_seconds"] = max(
         c.get("median_cpu_seconds", 0.0) for c in out["cases"].values()
     )
-    out["load_average"] = round(os.getloadavg()[0], 1)
-    if args.der_repeats > 0:
-        out["knot_pull_der"] = _der_case(args.der_repeats)
-    if args.joint_repeats > 0:
-        out["joint_four_knots"] = _joint_case(args.joint_repeats, args.joint_rows)
-    if args.big_rows:
-        out["big"] = _big_cases(args.big_rows, args.big_kinds, args.big_repeats)
-    print(json.dumps(out, indent=2))
-    return out
 
 
 def _der_case(repeats) -> dict:
     """knot_pull --baseline der on DER-made recordings (1 turn, mu 0.3, 90 rows)."""
     from knotmech.diagnose.der_knot import der_made_recording
 
-    times, sims, verdicts, mus = [], [], [], []
+    times, cpus, sims, verdicts, mus = [], [], [], [], []
     for r in range(repeats):
         rec, _ = der_made_recording(1, 0.3, None, seed=10 + r)
-        t0 = time.perf_counter()
+        t0, c0 = time.perf_counter(), time.process_time()
         rep = diagnose(rec, baseline="der", seed=r)
         times.append(time.perf_counter() - t0)
+        cpus.append(time.process_time() - c0)
         sims.append(rep.details["der"]["simulation_seconds"])
         verdicts.append(rep.verdict)
         mus.append(rep.final["parameters"]["mu"])
@@ -162,6 +168,7 @@ def _der_case(repeats) -> dict:
         "target_seconds": 60.0,
         "median_seconds": float(np.median(times)),
         "max_seconds": float(np.max(times)),
+        "median_cpu_seconds": float(np.median(cpus)),
         "median_simulation_seconds": float(np.median(sims)),
         "meets_target": float(np.median(times)) < 60.0,
         "verdicts": verdicts,

@@ -270,12 +270,21 @@ class DERKnotLaw:
         self._zrange = (float(z.min()), float(z.max()))
 
     def log_force(self, d, mu) -> np.ndarray:
-        """ln F of the law at distances ``d`` [m] and ``mu`` (scalar or per row): the
-        fitted surface, plus the surrogate-error correction when one is set."""
-        out = self._log_surface(d, mu)
-        if self.correction is not None:
-            out = out + self.correction(self._z(d))
-        return out
+        """ln F of the fitted surface at distances ``d`` [m] and ``mu`` (scalar or per row)."""
+        return self._log_surface(d, mu)
+
+    def row_factor(self, x) -> np.ndarray | float:
+        r"""The surrogate-error correction's factor :math:`e^{\phi(z)a}` at the recorded
+        end-to-end distances ``x`` [m] (1 when none is set).
+
+        A function of the recorded rows, not of the shifted axis of an effect: the
+        correction is fitted under the baseline, where the two are the same, and held
+        fixed; a ``displacement_offset`` then shifts the surface alone (moving the fitted
+        correction with it would shift a shape fitted to the unshifted rows).
+        """
+        if self.correction is None:
+            return 1.0
+        return np.exp(self.correction(self._z(x)))
 
     def _z(self, d) -> np.ndarray:
         z = np.log(np.clip(self.L - np.asarray(d, float), 1e-6 * self.L, None))

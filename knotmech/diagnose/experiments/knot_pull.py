@@ -191,7 +191,10 @@ class KnotPull(Experiment):
         if d is None:
             d = rec.x
         law = getattr(rec, "force_law", None)
-        force = mu * self.unit_force(rec, d) if law is None else law(d, mu)
+        if law is None:
+            force = mu * self.unit_force(rec, d)
+        else:  # the DER law, times its surrogate-error correction at the recorded rows
+            force = law(d, mu) * law.row_factor(rec.x)
         return st.apply("output", force)
 
     # --- synthetic recordings ------------------------------------------------------------
