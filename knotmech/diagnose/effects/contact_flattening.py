@@ -17,13 +17,7 @@ from knotmech.diagnose.effects.base import Effect
 from knotmech.diagnose.fitting import fit_step_name, param_vector, whiten_columns
 from knotmech.diagnose.stats import ls_solve
 
-__all__ = ["ContactFlattening", "ONSET_EDGE"]
-
-#: the onset is searched over the recorded load range less this fraction of it at each
-#: end (see the class docstring)
-ONSET_EDGE = 0.05
-#: onsets scanned for the starting values
-ONSET_SCAN = 49
+__all__ = ["ContactFlattening"]
 
 
 class ContactFlattening(Effect):
@@ -52,11 +46,9 @@ class ContactFlattening(Effect):
 
     def add_parameters(self, rec, names, lower, upper, fixed):
         xl = self._xl(rec)
-        lo, hi = float(np.min(xl)), float(np.max(xl))
-        edge = ONSET_EDGE * (hi - lo)
         names += ["onset_load_parameter", "slope_ratio"]
-        lower += [lo + edge, 0.0]
-        upper += [hi - edge, 1.0]
+        lower += [float(np.min(xl)), 0.0]
+        upper += [float(np.max(xl)), 1.0]
 
     def load(self, rec, p, fn):
         fc = p["onset_load_parameter"] * (
@@ -69,16 +61,14 @@ class ContactFlattening(Effect):
         return fn - (1.0 - p["slope_ratio"]) * np.maximum(fn - fc, 0.0)
 
     def starts(self, current, model, data, starts):
-        """Two starts from a linear scan of :data:`ONSET_SCAN` onsets evenly over the
-        onset's range (two-slope GLS at each)."""
+        """Two starts from a linear scan of 17 onsets (two-slope GLS at each)."""
         rec = model.rec
         xl = self._xl(rec)
         scale = rec.x / np.where(xl > 0, xl, 1.0)
         scale = float(np.median(scale[xl > 0])) if np.any(xl > 0) else 1.0
         sd = current.noise.sd(current.mean)
         yw = current.noise.whiten(data.y, sd, starts)
-        j = model.names.index("onset_load_parameter")
-        cands = np.linspace(model.lower[j], model.upper[j], ONSET_SCAN)
+        cands = np.quantile(xl, np.linspace(0.1, 0.9, 17))
         adh = "adhesion" in model.effects
         best = []
         for xc in cands:
