@@ -275,9 +275,11 @@ def test_cubic_basis_is_orthonormal_over_the_rows():
 def test_der_null_with_a_surrogate_gap_is_none_with_the_surrogate_error(monkeypatch):
     """A DER-made null whose two surrogates differ (seed 1022 of diag12.md's 67 fresh nulls:
     `unexplained` there, structure p = 0.003): with the surrogate's own error in the
-    baseline it is `none`; without it (the law as it was) `unexplained` again. The prior
+    baseline (der_knot.SURROGATE_ERROR, off by default) it is `none`; without it
+    `unexplained` again. The prior
     sd comes from the runs' scatter: 3.5 % of ln F for these runs (2 in the surface)."""
     der_knot = _stored_runs(monkeypatch, "der_knot_runs_null_1022.npz")
+    monkeypatch.setattr(der_knot, "SURROGATE_ERROR", True)  # off by default (its docs)
     rec, _ = der_knot.der_made_recording(1, 0.3, None, size=8.0, seed=1022)
     rep = diagnose(rec, baseline="der", seed=1022)
     assert rep.verdict == "none"
