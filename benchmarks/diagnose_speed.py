@@ -13,8 +13,9 @@ pulls of 1-4 turns in one rod, ``diagnose_many``). ``--der-repeats 0`` and
 ``--joint-repeats 0`` skip them.
 
 Also (issue 14): long recordings, ``--big-rows 1e4 1e5 1e6`` (default; ``--big-rows``
-with no value skips them): a tension profile with a nip and a pinch with contact
-flattening, each written to a CSV file first and then read and diagnosed in a fresh
+with no value skips them): a tension profile with a nip, a pinch with contact
+flattening, a knot pull without and with a displacement offset (``--big-kinds knot_pull``
+runs only the kinds named), each written to a CSV file first and then read and diagnosed in a fresh
 process (``read_recording`` + ``diagnose`` timed), with its wall time, CPU time and
 peak resident memory (``ru_maxrss``), against the targets 60 s and 2 GB. On a shared
 machine the CPU time (single-threaded BLAS) is what the wall time would be on an idle one.
@@ -72,6 +73,12 @@ def main(argv=None) -> dict:
     )
     parser.add_argument("--only-big", action="store_true", help="run the long recordings only")
     parser.add_argument(
+        "--big-kinds", nargs="*", default=None, help="kinds of the long recordings (default all)"
+    )
+    parser.add_argument(
+        "--big-repeats", type=int, default=1, help="fresh processes per long case (median)"
+    )
+    parser.add_argument(
         "--one", nargs=3, metavar=("KIND", "EFFECT", "ROWS"), help=argparse.SUPPRESS
     )
     args = parser.parse_args(argv)
@@ -86,10 +93,10 @@ def main(argv=None) -> dict:
         "cases": {},
     }
     if args.only_big:
-        out["big"] = _big_cases(args.big_rows)
+        out["big"] = _big_cases(args.big_rows, args.big_kinds, args.big_repeats)
         print(json.dumps(out, indent=2))
         return out
-    for exp, eff, noise in CASES:
+    for exp, eff, noise in CASES if args.repeats > 0 else ():
         times, cpus = [], []
         verdicts = set()
         for r in range(args.repeats):
@@ -108,6 +115,20 @@ def main(argv=None) -> dict:
             "median_cpu_seconds": float(np.median(cpus)),
             "verdicts": sorted(verdicts),
         }
+    if args.repeats > 0:  # --repeats 0: only the DER, joint and long cases
+        _yarn_and_summary(out)
+    out["load_average"] = round(os.getloadavg()[0], 1)
+    if args.der_repeats > 0:
+        out["knot_pull_der"] = _der_case(args.der_repeats)
+    if args.joint_repeats > 0:
+        out["joint_four_knots"] = _joint_case(args.joint_repeats, args.joint_rows)
+    if args.big_rows:
+        out["big"] = _big_cases(args.big_rows, args.big_kinds, args.big_repeats)
+    print(json.dumps(out, indent=2))
+    return out
+
+
+def _yarn_and_summary(out) -> None:
     from knotmech.diagnose import read_recording
 
     yarn = Path(__file__).parents[1] / "knotmech" / "data" / "recordings" / "capstan_yarn_rig.csv"
@@ -126,27 +147,19 @@ def main(argv=None) -> dict:
     out["worst_case_median_cpu_seconds"] = max(
         c.get("median_cpu_seconds", 0.0) for c in out["cases"].values()
     )
-    out["load_average"] = round(os.getloadavg()[0], 1)
-    if args.der_repeats > 0:
-        out["knot_pull_der"] = _der_case(args.der_repeats)
-    if args.joint_repeats > 0:
-        out["joint_four_knots"] = _joint_case(args.joint_repeats, args.joint_rows)
-    if args.big_rows:
-        out["big"] = _big_cases(args.big_rows)
-    print(json.dumps(out, indent=2))
-    return out
 
 
 def _der_case(repeats) -> dict:
     """knot_pull --baseline der on DER-made recordings (1 turn, mu 0.3, 90 rows)."""
     from knotmech.diagnose.der_knot import der_made_recording
 
-    times, sims, verdicts, mus = [], [], [], []
+    times, cpus, sims, verdicts, mus = [], [], [], [], []
     for r in range(repeats):
         rec, _ = der_made_recording(1, 0.3, None, seed=10 + r)
-        t0 = time.perf_counter()
+        t0, c0 = time.perf_counter(), time.process_time()
         rep = diagnose(rec, baseline="der", seed=r)
         times.append(time.perf_counter() - t0)
+        cpus.append(time.process_time() - c0)
         sims.append(rep.details["der"]["simulation_seconds"])
         verdicts.append(rep.verdict)
         mus.append(rep.final["parameters"]["mu"])
@@ -155,6 +168,7 @@ def _der_case(repeats) -> dict:
         "target_seconds": 60.0,
         "median_seconds": float(np.median(times)),
         "max_seconds": float(np.max(times)),
+        "median_cpu_seconds": float(np.median(cpus)),
         "median_simulation_seconds": float(np.median(sims)),
         "meets_target": float(np.median(times)) < 60.0,
         "verdicts": verdicts,
@@ -199,7 +213,12 @@ def _joint_case(repeats, rows) -> dict:
     }
 
 
-BIG_CASES = [("tension_profile", "self_contact_nip"), ("pinch", "contact_flattening")]
+BIG_CASES = [
+    ("tension_profile", "self_contact_nip"),
+    ("pinch", "contact_flattening"),
+    ("knot_pull", "none"),
+    ("knot_pull", "displacement_offset"),
+]
 
 
 def _write_csv(rec, path) -> None:
@@ -227,7 +246,8 @@ def _one_big(kind, effect, rows) -> dict:
     from knotmech.diagnose import read_recording
 
     n = int(float(rows))
-    rec, truth = make_recording(kind, effect, size=6.0, seed=100, n=n)
+    eff = None if effect == "none" else effect
+    rec, truth = make_recording(kind, eff, size=6.0, seed=100, n=n)
     with tempfile.TemporaryDirectory() as tmp:
         path = Path(tmp) / "big.csv"
         _write_csv(rec, path)
@@ -252,16 +272,27 @@ def _one_big(kind, effect, rows) -> dict:
     return res
 
 
-def _big_cases(rows_list) -> dict:
-    """Each long case in a fresh process (its own peak memory)."""
+def _big_cases(rows_list, kinds=None, repeats=1) -> dict:
+    """Each long case in a fresh process (its own peak memory); with ``repeats`` > 1 the
+    medians of wall, CPU and peak memory over that many processes (and each run's)."""
     out = {"target_seconds": 60.0, "target_peak_mb": 2048.0, "cases": {}}
     root = Path(__file__).resolve().parents[1]
     env = dict(os.environ, PYTHONPATH=str(root), OPENBLAS_NUM_THREADS="1")
     for rows in rows_list:
         for kind, effect in BIG_CASES:
+            if kinds and kind not in kinds:
+                continue
             cmd = [sys.executable, str(Path(__file__).resolve()), "--one", kind, effect, str(rows)]
-            res = subprocess.run(cmd, capture_output=True, text=True, env=env, check=True)
-            one = json.loads(res.stdout.strip().splitlines()[-1])
+            runs = []
+            for _ in range(max(repeats, 1)):
+                res = subprocess.run(cmd, capture_output=True, text=True, env=env, check=True)
+                runs.append(json.loads(res.stdout.strip().splitlines()[-1]))
+            one = dict(runs[0])
+            for key in ("wall_seconds", "cpu_seconds", "read_seconds", "peak_rss_mb"):
+                one[key] = round(float(np.median([r[key] for r in runs])), 2)
+            one["verdicts"] = [r["verdict"] for r in runs]
+            if len(runs) > 1:
+                one["cpu_seconds_each"] = [r["cpu_seconds"] for r in runs]
             one["meets_target"] = one["cpu_seconds"] < 60.0 and one["peak_rss_mb"] < 2048.0
             out["cases"][f"{kind}:{effect}:{int(rows)}"] = one
     return out

@@ -63,6 +63,39 @@ def test_closed_form_mean_is_the_jawed_law():
     np.testing.assert_allclose(off, overhand_pull_force(L - rec.x - 0.01, 2, 0.37, H, B))
 
 
+def test_tabulated_law_matches_the_closure_row_by_row():
+    """The spline of ln g(ln t) (knot_pull.unit_law) against the closure itself.
+
+    Between nodes (midpoints in logit m, where a cubic's error peaks) against the same
+    parametric closure: the interpolation error, < 1e-10 relative. Against
+    overhand_knot's bisection, row by row, on 4e4 random shortenings of every turn count
+    (t = e/(n^2 h) from 10 to 1e5 in a rod long enough to hold them; the recordings'
+    range is 20-450): < 2e-9 (measured 6.7e-10; 3e-12 over 20-450), the
+    bisection's own rounding (its 1 - m by subtraction near the long-braid limit, the
+    cancellation in 8(K - E)/m - 4K near m = 1e-3). A node spacing 4 times coarser
+    (0.08) gives 6e-9 between nodes, so the test sees a wrong table.
+    """
+    from knotmech.analytic.knots import overhand_knot
+    from knotmech.diagnose.experiments import knot_pull as kp
+
+    spline = kp.unit_law()
+    u = np.arange(kp._LOGIT_RANGE[0], kp._LOGIT_RANGE[1], kp.UNIT_LAW_STEP)
+    lt, lg = kp._closure_parametric(u + 0.5 * kp.UNIT_LAW_STEP)
+    assert np.max(np.abs(np.expm1(spline(lt) - lg))) < 1e-10
+    rng = np.random.default_rng(0)
+    long_rod = 1e4
+    for turns in (1, 2, 3, 4):
+        e = turns**2 * H * np.exp(rng.uniform(np.log(10.0), np.log(1e5), 10_000))
+        d = long_rod - e
+        ref = overhand_knot(
+            end_to_end_shortening=e, turns=turns, mu=1.0, rod_radius=H, bending_stiffness=B
+        ).force
+        meta = dict(_meta(turns), rod_length_m=long_rod)
+        rec = recording_from_arrays("knot_pull", d[:20], np.linspace(1, 2, 20), metadata=meta)
+        got = KNOT.unit_force(rec, d)
+        assert np.max(np.abs(got / ref - 1)) < 2e-9
+
+
 @pytest.mark.parametrize(
     ("effect", "seed"),
     [(None, 1), (None, 2), ("displacement_offset", 1), ("rate_dependent_friction", 2)],
@@ -197,3 +230,65 @@ def test_der_baseline_finds_rate_dependence():
     assert r.verdict == "rate_dependent_friction"
     got = r.effects[0]["parameters"]["dmu_dlnv"]
     assert got == pytest.approx(truth["dmu_dlnv"], rel=0.3)
+
+
+# --- the DER baseline's surrogate error, on stored DER runs (fast: no simulation) ---------
+
+_RUNS = __import__("pathlib").Path(__file__).parent / "data"
+
+
+def _stored_runs(monkeypatch, name):
+    """Serve ``DERKnotLaw.run`` from DER runs stored by benchmarks/der_knot_null_size.py's
+    cache (the overhand knot of the IMC paper's rod, 79 nodes: the runs that made and
+    diagnosed that recording); a mu not stored fails the test."""
+    from knotmech.diagnose import der_knot
+
+    z = np.load(_RUNS / name)
+    runs = {}
+    for key in z.files:
+        _tag, mu, col = key.split("_")
+        runs.setdefault(float(mu), {})[col] = z[key]
+
+    def run(self, mu):
+        m = round(float(mu), 6)
+        if m not in self._raw:
+            assert m in runs, f"no stored DER run at mu = {m}"
+            self._raw[m] = (runs[m]["d"], runs[m]["f"])
+            self._refit()
+        return self._raw[m]
+
+    monkeypatch.setattr(der_knot.DERKnotLaw, "run", run)
+    return der_knot
+
+
+def test_cubic_basis_is_orthonormal_over_the_rows():
+    from knotmech.diagnose.der_knot import CubicBasis
+
+    z = np.log(np.linspace(0.25, 0.7, 90))
+    basis = CubicBasis(z)
+    phi = basis(z)
+    np.testing.assert_allclose(phi.T @ phi / z.size, np.eye(4), atol=1e-12)
+    # held at its end values beyond the rows
+    np.testing.assert_allclose(basis([z.min() - 1.0, z.max() + 1.0]), basis([z.min(), z.max()]))
+
+
+def test_der_null_with_a_surrogate_gap_is_none_with_the_surrogate_error(monkeypatch):
+    """A DER-made null whose two surrogates differ (seed 1022 of diag12.md's 67 fresh nulls:
+    `unexplained` there, structure p = 0.003): with the surrogate's own error in the
+    baseline (der_knot.SURROGATE_ERROR, off by default) it is `none`; without it
+    `unexplained` again. The prior
+    sd comes from the runs' scatter: 3.5 % of ln F for these runs (2 in the surface)."""
+    der_knot = _stored_runs(monkeypatch, "der_knot_runs_null_1022.npz")
+    monkeypatch.setattr(der_knot, "SURROGATE_ERROR", True)  # off by default (its docs)
+    rec, _ = der_knot.der_made_recording(1, 0.3, None, size=8.0, seed=1022)
+    rep = diagnose(rec, baseline="der", seed=1022)
+    assert rep.verdict == "none"
+    err = rep.details["der"]["surrogate_error"]
+    assert err["runs"] == 2
+    assert 0.02 < err["prior_sd_ln_force"] < 0.06
+    assert err["rms_ln_force"] < err["prior_sd_ln_force"]
+    assert rep.final["parameters"]["mu"] == pytest.approx(0.3, rel=0.01)
+    monkeypatch.setattr(der_knot, "SURROGATE_ERROR", False)
+    off = diagnose(rec, baseline="der", seed=1022)
+    assert off.verdict == "unexplained"
+    assert "surrogate_error" not in off.details["der"]

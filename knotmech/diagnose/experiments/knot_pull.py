@@ -13,20 +13,40 @@ Closed-form baseline: the braid law of Jawed, Dieleman, Audoly & Reis, PRL 115, 
 .. math:: F(D) = \mu\, f_n(L - D), \qquad f_n(e) = 2\pi n h B k(e)^3,
           \quad B = E\pi h^4/4,
 
-free parameter ``mu`` (rod-rod kinetic friction). The law is linear in mu, so
-:math:`f_n` is evaluated once per shifted axis. With ``--baseline der`` the force law
+free parameter ``mu`` (rod-rod kinetic friction). The law is linear in mu, and
+:math:`f_n` depends on the knot through one variable only: with :math:`t = e/(n^2h)`,
+
+.. math:: f_n(e) = \frac{B}{n^2h^2}\,g(t), \qquad
+          g = 2\pi\Big(\frac{2\pi}{8\sqrt3\pi^2}\Big)^3 x^3,
+          \qquad t = \frac{8\sqrt3\pi^2\,(x + 4K(m))}{x^2},
+
+:math:`x = \ell/R` the closure's braid length over loop radius
+(:func:`knotmech.analytic.knots.loop_closure`; from :math:`R = 8\sqrt3\pi^2n^2h/x^2`,
+:math:`k = 2\pi n/(xR)` and :math:`F = 2\pi\mu nhBk^3`). So :math:`\ln g` is
+tabulated once against :math:`\ln t`, at nodes of the elastica parameter m (uniform in
+logit m), and interpolated by a cubic spline (:func:`unit_law`): a recording of 1e6 rows
+costs a spline evaluation per model call, not a bisection of the closure per row.
+With ``--baseline der`` the force law
 is the DER simulation of the same knot (:mod:`knotmech.diagnose.der_knot`), which the
 recording carries as ``force_law``; the stages are the same.
 """
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 
-from knotmech.analytic.knots import overhand_knot
+from knotmech.analytic.knots import JAWED_C
 from knotmech.diagnose.experiments.base import Experiment, Stages
 
-__all__ = ["KnotPull", "closure_limits"]
+__all__ = ["KnotPull", "closure_limits", "unit_law", "UNIT_LAW_STEP"]
+
+#: spacing of the table's nodes in logit m (the measured interpolation error at this step,
+#: between nodes, is below 3e-11 relative: tests/diagnose/test_diagnose_knot_pull.py)
+UNIT_LAW_STEP = 0.02
+#: the table's range in logit m: wider than the closure's bisection bracket (-60, 36)
+_LOGIT_RANGE = (-62.0, 40.0)
 
 #: the knots this kind knows
 KNOTS = ("overhand",)
@@ -38,6 +58,45 @@ def closure_limits() -> tuple[float, float]:
 
     lo, hi = knots._shortening_bounds()
     return float(lo), float(hi)
+
+
+def _closure_parametric(logit_m):
+    """(ln t, ln g) of the closure at elastica parameters m = 1/(1 + exp(-logit_m)).
+
+    1 - m is formed from the logit directly, as 1/(1 + exp(logit_m)), so K(m) stays accurate as
+    m -> 1; below m = 1e-3 the braid ratio x uses the series of
+    :func:`knotmech.analytic.knots.loop_closure` (cancellation in 8(K - E)/m - 4K).
+    """
+    from scipy.special import ellipe, ellipkm1
+
+    u = np.asarray(logit_m, float)
+    m = 1.0 / (1.0 + np.exp(-u))
+    p = 1.0 / (1.0 + np.exp(u))  # 1 - m
+    small = m < 1e-3
+    ms, ps = np.where(small, 0.5, m), np.where(small, 0.5, p)
+    series = np.pi * (
+        m / 4 + 3 * m**2 / 16 + 75 * m**3 / 512 + 245 * m**4 / 2048 + 6615 * m**5 / 65536
+    )
+    x = np.where(small, series, 8.0 * (ellipkm1(ps) - ellipe(ms)) / ms - 4.0 * ellipkm1(ps))
+    t = 8.0 * JAWED_C * (x + 4.0 * ellipkm1(p)) / x**2
+    g = 2.0 * np.pi * (2.0 * np.pi / (8.0 * JAWED_C)) ** 3 * x**3
+    return np.log(t), np.log(g)
+
+
+@functools.cache
+def unit_law():
+    r"""The closure's force law :math:`\ln g(\ln t)` as a cubic spline (built once).
+
+    :math:`F = \mu\,B/(n^2h^2)\,g(t)`, :math:`t = e/(n^2h)` (module docstring);
+    nodes every :data:`UNIT_LAW_STEP` in logit m over :data:`_LOGIT_RANGE` (5101 nodes,
+    t from below the closure's long-braid limit to 1e55). Returns a
+    :class:`scipy.interpolate.CubicSpline` in ln t.
+    """
+    from scipy.interpolate import CubicSpline
+
+    u = np.arange(_LOGIT_RANGE[0], _LOGIT_RANGE[1] + 0.5 * UNIT_LAW_STEP, UNIT_LAW_STEP)
+    lt, lg = _closure_parametric(u)
+    return CubicSpline(lt[::-1], lg[::-1])  # t decreases with m
 
 
 def _number(v) -> bool:
@@ -90,10 +149,14 @@ class KnotPull(Experiment):
         return rec.meta("youngs_modulus_Pa") * np.pi * rec.meta("rod_radius_m") ** 4 / 4.0
 
     def unit_force(self, rec, d) -> np.ndarray:
-        """Closed-form force at mu = 1 at end-to-end distances ``d`` [m] -> [N].
+        r"""Closed-form force at mu = 1 at end-to-end distances ``d`` [m] -> [N].
 
         ``d`` is clipped into the range the closure represents (a shifted axis may
-        leave it while a fit explores).
+        leave it while a fit explores). Evaluated from the tabulated law
+        (:func:`unit_law`): within 1e-9 relative of
+        :func:`~knotmech.analytic.knots.overhand_knot` for :math:`e/(n^2h) \ge 10`, which
+        is the closure's own rounding (tests); closer to the long-braid limit, where
+        ``overhand_knot`` forms 1 - m by subtraction, the table is the accurate one.
         """
         n = int(rec.meta("turns"))
         h = rec.meta("rod_radius_m")
@@ -106,11 +169,9 @@ class KnotPull(Experiment):
             return hit
         lo, hi = closure_limits()
         e = np.clip(length - d, lo * n**2 * h * (1 + 1e-6), min(hi * n**2 * h, length) * 0.999)
-        out = overhand_knot(
-            end_to_end_shortening=e, turns=n, mu=1.0, rod_radius=h, bending_stiffness=b
-        ).force
-        if len(self._cache) > 256:
-            self._cache.clear()
+        out = b / (n * h) ** 2 * np.exp(unit_law()(np.log(e / (n**2 * h))))
+        if len(self._cache) >= 8:  # a few axes (a fit's own); 1e6 rows are 16 MB each
+            self._cache.pop(next(iter(self._cache)))
         self._cache[key] = out
         return out
 
@@ -130,7 +191,10 @@ class KnotPull(Experiment):
         if d is None:
             d = rec.x
         law = getattr(rec, "force_law", None)
-        force = mu * self.unit_force(rec, d) if law is None else law(d, mu)
+        if law is None:
+            force = mu * self.unit_force(rec, d)
+        else:  # the DER law, times its surrogate-error correction at the recorded rows
+            force = law(d, mu) * law.row_factor(rec.x)
         return st.apply("output", force)
 
     # --- synthetic recordings ------------------------------------------------------------
