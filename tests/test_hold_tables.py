@@ -159,3 +159,19 @@ def test_round_turn_two_half_hitches_from_its_table():
     assert v.creep["speed_d_per_s"] == pytest.approx(1.7e-5, rel=0.02)
     w = knotmech.hold("round-turn-two-half-hitches", mu=0.3, **kw)
     assert w.holds is False and w.decided_by == "DER-table"
+
+
+def test_plot_draws_the_table_of_any_hitch(tmp_path, capsys):
+    """--plot draws the hold table that answered, for every hitch with one (here two half
+    hitches at mu = 0.4: the mu = 0.3 and 0.5 slices), titled with the knot's name."""
+    out = tmp_path / "thh.png"
+    args = ["hold", "2hh", "--rod-diameter", "4mm", "--post-diameter", "30mm", "--mu", "0.4",
+            "--load", "0.5N", "--material", "vps32", "--plot", str(out)]  # fmt: skip
+    assert main(args) == 0
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and out.stat().st_size > 20000
+    assert "wrote" in capsys.readouterr().err
+    # a hitch with no DER answer (the round turn alone) is refused in one line
+    bad = ["hold", "round-turn"] + args[2:]
+    assert main(bad) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "--plot" in err
