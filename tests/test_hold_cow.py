@@ -37,7 +37,16 @@ def _cli(d, D, mu, load, free, mat, capsys, knot="girth hitch"):
     if mat:
         args += ["--material", mat]
     assert main(args + ["--json", "-"]) == 0
-    return json.loads(capsys.readouterr().out)
+    return _strict(capsys.readouterr().out)
+
+
+def _strict(text):
+    """The JSON, refusing NaN and Infinity (the verdict's JSON is strict)."""
+
+    def refuse(name):
+        raise AssertionError(f"non-strict JSON constant {name}")
+
+    return json.loads(text, parse_constant=refuse)
 
 
 CASES = [
@@ -102,7 +111,7 @@ def test_simulate_runs_the_cow_hitch_scene(monkeypatch, capsys):
     args = ["hold", "lark's head", "--rod-diameter", "4mm", "--post-diameter", "30mm", "--mu",
             "0.3", "--load", "0.3N", "--material", "vps32", "--simulate"]  # fmt: skip
     assert main(args + ["--json", "-"]) == 0
-    data = json.loads(capsys.readouterr().out)
+    data = _strict(capsys.readouterr().out)
     assert seen["knot"] == "cow-hitch" and seen["d_over_2R"] == pytest.approx(4 / 34)
     assert data["holds"] is False and data["decided_by"] == "DER-simulation"
     assert data["creep"]["window_s"] == 0.75 and "0.75 s" in data["der"]["criterion"]
