@@ -1192,11 +1192,14 @@ def plot_verdict(verdict: Verdict, path, *, phase_table=None) -> Path:
                    color="tab:blue", zorder=5, label=f"query: {verdict.state}")  # fmt: skip
         ax.set_xscale("log")
         ax.set_yscale("log")
-        ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())  # no overlapping labels
+        cols = sorted({q.d_over_2R for q in t.points})  # ticks at the table's columns
+        ax.xaxis.set_major_locator(matplotlib.ticker.FixedLocator(cols))
+        ax.xaxis.set_major_formatter(matplotlib.ticker.FixedFormatter([f"{c:.3g}" for c in cols]))
+        ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
         ax.set_xlabel("d/2R")
         ax.set_ylabel("T_high/EA")
         ax.set_title(f"{verdict.knot}, free end, mu = mu_rr = {t.mu:g}", fontsize=10)
-        ax.legend(loc="lower left", fontsize=8)
+        ax.legend(loc="best", fontsize=8, framealpha=0.6)
     fig.tight_layout()
     fig.savefig(p)
     plt.close(fig)
