@@ -6,15 +6,17 @@ answer and decides by one rule (:data:`RULE`):
 
 - the closed forms of :mod:`knotmech.analytic.hitch` (ideal rope, thick nip;
   ideal and finite-thickness capstan), always;
-- for the hitches with a free end, the DER hold/slip diagram (the clove-hitch paper,
+- for the hitches with a free end (clove hitch, two half hitches, round turn and two half
+  hitches, cow hitch with one leg free), the DER hold/slip diagram (the clove-hitch paper,
   Extreme Mech. Lett., DOI 10.1016/j.eml.2022.101788, sec. 8 and Fig. 4): the shipped
   anchor-law hold tables over real-rope ranges (:class:`knotmech.scenes.phase_table.
   HoldTable`; d/2R, T_high/EA from 1e-4 to 0.3, mu = mu_rr from 0.1 to 0.8), a table the
   user names, or with ``simulate=True`` one DER run of the user's geometry. The hold
   criterion is a creep speed: the hitch holds when its loaded end creeps slower than
-  ``creep_limit`` (default 1e-3 rope diameters per second) over the last second of the
-  hold once the load is on, with its topology kept; the verdict reports the creep speed
-  measured. The tables are in :math:`T_\mathrm{high}/EA`, so they need the rope's
+  ``creep_limit`` (default 1e-3 rope diameters per second) at the end of the hold (the
+  clove hitch: over the last second; the other hitches: over the last half of the 1.5 s
+  hold) once the load is on, with its topology kept; the verdict reports the creep speed
+  measured and its window. The tables are in :math:`T_\mathrm{high}/EA`, so they need the rope's
   Young's modulus: from ``youngs_modulus`` or ``material`` (:mod:`knotmech.materials`);
   with neither, the DER is not consulted and the verdict says so;
 - for the bends (reef, granny, thief, grief) no closed form and no table: undecided with
@@ -88,13 +90,37 @@ RULE = (
 STRAIN_LIMIT = 0.10  #: T_high/EA above this is implausible and outside the thick-nip model
 MU_PLAUSIBLE = 2.0  #: a friction coefficient above this is implausible for rope
 WRAP_TURNS_PLAUSIBLE = 20.0  #: a capstan wrap beyond this many turns is implausible
+#: the loading the cow hitch's DER scene, table and ``simulate`` model
+COW_LOADING = (
+    "cow hitch loaded on one leg (T_high on leg 0), the other leg free (T_low = 0): the "
+    "one-ended loading, not the girth hitch of a sling whose two legs share the load"
+)
+#: what one ``simulate=True`` run of a hitch costs, as the answers quote it (measured: the
+#: clove hitch at the paper's size 7.3 s wall on an idle machine; the hold-table runs of the
+#: hitches 3-30 s of CPU per point, up to ~2 min on large posts, d/D ~ 0.02, where the rod
+#: is long)
+SIMULATE_COST = (
+    "typically 10-30 s of CPU, up to ~2 min on a large post (d/D ~ 0.02); a second run "
+    "with a 3 s hold when the creep lies near the limit"
+)
 
-_HITCHES = ("clove-hitch", "two-half-hitches", "round-turn", "round-turn-two-half-hitches")
+_HITCHES = (
+    "clove-hitch", "two-half-hitches", "round-turn", "round-turn-two-half-hitches", "cow-hitch",
+)  # fmt: skip
 #: the bends of Patil et al. (Science 2020): two ropes joined and pulled apart
 _BENDS = ("reef", "granny", "thief", "grief")
 #: hitches that may have a DER answer (a hold table or a DER scene,
 #: :data:`knotmech.scenes.phase_table.HOLD_SCENE_NAMES`); the clove hitch always has one
-_DER_HITCHES = ("clove-hitch", "two-half-hitches", "round-turn-two-half-hitches")
+_DER_HITCHES = ("clove-hitch", "two-half-hitches", "round-turn-two-half-hitches", "cow-hitch")
+
+
+#: the hitches whose free-end case can have a DER answer (public name for the CLI)
+DER_HITCHES = _DER_HITCHES
+
+
+def has_der_answer(knot) -> bool:
+    """Whether ``knot`` (a canonical name) has a DER answer: a shipped hold table or a scene."""
+    return _der_knot(knot)
 
 
 def _der_knot(key) -> bool:
@@ -122,6 +148,12 @@ _ALIASES = {
     "granny-knot": "granny",
     "thief-knot": "thief",
     "grief-knot": "grief",
+    "cow": "cow-hitch",
+    "girth-hitch": "cow-hitch",
+    "girth": "cow-hitch",
+    "larks-head": "cow-hitch",
+    "larks-head-knot": "cow-hitch",
+    "larks-foot": "cow-hitch",
 }
 #: knots people ask about that hold does not answer, and what they are
 _NOT_ANSWERED = {
@@ -129,8 +161,6 @@ _NOT_ANSWERED = {
     "figure-eight": "a stopper / loop knot (no post, no closed form or DER table here)",
     "figure-8": "a stopper / loop knot (no post, no closed form or DER table here)",
     "sheet-bend": "a bend joining two ropes (no post, no closed form or DER table here)",
-    "cow-hitch": "a hitch (girth hitch) with no closed form or DER table here yet",
-    "girth-hitch": "a hitch (cow hitch) with no closed form or DER table here yet",
     "overhand": "a stopper knot (see `knotmech simulate overhand`), not a hitch on a post",
 }
 
@@ -154,6 +184,7 @@ def can_simulate(knot) -> bool:
 def knot_key(knot) -> str:
     """Canonical knot name, or a one-line :class:`InputError` listing what is answered."""
     key = str(knot).strip().lower().replace("_", "-").replace(" ", "-")
+    key = key.replace("'", "").replace("\u2019", "")  # lark's head, lark\u2019s head
     key = _ALIASES.get(key, key)
     if key in KNOT_NAMES:
         return key
@@ -479,12 +510,13 @@ def simulate_command(
     return " ".join(parts + ["--simulate"])
 
 
-def _criterion_text(limit: float) -> str:
+def _criterion_text(limit: float, window: float | None = None) -> str:
     from knotmech.scenes import phase_table as pt
 
+    w = pt.CREEP_WINDOW if window is None else float(window)
     return (
         f"{pt.CREEP_CRITERION} criterion: holds when the loose end creeps slower than "
-        f"{limit:g} d/s over the last {pt.CREEP_WINDOW:g} s of the hold once the load is on, "
+        f"{limit:g} d/s over the last {w:g} s of the hold once the load is on, "
         "topology kept"
     )
 
@@ -575,6 +607,7 @@ def _der(
         ran = bool(p.get("ran_to_end", math.isfinite(speed)))
         creep = _creep_dict("DER simulation of this geometry", speed, d, limit=lim,
                             ran_to_end=ran, window=p.get("creep_window_s"))  # fmt: skip
+        out["criterion"] = _criterion_text(lim, p.get("creep_window_s"))
         crept = (
             f"loaded end creeps {speed:.3g} d/s over the last {creep['window_s']:g} s of the hold"
             if creep["speed_d_per_s"] is not None
@@ -633,6 +666,7 @@ def _der(
                 n = len(a.corners)
                 src = f"DER {knot} table, {n} neighbouring grid point{'s' if n > 1 else ''}"
                 win = table.criterion.get("window_s")
+                out["criterion"] = _criterion_text(lim, win)
                 if a.holds and math.isfinite(a.creep_speed):
                     creep = _creep_dict(
                         src + " (largest creep of the points that held)", a.creep_speed, d,
@@ -658,7 +692,7 @@ def _der(
     if ideal_holds is not None:
         out["agrees_with_ideal_rope"] = holds == bool(ideal_holds)
     hold_rule = (
-        _criterion_text(lim)
+        out["criterion"]
         if law == "anchor"
         else "free end: held if the end creeps less than d over the last half of the hold"
     )
@@ -676,7 +710,7 @@ def _der(
             + (" (sticking rod-rod anchor law)" if law == "anchor" else " (smooth rod-rod law)"),
             "solid-rod bending stiffness EI = E pi d^4/64 (a fibre rope bends far more easily)",
             hold_rule,
-        ),
+        ) + ((COW_LOADING,) if knot == "cow-hitch" else ()),
         validity=(validity,),
         reference=(
             "clove-hitch paper (Extreme Mech. Lett., DOI 10.1016/j.eml.2022.101788), "
@@ -728,10 +762,10 @@ def hold(
     ----------
     knot : str
         One of :data:`KNOT_NAMES` (``capstan``, ``clove-hitch``, ``two-half-hitches``,
-        ``round-turn``, ``round-turn-two-half-hitches``, and the bends ``reef``,
-        ``granny``, ``thief``, ``grief``). Other knots (bowline, figure-eight, sheet bend,
-        cow hitch, ...) raise a one-line :class:`~knotmech.errors.InputError` listing
-        these.
+        ``round-turn``, ``round-turn-two-half-hitches``, ``cow-hitch`` (also girth hitch,
+        lark's head), and the bends ``reef``, ``granny``, ``thief``, ``grief``). Other
+        knots (bowline, figure-eight, sheet bend, ...) raise a one-line
+        :class:`~knotmech.errors.InputError` listing these.
     rod_diameter, post_diameter : float
         Rope diameter d and post diameter D [m], > 0 (no post for a bend: None).
     mu : float
@@ -740,6 +774,9 @@ def hold(
         Tension on the loaded end :math:`T_\mathrm{high}` [N], > 0.
     free_end_load : float
         Tension on the other end :math:`T_\mathrm{low}` [N], 0 (free end) to ``load``.
+        Cow hitch: ``load`` is on one leg, ``free_end_load`` on the other (0: the hitch
+        loaded on one leg only, the case its DER table and ``simulate`` model; a girth
+        hitch whose legs share the load has ``free_end_load = load``).
     mu_rr : float, optional
         Rope-rope friction coefficient [-] (hitches; default ``mu``). Refused for capstan.
     wrap_angle : float, optional
@@ -750,12 +787,13 @@ def hold(
     youngs_modulus : float, optional
         The rope's effective axial modulus E [Pa] (overrides the material's).
     simulate : bool
-        One DER run of this geometry instead of the tables (about 20 s of CPU; a second,
-        3 s hold when the creep lies near the limit): the clove hitch and the hitches
-        with a DER scene with a free end, or a bend's pull (its slip load against the
-        load); needs E.
+        One DER run of this geometry instead of the tables (:data:`SIMULATE_COST`): the
+        hitches with a DER scene (clove hitch, two half hitches, round turn and two half
+        hitches, cow hitch) with a free end, or a bend's pull (its slip load against the
+        load, 1-3 minutes); needs E.
     phase_table : path, optional
-        Clove hitch: read the DER table from this file (it must exist and parse).
+        A hitch with a DER answer: read the DER table from this file instead of the
+        shipped one (it must exist and parse).
     progress : bool
         Progress bar on stderr for ``simulate``.
     creep_limit : float, optional
@@ -812,11 +850,17 @@ def hold(
             f"bends, not for {key}"
         )
     if simulate and free > 0:
-        raise InputError("simulate covers the clove hitch with a free end only (free_end_load 0)")
+        raise InputError(
+            "simulate covers the hitches with a free end only (free_end_load 0; cow hitch: one "
+            "leg loaded, the other free)"
+        )
     if simulate and phase_table is not None:
         raise InputError("give either simulate or phase_table, not both")
     if phase_table is not None and not _der_knot(key):
-        raise InputError(f"phase_table applies to clove-hitch only, not to {key}")
+        raise InputError(
+            f"phase_table applies to the hitches with a DER answer "
+            f"({', '.join(_DER_HITCHES)}), not to {key}"
+        )
     E, mat, e_source = _youngs_modulus(material, youngs_modulus)
     if simulate and E is None:
         from knotmech.materials import material_names
@@ -909,7 +953,7 @@ def hold(
     if dec is None:
         if simulable:
             next_step = (
-                f"next: {cmd} (one DER run of this geometry, about a minute) decides it"
+                f"next: {cmd} (one DER run of this geometry, {SIMULATE_COST}) decides it"
                 + ("" if E is not None else "; MATERIAL: one of the presets, or give "
                    "--youngs-modulus")
             )  # fmt: skip
@@ -1113,13 +1157,14 @@ def plot_verdict(verdict: Verdict, path, *, phase_table=None) -> Path:
     der = verdict.der or {}
     if der.get("source") != "table" or not der.get("mu_tables"):
         raise InputError(
-            "plot: there is no DER answer to draw (clove hitch, free end, E given, inside "
-            "the tables, or simulate)"
+            "plot: there is no DER answer to draw (a hitch with a DER table, free end, E "
+            "given, inside the table's reach, or simulate)"
         )
     import matplotlib
 
     matplotlib.use("Agg", force=False)
     import matplotlib.pyplot as plt
+    import matplotlib.ticker
     import numpy as np
 
     tables = (_shipped_hold_tables().get(verdict.knot) if phase_table is None
@@ -1147,10 +1192,14 @@ def plot_verdict(verdict: Verdict, path, *, phase_table=None) -> Path:
                    color="tab:blue", zorder=5, label=f"query: {verdict.state}")  # fmt: skip
         ax.set_xscale("log")
         ax.set_yscale("log")
+        cols = sorted({q.d_over_2R for q in t.points})  # ticks at the table's columns
+        ax.xaxis.set_major_locator(matplotlib.ticker.FixedLocator(cols))
+        ax.xaxis.set_major_formatter(matplotlib.ticker.FixedFormatter([f"{c:.3g}" for c in cols]))
+        ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
         ax.set_xlabel("d/2R")
         ax.set_ylabel("T_high/EA")
-        ax.set_title(f"clove hitch, free end, mu = mu_rr = {t.mu:g}")
-        ax.legend(loc="lower left", fontsize=8)
+        ax.set_title(f"{verdict.knot}, free end, mu = mu_rr = {t.mu:g}", fontsize=10)
+        ax.legend(loc="best", fontsize=8, framealpha=0.6)
     fig.tight_layout()
     fig.savefig(p)
     plt.close(fig)

@@ -147,15 +147,79 @@ def test_two_half_hitches_from_their_table():
 
 
 def test_round_turn_two_half_hitches_from_its_table():
-    """The same small grid for the round turn and two half hitches: on a 30 mm post at
-    0.5 N it holds at mu = 0.8 (0.01 and 0.1 EA held, the first after the 3 s recheck:
-    -1.0e-3 d/s after 1.5 s, -4.8e-7 after 3 s; the largest creep 1.7e-5 d/s) and slips at
-    0.3 (0.01 EA changed topology, 0.1 EA ran off)."""
+    """The round turn and two half hitches' table (knotmech/data/hold_phase_table_round-turn-
+    two-half-hitches.json, docs/notes/tables.md: HOLD_GRID's loads and frictions on the
+    d/2R columns built so far, every point of them; 0.1176 and 0.2308 at least): on a 30 mm
+    post at 0.5 N (0.0316 EA, between the grid loads 0.01 and 0.1 EA on the 0.1176 column)
+    it holds at mu = 0.8 (both held, -8.9e-7 and 3.7e-5 d/s; the whole column held up to
+    0.3 EA, so the margin is at least 0.3 EA / 0.5 N - 1) and slips at mu = 0.3 (0.01 EA
+    changed topology, 0.1 EA ran off). At 1e-4 EA every point changed topology (the solid
+    rod springs the half hitches open): a lighter load slips where the two lightest loads
+    agree (mu 0.1) and is undecided where they do not (mu 0.5)."""
     t = pt.load_hold_tables()["round-turn-two-half-hitches"]
-    assert len(t.points) == 12 and len(t.meta["rechecked"]["points"]) == 7
+    ax = t.axes
+    assert len(t.points) == ax["d_over_2R"].size * 25 and {0.1176, 0.2308} <= set(ax["d_over_2R"])
+    assert t.mus == [0.1, 0.2, 0.3, 0.5, 0.8] and list(ax["t_over_EA"]) == [1e-4, 1e-3, 1e-2,
+                                                                          0.1, 0.3]  # fmt: skip
+    assert all(not t.point(x, 1e-4, m).holds() for x in (0.1176, 0.2308) for m in t.mus)
     kw = dict(rod_diameter=4e-3, post_diameter=30e-3, load=0.5, material="vps32")
     v = knotmech.hold("round-turn-two-half-hitches", mu=0.8, **kw)
-    assert v.holds is True and v.decided_by == "DER-table"
-    assert v.creep["speed_d_per_s"] == pytest.approx(1.7e-5, rel=0.02)
+    assert v.holds is True and v.decided_by == "DER-table" and v.der["rule"] == "grid"
+    assert v.creep["speed_d_per_s"] == pytest.approx(3.65e-5, rel=0.02)
+    assert v.margin == pytest.approx(0.3 * EA / 0.5 - 1, rel=1e-6)
     w = knotmech.hold("round-turn-two-half-hitches", mu=0.3, **kw)
     assert w.holds is False and w.decided_by == "DER-table"
+    light = dict(rod_diameter=4e-3, post_diameter=30e-3, load=1e-5 * EA, material="vps32")
+    a = knotmech.hold("round-turn-two-half-hitches", mu=0.1, **light)
+    assert a.holds is False and a.der["rule"] == "settled-light-load"
+    b = knotmech.hold("round-turn-two-half-hitches", mu=0.5, **light)
+    assert b.der["holds"] is None
+
+
+def test_plot_draws_the_table_of_any_hitch(tmp_path, capsys):
+    """--plot draws the hold table that answered, for every hitch with one (here two half
+    hitches at mu = 0.4: the mu = 0.3 and 0.5 slices), titled with the knot's name."""
+    out = tmp_path / "thh.png"
+    args = ["hold", "2hh", "--rod-diameter", "4mm", "--post-diameter", "30mm", "--mu", "0.4",
+            "--load", "0.5N", "--material", "vps32", "--plot", str(out)]  # fmt: skip
+    assert main(args) == 0
+    assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n" and out.stat().st_size > 20000
+    assert "wrote" in capsys.readouterr().err
+    # a hitch with no DER answer (the round turn alone) is refused in one line
+    bad = ["hold", "round-turn"] + args[2:]
+    assert main(bad) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "--plot" in err
+
+
+def test_cow_hitch_from_its_table(capsys):
+    """The cow hitch loaded on one leg, the other free (knotmech/data/hold_phase_table_cow-
+    hitch.json, docs/notes/tables.md; HOLD_GRID's loads and frictions on the d/2R columns
+    built so far, 0.1176 and 0.2308 at least). On a 30 mm post (the 0.1176 column): 0.3 N
+    (0.019 EA, between 0.01 and 0.1 EA) holds at mu = 0.8 (both held, creeps 3.1e-5 and
+    -3.1e-5 d/s; the column held to 0.3 EA), slips at mu = 0.3 (both ran off) and is
+    undecided at mu = 0.5 (0.01 EA held, 0.1 EA ran off), with the --simulate command, the
+    ideal rope being outside its validity at d/D = 0.133; 0.1 N (0.0063 EA) holds at mu = 0.5
+    (1e-3 and 0.01 EA held, largest creep 4.6e-5 d/s, margin 0.01 EA / 0.1 N - 1)."""
+    t = pt.load_hold_tables()["cow-hitch"]
+    assert len(t.points) == t.axes["d_over_2R"].size * 25 and t.mus == [0.1, 0.2, 0.3, 0.5, 0.8]
+    kw = dict(rod_diameter=4e-3, post_diameter=30e-3, material="vps32")
+    v = knotmech.hold("cow-hitch", mu=0.8, load=0.3, **kw)
+    assert v.holds is True and v.decided_by == "DER-table" and v.der["rule"] == "grid"
+    assert v.creep["speed_d_per_s"] == pytest.approx(3.14e-5, rel=0.02)
+    assert v.margin == pytest.approx(0.3 * EA / 0.3 - 1, rel=1e-6)
+    assert knotmech.hold("cow-hitch", mu=0.3, load=0.3, **kw).holds is False
+    u = knotmech.hold("cow-hitch", mu=0.5, load=0.3, **kw)
+    assert u.holds is None and u.der["rule"] == "undecided"
+    assert u.next_step.startswith("next: knotmech hold cow-hitch --rod-diameter 4mm")
+    assert "--mu 0.5 --load 0.3N --material vps32 --simulate" in u.next_step
+    w = knotmech.hold("girth hitch", mu=0.5, load=0.1, **kw)
+    assert w.holds is True and w.creep["speed_d_per_s"] == pytest.approx(4.58e-5, rel=0.02)
+    assert w.margin == pytest.approx(0.01 * EA / 0.1 - 1, rel=1e-6)
+    # the CLI says the same, and draws the table
+    args = ["hold", "lark's head", "--rod-diameter", "4mm", "--post-diameter", "30mm", "--mu",
+            "0.8", "--load", "0.3N", "--material", "vps32", "--json", "-"]  # fmt: skip
+    assert main(args) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["holds"] is True and data["decided_by"] == "DER-table"
+    assert data["creep"]["window_s"] == 0.75

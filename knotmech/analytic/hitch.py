@@ -46,7 +46,15 @@ full turns on the post with both ends passing under the rider; two half hitches 
 single turn (:math:`\pi`) on the post then two half hitches, each a full turn
 (:math:`2\pi`) around the standing part with the end pinched under its own turn;
 round turn :math:`2\pi` (ends leaving on the same side; opposite sides add
-:math:`\pi`).
+:math:`\pi`); cow hitch (girth hitch, lark's head) two full turns on the post in
+opposite senses, the bight between them lying over both legs (a pair of half hitches
+tied in opposite directions, where the clove hitch's are tied in the same direction).
+Its load is on one leg and :math:`T_\mathrm{low}` on the other. Only the ideal-rope
+model answers for the cow hitch: a zero-thickness rope is a capstan whatever the sense of
+its turns, :math:`K = e^{4\pi\mu}` as for the clove hitch, so with one leg free it slips
+at any load (the hitch is meant to be loaded on both legs); the thick-nip chain is not
+derived for it (the bight presses the legs where it crosses them, a geometry not
+checked here), so :func:`thick_hitch_ratio` refuses it.
 """
 
 from __future__ import annotations
@@ -63,6 +71,7 @@ __all__ = [
     "KNOTS",
     "HitchGeometry",
     "FREE_END_STATEMENT",
+    "COW_FREE_LEG_STATEMENT",
     "nip_factor",
     "ideal_hitch_ratio",
     "thick_hitch_ratio",
@@ -99,8 +108,10 @@ class HitchGeometry:
     half_hitch_wrap : float
         Wrap of each half hitch around the standing part [rad].
     post_nips : bool
-        Whether both ends pass under a rider on the post (clove hitch).
+        Whether both ends pass under a rider on the post (clove hitch, cow hitch).
     description : str
+    thick_nip : bool
+        Whether the thick-nip model is derived for this hitch (not for the cow hitch).
     """
 
     name: str
@@ -110,6 +121,7 @@ class HitchGeometry:
     half_hitch_wrap: float = TWO_PI
     post_nips: bool = False
     description: str = ""
+    thick_nip: bool = True
 
     @property
     def post_wrap(self) -> float:
@@ -148,6 +160,15 @@ KNOTS: dict[str, HitchGeometry] = {
         half_hitches=2,
         description="a round turn (2 pi) on the post, then two half hitches on the standing part",
     ),
+    "cow-hitch": HitchGeometry(
+        "cow-hitch",
+        post_wrap_in=TWO_PI,
+        post_wrap_out=TWO_PI,
+        post_nips=True,
+        description="two turns on the post in opposite senses (girth hitch, lark's head), the "
+        "bight between them lying over both legs; load on one leg, T_low on the other",
+        thick_nip=False,
+    ),
 }
 
 
@@ -156,6 +177,13 @@ def _geometry(knot: str) -> HitchGeometry:
     if key not in KNOTS:
         raise InputError(f"knot must be one of {', '.join(KNOTS)}, got {knot!r}")
     return KNOTS[key]
+
+
+def _thick_geometry(knot: str) -> HitchGeometry:
+    g = _geometry(knot)
+    if not g.thick_nip:
+        raise InputError(f"the thick-nip model is not derived for the {g.name}")
+    return g
 
 
 def _mu_rr(mu, mu_rr):
@@ -244,7 +272,7 @@ def thick_hitch_lock_parameter(knot, mu, mu_rr=None, *, rod_diameter, post_diame
     half hitches: :math:`\Lambda = 2\mu_{rr}\,n(d,d)\,e^{\mu_\mathrm{eff}(\mu_{rr},1)\,\theta_h}`;
     round turn: 0 (no nip). See :func:`thick_hitch_ratio`.
     """
-    g = _geometry(knot)
+    g = _thick_geometry(knot)
     mu = check_nonnegative("mu", mu)
     mrr = _mu_rr(mu, mu_rr)
     d = check_positive("rod_diameter", rod_diameter)
@@ -293,7 +321,7 @@ def thick_hitch_ratio(knot, mu, mu_rr=None, *, rod_diameter, post_diameter):
     crosses perpendicularly, and the nips are rigid. It predicts load-independent
     holding, unlike the experiments of the clove-hitch paper (Fig. 4).
     """
-    g = _geometry(knot)
+    g = _thick_geometry(knot)
     mu = check_nonnegative("mu", mu)
     mrr = _mu_rr(mu, mu_rr)
     d = check_positive("rod_diameter", rod_diameter)
@@ -600,8 +628,10 @@ def _hitch_answers(g: HitchGeometry, mu, mrr, d, D, load, free):
             "Bayman, Am. J. Phys. 45 (1977) 185; Maddocks & Keller, SIAM J. Appl. Math. 47 "
             "(1987) 1185 (as summarised in the clove-hitch paper, Sec. 8); derivations/hitches.py"
         ),
-        notes=(FREE_END_STATEMENT,) if free == 0 and g.name == "clove-hitch" else (),
+        notes=_free_end_notes(g, free),
     )
+    if not g.thick_nip:
+        return (ideal,)
     Kt = float(thick_hitch_ratio(g.name, mu, mrr, rod_diameter=d, post_diameter=D))
     lock = float(thick_hitch_lock_parameter(g.name, mu, mrr, rod_diameter=d, post_diameter=D))
     cap_t = math.inf if math.isinf(Kt) else _capacity(Kt, free)
@@ -637,6 +667,25 @@ def _hitch_answers(g: HitchGeometry, mu, mrr, d, D, load, free):
     return ideal, thick
 
 
+#: the ideal-rope statement for a cow hitch with one leg free, and what practice says
+COW_FREE_LEG_STATEMENT = (
+    "ideal-rope theory: with one leg free (T_low = 0) the cow hitch slips at any load, "
+    "whatever d and D (a capstan of finite wrap); in practice it is used with both legs "
+    "sharing the load (E. C. Fry, Knots and Ropework: useful 'provided that both standing "
+    "parts share the load')"
+)
+
+
+def _free_end_notes(g: HitchGeometry, free) -> tuple:
+    if free != 0:
+        return ()
+    if g.name == "clove-hitch":
+        return (FREE_END_STATEMENT,)
+    if g.name == "cow-hitch":
+        return (COW_FREE_LEG_STATEMENT,)
+    return ()
+
+
 def hold_verdict(
     knot,
     *,
@@ -654,7 +703,7 @@ def hold_verdict(
     ----------
     knot : str
         ``capstan`` or one of :data:`KNOTS` (``clove-hitch``, ``two-half-hitches``,
-        ``round-turn``, ``round-turn-two-half-hitches``).
+        ``round-turn``, ``round-turn-two-half-hitches``, ``cow-hitch``).
     rod_diameter, post_diameter : float
         d, D [m], > 0.
     mu : float
@@ -674,7 +723,8 @@ def hold_verdict(
         ``holds``, ``margin``, ``decided_by`` and ``answers``. For ``capstan`` the
         finite-thickness capstan decides and the ideal capstan is reported; for
         hitches the ideal-rope theory (the reference theory of the papers) decides and
-        the thick-nip model is reported, each with ``inside_validity``.
+        the thick-nip model is reported (not for the cow hitch: not derived), each with
+        ``inside_validity``.
 
     Notes
     -----

@@ -8,6 +8,8 @@ Example::
         --mu 0.3 --load 1.47N --free-end-load 0.3N --json verdict.json
     knotmech hold clove-hitch --rod-diameter 4mm --post-diameter 30mm --mu 0.3 \\
         --load 1.47N --material vps32 --simulate
+    knotmech hold girth-hitch --rod-diameter 4mm --post-diameter 30mm --mu 0.8 \\
+        --load 0.1N --material vps32 --plot cow.png
 
 The command parses quantities (:mod:`knotmech.units`), calls :func:`knotmech.hold.hold`
 (which holds the whole policy: which model decides, what is assumed, what is
@@ -47,14 +49,19 @@ def register(subparsers) -> None:
 
     p = subparsers.add_parser(
         "hold",
-        help="does a rope tied to a post hold a load? (closed forms; DER for the clove hitch)",
+        help="does a rope tied to a post hold a load? (closed forms; DER tables and runs for "
+        "the hitches, DER pulls for the bends)",
         description=(
             "Verdict (holds / slips / undecided) for a rope tied to a rigid post: the margin "
             "and the model that decided (the most faithful one inside its validity), then "
-            "warnings and the next step; --verbose for every model's answer. For the clove "
-            "hitch with a free end it also answers from the DER phase diagram (shipped "
-            "tables or --simulate), which needs the rope's stiffness (--material or "
-            "--youngs-modulus). Quantities take units (4mm, 1.47N, 150gf, 360deg, 1.5turn)."
+            "warnings and the next step; --verbose for every model's answer. For the hitches "
+            "with a free end (clove hitch, two half hitches, round turn and two half hitches, "
+            "cow hitch loaded on one leg) it also answers from the DER hold tables (shipped, "
+            "or --phase-table) or one DER run (--simulate), which need the rope's stiffness "
+            "(--material or --youngs-modulus); outside a table's reach the answer is "
+            "undecided and prints the --simulate command that decides it. The bends (reef, "
+            "granny, thief, grief) are answered by a DER pull (--simulate). Quantities take "
+            "units (4mm, 1.47N, 150gf, 360deg, 1.5turn)."
         ),
     )
     p.add_argument("knot", help=f"one of: {', '.join(KNOT_NAMES)}")
@@ -71,7 +78,9 @@ def register(subparsers) -> None:
     )
     p.add_argument("--load", required=True, help="tension on the loaded end, e.g. 200N")
     p.add_argument(
-        "--free-end-load", default="0N", help="tension on the other end (default 0N: free end)"
+        "--free-end-load",
+        default="0N",
+        help="tension on the other end (cow hitch: on the other leg; default 0N: free end)",
     )
     p.add_argument("--wrap-angle", default=None, help="capstan only: wrap angle, e.g. 360deg")
     p.add_argument(
@@ -88,21 +97,26 @@ def register(subparsers) -> None:
     p.add_argument(
         "--simulate",
         action="store_true",
-        help="clove hitch with a free end: run one DER simulation of this geometry "
-        "(about a minute) instead of reading the shipped tables; needs E",
+        help="a hitch with a free end (clove hitch, two half hitches, round turn and two "
+        "half hitches, cow hitch): one DER run of this geometry instead of the shipped "
+        "tables (typically 10-30 s of CPU, 7.3 s wall for the clove hitch at the paper's "
+        "size on an idle machine, up to ~2 min on a large post; a second, 3 s hold when "
+        "the creep lies near the limit); a bend: one DER pull (1-3 min); needs E",
     )
     p.add_argument(
         "--creep-limit",
         default=None,
         metavar="D_PER_S",
-        help="DER hold criterion: holds when the loose end creeps slower than this many "
-        "rope diameters per second over the last second of the hold (default 1e-3)",
+        help="DER hold criterion: holds when the loaded end creeps slower than this many "
+        "rope diameters per second at the end of the hold (clove hitch: the last second; "
+        "the other hitches: the last 0.75 s) (default 1e-3)",
     )
     p.add_argument(
         "--phase-table",
         metavar="FILE",
         default=None,
-        help="clove hitch: read the DER phase table from FILE (it must exist and parse)",
+        help="a hitch with a DER answer: read the DER phase table from FILE instead of the "
+        "shipped one (it must exist and parse)",
     )
     p.add_argument(
         "--json",
@@ -114,8 +128,8 @@ def register(subparsers) -> None:
         "--plot",
         metavar="FILE",
         default=None,
-        help="clove hitch with a free end: draw where the query sits on the DER phase "
-        "diagram, or with --simulate the knot coloured by tension (png, pdf or svg)",
+        help="a hitch with a free end: draw where the query sits on the DER hold table's "
+        "phase diagram, or with --simulate the knot coloured by tension (png, pdf or svg)",
     )
     p.add_argument("--verbose", "-v", action="store_true", help="every model's answer in full")
     p.set_defaults(func=run)
@@ -130,7 +144,15 @@ def _json_path(text) -> Path | None:
 
 
 def run(args) -> int:
-    from knotmech.hold import can_simulate, check_plot_path, hold, knot_key, plot_verdict
+    from knotmech.hold import (
+        DER_HITCHES,
+        can_simulate,
+        check_plot_path,
+        has_der_answer,
+        hold,
+        knot_key,
+        plot_verdict,
+    )
 
     knot = knot_key(args.knot)
     d = parse_quantity(args.rod_diameter, "length", name="--rod-diameter")
@@ -178,11 +200,13 @@ def run(args) -> int:
     if args.simulate and not can_simulate(knot):
         raise InputError(
             f"--simulate is available for the clove hitch, the hitches with a DER scene "
-            f"(two half hitches, round turn and two half hitches) and the bends, not for {knot}"
+            f"(two half hitches, round turn and two half hitches, cow hitch) and the bends, "
+            f"not for {knot}"
         )
     if args.simulate and free > 0 and not bend:
         raise InputError(
-            "--simulate covers the clove hitch with a free end only (--free-end-load 0)"
+            "--simulate covers the hitches with a free end only (--free-end-load 0; cow "
+            "hitch: one leg loaded, the other free)"
         )
     creep_limit = None
     if args.creep_limit is not None:
@@ -196,10 +220,10 @@ def run(args) -> int:
             check_plot_path(args.plot)
         except InputError as exc:
             raise InputError(f"--{exc}") from None
-        if knot != "clove-hitch" or free > 0:
+        if not has_der_answer(knot) or free > 0:
             raise InputError(
-                "--plot draws the DER answer (phase diagram or simulated knot): clove-hitch "
-                "with a free end only"
+                "--plot draws the DER answer (phase diagram or simulated knot): a hitch with "
+                f"a DER answer ({', '.join(DER_HITCHES)}) with a free end only"
             )
     try:
         verdict = hold(

@@ -29,7 +29,8 @@ class _Parser(argparse.ArgumentParser):
 #: their modules (each module's own ``help=`` says the same; tests/cli/test_startup.py checks)
 SUMMARIES = {
     "tour": "a short tour: closed forms, a hold verdict and a figure",
-    "hold": "does a rope tied to a post hold a load? (closed forms; DER for the clove hitch)",
+    "hold": "does a rope tied to a post hold a load? (closed forms; DER tables and runs for "
+    "the hitches, DER pulls for the bends)",
     "simulate": "run a simulated experiment (capstan, two-loops, pinch, overhand, clove-hitch, "
     "bend, centreline)",
     "diagnose": "find where a recording differs from its baseline model and name the missing "

@@ -39,7 +39,11 @@ from knotmech.scenes.curves import _edge_distances
 
 __all__ = ["BendResult", "bend", "PATIL_ORDER"]
 
-#: Stability order of the four bends reported by Patil et al. (2020), most secure first.
+#: Stability order of the four bends attributed to Patil et al. (2020), most secure first,
+#: as recalled in docs/notes/knots.md. Only reef above granny is confirmed by a source we
+#: could read (the authors' summary, Patil & Dunkel, SIAM News 2020: the granny "slips and
+#: unravels easily when pulled, whereas the reef knot is more secure"); the place of thief
+#: and grief was not checked against the paper (docs/notes/tables.md).
 PATIL_ORDER = ("reef", "thief", "granny", "grief")
 
 

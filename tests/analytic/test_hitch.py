@@ -10,6 +10,7 @@ from hypothesis import strategies as st
 
 from knotmech.analytic.capstan import capstan_ratio
 from knotmech.analytic.hitch import (
+    COW_FREE_LEG_STATEMENT,
     FREE_END_STATEMENT,
     KNOTS,
     ModelAnswer,
@@ -26,6 +27,8 @@ from knotmech.errors import InputError
 
 FAST = settings(max_examples=40, deadline=None)
 knots = st.sampled_from(sorted(KNOTS))
+#: the hitches with a thick-nip model (not derived for the cow hitch)
+thick_knots = st.sampled_from(sorted(k for k, g in KNOTS.items() if g.thick_nip))
 mus = st.floats(0.0, 2.0)
 diam = st.floats(1e-4, 0.1)
 
@@ -62,7 +65,7 @@ def test_ideal_criterion_monotone_in_mu(knot, mu, factor, t_low, ratio):
 
 
 @FAST
-@given(knots, mus, st.floats(1.0, 3.0), diam, st.floats(1.0, 100.0))
+@given(thick_knots, mus, st.floats(1.0, 3.0), diam, st.floats(1.0, 100.0))
 def test_thick_model_monotone_in_mu(knot, mu, factor, d, Dt):
     k1 = thick_hitch_ratio(knot, mu, rod_diameter=d, post_diameter=d * Dt)
     k2 = thick_hitch_ratio(knot, mu * factor, rod_diameter=d, post_diameter=d * Dt)
@@ -101,6 +104,29 @@ def test_ideal_ratios_by_hand():
     assert float(ideal_hitch_ratio("round-turn-two-half-hitches", mu, mrr)) == pytest.approx(
         math.exp(2 * math.pi * mu + 4 * math.pi * mrr)
     )
+
+
+def test_cow_hitch_is_an_ideal_rope_capstan_of_two_turns_and_has_no_thick_nip_model():
+    """A zero-thickness rope is a capstan whatever the sense of its turns: the cow hitch's
+    two turns in opposite senses give K = exp(4 pi mu), the clove hitch's; with one leg
+    free it slips at any load. The thick-nip chain is not derived for it: refused, and
+    its verdict carries the ideal rope only."""
+    assert float(ideal_hitch_ratio("cow-hitch", 0.3)) == pytest.approx(
+        math.exp(4 * math.pi * 0.3), rel=1e-14
+    )
+    with pytest.raises(InputError, match="not derived for the cow-hitch"):
+        thick_hitch_ratio("cow-hitch", 0.3, rod_diameter=4e-3, post_diameter=30e-3)
+    with pytest.raises(InputError, match="not derived for the cow-hitch"):
+        thick_hitch_lock_parameter("cow-hitch", 0.3, rod_diameter=4e-3, post_diameter=30e-3)
+    kw = dict(rod_diameter=4e-3, post_diameter=80e-3, mu=0.3)
+    v = hold_verdict("cow-hitch", load=1.0, free_end_load=0.0, **kw)
+    assert [a.model for a in v.answers] == ["ideal-rope"]
+    assert v.holds is False and v.margin == -1.0
+    assert COW_FREE_LEG_STATEMENT in v.deciding.notes
+    # both legs loaded: holds up to exp(4 pi 0.3) = 43.38 times the lighter leg
+    both = hold_verdict("cow-hitch", load=1.0, free_end_load=1.0, **kw)
+    assert both.holds is True and both.deciding.capacity == pytest.approx(43.376, rel=1e-4)
+    assert hold_verdict("cow-hitch", load=44.0, free_end_load=1.0, **kw).holds is False
 
 
 @pytest.mark.parametrize(("knot", "rate"), [("clove-hitch", 0.5), ("round-turn", 1.0)])

@@ -1,6 +1,9 @@
 """Bends pulled apart (Patil et al., Science 367, 71, 2020): the reef holds more than the granny.
 
-Practice and the paper agree that the granny slips at a lower load than the reef; the slow
+Practice and the paper agree that the granny slips at a lower load than the reef (the
+authors' summary, Patil & Dunkel, SIAM News 2020: the granny "slips and unravels easily
+when pulled, whereas the reef knot is more secure"; the paper's place for the thief and
+grief bends was not checked, docs/notes/tables.md); the slow
 test runs both at the scene's defaults (80 nodes per rope, grips at 40 mm/s, set at
 0.1 B/d^2) with sticking rod-rod friction mu = 1 (at mu = 0.3 these elastic rods grip in
 none of the four bends) and checks that order, that the knot type was kept (no strand
