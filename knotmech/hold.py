@@ -710,7 +710,8 @@ def _der(
             + (" (sticking rod-rod anchor law)" if law == "anchor" else " (smooth rod-rod law)"),
             "solid-rod bending stiffness EI = E pi d^4/64 (a fibre rope bends far more easily)",
             hold_rule,
-        ) + ((COW_LOADING,) if knot == "cow-hitch" else ()),
+        )
+        + ((COW_LOADING,) if knot == "cow-hitch" else ()),
         validity=(validity,),
         reference=(
             "clove-hitch paper (Extreme Mech. Lett., DOI 10.1016/j.eml.2022.101788), "

@@ -197,6 +197,7 @@ class Stepper:
         self.constraints = tuple(constraints)
         self.interactions = tuple(interactions)
         self.opt = options
+        self.last_iterate = None  # the configuration the last Newton evaluation was at
         self.ws = ElasticWorkspace(system)
         n = system.n_dof
         cd = [c.dofs(system) for c in self.constraints]
@@ -639,6 +640,7 @@ class Stepper:
             )
             if not cross:
                 self._factors_valid = False
+            self.last_iterate = q
             scales = self.evaluate(q, st, dt, t_new)
             return self._iterate(q, st, dt, t_new, scales, cross)
         except _StepFailed:
@@ -693,6 +695,7 @@ class Stepper:
             alpha = 1.0
             for _ in range(opt.max_backtracks + 1):
                 q_try = q + alpha * dq
+                self.last_iterate = q_try  # what a failed attempt reached (strain check)
                 scales = self.evaluate(q_try, st, dt, t_new)
                 r1 = self.rnorm
                 if np.isfinite(r1) and (
@@ -718,6 +721,23 @@ class Stepper:
             f"Newton did not converge in {opt.max_newton} iterations (residual {rel:.2e})",
             opt.max_newton,
         )
+
+
+def _worst_strain(system, q) -> tuple[int, float]:
+    """(edge, strain l/l0 - 1) of the edge strained most at configuration ``q``."""
+    ends = q[system.node_dofs][system.edge_nodes]
+    strain = np.linalg.norm(ends[:, 1] - ends[:, 0], axis=1) / system.rest_length - 1.0
+    with np.errstate(invalid="ignore"):
+        k = int(np.nanargmax(np.abs(strain))) if np.any(np.isfinite(strain)) else 0
+    return k, float(strain[k])
+
+
+def _strain_message(k: int, e: float, t: float, limit: float, how: str) -> str:
+    return (
+        f"edge {k} would reach a strain of {e:.3g}{how} at t = {t:.6g} s, beyond "
+        f"max_strain = {limit:g}: the loads are too large for the rod (a rod model result "
+        "no longer); last good state kept"
+    )
 
 
 class _StallGuard:
@@ -868,6 +888,8 @@ def simulate(
     n_good = st.n_good
     k_save = int(np.floor(st.t / save_every + 1e-9)) + 1
     status, message = "success", f"reached t_end = {t_end:g} s"
+    worst = (0, 0.0, st.t)  # largest edge strain of the failed attempts since the last step
+    stepper.last_iterate = None
     stall = _StallGuard(opt, dt, st.t, wall0)
     bar = None
     if progress:
@@ -890,29 +912,33 @@ def simulate(
             except _StepFailed as exc:
                 stall.last_reason = str(exc)
                 stats["rejected_steps"] += 1
+                if opt.max_strain is not None and stepper.last_iterate is not None:
+                    k, e = _worst_strain(system, stepper.last_iterate)
+                    if np.isfinite(e) and abs(e) > abs(worst[1]):
+                        worst = (k, e, st.t + h)
                 dt_cur = 0.5 * min(dt_cur, h)
                 n_good = 0
                 if dt_cur < opt.dt_min:
                     status = "failed"
-                    message = (
-                        f"step failed at t = {st.t:.6g} s with dt = {2 * dt_cur:.3g} s < "
-                        f"2 dt_min ({exc}); last good state kept"
-                    )
+                    if opt.max_strain is not None and not abs(worst[1]) <= opt.max_strain:
+                        # every attempt down to dt_min failed and Newton's iterates went
+                        # beyond the strain limit: the loads, not the step size, are the
+                        # cause (numerics may differ in how the attempts fail: a converged
+                        # step beyond the limit or an evaluation error on the way there)
+                        message = _strain_message(*worst, opt.max_strain, " (on the way)")
+                    else:
+                        message = (
+                            f"step failed at t = {st.t:.6g} s with dt = {2 * dt_cur:.3g} s < "
+                            f"2 dt_min ({exc}); last good state kept"
+                        )
                     break
                 continue
+            worst = (0, 0.0, st.t)
             if opt.max_strain is not None:
-                x_new = q_new[system.node_dofs]
-                ends = x_new[system.edge_nodes]
-                strain = np.linalg.norm(ends[:, 1] - ends[:, 0], axis=1) / system.rest_length
-                k_max = int(np.argmax(np.abs(strain - 1.0)))
-                if not abs(strain[k_max] - 1.0) <= opt.max_strain:
+                k_max, e_max = _worst_strain(system, q_new)
+                if not abs(e_max) <= opt.max_strain:
                     status = "failed"
-                    message = (
-                        f"edge {k_max} would reach a strain of {strain[k_max] - 1.0:.3g} at "
-                        f"t = {st.t + h:.6g} s, beyond max_strain = {opt.max_strain:g}: the "
-                        "loads are too large for the rod (a rod model result no longer); "
-                        "last good state kept"
-                    )
+                    message = _strain_message(k_max, e_max, st.t + h, opt.max_strain, "")
                     break
             stats["steps"] += 1
             stats["newton_iterations"] += iters
