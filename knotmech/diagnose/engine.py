@@ -63,11 +63,13 @@ from knotmech.diagnose.fitting import (
 )
 from knotmech.diagnose.locate import flexible_mismatch, regions_from_mask, smooth_mismatch
 from knotmech.diagnose.noisefloor import (
+    SHORT_ROWS,
     find_outliers,
     noise_floor,
     noise_floor_verdict,
     outlier_threshold,
     outliers_of_remainder,
+    short_recording_verdict,
     without_rows,
 )
 from knotmech.diagnose.recording import Recording, read_recording, recording_from_arrays
@@ -425,6 +427,9 @@ def _noise_floor_check(rec, final, starts, rng, alpha):
         resid, rec.x, rec.trial, final.noise, final.mean, starts, rng, draws=max(draws, 199)
     )
     verdict, reason = noise_floor_verdict(floor, alpha)
+    if verdict == "none" or (rec.sigma is not None and rec.n < SHORT_ROWS):
+        # a short recording: its stated sigma decides, or it is undetermined without one
+        verdict, reason = short_recording_verdict(resid, rec.sigma, floor, len(final.p), alpha)
     regions = []
     k = UNDETERMINED_SMOOTH_KNOTS
     if verdict == "undetermined" and k and rec.n >= UNDETERMINED_ROWS_PER_KNOT * k:

@@ -65,6 +65,9 @@ __all__ = [
     "outliers_of_remainder",
     "hf_sigma",
     "N_EFF_MIN",
+    "NONE_LEVEL_MAX",
+    "SHORT_ROWS",
+    "short_recording_verdict",
     "OUTLIER_SD",
     "outlier_threshold",
 ]
@@ -75,6 +78,15 @@ __all__ = [
 #: Measured: smooth misfits folded into the noise leave 3.0-3.7 (issue 14's nips of 30
 #: and 100 sd at 240 rows), AR(1) nulls at rho = 0.9 and 200-240 rows 7.8-8.9
 N_EFF_MIN = 5.0
+#: a remainder whose rms exceeds this many high-frequency sd is never ``none``: no noise
+#: model fitted to the recording may absorb a misfit that large (issue 14: 5-16x the
+#: noise were called ``none`` under a fitted lag-one correlation of 0.95-0.985)
+NONE_LEVEL_MAX = 10.0
+#: below this many rows (and without a ``sigma`` column) the noise level is estimated
+#: from the very rows the fit explains: the second differences of 8 rows of a ripple
+#: are the ripple itself (30-sd ripples of 8 rows came out ``none`` 12/12, of 20 rows
+#: 3/12), so a would-be ``none`` is ``undetermined``
+SHORT_ROWS = 30
 #: an outlier lies farther than this many noise sd from its neighbours (up to 100
 #: rows; more beyond, see :func:`outlier_threshold`)
 OUTLIER_SD = 4.5
@@ -353,7 +365,9 @@ def noise_floor_verdict(nf: NoiseFloor, alpha: float) -> tuple[str, str]:
       names the noise models tried and what they lack).
 
     Each branch is a test at level ``alpha``; ``none`` is overturned only when two
-    (``level`` and ``model`` or ``n_eff``) reject.
+    (``level`` and ``model`` or ``n_eff``) reject, or when the remainder's rms exceeds
+    :data:`NONE_LEVEL_MAX` high-frequency sd (no noise model may absorb that much).
+    Short recordings are judged again by :func:`short_recording_verdict`.
     """
     if nf.p_level >= alpha:
         return "none", ""
@@ -362,9 +376,11 @@ def noise_floor_verdict(nf: NoiseFloor, alpha: float) -> tuple[str, str]:
         f"{nf.sigma_hf:.3g} (p = {nf.p_level:.2g} under white noise; only noise with a "
         f"lag-one correlation of {nf.rho_needed:.3g} would explain it)"
     )
-    if nf.p_model >= alpha and nf.n_eff >= N_EFF_MIN:
+    if nf.level > NONE_LEVEL_MAX:
+        head += f" (above the {NONE_LEVEL_MAX:g} no fitted noise model may absorb)"
+    elif nf.p_model >= alpha and nf.n_eff >= N_EFF_MIN:
         return "none", ""
-    if _ar_explains(nf, alpha):
+    elif _ar_explains(nf, alpha):
         return "none", ""
     if nf.p_model < alpha:
         why = (
@@ -399,6 +415,62 @@ def noise_floor_verdict(nf: NoiseFloor, alpha: float) -> tuple[str, str]:
     return "undetermined", (
         f"{head}; {why}; the recording cannot tell a smooth mismatch from correlated "
         f"noise (lag-one correlation of differences {nf.hf_lag1:.2f}, white -0.5)"
+    )
+
+
+def short_recording_verdict(
+    resid: np.ndarray,
+    sigma: np.ndarray | None,
+    nf: NoiseFloor,
+    n_params: int,
+    alpha: float,
+) -> tuple[str, str]:
+    """The verdict of a recording of fewer than :data:`SHORT_ROWS` rows.
+
+    With a ``sigma`` column the noise is known: the remainder is tested against it
+    (``sum (r/sigma)^2`` against chi-square with ``n - n_params`` degrees of freedom),
+    ``none`` when it passes and ``unexplained`` when not. Without one the noise level
+    can only be estimated from the rows the fit explains, which a smooth misfit of a
+    few rows passes for noise, so a would-be ``none`` is ``undetermined``.
+
+    Parameters
+    ----------
+    resid : (n,) array
+        Remainder ``y - f`` [units of y].
+    sigma : (n,) array or None
+        The recording's stated noise sd per row [units of y].
+    nf : NoiseFloor
+        The remainder's noise floor (for ``n`` and the level).
+    n_params : int
+        Parameters of the fitted model.
+    alpha : float
+        Test level.
+
+    Returns
+    -------
+    verdict : str
+        ``none``, ``unexplained`` or ``undetermined``.
+    reason : str
+        Empty for ``none``.
+    """
+    n = int(nf.n)
+    if n >= SHORT_ROWS:
+        return "none", ""
+    if sigma is not None:
+        dof = max(n - int(n_params), 1)
+        chi2 = float(np.sum((np.asarray(resid, float) / np.asarray(sigma, float)) ** 2))
+        p = float(stats.chi2.sf(chi2, dof))
+        if p >= alpha:
+            return "none", ""
+        return "unexplained", (
+            f"the remainder is {np.sqrt(chi2 / dof):.3g} times the stated sigma "
+            f"(chi-square {chi2:.3g} on {dof} degrees of freedom, p = {p:.2g})"
+        )
+    return "undetermined", (
+        f"{n} rows without a sigma column: the noise level can only be estimated from "
+        f"the rows the fit explains (rms of the remainder {nf.level:.3g} times the "
+        f"high-frequency estimate {nf.sigma_hf:.3g}), too few to tell a smooth mismatch "
+        f"from noise; record at least {SHORT_ROWS} rows or give the sensor's sigma"
     )
 
 

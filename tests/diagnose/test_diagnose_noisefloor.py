@@ -10,6 +10,7 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
+from knotmech.cli.validate import load_case
 from knotmech.diagnose import diagnose
 from knotmech.diagnose.noisefloor import (
     find_outliers,
@@ -211,3 +212,60 @@ def test_accepted_effect_with_a_structured_leftover_warns():
     lo = rep.details["leftover"]
     assert lo["verdict"] == "unexplained" and lo["level"] > 1.5 and lo["regions"]
     assert "warning: the accepted effects leave an unexplained remainder" in rep.summary
+
+
+def test_rms_above_ten_hf_sd_is_never_none():
+    """A noise model that describes its innovations and leaves 200 stretches does not
+    save a remainder of 12 high-frequency sd (issue 14: 5-16x the noise were `none`)."""
+    from knotmech.diagnose.noisefloor import NONE_LEVEL_MAX, NoiseFloor
+
+    base = dict(sigma_hf=0.01, rho_needed=0.99, innovation_lag1=0.0, hf_lag1=-0.5, n=240)
+    below = NoiseFloor(level=9.0, p_level=1e-4, p_model=0.5, p_hf_white=0.5, n_eff=200.0, **base)
+    assert noise_floor_verdict(below, 0.01) == ("none", "")
+    above = replace_level(below, NONE_LEVEL_MAX + 2.0)
+    v, why = noise_floor_verdict(above, 0.01)
+    assert v == "unexplained" and "no fitted noise model may absorb" in why
+    red = replace_level(below, NONE_LEVEL_MAX + 2.0, p_hf_white=1e-3)
+    assert noise_floor_verdict(red, 0.01)[0] == "undetermined"
+
+
+def replace_level(nf, level, **kw):
+    from dataclasses import replace
+
+    return replace(nf, level=level, **kw)
+
+
+@pytest.mark.parametrize("n", [8, 20])
+@pytest.mark.parametrize("kind", ["pinch", "tension_profile", "capstan_pull"])
+def test_short_recordings_are_never_none_without_sigma(n, kind):
+    """30-sd ripples of 8 and 20 rows were `none` (12/12 and 3/12 in the noise_robustness
+    row sweep): below SHORT_ROWS rows a would-be `none` is `undetermined` with the
+    reason, and a null of as few rows is not called an effect either."""
+    make = load_case("noise_robustness").make
+
+    for shape in ("ripple", None):
+        rec, truth = make(kind, shape, 30.0, "white", 200, n)
+        rep = diagnose(rec, seed=0)
+        if shape is not None:
+            assert rep.final["rms"] > 10 * truth["sd"]  # the mismatch is there, and large
+            assert rep.verdict in ("unexplained", "undetermined"), rep.summary
+        else:
+            assert rep.verdict == "undetermined", rep.summary
+            assert f"{n} rows without a sigma column" in rep.summary
+
+
+def test_short_recordings_with_sigma_are_judged_against_it():
+    """8 rows with a stated sigma: the remainder is tested against it (chi-square), so
+    10 white nulls stay `none` and 10 30-sd ripples are `unexplained`."""
+    make = load_case("noise_robustness").make
+
+    verdicts = {"ripple": [], None: []}
+    for shape in verdicts:
+        for seed in range(10):
+            rec, truth = make("pinch", shape, 30.0, "white", 200 + seed, 8)
+            rec = recording_from_arrays(
+                "pinch", rec.x, rec.y, metadata=rec.metadata, sigma=np.full(rec.n, truth["sd"])
+            )
+            verdicts[shape].append(diagnose(rec, seed=0).verdict)
+    assert verdicts["ripple"] == ["unexplained"] * 10
+    assert verdicts[None] == ["none"] * 10
