@@ -916,7 +916,7 @@ def hold(
             key, rod_diameter=rod_diameter, post_diameter=post_diameter, mu=mu, load=load,
             free_end_load=free_end_load, mu_rr=mu_rr, wrap_angle=wrap_angle, material=material,
             youngs_modulus=youngs_modulus, simulate=simulate, phase_table=phase_table,
-            progress=progress,
+            progress=progress, bending_scale=bending_scale,
         )  # fmt: skip
     if post_diameter is None:
         raise InputError(f"post_diameter is required for {key}")
@@ -1084,7 +1084,7 @@ def hold(
 
 def _hold_bend(
     key, *, rod_diameter, post_diameter, mu, load, free_end_load, mu_rr, wrap_angle, material,
-    youngs_modulus, simulate, phase_table, progress,
+    youngs_modulus, simulate, phase_table, progress, bending_scale=None,
 ):  # fmt: skip
     """A bend (two ropes joined, pulled apart): no closed form and no table; with
     ``simulate`` one DER pull of the bend scene, its slip load against the load."""
@@ -1104,16 +1104,18 @@ def _hold_bend(
     if float(free_end_load or 0.0) != 0.0:
         raise InputError(f"free_end_load does not apply to a bend ({key}: no free end)")
     E, mat, e_source = _youngs_modulus(material, youngs_modulus)
-    inputs = {"rod_diameter": d, "mu": mu, "load": load}
+    kappa, k_source = _bending_scale(mat, bending_scale)
+    inputs = {"rod_diameter": d, "mu": mu, "load": load, "bending_scale": kappa}
     if mat is not None:
         inputs["material"] = mat.key
     if E is not None:
         inputs["youngs_modulus"] = E
     cmd = simulate_command(key, d=d, D=None, mu=mu, load=load,
                            material=None if mat is None else mat.key,
-                           youngs_modulus=youngs_modulus)  # fmt: skip
+                           youngs_modulus=youngs_modulus,
+                           bending_scale=bending_scale)  # fmt: skip
     warns = _warnings(mu, None, d, math.inf, load, E, None)
-    assumptions = [e_source] if e_source else []
+    assumptions = ([e_source] if e_source else []) + [k_source]
     note = (
         f"{key} is a bend (Patil et al., Science 2020): no closed form and no DER table; "
         "one DER pull of the bend scene (knotmech.scenes.bends.bend) gives its slip load"
@@ -1135,6 +1137,8 @@ def _hold_bend(
     from knotmech.scenes.bends import bend
 
     kw = {"density": mat.density} if mat is not None else {}
+    if kappa != 1.0:
+        kw["bending_scale"] = kappa
     r = bend(key, rod_diameter=d, youngs_modulus=E, mu_rod_rod=mu, progress=progress, **kw)
     der = {
         "source": "simulation", "scene": "knotmech.scenes.bends.bend", "kind": key,
@@ -1166,7 +1170,8 @@ def _hold_bend(
                 model="DER-simulation", holds=bool(holds), margin=capacity / load - 1,
                 capacity=capacity, critical_mu=math.nan, decides=True, inside_validity=True,
                 assumptions=(
-                    "two solid elastic rods (EI = E pi d^4/64), sticking rod-rod friction, "
+                    f"two elastic rods (B = kappa E pi d^4/64, kappa = {kappa:g}), sticking "
+                    "rod-rod friction, "
                     f"set by hand then pulled apart at {r.pull_speed * 1e3:g} mm/s",
                     "slip: a tail draws in by more than 2 d while the pull force stays "
                     "within 10 % of its largest value",
