@@ -352,6 +352,9 @@ def format_verdict(verdict, *, verbose: bool = False) -> str:
         lines.append(f"assumed: {s}")
     if verdict.creep is not None:
         lines.append(format_creep(verdict.creep))
+    der = verdict.der or {}
+    if not verbose and der.get("refused") == "bending_scale":
+        lines.append(f"DER: undecided, {der['message']}")
     if verdict.next_step and verdict.holds is not None:
         lines.append(verdict.next_step)
     if not verbose:
