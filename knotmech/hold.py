@@ -394,7 +394,7 @@ BENDING_SCALE_FACTOR = 3.0
 
 def _bending_scale(mat, bending_scale):
     """(kappa, what was assumed): ``bending_scale`` if given, else the material's, else 1."""
-    from knotmech.rod.system import check_bending_scale
+    from knotmech.errors import check_bending_scale
 
     if bending_scale is not None:
         k = check_bending_scale(bending_scale)

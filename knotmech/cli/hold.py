@@ -220,7 +220,7 @@ def run(args) -> int:
         )
     kappa = None
     if args.bending_scale is not None:
-        from knotmech.rod.system import check_bending_scale
+        from knotmech.errors import check_bending_scale
 
         try:
             kappa = check_bending_scale(

@@ -12,21 +12,10 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import InputError, check_finite, check_positive, check_range
+from ..errors import InputError, check_bending_scale, check_finite, check_positive, check_range
 from ._kernels import frames as _fr
 
 __all__ = ["Rod", "RodSystem", "State"]
-
-
-def check_bending_scale(value) -> float:
-    """``bending_scale`` kappa as a float, finite with 0 < kappa <= 1, else InputError."""
-    try:
-        k = float(value)
-    except (TypeError, ValueError):
-        raise InputError(f"bending_scale must be a number in (0, 1], got {value!r}") from None
-    if not (np.isfinite(k) and 0.0 < k <= 1.0):
-        raise InputError(f"bending_scale must be finite with 0 < bending_scale <= 1, got {value!r}")
-    return k
 
 
 def _frozen(a) -> np.ndarray:

@@ -47,11 +47,10 @@ import numpy as np
 
 from knotmech import rod
 from knotmech.analytic.capstan import mu_eff as _mu_eff
-from knotmech.errors import InputError, check_nonnegative, check_positive
+from knotmech.errors import InputError, check_bending_scale, check_nonnegative, check_positive
 from knotmech.rod.constraints import Clamp, MovingNodes
 from knotmech.rod.contact import RodContact
 from knotmech.rod.friction import AnchorFriction, SmoothFriction
-from knotmech.rod.system import check_bending_scale
 from knotmech.scenes._common import (
     check_pull_step,
     check_run_size,

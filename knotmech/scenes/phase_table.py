@@ -302,7 +302,7 @@ def simulate_point(
     E = float(check_positive("youngs_modulus", youngs_modulus))
     tea = float(check_positive("t_over_EA", t_over_EA))
     lim = float(check_positive("creep_limit", creep_limit))
-    from knotmech.rod.system import check_bending_scale
+    from knotmech.errors import check_bending_scale
 
     kappa = check_bending_scale(bending_scale)
     if friction not in ("anchor", "imc"):

@@ -90,8 +90,9 @@ def test_issue_example_no_longer_decided_by_a_model_outside_its_validity(capsys)
     assert "ideal-rope slips (outside its validity)" in out
     # with the rope's material: nylon kernmantle E = 0.25 GPa, EA = 7.07 kN, 200 N is
     # 0.0283 EA at d/2R = 6/46 = 0.130, mu 0.4: inside the anchor-law hold table, whose
-    # eight neighbouring points (d/2R 0.1176, 0.2308 x 0.01, 0.1 EA x mu 0.3, 0.5) all held
-    data = _json(ISSUE + ["--material", "nylon"], capsys)
+    # eight neighbouring points (d/2R 0.1176, 0.2308 x 0.01, 0.1 EA x mu 0.3, 0.5) all held;
+    # the tables are solid rods (kappa = 1), so this is the solid-rod check --bending-scale 1
+    data = _json(ISSUE + ["--material", "nylon", "--bending-scale", "1"], capsys)
     assert data["holds"] is True and data["decided_by"] == "DER-table"
     assert data["der"]["rule"] == "grid" and data["der"]["mu_tables"] == [0.3, 0.5]
     assert data["inputs"]["youngs_modulus"] == 0.25e9
