@@ -19,6 +19,7 @@ __all__ = [
     "check_positive",
     "check_nonnegative",
     "check_finite",
+    "check_bending_scale",
     "check_range",
 ]
 
@@ -100,3 +101,14 @@ def _show(arr: np.ndarray) -> str:
         return f"{float(arr):g}"
     bad = arr.ravel()
     return f"array with values in [{bad.min():g}, {bad.max():g}]"
+
+
+def check_bending_scale(value) -> float:
+    """``bending_scale`` kappa as a float, finite with 0 < kappa <= 1, else InputError."""
+    try:
+        k = float(value)
+    except (TypeError, ValueError):
+        raise InputError(f"bending_scale must be a number in (0, 1], got {value!r}") from None
+    if not (np.isfinite(k) and 0.0 < k <= 1.0):
+        raise InputError(f"bending_scale must be finite with 0 < bending_scale <= 1, got {value!r}")
+    return k

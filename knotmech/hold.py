@@ -387,6 +387,44 @@ def _youngs_modulus(material, youngs_modulus):
     return None, None, ""
 
 
+#: the DER table answers only when the table's bending scale kappa is within this factor of
+#: the rope's (a rope's kappa is of order 0.01; the shipped tables are solid rods, kappa = 1)
+BENDING_SCALE_FACTOR = 3.0
+
+
+def _bending_scale(mat, bending_scale):
+    """(kappa, what was assumed): ``bending_scale`` if given, else the material's, else 1."""
+    from knotmech.errors import check_bending_scale
+
+    if bending_scale is not None:
+        k = check_bending_scale(bending_scale)
+        src = f"bending scale kappa = {k:g} (B = kappa E pi d^4/64), as given"
+        if mat is not None and mat.bending_scale != k:
+            src += f" (instead of the {mat.key} preset's {mat.bending_scale:g})"
+        return k, src
+    if mat is not None:
+        k = float(mat.bending_scale)
+        lo, hi = mat.bending_scale_range
+        rng = "" if lo == hi else f", range {lo:g}-{hi:g}"
+        return k, (
+            f"bending scale kappa = {k:g} (B = kappa E pi d^4/64{rng}); source: "
+            f"{mat.bending_source}"
+        )
+    return 1.0, (
+        "bending scale kappa = 1 (B = E pi d^4/64, a solid rod): no material given, so no "
+        "rope bending stiffness; a fibre rope is of order 0.01 (give --bending-scale)"
+    )
+
+
+def _table_kappa(table) -> float:
+    """The bending scale a DER table was built with (meta ``bending_scale``, 1 if absent)."""
+    meta = getattr(table, "meta", None) or {}
+    try:
+        return float(meta.get("bending_scale", 1.0))
+    except (TypeError, ValueError):
+        return 1.0
+
+
 def _warnings(mu, mu_rr, d, D, load, E, theta):
     out = []
     for name, v in (("mu", mu), ("mu_rr", mu_rr)):
@@ -489,8 +527,9 @@ def _q(value: float, unit: str) -> str:
 
 
 def simulate_command(
-    knot, *, d, D, mu, mu_rr=None, load, material=None, youngs_modulus=None, creep_limit=None
-) -> str:
+    knot, *, d, D, mu, mu_rr=None, load, material=None, youngs_modulus=None, creep_limit=None,
+    bending_scale=None,
+) -> str:  # fmt: skip
     """The full ``knotmech hold ... --simulate`` command that decides this case by one DER run."""
     parts = ["knotmech", "hold", knot, "--rod-diameter", _q(d, "m")]
     if D is not None:
@@ -505,6 +544,8 @@ def simulate_command(
         parts += ["--material", str(material)]
     else:  # a DER run needs the stiffness: the user picks it
         parts += ["--material", "MATERIAL"]
+    if bending_scale is not None:
+        parts += ["--bending-scale", f"{float(bending_scale):g}"]
     if creep_limit is not None:
         parts += ["--creep-limit", f"{creep_limit:g}"]
     return " ".join(parts + ["--simulate"])
@@ -566,9 +607,12 @@ def _der(
     progress,
     ideal_holds,
     creep_limit=None,
+    bending_scale=1.0,
+    command="",
 ):
     """The DER answer for a hitch with a free end: (details dict, ModelAnswer or None,
-    creep dict or None, shape)."""
+    creep dict or None, shape). A table answers only when its bending scale is within
+    :data:`BENDING_SCALE_FACTOR` of ``bending_scale`` (else undecided, ``command`` decides)."""
     from knotmech.analytic.hitch import ModelAnswer
     from knotmech.scenes import phase_table as pt
 
@@ -588,7 +632,23 @@ def _der(
         "message": "",
         "agrees_with_ideal_rope": None,
         "criterion": _criterion_text(lim),
+        "bending_scale": float(bending_scale),
     }
+    kappa = float(bending_scale)
+
+    def refused(table):
+        """The reason a table built at another kappa may not answer, "" when it may."""
+        tk = _table_kappa(table)
+        out["table_bending_scale"] = tk
+        if max(tk / kappa, kappa / tk) <= BENDING_SCALE_FACTOR:
+            return ""
+        kind = "solid rods" if tk == 1.0 else "rods"
+        return (
+            f"not decided by the table: the tables are for {kind} (kappa = {tk:g}); this "
+            f"rope's kappa = {kappa:g} (more than a factor {BENDING_SCALE_FACTOR:g} apart)"
+            + (f"; decide with: {command}" if command else "")
+        )
+
     creep = None
     shape = None
     capacity = math.nan
@@ -596,7 +656,7 @@ def _der(
     if simulate:
         p = pt.simulate_point(
             d_over_2R=x, t_over_EA=y, mu=mu, mu_rr=mu_rr, rod_diameter=d, youngs_modulus=E,
-            creep_limit=lim, recheck=True, progress=progress, keep_result=True,
+            bending_scale=kappa, creep_limit=lim, recheck=True, progress=progress, keep_result=True,
             **({} if knot == "clove-hitch" else {"knot": knot}),
         )  # fmt: skip
         shape = _shape(p.get("result"), d=d, D=D)
@@ -628,6 +688,11 @@ def _der(
         user = None if phase_table is None else _load_user_table(phase_table)
         if user is not None and not isinstance(user, pt.HoldTable):
             law = "imc"
+            why = refused(user)
+            if why:
+                out.update(source="table", table=str(phase_table), law=law, message=why,
+                           refused="bending_scale")  # fmt: skip
+                return out, None, None, shape
             a = user.lookup(x, y, mu=mu, mu_rr=mu_rr)
             out.update(
                 source="table", holds=a.holds, inside_table=bool(a.inside), message=a.message,
@@ -649,6 +714,11 @@ def _der(
                 out["message"] = f"no DER hold table for {knot} is shipped"
                 return out, None, None, shape
             law = table.law
+            why = refused(table)
+            if why:
+                out.update(source="table", law=law, message=why, refused="bending_scale",
+                           table=("shipped" if user is None else str(phase_table)))  # fmt: skip
+                return out, None, None, shape
             a = table.lookup(x, y, mu=mu, mu_rr=mu_rr, creep_limit=lim)
             ax = table.axes
             out.update(
@@ -708,7 +778,13 @@ def _der(
             "discrete elastic rod (centreline, circular cross-section, no flattening in "
             "the nips), rigid post, Coulomb-type friction at the rod surface"
             + (" (sticking rod-rod anchor law)" if law == "anchor" else " (smooth rod-rod law)"),
-            "solid-rod bending stiffness EI = E pi d^4/64 (a fibre rope bends far more easily)",
+            f"bending stiffness B = kappa E pi d^4/64 with kappa = {kappa:g}"
+            + (
+                " (a solid rod; a fibre rope bends far more easily, kappa ~ 0.01)"
+                if kappa == 1.0
+                else f" (the {'run' if simulate else 'table'}'s kappa "
+                f"{kappa if simulate else out.get('table_bending_scale', 1.0):g})"
+            ),
             hold_rule,
         )
         + ((COW_LOADING,) if knot == "cow-hitch" else ()),
@@ -756,6 +832,7 @@ def hold(
     phase_table=None,
     progress=False,
     creep_limit=None,
+    bending_scale=None,
 ) -> Verdict:
     r"""Does a rope tied to a post hold a load? The verdict, every model's answer and why.
 
@@ -787,6 +864,13 @@ def hold(
         ``manila``, ``polypropylene``, ``steel-wire``, ``vps32``): gives E.
     youngs_modulus : float, optional
         The rope's effective axial modulus E [Pa] (overrides the material's).
+    bending_scale : float, optional
+        The rope's bending scale kappa in (0, 1]: bending stiffness B = kappa E pi d^4/64
+        (overrides the material's; default the material's, 1 (a solid rod) without a
+        material; stated in the assumptions). A DER table answers only when its own
+        kappa (meta ``bending_scale``, 1 for the shipped solid-rod tables) is within a
+        factor :data:`BENDING_SCALE_FACTOR` of it; otherwise the DER answer is undecided
+        and the other models decide as for an undecided table. ``simulate`` runs at it.
     simulate : bool
         One DER run of this geometry instead of the tables (:data:`SIMULATE_COST`): the
         hitches with a DER scene (clove hitch, two half hitches, round turn and two half
@@ -832,7 +916,7 @@ def hold(
             key, rod_diameter=rod_diameter, post_diameter=post_diameter, mu=mu, load=load,
             free_end_load=free_end_load, mu_rr=mu_rr, wrap_angle=wrap_angle, material=material,
             youngs_modulus=youngs_modulus, simulate=simulate, phase_table=phase_table,
-            progress=progress,
+            progress=progress, bending_scale=bending_scale,
         )  # fmt: skip
     if post_diameter is None:
         raise InputError(f"post_diameter is required for {key}")
@@ -863,6 +947,7 @@ def hold(
             f"({', '.join(_DER_HITCHES)}), not to {key}"
         )
     E, mat, e_source = _youngs_modulus(material, youngs_modulus)
+    kappa, k_source = _bending_scale(mat, bending_scale)
     if simulate and E is None:
         from knotmech.materials import material_names
 
@@ -892,6 +977,7 @@ def hold(
         inputs["material"] = mat.key
     if E is not None:
         inputs["youngs_modulus"] = E
+    inputs["bending_scale"] = kappa
     strain = None if E is None else load / (E * math.pi * d * d / 4)
     answers = []
     for a in base.answers:
@@ -908,6 +994,8 @@ def hold(
             )
         answers.append(a)
     assumptions = [e_source] if e_source else []
+    if key != "capstan":
+        assumptions.append(k_source)
     notes = list(base.notes)
     der = None
     creep = None
@@ -936,6 +1024,13 @@ def hold(
                 knot=key, d=d, D=D, mu=mu, mu_rr=mu if mu_rr is None else float(mu_rr),
                 load=load, E=E, simulate=bool(simulate), phase_table=phase_table,
                 progress=progress, ideal_holds=ideal, creep_limit=creep_limit,
+                bending_scale=kappa,
+                command=simulate_command(
+                    key, d=d, D=D, mu=mu, mu_rr=None if mu_rr is None else float(mu_rr),
+                    load=load, material=None if mat is None else mat.key,
+                    youngs_modulus=youngs_modulus, creep_limit=creep_limit,
+                    bending_scale=bending_scale,
+                ) if can_simulate(key) else "",
             )  # fmt: skip
             if der_answer is not None:
                 answers.append(der_answer)
@@ -949,7 +1044,7 @@ def hold(
     cmd = simulate_command(
         key, d=d, D=D, mu=mu, mu_rr=None if mu_rr is None else float(mu_rr), load=load,
         material=None if mat is None else mat.key, youngs_modulus=youngs_modulus,
-        creep_limit=creep_limit,
+        creep_limit=creep_limit, bending_scale=bending_scale,
     ) if simulable else ""  # fmt: skip
     if dec is None:
         if simulable:
@@ -989,7 +1084,7 @@ def hold(
 
 def _hold_bend(
     key, *, rod_diameter, post_diameter, mu, load, free_end_load, mu_rr, wrap_angle, material,
-    youngs_modulus, simulate, phase_table, progress,
+    youngs_modulus, simulate, phase_table, progress, bending_scale=None,
 ):  # fmt: skip
     """A bend (two ropes joined, pulled apart): no closed form and no table; with
     ``simulate`` one DER pull of the bend scene, its slip load against the load."""
@@ -1009,16 +1104,18 @@ def _hold_bend(
     if float(free_end_load or 0.0) != 0.0:
         raise InputError(f"free_end_load does not apply to a bend ({key}: no free end)")
     E, mat, e_source = _youngs_modulus(material, youngs_modulus)
-    inputs = {"rod_diameter": d, "mu": mu, "load": load}
+    kappa, k_source = _bending_scale(mat, bending_scale)
+    inputs = {"rod_diameter": d, "mu": mu, "load": load, "bending_scale": kappa}
     if mat is not None:
         inputs["material"] = mat.key
     if E is not None:
         inputs["youngs_modulus"] = E
     cmd = simulate_command(key, d=d, D=None, mu=mu, load=load,
                            material=None if mat is None else mat.key,
-                           youngs_modulus=youngs_modulus)  # fmt: skip
+                           youngs_modulus=youngs_modulus,
+                           bending_scale=bending_scale)  # fmt: skip
     warns = _warnings(mu, None, d, math.inf, load, E, None)
-    assumptions = [e_source] if e_source else []
+    assumptions = ([e_source] if e_source else []) + [k_source]
     note = (
         f"{key} is a bend (Patil et al., Science 2020): no closed form and no DER table; "
         "one DER pull of the bend scene (knotmech.scenes.bends.bend) gives its slip load"
@@ -1040,6 +1137,8 @@ def _hold_bend(
     from knotmech.scenes.bends import bend
 
     kw = {"density": mat.density} if mat is not None else {}
+    if kappa != 1.0:
+        kw["bending_scale"] = kappa
     r = bend(key, rod_diameter=d, youngs_modulus=E, mu_rod_rod=mu, progress=progress, **kw)
     der = {
         "source": "simulation", "scene": "knotmech.scenes.bends.bend", "kind": key,
@@ -1071,7 +1170,8 @@ def _hold_bend(
                 model="DER-simulation", holds=bool(holds), margin=capacity / load - 1,
                 capacity=capacity, critical_mu=math.nan, decides=True, inside_validity=True,
                 assumptions=(
-                    "two solid elastic rods (EI = E pi d^4/64), sticking rod-rod friction, "
+                    f"two elastic rods (B = kappa E pi d^4/64, kappa = {kappa:g}), sticking "
+                    "rod-rod friction, "
                     f"set by hand then pulled apart at {r.pull_speed * 1e3:g} mm/s",
                     "slip: a tail draws in by more than 2 d while the pull force stays "
                     "within 10 % of its largest value",

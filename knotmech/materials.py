@@ -11,10 +11,20 @@ nominal value for a used, bedded-in rope at working loads (10-30 % of break) and
 range over constructions (``E_range``). ``density`` is the apparent density, mass
 per length over :math:`\pi d^2/4`.
 
-No preset carries a bending stiffness: no model of ``knotmech hold`` takes one
-separately (the closed forms neglect bending; the DER scene of ``--simulate`` uses
-the solid-rod :math:`EI = E\pi d^4/64`, an assumption its answer states; a fibre
-rope is far more flexible than that).
+Each preset also carries a **bending scale** :math:`\kappa` (``bending_scale``): the
+rope's bending stiffness is :math:`B = \kappa\, E \pi d^4/64`, :math:`\kappa = 1` for a
+solid rod. A rope's fibres and yarns slide on one another when it bends, so it bends
+far more easily than a solid rod of its diameter and axial modulus. No rope-level
+bending measurement was found for these ropes (searches: "rope bending stiffness
+measurement", "flexural rigidity of ropes yarns"); the fibre-rope values are
+ESTIMATES from the full-slip bound of a rope of :math:`N` independent, equal yarns
+or strands of diameter :math:`d_y`, :math:`\pi N d_y^2/4 = \phi\, \pi d^2/4` (packing
+:math:`\phi`): :math:`B = N E_y \pi d_y^4/64` with the yarn modulus
+:math:`E_y = E/\phi`, i.e. :math:`\kappa \approx \phi/N`, and :math:`N` the number of
+load-bearing yarn bundles that bend independently (a yarn is itself a bundle of
+filaments and bends more easily still, so this is an upper estimate for a slack rope;
+friction between yarns under tension raises it). Order of magnitude: 0.01, range
+0.003-0.05. Give ``--bending-scale`` for a measured rope.
 
 Presets and sources (conversions: 1 kgf = 9.80665 N, 1 lbf = 4.44822 N):
 
@@ -27,6 +37,9 @@ Presets and sources (conversions: 1 kgf = 9.80665 N, 1 lbf = 4.44822 N):
     https://manual.besafety.co.uk/chapters/equipment/ropes. Density 800 kg/m^3
     (a 10 mm kernmantle rope weighs about 62-65 g/m: 790-830 kg/m^3 on 78.5 mm^2;
     nylon SG 1.14, Marlow Ropes physical-properties table, at a packing of 0.7).
+    kappa = 0.01 (estimate, range 0.003-0.03): a 10 mm kernmantle rope has a core of
+    about 7-12 plied strands of 5-10 yarns each and a 32-48 carrier sheath; about 60
+    independent bundles at packing 0.7: kappa = 0.7 / 60 = 0.012.
 ``polyester`` (polyester double braid / 3-strand)
     E = 2 GPa, range 1-6 GPa. Polyester yarn specific modulus 10 N/tex (Flory,
     Tension Technology International, "Synthetic fibre yarn properties", Table 1),
@@ -34,6 +47,8 @@ Presets and sources (conversions: 1 kgf = 9.80665 N, 1 lbf = 4.44822 N):
     construction efficiency of 0.15-0.7 gives 1.2-6 GPa (laid and braided ropes at
     the low end, parallel-yarn mooring ropes at the high end). Density 830 kg/m^3
     (SG 1.38 x packing 0.6).
+    kappa = 0.01 (estimate, range 0.003-0.03): a double braid (16-24 carriers in each
+    of core and cover, each of several yarns), about 50 bundles at packing 0.6: 0.012.
 ``hmpe`` (Dyneema / Spectra 12-strand braid; alias ``dyneema``)
     E = 40 GPa, range 20-90 GPa. HMPE yarn 124 N/tex (TTI Table 1, Spectra 900 /
     Dyneema), 120 GPa on the fibre (SG 0.97); packing 0.6 and construction
@@ -43,6 +58,8 @@ Presets and sources (conversions: 1 kgf = 9.80665 N, 1 lbf = 4.44822 N):
     (https://www.catsailor.com/forum/ubbthreads.php/posts/170007, which also
     quotes 0.00055 per 1000 lbf at 11 mm, 85 GPa). Density 580 kg/m^3 (SG 0.97
     Marlow x 0.6).
+    kappa = 0.01 (estimate, range 0.005-0.05): 12 strands of 4-8 yarns each, about
+    60 bundles at packing 0.6: 0.01; heat-set braids are stiffer (upper end).
 ``manila`` (abaca, 3-strand laid)
     E = 1 GPa, range 0.5-2 GPa: an estimate with the least support of the presets
     (no rope-level load-strain data was found; hard-fibre ropes are described as
@@ -50,10 +67,16 @@ Presets and sources (conversions: 1 kgf = 9.80665 N, 1 lbf = 4.44822 N):
     and laid natural-fibre ropes take 10-20 % of a fibre modulus of the order of
     10-30 GPa). Density 880 kg/m^3 (1/2 in manila, about 7.5 lb per 100 ft;
     approximate). Give ``--youngs-modulus`` for a measured rope.
+    approximate). Give ``--youngs-modulus`` for a measured rope. kappa = 0.02
+    (estimate, range 0.01-0.05): 3 strands of about 10 coarse yarns each, 30 bundles
+    at packing 0.65: 0.022; hard fibre and a hard lay put it above the synthetics.
 ``polypropylene`` (3-strand or braided; alias ``pp``)
     E = 1 GPa, range 0.5-3 GPa. PP yarn 3.5 N/tex (multifilament) to 8 N/tex
     (monofilament) (TTI Table 1), 3.2-7.3 GPa on the fibre (SG 0.91); packing 0.6
     and construction efficiency 0.25-0.7. Density 550 kg/m^3 (SG 0.91 x 0.6).
+    and construction efficiency 0.25-0.7. Density 550 kg/m^3 (SG 0.91 x 0.6).
+    kappa = 0.02 (estimate, range 0.005-0.05): 3 strands of 8-12 yarns (often coarse
+    monofilament or split-film, stiffer than multifilament), about 30 bundles at 0.6.
 ``steel-wire`` (6x19 stranded steel wire rope; alias ``steel``)
     E = 49 GPa, range 30-60 GPa on the nominal area. Elastic stretch of a 16 mm
     6x19 rope: load [tonne-f] / 10 per cent, i.e. EA = 9.81 MN, E = 9.81 MN /
@@ -63,12 +86,20 @@ Presets and sources (conversions: 1 kgf = 9.80665 N, 1 lbf = 4.44822 N):
     a 32 mm rope, http://calqlata.com/productpages/00044-QandA.html), times a
     metallic fill factor of about 0.45-0.55. Density 4390 kg/m^3 (6x7 fibre core,
     16 mm: 88.3 kg per 100 m, API Spec 9A, Table C.1).
+    16 mm: 88.3 kg per 100 m, API Spec 9A, Table C.1).
+    kappa = 0.02 (estimate, range 0.009-0.1): the full-slip bound is the sum of the
+    wires' own EI, 114 wires of about d/15 and 200 GPa: kappa_min =
+    114 (1/15)^4 x 200 / 49 = 0.0092; friction between wires under tension raises the
+    effective value towards a small multiple of that (the no-slip bound is kappa
+    near 1 on the metallic area).
 ``vps32`` (the clove-hitch paper's silicone rod)
     E = 1.26 MPa, density 1160 kg/m^3: vinylpolysiloxane (VPS32, Elite Double 32,
     Zhermack), clove-hitch paper (Extreme Mech. Lett., DOI
     10.1016/j.eml.2022.101788), sec. 2. A solid elastic rod, not a rope: E is the
     material's. The shipped DER phase tables were computed for this rod (with a
     density of 1150 kg/m^3; the verdict does not depend on it).
+    density of 1150 kg/m^3; the verdict does not depend on it). kappa = 1: a solid
+    rod (exact by construction; the tables' meta has no ``bending_scale``, i.e. 1).
 """
 
 from __future__ import annotations
@@ -97,6 +128,13 @@ class Material:
         Apparent density, mass per length over :math:`\\pi d^2/4` [kg/m^3].
     source : str
         Where the numbers come from (details in the module docstring).
+    bending_scale : float
+        kappa: bending stiffness B = kappa E pi d^4 / 64 (1 for a solid rod; an estimate
+        for the ropes, see the module docstring).
+    bending_scale_range : tuple of float
+        (low, high) estimate of kappa over constructions.
+    bending_source : str
+        Where kappa comes from.
     """
 
     key: str
@@ -105,10 +143,14 @@ class Material:
     youngs_modulus_range: tuple
     density: float
     source: str
+    bending_scale: float = 1.0
+    bending_scale_range: tuple = (1.0, 1.0)
+    bending_source: str = "solid rod"
 
     def to_dict(self) -> dict:
         d = asdict(self)
         d["youngs_modulus_range"] = list(self.youngs_modulus_range)
+        d["bending_scale_range"] = list(self.bending_scale_range)
         return d
 
 
@@ -119,7 +161,12 @@ VPS32 = Material(
     (1.26e6, 1.26e6),
     1160.0,
     "clove-hitch paper (Extreme Mech. Lett., DOI 10.1016/j.eml.2022.101788), sec. 2",
+    1.0,
+    (1.0, 1.0),
+    "solid elastic rod: B = E pi d^4 / 64 exactly",
 )
+
+_EST = "estimate: full-slip bound kappa ~ packing / N independent yarn bundles"
 
 #: every preset, by key (see the module docstring for the sources)
 MATERIALS: dict[str, Material] = {
@@ -133,6 +180,9 @@ MATERIALS: dict[str, Material] = {
             800.0,
             "EN 1891 type A (<= 5 % between 50 and 150 kg) and EN 892 (about 8-10 % "
             "under 80 kg) elongation limits",
+            0.01,
+            (0.003, 0.03),
+            _EST + " (about 60 at 0.7)",
         ),
         Material(
             "polyester",
@@ -141,6 +191,9 @@ MATERIALS: dict[str, Material] = {
             (1.0e9, 6.0e9),
             830.0,
             "yarn 10 N/tex (Flory, TTI yarn table 1) x packing 0.6 x construction 0.15-0.7",
+            0.01,
+            (0.003, 0.03),
+            _EST + " (about 50 at 0.6)",
         ),
         Material(
             "hmpe",
@@ -150,6 +203,9 @@ MATERIALS: dict[str, Material] = {
             580.0,
             "yarn 124 N/tex (TTI table 1) x packing 0.6 x construction 0.3-0.8; heat-treated "
             "9 mm braid measured at 90 GPa",
+            0.01,
+            (0.005, 0.05),
+            _EST + " (12 strands x 4-8 yarns at 0.6)",
         ),
         Material(
             "manila",
@@ -158,6 +214,9 @@ MATERIALS: dict[str, Material] = {
             (0.5e9, 2.0e9),
             880.0,
             "estimate (no rope-level load-strain data found); give --youngs-modulus",
+            0.02,
+            (0.01, 0.05),
+            _EST + " (3 strands x about 10 yarns at 0.65)",
         ),
         Material(
             "polypropylene",
@@ -166,6 +225,9 @@ MATERIALS: dict[str, Material] = {
             (0.5e9, 3.0e9),
             550.0,
             "yarn 3.5-8 N/tex (TTI table 1) x packing 0.6 x construction 0.25-0.7",
+            0.02,
+            (0.005, 0.05),
+            _EST + " (3 strands x 8-12 yarns at 0.6)",
         ),
         Material(
             "steel-wire",
@@ -175,6 +237,10 @@ MATERIALS: dict[str, Material] = {
             4390.0,
             "elastic stretch of 16 mm 6x19 rope (load in tonne-f / 10 per cent); API Spec 9A "
             "table C.1 mass",
+            0.02,
+            (0.009, 0.1),
+            "estimate: full-slip bound 114 wires of d/15 at 200 GPa gives 0.0092; "
+            "inter-wire friction raises it",
         ),
         VPS32,
     )

@@ -125,8 +125,9 @@ def test_callable_module_and_verdict_fields():
 def test_youngs_modulus_overrides_the_material_and_says_so():
     v = knotmech.hold(
         "clove-hitch", rod_diameter=4e-3, post_diameter=30e-3, mu=0.3, load=1.47,
-        material="nylon", youngs_modulus=1.26e6,
+        material="nylon", youngs_modulus=1.26e6, bending_scale=1.0,
     )  # fmt: skip
+    # the solid-rod check: kappa = 1 (the tables'), not nylon's 0.01, lets the table answer
     assert v.inputs["youngs_modulus"] == 1.26e6 and v.decided_by == "DER-table"
     assert "instead of the nylon preset" in v.assumptions[0]
 
@@ -164,3 +165,88 @@ def test_bad_inputs_raise_input_error():
         knotmech.hold("capstan", wrap_angle=1.0, mu_rr=0.2, **kw)
     with pytest.raises(InputError, match="cannot read phase table"):
         knotmech.hold("clove-hitch", phase_table="/nonexistent.json", material="vps32", **kw)
+
+
+def test_bending_scale_is_an_input_stated_in_the_assumptions():
+    """The material's kappa (nylon 0.01, vps32 1), or 1 for a bare modulus, is stated."""
+    kw = dict(rod_diameter=6e-3, post_diameter=40e-3, mu=0.4, load=200.0)
+    nylon = knotmech.hold("clove-hitch", material="nylon", **kw)
+    assert nylon.inputs["bending_scale"] == 0.01
+    assert any(a.startswith("bending scale kappa = 0.01") for a in nylon.assumptions)
+    bare = knotmech.hold("clove-hitch", youngs_modulus=0.25e9, **kw)
+    assert bare.inputs["bending_scale"] == 1.0 and bare.decided_by == "DER-table"
+    assert any("kappa = 1 " in a and "no material given" in a for a in bare.assumptions)
+    vps = knotmech.hold("clove-hitch", material="vps32", **{**kw, "load": 1.47})
+    assert vps.inputs["bending_scale"] == 1.0
+    # the material's kappa refuses the solid-rod table, and the API agrees with the CLI
+    assert nylon.der["holds"] is None and "this rope's kappa = 0.01" in nylon.der["message"]
+    assert nylon.decided_by == "thick-nip" and nylon.holds is True
+
+
+@pytest.mark.parametrize("mat", ["nylon", "polyester", "steel-wire"])
+def test_api_and_cli_agree_with_a_rope_bending_scale(mat, capsys):
+    for knot in ("clove-hitch", "two-half-hitches"):
+        for kappa in (None, 1.0, 0.5):
+            v = knotmech.hold(knot, rod_diameter=6e-3, post_diameter=40e-3, mu=0.4,
+                              load=200.0, material=mat, bending_scale=kappa)  # fmt: skip
+            args = ["hold", knot, "--rod-diameter", "6mm", "--post-diameter", "40mm",
+                    "--mu", "0.4", "--load", "200N", "--material", mat]  # fmt: skip
+            if kappa is not None:
+                args += ["--bending-scale", repr(kappa)]
+            assert main(args + ["--json", "-"]) == 0
+            assert json.loads(capsys.readouterr().out) == v.to_dict(), (mat, knot, kappa)
+
+
+@pytest.mark.parametrize("bad", [0, -1, 2, float("nan"), float("inf")])
+def test_bad_bending_scale_is_a_one_line_input_error(bad):
+    with pytest.raises(InputError, match="bending_scale") as e:
+        knotmech.hold("clove-hitch", rod_diameter=6e-3, post_diameter=40e-3, mu=0.4,
+                      load=200.0, material="nylon", bending_scale=bad)  # fmt: skip
+    assert "\n" not in str(e.value)
+
+
+def test_a_table_built_at_the_ropes_bending_scale_answers(tmp_path):
+    """A table whose meta says bending_scale 0.01 (here the shipped clove-hitch points
+    relabelled, only to test the gate) answers for nylon (0.01) and is refused for a
+    solid rod (1, a factor 100 apart)."""
+    from knotmech.hold import _shipped_hold_tables
+    from knotmech.scenes.phase_table import HoldTable
+
+    d = _shipped_hold_tables()["clove-hitch"].to_dict()
+    d["meta"] = {**d["meta"], "bending_scale": 0.01}
+    path = tmp_path / "rope_table.json"
+    HoldTable.from_dict(d).write(path)
+    kw = dict(rod_diameter=6e-3, post_diameter=40e-3, mu=0.4, load=200.0, phase_table=path)
+    rope = knotmech.hold("clove-hitch", material="nylon", **kw)
+    assert rope.decided_by == "DER-table" and rope.der["table_bending_scale"] == 0.01
+    solid = knotmech.hold("clove-hitch", material="nylon", bending_scale=1.0, **kw)
+    assert solid.der["holds"] is None and "kappa = 0.01" in solid.der["message"]
+    assert "this rope's kappa = 1" in solid.der["message"]
+
+
+def test_simulate_passes_the_bending_scale_to_the_scene(monkeypatch):
+    """--simulate runs the DER scene at the rope's kappa (simulate_point is replaced by a
+    recorder: the run itself is tested in tests/cli/test_hold_simulate.py)."""
+    from knotmech.scenes import phase_table as pt
+
+    seen = {}
+
+    def fake(**kw):
+        seen.update(kw)
+        return {"holds": None, "message": "recorded"}
+
+    monkeypatch.setattr(pt, "simulate_point", fake)
+    v = knotmech.hold("two-half-hitches", rod_diameter=6e-3, post_diameter=40e-3, mu=0.4,
+                      load=200.0, material="nylon", simulate=True)  # fmt: skip
+    assert seen["bending_scale"] == 0.01 and seen["knot"] == "two-half-hitches"
+    assert v.der["holds"] is None
+
+
+def test_materials_bending_scales_are_sourced_and_in_range():
+    for m in MATERIALS.values():
+        lo, hi = m.bending_scale_range
+        assert 0 < lo <= m.bending_scale <= hi <= 1, m.key
+        assert m.bending_source
+    assert material("vps32").bending_scale == 1.0
+    ropes = [k for k in MATERIALS if k != "vps32"]
+    assert all(MATERIALS[k].bending_scale <= 0.05 for k in ropes)

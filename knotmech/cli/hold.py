@@ -40,6 +40,7 @@ _FLAGS = {
     "wrap_angle": "--wrap-angle",
     "material": "--material",
     "youngs_modulus": "--youngs-modulus",
+    "bending_scale": "--bending-scale",
 }
 
 
@@ -93,6 +94,15 @@ def register(subparsers) -> None:
         default=None,
         help="the rope's effective axial modulus E, e.g. 0.25GPa (overrides --material); "
         "sets T_high/EA for the DER answer",
+    )
+    p.add_argument(
+        "--bending-scale",
+        default=None,
+        metavar="K",
+        help="the rope's bending scale kappa in (0, 1]: bending stiffness kappa E pi d^4/64 "
+        "(overrides --material's, of order 0.01 for fibre ropes; default the material's, "
+        "or 1, a solid rod, without one). The shipped DER tables are solid rods (kappa = "
+        "1) and answer only within a factor 3 of it; --simulate runs at it",
     )
     p.add_argument(
         "--simulate",
@@ -208,6 +218,16 @@ def run(args) -> int:
             "--simulate covers the hitches with a free end only (--free-end-load 0; cow "
             "hitch: one leg loaded, the other free)"
         )
+    kappa = None
+    if args.bending_scale is not None:
+        from knotmech.errors import check_bending_scale
+
+        try:
+            kappa = check_bending_scale(
+                parse_quantity(args.bending_scale, "dimensionless", name="--bending-scale")
+            )
+        except InputError as exc:
+            raise InputError(_flag_names(str(exc))) from None
     creep_limit = None
     if args.creep_limit is not None:
         creep_limit = parse_quantity(args.creep_limit, "dimensionless", name="--creep-limit")
@@ -241,6 +261,7 @@ def run(args) -> int:
             phase_table=args.phase_table,
             progress=bool(args.simulate) and args.json != "-",
             creep_limit=creep_limit,
+            bending_scale=kappa,
         )
     except InputError as exc:
         raise InputError(_flag_names(str(exc))) from None
@@ -269,7 +290,8 @@ def _flag_names(message: str) -> str:
     import re
 
     names = ("rod_diameter", "post_diameter", "mu_rr", "free_end_load", "wrap_angle",
-             "material", "youngs_modulus", "simulate", "phase_table", "creep_limit")  # fmt: skip
+             "material", "youngs_modulus", "simulate", "phase_table", "creep_limit",
+             "bending_scale")  # fmt: skip
     pattern = r"(?<![\w-])(" + "|".join(names) + r")(?!\w)"
     return re.sub(pattern, lambda m: "--" + m.group(1).replace("_", "-"), message)
 
@@ -330,6 +352,9 @@ def format_verdict(verdict, *, verbose: bool = False) -> str:
         lines.append(f"assumed: {s}")
     if verdict.creep is not None:
         lines.append(format_creep(verdict.creep))
+    der = verdict.der or {}
+    if not verbose and der.get("refused") == "bending_scale":
+        lines.append(f"DER: undecided, {der['message']}")
     if verdict.next_step and verdict.holds is not None:
         lines.append(verdict.next_step)
     if not verbose:

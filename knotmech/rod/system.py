@@ -12,7 +12,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from ..errors import InputError, check_finite, check_positive, check_range
+from ..errors import InputError, check_bending_scale, check_finite, check_positive, check_range
 from ._kernels import frames as _fr
 
 __all__ = ["Rod", "RodSystem", "State"]
@@ -49,6 +49,12 @@ class Rod:
     natural : {"initial", "straight"}
         Natural (stress-free) shape: the initial shape (rest curvature and twist computed
         from it, the default) or a straight untwisted rod.
+    bending_scale : float, optional
+        kappa in (0, 1], default 1 (a solid rod). The bending stiffness is
+        B = kappa E pi r^4 / 4 and, for simplicity, the twisting stiffness is scaled the
+        same way, kappa G pi r^4 / 2; the stretching stiffness E pi r^2 is not. A fibre
+        rope bends far more easily than a solid rod of its diameter and axial modulus
+        (its yarns slide on one another), kappa of order 0.01 (``knotmech.materials``).
     """
 
     positions: np.ndarray
@@ -61,6 +67,7 @@ class Rod:
     velocities: np.ndarray | None = None
     director: np.ndarray | None = None
     natural: str = "initial"
+    bending_scale: float = 1.0
 
     def __post_init__(self):
         pos = check_finite("positions", self.positions)
@@ -99,6 +106,7 @@ class Rod:
             object.__setattr__(self, "director", _frozen(d))
         if self.natural not in ("initial", "straight"):
             raise InputError(f"natural must be 'initial' or 'straight', got {self.natural!r}")
+        object.__setattr__(self, "bending_scale", check_bending_scale(self.bending_scale))
 
     @classmethod
     def straight(
@@ -149,13 +157,13 @@ class Rod:
 
     @property
     def bending_stiffness(self) -> float:
-        """EI = E pi r^4 / 4 [N m^2]."""
-        return self.youngs_modulus * np.pi * self.radius**4 / 4.0
+        """B = kappa E pi r^4 / 4 [N m^2] (kappa = ``bending_scale``, 1 for a solid rod)."""
+        return self.bending_scale * (self.youngs_modulus * np.pi * self.radius**4 / 4.0)
 
     @property
     def twisting_stiffness(self) -> float:
-        """GJ = G pi r^4 / 2 [N m^2]."""
-        return self.shear * np.pi * self.radius**4 / 2.0
+        """kappa GJ = kappa G pi r^4 / 2 [N m^2] (twist scaled with bending, see ``Rod``)."""
+        return self.bending_scale * (self.shear * np.pi * self.radius**4 / 2.0)
 
     @property
     def stretching_stiffness(self) -> float:

@@ -47,7 +47,7 @@ import numpy as np
 
 from knotmech import rod
 from knotmech.analytic.capstan import mu_eff as _mu_eff
-from knotmech.errors import InputError, check_nonnegative, check_positive
+from knotmech.errors import InputError, check_bending_scale, check_nonnegative, check_positive
 from knotmech.rod.constraints import Clamp, MovingNodes
 from knotmech.rod.contact import RodContact
 from knotmech.rod.friction import AnchorFriction, SmoothFriction
@@ -435,6 +435,7 @@ def run_hitch(
     rod_length: float | None = 0.374,
     youngs_modulus: float = 1.26e6,
     density: float = 1150.0,
+    bending_scale: float = 1.0,
     mu_rod_post: float = 0.3,
     mu_rod_rod: float = 0.3,
     pretension: float | None = None,
@@ -477,6 +478,9 @@ def run_hitch(
     rod_length : float [m] or None
         None: the knot's default (its knotted part and a 64 mm tail at each end).
     youngs_modulus : float [Pa]; density : float [kg/m^3]
+    bending_scale : float
+        kappa in (0, 1]: bending (and twisting) stiffness kappa E pi d^4 / 64 (1: a solid
+        rod, the shipped tables; a fibre rope is of order 0.01, see :class:`knotmech.rod.Rod`).
     mu_rod_post, mu_rod_rod : float
         Rod-post (static, mu_s) and rod-rod friction coefficients (the rod-rod one static
         and kinetic alike).
@@ -534,6 +538,7 @@ def run_hitch(
     D = float(check_positive("post_diameter", post_diameter))
     L_arg = None if rod_length is None else float(check_positive("rod_length", rod_length))
     E = float(check_positive("youngs_modulus", youngs_modulus))
+    kappa = check_bending_scale(bending_scale)
     rho = float(check_positive("density", density))
     th = float(check_positive("t_high", t_high))
     mrc = float(check_nonnegative("mu_rod_post", mu_rod_post))
@@ -584,7 +589,14 @@ def run_hitch(
                    max_node_steps=max_node_steps,
                    hint="use a larger dt, fewer nodes or a lower pull speed")  # fmt: skip
     R = 0.5 * (D + d)
-    r = rod.Rod(positions=x0, radius=0.5 * d, youngs_modulus=E, density=rho, natural="straight")
+    r = rod.Rod(
+        positions=x0,
+        radius=0.5 * d,
+        youngs_modulus=E,
+        density=rho,
+        natural="straight",
+        bending_scale=kappa,
+    )
     system = rod.RodSystem([r])
     dir0 = x0[0] - x0[1]
     dir0 /= np.linalg.norm(dir0)

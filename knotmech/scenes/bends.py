@@ -139,6 +139,7 @@ def bend(
     rod_diameter: float = 4e-3,
     youngs_modulus: float = 1.0e6,
     density: float = 1100.0,
+    bending_scale: float = 1.0,
     mu_rod_rod: float = 0.3,
     mu_kinetic: float | None = None,
     pull_speed: float = 0.04,
@@ -166,6 +167,9 @@ def bend(
         Of the (solid, elastic) rods (default 1 MPa, a soft elastomer; the bending
         stiffness is :math:`B = E\pi d^4/64`).
     density : float [kg/m^3]
+    bending_scale : float
+        kappa in (0, 1]: the rods' bending (and twisting) stiffness is kappa times the
+        solid rod's (:class:`knotmech.rod.Rod`; a fibre rope is of order 0.01).
     mu_rod_rod, mu_kinetic : float
         Static and kinetic rod-rod friction (``mu_kinetic`` None: equal to the static).
     pull_speed : float [m/s]
@@ -227,7 +231,14 @@ def bend(
     fs = 2 * B / d**2 if force_scale is None else float(check_positive("force_scale", force_scale))
     curves = bend_curves(kind, rod_diameter=d, n_nodes=n_nodes)
     rods = [
-        rod.Rod(positions=x, radius=0.5 * d, youngs_modulus=E, density=rho, natural="straight")
+        rod.Rod(
+            positions=x,
+            radius=0.5 * d,
+            youngs_modulus=E,
+            density=rho,
+            natural="straight",
+            bending_scale=bending_scale,
+        )
         for x in (curves.rope_a, curves.rope_b)
     ]
     system = rod.RodSystem(rods)

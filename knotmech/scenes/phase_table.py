@@ -252,6 +252,7 @@ def simulate_point(
     density: float = DENSITY,
     friction: str = "anchor",
     n_nodes: int | None = None,
+    bending_scale: float = 1.0,
     creep_limit: float = CREEP_LIMIT,
     hold_time: float | None = None,
     recheck: bool = False,
@@ -275,6 +276,10 @@ def simulate_point(
     so they can be reproduced. It is passed explicitly so a change of the scene's
     default does not silently change a table.
 
+    ``bending_scale`` kappa in (0, 1] scales the rod's bending (and twisting) stiffness,
+    :math:`B = \kappa E\pi d^4/64` (:class:`knotmech.rod.Rod`; 1, the solid rod of the
+    shipped tables); it is returned as ``bending_scale``.
+
     ``hold_time`` [s] replaces the protocol's hold. With ``recheck`` (what ``hold
     --simulate`` uses), a run whose creep speed lies in :data:`RECHECK_BAND` around the
     limit (:func:`needs_recheck`) is run again with a hold :data:`RECHECK_HOLD_FACTOR`
@@ -297,6 +302,9 @@ def simulate_point(
     E = float(check_positive("youngs_modulus", youngs_modulus))
     tea = float(check_positive("t_over_EA", t_over_EA))
     lim = float(check_positive("creep_limit", creep_limit))
+    from knotmech.errors import check_bending_scale
+
+    kappa = check_bending_scale(bending_scale)
     if friction not in ("anchor", "imc"):
         raise InputError(f"friction must be 'anchor' or 'imc', got {friction!r}")
     scene = hold_scene(knot)
@@ -323,6 +331,7 @@ def simulate_point(
         n_nodes=nn,
         youngs_modulus=E,
         density=float(density),
+        **({} if kappa == 1.0 else {"bending_scale": kappa}),
         mu_rod_post=float(mu),
         mu_rod_rod=float(mu if mu_rr is None else mu_rr),
         friction=friction,
@@ -363,6 +372,7 @@ def simulate_point(
         "mu": float(mu),
         "mu_rr": float(mu if mu_rr is None else mu_rr),
         "friction": friction,
+        "bending_scale": kappa,
         "criterion": criterion,
         "creep_limit": lim,
         "creep_window_s": window,
@@ -386,8 +396,9 @@ def simulate_point(
         again = simulate_point(
             d_over_2R=d_over_2R, t_over_EA=t_over_EA, mu=mu, mu_rr=mu_rr, rod_diameter=d,
             youngs_modulus=E, density=density, friction=friction, n_nodes=n_nodes,
-            creep_limit=lim, hold_time=RECHECK_HOLD_FACTOR * proto["hold_time"], knot=knot,
-            progress=progress, keep_result=keep_result,
+            bending_scale=kappa, creep_limit=lim,
+            hold_time=RECHECK_HOLD_FACTOR * proto["hold_time"],
+            knot=knot, progress=progress, keep_result=keep_result,
         )  # fmt: skip
         again["first_creep_speed"] = speed
         again["first_hold_time"] = proto["hold_time"]

@@ -90,8 +90,9 @@ def test_issue_example_no_longer_decided_by_a_model_outside_its_validity(capsys)
     assert "ideal-rope slips (outside its validity)" in out
     # with the rope's material: nylon kernmantle E = 0.25 GPa, EA = 7.07 kN, 200 N is
     # 0.0283 EA at d/2R = 6/46 = 0.130, mu 0.4: inside the anchor-law hold table, whose
-    # eight neighbouring points (d/2R 0.1176, 0.2308 x 0.01, 0.1 EA x mu 0.3, 0.5) all held
-    data = _json(ISSUE + ["--material", "nylon"], capsys)
+    # eight neighbouring points (d/2R 0.1176, 0.2308 x 0.01, 0.1 EA x mu 0.3, 0.5) all held;
+    # the tables are solid rods (kappa = 1), so this is the solid-rod check --bending-scale 1
+    data = _json(ISSUE + ["--material", "nylon", "--bending-scale", "1"], capsys)
     assert data["holds"] is True and data["decided_by"] == "DER-table"
     assert data["der"]["rule"] == "grid" and data["der"]["mu_tables"] == [0.3, 0.5]
     assert data["inputs"]["youngs_modulus"] == 0.25e9
@@ -257,6 +258,11 @@ BAD = [
     (["--plot", "/nonexistent/dir/p.png"], "--plot"),
     (["--json", "/nonexistent/dir/v.json"], "--json"),
     (["--simulate"], "--material"),  # a DER run needs E
+    (["--bending-scale", "0"], "--bending-scale"),
+    (["--bending-scale=-1"], "--bending-scale"),
+    (["--bending-scale", "2"], "--bending-scale"),
+    (["--bending-scale", "nan"], "--bending-scale"),
+    (["--bending-scale", "soft"], "--bending-scale"),
 ]
 
 
@@ -354,3 +360,33 @@ def test_huge_friction_does_not_overflow(knot, free, capsys):
         assert data["der"]["rule"] == "more-friction-holds"
     else:
         assert data["holds"] is (free != "0N")
+
+
+def test_nylon_rope_is_not_answered_by_the_solid_rod_table(capsys):
+    """Nylon's bending scale kappa = 0.01 is 100x below the shipped tables' solid rod
+    (kappa = 1, factor limit 3): the DER answer is undecided with the reason and the
+    --simulate command, and the thick-nip closed form (inside its validity: d <= D, strain
+    200 N / 7.07 kN = 0.0283 <= the limit) decides as for an undecided table."""
+    assert main(ISSUE + ["--material", "nylon"]) == 0
+    out = capsys.readouterr().out
+    assert out.splitlines()[0].startswith("verdict: HOLDS") and "thick-nip" in out
+    assert "assumed: bending scale kappa = 0.01" in out
+    der_line = next(x for x in out.splitlines() if x.startswith("DER: undecided"))
+    assert "solid rods (kappa = 1)" in der_line and "kappa = 0.01" in der_line
+    assert "--material nylon --simulate" in der_line
+    data = _json(ISSUE + ["--material", "nylon"], capsys)
+    assert data["der"]["holds"] is None and data["der"]["refused"] == "bending_scale"
+    assert data["der"]["table_bending_scale"] == 1.0 and data["inputs"]["bending_scale"] == 0.01
+    assert "DER-table" not in [a["model"] for a in data["answers"]]
+    # --bending-scale 0.5 is within a factor 3 of the table's 1: the table answers
+    half = _json(ISSUE + ["--material", "nylon", "--bending-scale", "0.5"], capsys)
+    assert half["decided_by"] == "DER-table" and half["inputs"]["bending_scale"] == 0.5
+
+
+def test_bending_scale_factor_three_is_the_edge(capsys):
+    """kappa = 1/3 is exactly a factor 3 from the table's 1 (accepted); 0.33 is 3.03 (not)."""
+    ok = _json(ISSUE + ["--youngs-modulus", "0.25GPa", "--bending-scale", str(1 / 3)], capsys)
+    assert ok["decided_by"] == "DER-table"
+    no = _json(ISSUE + ["--youngs-modulus", "0.25GPa", "--bending-scale", "0.33"], capsys)
+    assert no["decided_by"] == "thick-nip" and no["der"]["refused"] == "bending_scale"
+    assert "--bending-scale 0.33 --simulate" in no["der"]["message"]

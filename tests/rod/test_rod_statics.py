@@ -193,3 +193,48 @@ def test_dynamic_euler_buckling_of_a_clamped_free_column(factor):
         assert amp[-1] < 1.1e-4 and np.max(amp) < 1.5e-4
     else:
         assert np.max(amp) > 1e-2
+
+
+def test_bending_scale_one_is_the_solid_rod_and_kappa_scales_b_and_gj():
+    """kappa = 1 gives exactly the old E pi r^4/4 and G pi r^4/2; kappa scales both."""
+    kw = dict(length=1.0, n_nodes=5, radius=2e-3, youngs_modulus=1e9, density=1000.0)
+    solid = rod.Rod.straight(**kw)
+    assert solid.bending_scale == 1.0
+    assert solid.bending_stiffness == 1e9 * np.pi * 2e-3**4 / 4.0
+    assert solid.twisting_stiffness == solid.shear * np.pi * 2e-3**4 / 2.0
+    soft = rod.Rod.straight(**kw, bending_scale=0.01)
+    assert soft.bending_stiffness == pytest.approx(0.01 * 1e9 * np.pi * 2e-3**4 / 4.0, rel=1e-15)
+    assert soft.twisting_stiffness == pytest.approx(0.01 * solid.twisting_stiffness, rel=1e-15)
+    assert soft.stretching_stiffness == solid.stretching_stiffness
+
+
+@pytest.mark.parametrize("bad", [0.0, -1.0, 2.0, float("nan"), float("inf"), "x"])
+def test_bending_scale_out_of_range_is_a_one_line_error(bad):
+    kw = dict(length=1.0, n_nodes=5, radius=2e-3, youngs_modulus=1e9, density=1000.0)
+    with pytest.raises(ValueError, match="bending_scale") as e:
+        rod.Rod.straight(**kw, bending_scale=bad)
+    assert "\n" not in str(e.value)
+
+
+def test_cantilever_tip_deflection_scales_as_one_over_kappa():
+    """Tip deflection P L^3 / (3 kappa EI): kappa = 0.1 deflects 10x the solid rod."""
+    L, r, E, n = 1.0, 1e-3, 1e9, 21
+    ei = E * np.pi * r**4 / 4
+    p = 1e-4 * ei / L**2
+    tips = {}
+    for kappa in (1.0, 0.1):
+        system, cons, _ = clamped_rod(n, length=L, radius=r, youngs_modulus=E)
+        r0 = system.rods[0]
+        soft = rod.Rod(
+            positions=r0.positions,
+            radius=r,
+            youngs_modulus=E,
+            density=1000.0,
+            bending_scale=kappa,
+        )
+        system = rod.RodSystem([soft])
+        cons = [rod.clamp_end(system, end="start")]
+        res = _static(system, cons, [rod.NodeForce(-1, (0, 0, -p))])
+        tips[kappa] = -res.positions[-1, -1, 2]
+        assert tips[kappa] == pytest.approx(p * L**3 / (3 * kappa * ei), rel=5e-3)
+    assert tips[0.1] / tips[1.0] == pytest.approx(10.0, rel=2e-3)
