@@ -236,7 +236,11 @@ def replace_level(nf, level, **kw):
 
 
 @pytest.mark.parametrize("n", [8, 20])
-@pytest.mark.parametrize("kind", ["pinch", "tension_profile", "capstan_pull"])
+@pytest.mark.parametrize(
+    "kind",
+    ["pinch", pytest.param("tension_profile", marks=pytest.mark.slow),
+     pytest.param("capstan_pull", marks=pytest.mark.slow)],
+)  # fmt: skip
 def test_short_recordings_are_never_none_without_sigma(n, kind):
     """30-sd ripples of 8 and 20 rows were `none` (12/12 and 3/12 in the noise_robustness
     row sweep): below SHORT_ROWS rows a would-be `none` is `undetermined` with the
@@ -254,6 +258,7 @@ def test_short_recordings_are_never_none_without_sigma(n, kind):
             assert f"{n} rows without a sigma column" in rep.summary
 
 
+@pytest.mark.slow
 def test_short_recordings_with_sigma_are_judged_against_it():
     """8 rows with a stated sigma: the remainder is tested against it (chi-square), so
     10 white nulls stay `none` and 10 30-sd ripples are `unexplained`."""
