@@ -1001,6 +1001,13 @@ def hold(
     creep = None
     shape = None
     next_step = ""
+    # the one DER run that decides this case (the table's refusal and the next step name it)
+    simulable = can_simulate(key) and free == 0
+    cmd = simulate_command(
+        key, d=d, D=D, mu=mu, mu_rr=None if mu_rr is None else float(mu_rr), load=load,
+        material=None if mat is None else mat.key, youngs_modulus=youngs_modulus,
+        creep_limit=creep_limit, bending_scale=bending_scale,
+    ) if simulable else ""  # fmt: skip
     if _der_knot(key):
         ideal = next((a.holds for a in answers if a.model == "ideal-rope"), None)
         if free > 0:
@@ -1024,13 +1031,7 @@ def hold(
                 knot=key, d=d, D=D, mu=mu, mu_rr=mu if mu_rr is None else float(mu_rr),
                 load=load, E=E, simulate=bool(simulate), phase_table=phase_table,
                 progress=progress, ideal_holds=ideal, creep_limit=creep_limit,
-                bending_scale=kappa,
-                command=simulate_command(
-                    key, d=d, D=D, mu=mu, mu_rr=None if mu_rr is None else float(mu_rr),
-                    load=load, material=None if mat is None else mat.key,
-                    youngs_modulus=youngs_modulus, creep_limit=creep_limit,
-                    bending_scale=bending_scale,
-                ) if can_simulate(key) else "",
+                bending_scale=kappa, command=cmd,
             )  # fmt: skip
             if der_answer is not None:
                 answers.append(der_answer)
@@ -1040,12 +1041,6 @@ def hold(
     dec = None if i is None else answers[i]
     # next step
     der_silent = der is not None and der.get("holds") is None and free == 0
-    simulable = can_simulate(key) and free == 0
-    cmd = simulate_command(
-        key, d=d, D=D, mu=mu, mu_rr=None if mu_rr is None else float(mu_rr), load=load,
-        material=None if mat is None else mat.key, youngs_modulus=youngs_modulus,
-        creep_limit=creep_limit, bending_scale=bending_scale,
-    ) if simulable else ""  # fmt: skip
     if dec is None:
         if simulable:
             next_step = (

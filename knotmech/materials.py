@@ -66,14 +66,12 @@ Presets and sources (conversions: 1 kgf = 9.80665 N, 1 lbf = 4.44822 N):
     stretching little, e.g. https://www.jbropesupply.com/which-rope-is-right-for-you/,
     and laid natural-fibre ropes take 10-20 % of a fibre modulus of the order of
     10-30 GPa). Density 880 kg/m^3 (1/2 in manila, about 7.5 lb per 100 ft;
-    approximate). Give ``--youngs-modulus`` for a measured rope.
     approximate). Give ``--youngs-modulus`` for a measured rope. kappa = 0.02
     (estimate, range 0.01-0.05): 3 strands of about 10 coarse yarns each, 30 bundles
     at packing 0.65: 0.022; hard fibre and a hard lay put it above the synthetics.
 ``polypropylene`` (3-strand or braided; alias ``pp``)
     E = 1 GPa, range 0.5-3 GPa. PP yarn 3.5 N/tex (multifilament) to 8 N/tex
     (monofilament) (TTI Table 1), 3.2-7.3 GPa on the fibre (SG 0.91); packing 0.6
-    and construction efficiency 0.25-0.7. Density 550 kg/m^3 (SG 0.91 x 0.6).
     and construction efficiency 0.25-0.7. Density 550 kg/m^3 (SG 0.91 x 0.6).
     kappa = 0.02 (estimate, range 0.005-0.05): 3 strands of 8-12 yarns (often coarse
     monofilament or split-film, stiffer than multifilament), about 30 bundles at 0.6.
@@ -86,7 +84,6 @@ Presets and sources (conversions: 1 kgf = 9.80665 N, 1 lbf = 4.44822 N):
     a 32 mm rope, http://calqlata.com/productpages/00044-QandA.html), times a
     metallic fill factor of about 0.45-0.55. Density 4390 kg/m^3 (6x7 fibre core,
     16 mm: 88.3 kg per 100 m, API Spec 9A, Table C.1).
-    16 mm: 88.3 kg per 100 m, API Spec 9A, Table C.1).
     kappa = 0.02 (estimate, range 0.009-0.1): the full-slip bound is the sum of the
     wires' own EI, 114 wires of about d/15 and 200 GPa: kappa_min =
     114 (1/15)^4 x 200 / 49 = 0.0092; friction between wires under tension raises the
@@ -97,7 +94,6 @@ Presets and sources (conversions: 1 kgf = 9.80665 N, 1 lbf = 4.44822 N):
     Zhermack), clove-hitch paper (Extreme Mech. Lett., DOI
     10.1016/j.eml.2022.101788), sec. 2. A solid elastic rod, not a rope: E is the
     material's. The shipped DER phase tables were computed for this rod (with a
-    density of 1150 kg/m^3; the verdict does not depend on it).
     density of 1150 kg/m^3; the verdict does not depend on it). kappa = 1: a solid
     rod (exact by construction; the tables' meta has no ``bending_scale``, i.e. 1).
 """
