@@ -416,13 +416,20 @@ def _bending_scale(mat, bending_scale):
     )
 
 
-def _table_kappa(table) -> float:
-    """The bending scale a DER table was built with (meta ``bending_scale``, 1 if absent)."""
+def _table_kappa(table, name="the DER table") -> float:
+    """The bending scale a DER table was built with (meta ``bending_scale``, 1 if absent).
+
+    Raises
+    ------
+    InputError
+        The meta's ``bending_scale`` is not a number in (0, 1] (one line naming ``name``).
+    """
     meta = getattr(table, "meta", None) or {}
-    try:
-        return float(meta.get("bending_scale", 1.0))
-    except (TypeError, ValueError):
-        return 1.0
+    k = meta.get("bending_scale", 1.0)
+    ok = not isinstance(k, bool) and isinstance(k, (int, float)) and 0 < k <= 1
+    if not ok:
+        raise InputError(f"{name}: meta bending_scale must be a number in (0, 1], got {k!r}")
+    return float(k)
 
 
 def _warnings(mu, mu_rr, d, D, load, E, theta):
@@ -511,10 +518,28 @@ def _shipped_tables():
 
 @functools.lru_cache(maxsize=1)
 def _shipped_hold_tables():
-    """The shipped anchor-law hold tables {knot: HoldTable}, read once per process."""
+    """The shipped anchor-law solid-rod hold tables {knot: HoldTable}, read once per process."""
     from knotmech.scenes import phase_table as pt
 
     return pt.load_hold_tables()
+
+
+@functools.lru_cache(maxsize=1)
+def _shipped_hold_table_sets():
+    """The shipped anchor-law hold tables {knot: {kappa: HoldTable}}, read once per process."""
+    from knotmech.scenes import phase_table as pt
+
+    return pt.load_hold_table_sets()
+
+
+def _shipped_hold_table(knot, kappa=1.0):
+    """The shipped hold table of ``knot`` whose bending scale is nearest ``kappa`` (by
+    ratio), or None when none is shipped."""
+    by_kappa = _shipped_hold_table_sets().get(knot)
+    if not by_kappa:
+        return None
+    best = min(by_kappa, key=lambda k: abs(math.log(k / float(kappa))))
+    return by_kappa[best]
 
 
 def _q(value: float, unit: str) -> str:
@@ -636,9 +661,9 @@ def _der(
     }
     kappa = float(bending_scale)
 
-    def refused(table):
+    def refused(table, name):
         """The reason a table built at another kappa may not answer, "" when it may."""
-        tk = _table_kappa(table)
+        tk = _table_kappa(table, name)
         out["table_bending_scale"] = tk
         if max(tk / kappa, kappa / tk) <= BENDING_SCALE_FACTOR:
             return ""
@@ -688,7 +713,7 @@ def _der(
         user = None if phase_table is None else _load_user_table(phase_table)
         if user is not None and not isinstance(user, pt.HoldTable):
             law = "imc"
-            why = refused(user)
+            why = refused(user, f"phase table {str(phase_table)!r}")
             if why:
                 out.update(source="table", table=str(phase_table), law=law, message=why,
                            refused="bending_scale")  # fmt: skip
@@ -709,12 +734,13 @@ def _der(
                 return out, None, None, shape
             validity = _table_validity_imc(user, a)
         else:
-            table = user if user is not None else _shipped_hold_tables().get(knot)
+            table = user if user is not None else _shipped_hold_table(knot, kappa)
             if table is None:
                 out["message"] = f"no DER hold table for {knot} is shipped"
                 return out, None, None, shape
             law = table.law
-            why = refused(table)
+            why = refused(table, (f"phase table {str(phase_table)!r}" if user is not None
+                                  else f"the shipped {knot} hold table"))  # fmt: skip
             if why:
                 out.update(source="table", law=law, message=why, refused="bending_scale",
                            table=("shipped" if user is None else str(phase_table)))  # fmt: skip
@@ -1263,8 +1289,8 @@ def plot_verdict(verdict: Verdict, path, *, phase_table=None) -> Path:
     import matplotlib.ticker
     import numpy as np
 
-    tables = (_shipped_hold_tables().get(verdict.knot) if phase_table is None
-              else _load_user_table(phase_table))  # fmt: skip
+    tables = (_shipped_hold_table(verdict.knot, der.get("table_bending_scale", 1.0))
+              if phase_table is None else _load_user_table(phase_table))  # fmt: skip
     from knotmech.scenes import phase_table as pt
 
     if isinstance(tables, pt.HoldTable):

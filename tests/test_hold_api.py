@@ -224,6 +224,64 @@ def test_a_table_built_at_the_ropes_bending_scale_answers(tmp_path):
     assert "this rope's kappa = 1" in solid.der["message"]
 
 
+@pytest.mark.parametrize("bad", ["abc", None, 0, 2.0, True])
+def test_a_table_with_a_bad_bending_scale_is_refused_in_one_line(tmp_path, bad):
+    """A table's meta bending_scale that is not a number in (0, 1] is an input error naming
+    the file (it was read as 1, a solid rod, before), from the API and the CLI (exit 2)."""
+    from knotmech.hold import _shipped_hold_tables
+
+    d = _shipped_hold_tables()["clove-hitch"].to_dict()
+    d["meta"] = {**d["meta"], "bending_scale": bad}
+    path = tmp_path / "bad_kappa.json"
+    path.write_text(json.dumps(d))
+    kw = dict(rod_diameter=6e-3, post_diameter=40e-3, mu=0.4, load=200.0, phase_table=path)
+    with pytest.raises(InputError, match="bad_kappa.json.*bending_scale must be a number") as e:
+        knotmech.hold("clove-hitch", material="nylon", **kw)
+    assert "\n" not in str(e.value)
+    args = [
+        "hold",
+        "clove-hitch",
+        "--rod-diameter",
+        "6mm",
+        "--post-diameter",
+        "40mm",
+        "--mu",
+        "0.4",
+        "--load",
+        "200N",
+        "--material",
+        "nylon",
+        "--phase-table",
+        str(path),
+    ]
+    assert main(args) == 2
+
+
+def test_the_shipped_table_nearest_the_ropes_kappa_answers(monkeypatch):
+    """With tables shipped at several bending scales, hold takes the one nearest the rope's
+    kappa by ratio (nylon 0.01 -> the 0.01 table; kappa 0.2 -> the solid rod's, a factor 5
+    from 1 but 20 from 0.01, which is then refused as beyond the factor 3)."""
+    import knotmech.hold as h
+
+    solid = h._shipped_hold_tables()["clove-hitch"]
+    d = solid.to_dict()
+    d["meta"] = {**d["meta"], "bending_scale": 0.01}
+    from knotmech.scenes.phase_table import HoldTable
+
+    rope = HoldTable.from_dict(d)
+    monkeypatch.setattr(h, "_shipped_hold_table_sets",
+                        lambda: {"clove-hitch": {1.0: solid, 0.01: rope}})  # fmt: skip
+    assert h._shipped_hold_table("clove-hitch", 0.01) is rope
+    assert h._shipped_hold_table("clove-hitch", 0.05) is rope
+    assert h._shipped_hold_table("clove-hitch", 0.2) is solid
+    assert h._shipped_hold_table("cow-hitch", 0.01) is None
+    kw = dict(rod_diameter=6e-3, post_diameter=40e-3, mu=0.4, load=200.0, material="nylon")
+    v = knotmech.hold("clove-hitch", **kw)
+    assert v.decided_by == "DER-table" and v.der["table_bending_scale"] == 0.01
+    w = knotmech.hold("clove-hitch", bending_scale=0.2, **kw)
+    assert w.der["holds"] is None and w.der["table_bending_scale"] == 1.0
+
+
 def test_simulate_passes_the_bending_scale_to_the_scene(monkeypatch):
     """--simulate runs the DER scene at the rope's kappa (simulate_point is replaced by a
     recorder: the run itself is tested in tests/cli/test_hold_simulate.py)."""

@@ -598,18 +598,23 @@ def write_table(
 
 
 def write_hold_table(path=None, *, knot="clove-hitch", cache_dir=None, processes=2,
-                     progress=True, note=None):  # fmt: skip
+                     progress=True, note=None, bending_scale=1.0):  # fmt: skip
     """Run the anchor-law hold-table grid of ``knot`` (:data:`knotmech.scenes.phase_table.
-    HOLD_GRID`) through the sweep and write the shipped table (default
-    ``knotmech/data/hold_phase_table_<knot>.json``)."""
+    HOLD_GRID`) through the sweep, with the rods' bending scale ``bending_scale``, and write
+    the shipped table (default ``knotmech/data/`` + :func:`~knotmech.scenes.phase_table.
+    hold_table_resource`)."""
     t0 = datetime.datetime.now()
-    path = TABLE_PATH.parent / pt.hold_table_resource(knot) if path is None else Path(path)
+    k = float(bending_scale)
+    if path is None:
+        path = TABLE_PATH.parent / pt.hold_table_resource(knot, k)
     gen = f"python -m validation.clove_phase_diagram --write-hold-table --knot {knot}"
+    if k != 1.0:
+        gen += f" --bending-scale {k:g}"
     meta = {"generator": gen}
     if note:
         meta["note"] = note
     table = pt.build_hold_table(knot, processes=processes, cache_dir=cache_dir,
-                                progress=progress, meta=meta)  # fmt: skip
+                                progress=progress, meta=meta, bending_scale=k)  # fmt: skip
     table.meta["written"] = datetime.datetime.now(datetime.timezone.utc).isoformat(
         timespec="seconds")  # fmt: skip
     table.meta["elapsed_s"] = round((datetime.datetime.now() - t0).total_seconds(), 1)
@@ -647,12 +652,18 @@ def _main(argv=None) -> int:
     )
     parser.add_argument("--knot", default="clove-hitch", help="--write-hold-table: the knot")
     parser.add_argument("--processes", type=int, default=2, help="sweep worker processes")
+    parser.add_argument(
+        "--bending-scale", type=float, default=1.0,
+        help="--write-hold-table: the rods' bending scale kappa, B = kappa E pi d^4/64 "
+        "(default 1, a solid rod; a fibre rope is of order 0.01)",
+    )  # fmt: skip
     args = parser.parse_args(argv)
     if args.write_hold_table is not None:
         table = write_hold_table(args.write_hold_table or None, knot=args.knot,
                                  cache_dir=args.cache, processes=args.processes,
-                                 note=args.note)  # fmt: skip
-        print(f"wrote the {table.knot} hold table: {len(table.points)} points")
+                                 note=args.note, bending_scale=args.bending_scale)  # fmt: skip
+        print(f"wrote the {table.knot} hold table (kappa = {table.bending_scale:g}): "
+              f"{len(table.points)} points")  # fmt: skip
         return 0
     if args.write_table is not None:
         path = args.write_table or table_path(args.mu)

@@ -77,6 +77,7 @@ __all__ = [
     "hold_scene",
     "build_hold_table",
     "load_hold_tables",
+    "load_hold_table_sets",
     "read_hold_table",
     "creep_speed",
     "creep_verdict",
@@ -1183,10 +1184,20 @@ class HoldTable:
                         bool(ok),
                     )
                 )
-            return cls(str(data["knot"]), pts, dict(data.get("meta", {})), str(data["law"]),
+            meta = dict(data.get("meta", {}))
+            if "bending_scale" in meta:
+                k = meta["bending_scale"]
+                if isinstance(k, bool) or not isinstance(k, (int, float)) or not 0 < k <= 1:
+                    raise ValueError(f"meta bending_scale must be a number in (0, 1], got {k!r}")
+            return cls(str(data["knot"]), pts, meta, str(data["law"]),
                        dict(data["criterion"]))  # fmt: skip
         except (KeyError, TypeError, ValueError, AttributeError) as exc:
             raise InputError(f"{name}: not a knotmech hold table: {exc}") from None
+
+    @property
+    def bending_scale(self) -> float:
+        """The rods' bending scale kappa the table was built with (meta, 1 when absent)."""
+        return float(self.meta.get("bending_scale", 1.0))
 
     def write(self, path) -> None:
         """Compact JSON (one point per line)."""
@@ -1229,7 +1240,17 @@ def read_hold_table(path) -> HoldTable:
 
 
 def load_hold_tables() -> dict:
-    """Every shipped hold table (``knotmech/data/hold_phase_table_*.json``): {knot: table}."""
+    """The shipped solid-rod (kappa = 1) hold tables: {knot: table}
+    (:func:`load_hold_table_sets` has those of every bending scale)."""
+    out = {}
+    for knot, by_kappa in load_hold_table_sets().items():
+        out[knot] = by_kappa.get(1.0, by_kappa[max(by_kappa)])
+    return out
+
+
+def load_hold_table_sets() -> dict:
+    """Every shipped hold table (``knotmech/data/hold_phase_table_*.json``):
+    {knot: {bending scale kappa: table}}."""
     try:
         folder = resources.files("knotmech").joinpath("data")
         names = sorted(
@@ -1244,7 +1265,7 @@ def load_hold_tables() -> dict:
         except json.JSONDecodeError as exc:
             raise InputError(f"hold table {n} is not JSON: {exc}") from None
         t = HoldTable.from_dict(data, name=f"hold table {n}")
-        out[t.knot] = t
+        out.setdefault(t.knot, {})[t.bending_scale] = t
     return out
 
 
@@ -1260,19 +1281,25 @@ HOLD_GRID = {
 }
 
 
-def hold_table_resource(knot: str) -> str:
-    """File name in ``knotmech/data`` of the shipped hold table of ``knot``."""
-    return f"hold_phase_table_{knot}.json"
+def hold_table_resource(knot: str, bending_scale: float = 1.0) -> str:
+    """File name in ``knotmech/data`` of the shipped hold table of ``knot`` built with the
+    bending scale ``bending_scale`` (``hold_phase_table_<knot>.json`` for the solid rod,
+    kappa = 1; ``hold_phase_table_<knot>_kappa<kappa>.json`` otherwise)."""
+    k = float(bending_scale)
+    return f"hold_phase_table_{knot}" + ("" if k == 1.0 else f"_kappa{k:g}") + ".json"
 
 
-def hold_table_params(grid=None, knot: str = "clove-hitch") -> list:
+def hold_table_params(grid=None, knot: str = "clove-hitch", bending_scale: float = 1.0) -> list:
     """The :func:`knotmech.sweep.sweep` parameter sets of a hold-table grid (mu outermost).
 
-    ``knot`` enters the parameters only for knots other than the clove hitch (so the
-    clove hitch's cached points keep their keys).
+    ``knot`` enters the parameters only for knots other than the clove hitch, and
+    ``bending_scale`` only when it is not 1 (so the solid-rod tables' cached points keep
+    their keys).
     """
     g = HOLD_GRID if grid is None else grid
     extra = {} if knot == "clove-hitch" else {"knot": knot}
+    if float(bending_scale) != 1.0:
+        extra["bending_scale"] = float(bending_scale)
     return [
         {"d_over_2R": float(x), "t_over_EA": float(y), "mu": float(m), "friction": "anchor",
          **extra}
@@ -1291,23 +1318,29 @@ def build_hold_table(
     cache_dir=None,
     progress: bool = False,
     meta=None,
+    bending_scale: float = 1.0,
 ) -> HoldTable:
     """Run the DER points of a hold table through :func:`knotmech.sweep.sweep` and tabulate.
 
     Every point is one :func:`simulate_point` of ``knot``'s scene (anchor law, :data:`PROTOCOL`,
     creep-speed criterion); with ``cache_dir`` each result is stored as it arrives, so an
     interrupted build recomputes only what is missing. The table's meta records the grid,
-    protocol, rod, criterion, the CPU time per point and in total.
+    protocol, rod, criterion, the CPU time per point and in total. ``bending_scale`` kappa
+    (in (0, 1]) is the rods' bending scale (B = kappa E pi d^4/64) of every run;
+    it is kept in the meta as ``bending_scale``, which ``knotmech.hold`` reads to decide
+    whether the table may answer for a rope.
 
     Raises
     ------
     InputError
         An unknown knot; a point whose run raised (the message names it).
     """
+    from knotmech.errors import check_bending_scale
     from knotmech.sweep import sweep
 
     hold_scene(knot)  # InputError for an unknown knot or a missing scene
-    params = hold_table_params(grid, knot)
+    kappa = check_bending_scale(bending_scale)
+    params = hold_table_params(grid, knot, kappa)
     res = sweep(
         simulate_point,
         params,
@@ -1342,7 +1375,7 @@ def build_hold_table(
             r2["first_creep_speed"] = results[i]["creep_speed"]
             r2["cpu_s"] = float(r2.get("cpu_s", 0.0)) + float(results[i].get("cpu_s", 0.0))
             results[i] = r2
-    return hold_table_from_results(knot, results, meta=meta)
+    return hold_table_from_results(knot, results, meta={"bending_scale": kappa, **(meta or {})})
 
 
 def _signed(r: dict) -> dict:

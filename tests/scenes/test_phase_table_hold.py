@@ -237,3 +237,30 @@ def test_lookup_refuses_non_finite_queries(table):
         table.lookup(0.1, float("nan"), mu=0.3)
     with pytest.raises(InputError, match="creep_limit"):
         table.lookup(0.1, 1e-2, mu=0.3, creep_limit=0)
+
+
+def test_rope_tables_are_named_keyed_and_checked_by_their_bending_scale():
+    """A table built at kappa != 1 has its own file name and sweep keys (the solid rod's
+    cached points keep theirs) and must carry a kappa in (0, 1] in its meta."""
+    assert pt.hold_table_resource("clove-hitch") == "hold_phase_table_clove-hitch.json"
+    assert pt.hold_table_resource("cow-hitch", 0.01) == "hold_phase_table_cow-hitch_kappa0.01.json"
+    solid = pt.hold_table_params(knot="clove-hitch")
+    rope = pt.hold_table_params(knot="clove-hitch", bending_scale=0.01)
+    assert len(solid) == len(rope) == 100
+    assert "bending_scale" not in solid[0] and rope[0]["bending_scale"] == 0.01
+    assert {k: v for k, v in rope[7].items() if k != "bending_scale"} == solid[7]
+    d = _table(_rule).to_dict()
+    assert HoldTable.from_dict(d).bending_scale == 1.0
+    d["meta"] = {"bending_scale": 0.01}
+    assert HoldTable.from_dict(d).bending_scale == 0.01
+    for bad in ("0.01", 0, 1.5, None):
+        d["meta"] = {"bending_scale": bad}
+        with pytest.raises(InputError, match="bending_scale must be a number in"):
+            HoldTable.from_dict(d, name="hold table x.json")
+    with pytest.raises(InputError, match="bending_scale"):
+        pt.build_hold_table("clove-hitch", grid={"d_over_2R": (0.1,), "t_over_EA": (1e-2,),
+                                                 "mu": (0.3,)}, bending_scale=0)  # fmt: skip
+    sets = pt.load_hold_table_sets()
+    assert set(sets) >= {"clove-hitch", "two-half-hitches", "round-turn-two-half-hitches",
+                         "cow-hitch"}  # fmt: skip
+    assert all(1.0 in by_kappa for by_kappa in sets.values())
