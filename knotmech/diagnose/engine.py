@@ -43,6 +43,7 @@ new simulations for every draw. BIC and the (raw) held-out RMS check apply.
 from __future__ import annotations
 
 import functools
+import math
 from pathlib import Path
 
 import numpy as np
@@ -92,6 +93,11 @@ _SMOOTH_REASON = (
 
 #: most additions of one repeatable effect (nips)
 _MAX_REPEATS = 6
+
+#: the power-law (1/f-type) null is tried when the remainder's high-frequency spectral
+#: exponent is at least this (on 120 rows: white noise fits 0-0.4, 90 % under 0.38; pink
+#: 0.57-1.33 for 10-90 %; AR(1) at rho 0.8 1.15-1.78; :func:`_power_law_check`)
+POWER_LAW_BETA_MIN = 0.3
 
 
 def _as_recording(recording, experiment, x, y, metadata, **cols) -> Recording:
@@ -277,6 +283,14 @@ def diagnose(
         verdict = "none"
         regions = []
     floor, floor_reason = None, ""
+    power_law = None
+    if verdict != "none" and der is None:
+        # structure under the AR(1) null: is it also structure under 1/f-type noise fitted
+        # to the same high frequencies? (they cannot be told apart on few rows)
+        power_law = _power_law_check(rec, base, final, accepted, verdict == "unexplained",
+                                     fin_mis, data, starts, gs, seed, alpha, only)  # fmt: skip
+        if power_law is not None and power_law["explains"]:
+            verdict = "undetermined"
     if verdict == "none":
         floor, verdict, floor_reason, regions = _noise_floor_check(rec, final, starts, rng, alpha)
     leftover = None
@@ -337,6 +351,7 @@ def diagnose(
         **({"reduced": reduced} if reduced else {}),
         **({"outliers": outliers} if outliers else {}),
         **({"leftover": leftover} if leftover else {}),
+        **({"power_law": power_law} if power_law else {}),
         "alpha": alpha,
         "seed": seed,
         **({"der": der[0].settings()} if der is not None else {}),
@@ -457,6 +472,79 @@ def _noise_floor_check(rec, final, starts, rng, alpha):
         )
         regions = mis.regions or [(float(np.min(rec.x)), float(np.max(rec.x)))]
     return floor, verdict, reason, regions
+
+
+def _power_law_check(rec, base, final, accepted, unexplained, fin_mis, data, starts, gs, seed,
+                     alpha, only):  # fmt: skip
+    """Whether 1/f-type noise fitted to the high frequencies explains what the AR(1) null
+    calls structure (:mod:`knotmech.diagnose.powerlaw`).
+
+    Tried when the remainder is at most :data:`~knotmech.diagnose.noisefloor.NONE_LEVEL_MAX`
+    high-frequency sd (a larger one is a mismatch whatever the noise) and the fitted
+    exponent is at least :data:`POWER_LAW_BETA_MIN` (white-like high frequencies leave
+    the AR(1) null in charge). For ``unexplained`` the structure test of the final
+    remainder is repeated with power-law draws; for named effects each accepted effect's
+    bootstrap is repeated, in the order accepted, with the null's draws power-law noise.
+    Returns None when not tried, else a dict for the report (``explains``: the
+    power-law null explains it, so the verdict is ``undetermined``; ``reason``).
+    """
+    from dataclasses import replace
+
+    from knotmech.diagnose.noisefloor import NONE_LEVEL_MAX, hf_sigma
+    from knotmech.diagnose.powerlaw import F_HIGH, PowerLawNoise, fit_power_law
+
+    resid = rec.y - final.mean
+    sd_hf = hf_sigma(resid, rec.x, rec.trial)
+    level = float(np.sqrt(np.mean(resid**2)) / sd_hf) if sd_hf > 0 else math.inf
+    if not level <= NONE_LEVEL_MAX:
+        return None
+    # the spectrum of the remainder of the model under test, standardised by its sd
+    null_fit = final if unexplained else base
+    r0 = rec.y - null_fit.mean
+    fit = fit_power_law(r0 / null_fit.noise.sd(null_fit.mean), starts)
+    if fit is None or fit.beta < POWER_LAW_BETA_MIN:
+        return None
+    rng = np.random.default_rng([seed, 14])
+    out = {"beta": round(fit.beta, 3), "c": float(f"{fit.c:.4g}"),
+           "band_cycles_per_row": [F_HIGH, 0.5], "ordinates": fit.n_ordinates,
+           "level_hf_sd": round(level, 3)}  # fmt: skip
+    if unexplained:
+        noise = PowerLawNoise.from_noise(final.noise, fit)
+        mis = flexible_mismatch(rec.x, resid, final.mean, noise, starts, rec.trial,
+                                given_sigma=gs, rng=rng, decide_at=alpha)  # fmt: skip
+        out.update(tested="unexplained", p_value=float(f"{mis.p_value:.3g}"))
+        out["explains"] = bool(mis.p_value >= alpha)
+        what = f"a located mismatch ({fin_mis.shape}, p = {fin_mis.p_value:.2g} under AR(1) noise)"
+        p_pl = mis.p_value
+    else:
+        ok, _ = applicable_effects(rec)
+        if only is not None:
+            ok = [e for e in ok if e in only]
+        alpha_each = alpha / max(len(ok), 1)
+        cur, p_pl, what = base, 0.0, ""
+        out["tested"] = []
+        for eff, ev, _ in accepted:
+            alt = fit_with_effect(cur, eff, data, starts, given_sigma=gs)
+            null_c = _null_under(cur, alt, data, starts, gs)
+            lr = 2.0 * (alt.loglik - null_c.loglik)
+            pl_null = replace(null_c, noise=PowerLawNoise.from_noise(null_c.noise, fit))
+            p, b = _bootstrap_p(pl_null, eff, lr, data, starts, gs, rng, alpha_each)
+            out["tested"].append({"effect": eff.name, "p_value": float(f"{p:.3g}"),
+                                  "bootstrap_draws": int(b)})  # fmt: skip
+            if p >= alpha_each:
+                p_pl = p
+                what = f"{eff.name} (p = {ev['p_value']:.2g} under AR(1) noise)"
+                break
+            cur = alt
+        out["explains"] = bool(what)
+    out["reason"] = (
+        f"{what} is within power-law noise of exponent {fit.beta:.2g} fitted to the high "
+        f"frequencies (p = {p_pl:.2g}); this recording's {rec.n} rows cannot tell 1/f-type "
+        "noise from a smooth mismatch: record replicate trials or more rows"
+        if out["explains"]
+        else ""
+    )
+    return out
 
 
 def _leftover_check(rec, final, starts, seed, alpha):
@@ -657,7 +745,8 @@ def _verdict_line(report: Report, rec, fin_mis, effect) -> str:
             f"none: the {report.details['baseline_model']} baseline explains the data within its "
             f"noise (mu = {_fmt(p['mu'])}, rms = {_fmt(report.final['rms'])})"
         )
-    reason = report.details.get("noise_floor", {}).get("reason")
+    reason = (report.details.get("noise_floor", {}).get("reason")
+              or report.details.get("power_law", {}).get("reason"))  # fmt: skip
     if v in ("unexplained", "undetermined") and reason:
         return f"{v}: {reason}"
     if v == "unexplained":

@@ -1,0 +1,145 @@
+r"""Power-law (1/f-type) noise: its spectrum fitted on the high frequencies, and draws.
+
+The engine's noise model is AR(1) (:class:`knotmech.diagnose.stats.NoiseModel`). A
+sensor's 1/f ("pink") noise is not: its power keeps rising towards the lowest
+frequencies, where an AR(1) model fitted to the same rows flattens, so an AR(1) null
+calls the low-frequency wander of 1/f noise a smooth mismatch. On the high frequencies
+(:data:`F_HIGH` and up, where a mismatch of a few periods over the range has no power)
+the two cannot be told apart on a short recording (Whittle fits of both to 120 rows of
+pink or AR(1) noise prefer either about half the time), so a mismatch that an AR(1) null
+finds but a power-law null fitted to the same high frequencies does not is
+*undetermined*, not structure: :func:`knotmech.diagnose.diagnose` runs that second null
+(:func:`power_law_reason`).
+
+The spectrum of the standardised residual :math:`u = r/\sigma(f)` (per-row sd of the
+fitted noise model) is modelled as :math:`S(f) = c\,f^{-\beta}` (:math:`f` in cycles
+per row) and fitted by the Whittle likelihood (Whittle 1953; Robinson 1995 for the
+long-memory case) on the periodogram ordinates of each trial above :data:`F_HIGH`,
+:math:`\beta` over :data:`BETA_GRID` with :math:`c` profiled out. Draws
+(:class:`PowerLawNoise`) are Gaussian series with that spectrum synthesised by FFT at
+twice the trial's length and cut to it (so they are not circular), times the per-row sd.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+import numpy as np
+
+from knotmech.diagnose.stats import NoiseModel
+
+__all__ = ["F_HIGH", "BETA_GRID", "PowerLawFit", "PowerLawNoise", "fit_power_law"]
+
+#: lowest frequency [cycles per row] of the band the power law is fitted on
+F_HIGH = 1.0 / 16.0
+#: spectral exponents tried (0: white; 1: pink; 2: a random walk)
+BETA_GRID = np.linspace(0.0, 3.0, 121)
+#: fewest periodogram ordinates a fit needs (a trial of 64 rows gives 28)
+MIN_ORDINATES = 24
+
+
+@dataclass(frozen=True)
+class PowerLawFit:
+    """A Whittle fit of :math:`S(f) = c f^{-\\beta}` to a high-frequency band.
+
+    Attributes
+    ----------
+    beta : float
+        Spectral exponent.
+    c : float
+        Spectral level [units of u squared per (cycle/row)], ``E I(f) = c f^-beta``.
+    n_ordinates : int
+        Periodogram ordinates fitted.
+    """
+
+    beta: float
+    c: float
+    n_ordinates: int
+
+
+def _segments(starts: np.ndarray):
+    idx = np.flatnonzero(starts)
+    return zip(idx, np.append(idx[1:], starts.size), strict=True)
+
+
+def fit_power_law(u, starts, *, f_min: float = F_HIGH) -> PowerLawFit | None:
+    """Whittle fit of a power law to the periodograms of ``u`` above ``f_min``.
+
+    Parameters
+    ----------
+    u : (n,) array
+        Standardised residuals (rows in recording order).
+    starts : (n,) bool array
+        Trial starts; each trial's periodogram is taken on its own (mean removed).
+    f_min : float
+        Lowest frequency fitted [cycles per row].
+
+    Returns
+    -------
+    PowerLawFit or None
+        None when fewer than :data:`MIN_ORDINATES` ordinates lie in the band.
+    """
+    u = np.asarray(u, float)
+    fs, ps = [], []
+    for a, b in _segments(np.asarray(starts, bool)):
+        m = b - a
+        if m < 8:
+            continue
+        z = u[a:b] - np.mean(u[a:b])
+        per = np.abs(np.fft.rfft(z)) ** 2 / m
+        f = np.fft.rfftfreq(m)
+        keep = (f >= f_min) & (f < 0.5)  # the Nyquist ordinate has another distribution
+        fs.append(f[keep])
+        ps.append(per[keep])
+    f = np.concatenate(fs) if fs else np.empty(0)
+    p = np.concatenate(ps) if ps else np.empty(0)
+    if f.size < MIN_ORDINATES or not np.all(np.isfinite(p)) or np.sum(p) <= 0:
+        return None
+    lf = np.log(f)
+    # profiled Whittle: c(beta) = mean(I f^beta); -loglik = sum(log c - beta log f) + const
+    g = p[:, None] * np.exp(BETA_GRID[None, :] * lf[:, None])
+    c = np.mean(g, axis=0)
+    nll = f.size * np.log(c) - BETA_GRID * np.sum(lf)
+    i = int(np.argmin(nll))
+    return PowerLawFit(float(BETA_GRID[i]), float(c[i]), int(f.size))
+
+
+@dataclass(frozen=True)
+class PowerLawNoise(NoiseModel):
+    """An AR(1) noise model whose draws are power-law noise instead.
+
+    Its likelihood, whitening and sd are those of the AR(1) model it was made from (the
+    fits of a bootstrap keep using them); :meth:`sample` draws Gaussian noise of spectrum
+    :math:`c f^{-\\beta}` per trial, times :meth:`sd`. ``thin`` > 1: the draw is made at
+    ``thin`` times the rows and every ``thin``-th row kept (a thinned bootstrap,
+    :func:`knotmech.diagnose.fitting.thinned_noise`), which keeps its spectrum exact.
+    """
+
+    beta: float = 0.0
+    c: float = 1.0
+    thin: int = 1
+
+    @classmethod
+    def from_noise(cls, noise: NoiseModel, fit: PowerLawFit) -> PowerLawNoise:
+        return cls(noise.scale, noise.growth, noise.rho, noise.fref, noise.given_sigma,
+                   beta=fit.beta, c=fit.c)  # fmt: skip
+
+    def sample(self, mean: np.ndarray, starts: np.ndarray, rng: np.random.Generator):
+        """One draw (same shape as ``mean``)."""
+        z = np.empty(mean.size)
+        k = int(self.thin)
+        for a, b in _segments(np.asarray(starts, bool)):
+            m = (b - a) * k
+            n2 = 2 * m
+            f = np.fft.rfftfreq(n2)
+            s = np.zeros_like(f)
+            s[1:] = self.c * f[1:] ** (-self.beta)
+            amp = np.sqrt(s * n2 / 2.0)
+            spec = amp * (rng.standard_normal(f.size) + 1j * rng.standard_normal(f.size))
+            if n2 % 2 == 0:
+                spec[-1] = np.sqrt(s[-1] * n2) * rng.standard_normal()
+            z[a:b] = np.fft.irfft(spec, n2)[:m:k]
+        return self.sd(mean) * z
+
+    def describe(self) -> dict:
+        return {**super().describe(), "spectrum": f"power law, beta {self.beta:.3g}"}
