@@ -94,10 +94,12 @@ _SMOOTH_REASON = (
 #: most additions of one repeatable effect (nips)
 _MAX_REPEATS = 6
 
-#: the power-law (1/f-type) null is tried when the remainder's high-frequency spectral
-#: exponent is at least this (on 120 rows: white noise fits 0-0.4, 90 % under 0.38; pink
-#: 0.57-1.33 for 10-90 %; AR(1) at rho 0.8 1.15-1.78; :func:`_power_law_check`)
-POWER_LAW_BETA_MIN = 0.3
+#: the power-law null is tried when the remainder's high-frequency spectral exponent lies in
+#: this range, that of flicker (1/f-type) noise: on 120 rows white noise fits 0-0.4 (90 %
+#: under 0.38), pink 0.57-1.33 (10-90 %), AR(1) at rho 0.8 1.15-1.78 and at rho 0.9
+#: 1.6-1.8 (the engine's AR(1) null keeps those: a power law fitted to them would
+#: extrapolate far more low-frequency power than they have); :func:`_power_law_check`
+POWER_LAW_BETA_RANGE = (0.3, 1.3)
 
 
 def _as_recording(recording, experiment, x, y, metadata, **cols) -> Recording:
@@ -481,8 +483,8 @@ def _power_law_check(rec, base, final, accepted, unexplained, fin_mis, data, sta
 
     Tried when the remainder is at most :data:`~knotmech.diagnose.noisefloor.NONE_LEVEL_MAX`
     high-frequency sd (a larger one is a mismatch whatever the noise) and the fitted
-    exponent is at least :data:`POWER_LAW_BETA_MIN` (white-like high frequencies leave
-    the AR(1) null in charge). For ``unexplained`` the structure test of the final
+    exponent lies in :data:`POWER_LAW_BETA_RANGE` (white-like or AR(1)-like high
+    frequencies leave the AR(1) null in charge). For ``unexplained`` the structure test of the final
     remainder is repeated with power-law draws; for named effects each accepted effect's
     bootstrap is repeated, in the order accepted, with the null's draws power-law noise.
     Returns None when not tried, else a dict for the report (``explains``: the
@@ -498,11 +500,12 @@ def _power_law_check(rec, base, final, accepted, unexplained, fin_mis, data, sta
     level = float(np.sqrt(np.mean(resid**2)) / sd_hf) if sd_hf > 0 else math.inf
     if not level <= NONE_LEVEL_MAX:
         return None
-    # the spectrum of the remainder of the model under test, standardised by its sd
-    null_fit = final if unexplained else base
-    r0 = rec.y - null_fit.mean
-    fit = fit_power_law(r0 / null_fit.noise.sd(null_fit.mean), starts)
-    if fit is None or fit.beta < POWER_LAW_BETA_MIN:
+    # the spectrum of the final remainder, standardised by its sd: an accepted effect
+    # takes its own broadband power (a step's leaks to every frequency) out of it, and a
+    # spurious one, fitted to the wander of 1/f noise, leaves the high frequencies as they were
+    fit = fit_power_law(resid / final.noise.sd(final.mean), starts)
+    lo, hi = POWER_LAW_BETA_RANGE
+    if fit is None or not lo <= fit.beta <= hi:
         return None
     rng = np.random.default_rng([seed, 14])
     out = {"beta": round(fit.beta, 3), "c": float(f"{fit.c:.4g}"),

@@ -37,21 +37,32 @@ def test_draws_have_the_spectrum_they_were_made_with(beta):
     assert fits[0].n_ordinates == 2048 - 256
 
 
-def test_the_fit_tells_white_from_pink_on_120_rows():
-    """The thresholds of the engine's second null: on 120 rows white noise fits beta < 0.3
-    in most draws, pink (1/f, generated as in validation.noise_robustness) above it."""
-    from knotmech.diagnose.engine import POWER_LAW_BETA_MIN
+def test_the_exponent_range_takes_pink_and_leaves_white_and_ar1():
+    """The range of the engine's second null: on 120 rows most pink (1/f, generated as in
+    validation.noise_robustness) draws fall in it, most white and AR(1) (rho 0.9) ones
+    outside (white 11 %, AR(1) 21 % inside), so those keep the AR(1) null alone."""
+    from scipy import signal
+
+    from knotmech.diagnose.engine import POWER_LAW_BETA_RANGE
     from validation.noise_robustness import _noise
 
+    lo, hi = POWER_LAW_BETA_RANGE
     rng = np.random.default_rng(2)
     st = _one_trial(120)
-    white = [fit_power_law(_noise("white", 120, 1.0, np.ones(120), rng), st).beta
-             for _ in range(200)]  # fmt: skip
-    pink = [fit_power_law(_noise("pink", 120, 1.0, np.ones(120), rng), st).beta
-            for _ in range(200)]  # fmt: skip
-    assert np.mean(np.array(white) >= POWER_LAW_BETA_MIN) < 0.15
-    assert np.mean(np.array(pink) >= POWER_LAW_BETA_MIN) > 0.9
-    assert 0.85 < np.median(pink) < 1.15 and np.median(white) < 0.1
+
+    def betas(draw):
+        return np.array([fit_power_law(draw(), st).beta for _ in range(200)])
+
+    white = betas(lambda: _noise("white", 120, 1.0, np.ones(120), rng))
+    pink = betas(lambda: _noise("pink", 120, 1.0, np.ones(120), rng))
+    ar9 = betas(lambda: signal.lfilter([1.0], [1.0, -0.9], rng.standard_normal(320))[200:])
+
+    def inside(b):
+        return float(np.mean((b >= lo) & (b <= hi)))
+
+    assert inside(pink) > 0.75
+    assert inside(white) < 0.15 and inside(ar9) < 0.3  # measured 0.11 and 0.21
+    assert 0.85 < np.median(pink) < 1.15 and np.median(white) < 0.1 and np.median(ar9) > 1.5
 
 
 def test_too_few_rows_give_no_fit():
