@@ -82,6 +82,9 @@ N_EFF_MIN = 5.0
 #: model fitted to the recording may absorb a misfit that large (issue 14: 5-16x the
 #: noise were called ``none`` under a fitted lag-one correlation of 0.95-0.985)
 NONE_LEVEL_MAX = 10.0
+#: fewest rows for :attr:`NoiseFloor.p_consistent` (on 40 rows the synthetic capstan-pull
+#: template, a null whose noise grows with the signal, gave p = 0.004)
+CONSISTENT_ROWS = 100
 #: below this many rows (and without a ``sigma`` column) the noise level is estimated
 #: from the very rows the fit explains: the second differences of 8 rows of a ripple
 #: are the ripple itself (30-sd ripples of 8 rows came out ``none`` 12/12, of 20 rows
@@ -217,6 +220,13 @@ class NoiseFloor:
     ar : ARFit or None
         AR(p) fit of the standardised remainder (:mod:`knotmech.diagnose.arnoise`),
         the coloured-noise explanation tried when the AR(1) one fails.
+    p_consistent : float
+        P(hf_lag1 at most this | AR(1) noise of the correlation the level needs), on the
+        remainder standardised by the noise model's sd profile (counted from draws; 1
+        when that level is not above white, or below :data:`CONSISTENT_ROWS` rows).
+        Small: the high frequencies are too white for any AR(1) noise that would explain
+        the level, so the excess is structure (a narrow bump that a fitted correlation
+        near 1 absorbs).
     """
 
     sigma_hf: float
@@ -230,6 +240,7 @@ class NoiseFloor:
     n_eff: float
     n: int
     ar: ARFit | None = None
+    p_consistent: float = 1.0
 
     def describe(self) -> dict:
         """JSON-ready numbers (3 significant digits)."""
@@ -308,6 +319,13 @@ def noise_floor(
     # the coloured-noise explanation: an AR(p) of the standardised remainder, in row
     # (time) order, restarted at every trial
     ar = fit_ar(resid / noise.sd(mean), np.cumsum(starts))
+    p_cons = 1.0
+    if n >= CONSISTENT_ROWS:
+        # standardised by the noise model's sd profile (noise that grows with the signal
+        # raises the level over the recording's median sd without any structure)
+        sdm = noise.sd(mean)
+        u = (resid / (sdm / np.mean(sdm)))[o][:, None]
+        p_cons = _p_consistent(u, seg, draws, rng)
     return NoiseFloor(
         sigma_hf=float(sd),
         level=level,
@@ -320,7 +338,40 @@ def noise_floor(
         n_eff=float(n_eff),
         n=int(n),
         ar=ar,
+        p_consistent=float(p_cons),
     )
+
+
+def _ar1_draws(seg, rho, draws, rng):
+    """``draws`` unit AR(1) series of lag-one correlation ``rho`` laid out as ``seg``
+    (rows sorted, each trial its own stationary series): (n, draws)."""
+    from scipy import signal
+
+    n = seg.size
+    out = np.empty((n, draws))
+    bounds = np.flatnonzero(np.r_[True, seg[1:] != seg[:-1], True])
+    burn = 100
+    for a, b in zip(bounds[:-1], bounds[1:], strict=True):
+        e = rng.standard_normal((b - a + burn, draws))
+        out[a:b] = signal.lfilter([1.0], [1.0, -rho], e, axis=0)[burn:]
+    return out
+
+
+def _p_consistent(u, seg, draws, rng) -> float:
+    """See :attr:`NoiseFloor.p_consistent` (``u``: standardised remainder, rows sorted)."""
+    level = float(_level(u, seg)[0])
+    if not level > 1.0:
+        return 1.0
+    rho = float(2.0 - np.sqrt(1.0 + 3.0 / level**2))
+    hf = float(_d1_lag1(u, seg)[0])
+    n = seg.size
+    if n <= _N_COUNTED:
+        sims = _d1_lag1(_ar1_draws(seg, rho, draws, rng), seg)
+        return (1 + int(np.sum(sims <= hf))) / (draws + 1)
+    sims = _d1_lag1(_ar1_draws(np.zeros(_N_COUNTED, int), rho, min(draws, 200), rng),
+                    np.zeros(_N_COUNTED, int))  # fmt: skip
+    z = (hf - np.mean(sims)) / (np.std(sims) * np.sqrt(_N_COUNTED / n))
+    return float(stats.norm.cdf(z))
 
 
 def _ar_explains(nf: NoiseFloor, alpha: float) -> bool:
@@ -358,7 +409,11 @@ def noise_floor_verdict(nf: NoiseFloor, alpha: float) -> tuple[str, str]:
       innovations (``p_model >= alpha``) and leaves at least :data:`N_EFF_MIN`
       independent stretches, or when the high-frequency noise is correlated and an
       AR(p) model (order by BIC, bounded by the rows; :mod:`knotmech.diagnose.arnoise`)
-      whitens the remainder and leaves at least :data:`N_EFF_MIN` stretches;
+      whitens the remainder and leaves at least :data:`N_EFF_MIN` stretches; neither
+      rescue when the high frequencies are too white for the correlation the level
+      needs (``p_consistent < alpha``: a narrow bump absorbed by a fitted correlation
+      near 1; 10-sd bumps of 120 rows give p = 0.0025-0.04, AR(1), AR(2) and 1/f nulls
+      at least 0.01);
     - otherwise ``unexplained`` when the high-frequency noise is white
       (``p_hf_white >= alpha``: the excess cannot be correlated noise), else
       ``undetermined`` (a smooth mismatch and correlated noise both fit; the reason
@@ -376,13 +431,20 @@ def noise_floor_verdict(nf: NoiseFloor, alpha: float) -> tuple[str, str]:
         f"{nf.sigma_hf:.3g} (p = {nf.p_level:.2g} under white noise; only noise with a "
         f"lag-one correlation of {nf.rho_needed:.3g} would explain it)"
     )
+    whiter = nf.p_consistent < alpha
     if nf.level > NONE_LEVEL_MAX:
         head += f" (above the {NONE_LEVEL_MAX:g} no fitted noise model may absorb)"
-    elif nf.p_model >= alpha and nf.n_eff >= N_EFF_MIN:
+    elif not whiter and nf.p_model >= alpha and nf.n_eff >= N_EFF_MIN:
         return "none", ""
-    elif _ar_explains(nf, alpha):
+    elif not whiter and _ar_explains(nf, alpha):
         return "none", ""
-    if nf.p_model < alpha:
+    if whiter:
+        why = (
+            f"its high frequencies are whiter (lag-one correlation of differences "
+            f"{nf.hf_lag1:.2f}) than AR(1) noise correlated enough to give that level "
+            f"(p = {nf.p_consistent:.2g})"
+        )
+    elif nf.p_model < alpha:
         why = (
             f"the fitted noise model does not describe it (lag-one correlation of its "
             f"innovations {nf.innovation_lag1:.2f}, p = {nf.p_model:.2g})"
