@@ -274,3 +274,38 @@ def test_short_recordings_with_sigma_are_judged_against_it():
             verdicts[shape].append(diagnose(rec, seed=0).verdict)
     assert verdicts["ripple"] == ["unexplained"] * 10
     assert verdicts[None] == ["none"] * 10
+
+
+def test_a_bump_absorbed_by_a_correlation_near_one_is_not_none():
+    """``noise_robustness`` tension profile, 10-sd Gaussian bump (sd 4 % of the range),
+    white noise, 120 rows, seed 0: the fitted AR(1) took it as rho 0.8 and the floor let
+    its own innovations (p_model 0.017) rescue ``none``. The high frequencies (lag-one
+    correlation of differences -0.36) are far whiter than AR(1) noise at the 0.83 that
+    the level (2.4 x the high-frequency sd) needs: p_consistent < 0.01, ``unexplained``."""
+    nr = load_case("noise_robustness")
+    rec, _ = nr.make("tension_profile", "bump", 10.0, "white", 0, 120)
+    rep = diagnose(rec, seed=0)
+    assert rep.verdict == "unexplained"
+    nf = rep.details["noise_floor"]
+    assert nf["p_consistent"] < 0.01 and nf["hf_lag1"] < -0.3 and nf["level"] > 2
+    assert "whiter" in nf["reason"]
+
+
+def test_consistency_of_the_level_with_ar1_noise_holds_on_ar1_nulls():
+    """On AR(1) noise (rho 0.8, 300 rows) the level and the high-frequency correlation
+    agree: p_consistent is roughly uniform, under 0.01 in at most 2 of 40 series."""
+    from scipy import signal
+
+    rng = np.random.default_rng(4)
+    n = 300
+    x = np.arange(n, dtype=float)
+    trial = np.zeros(n, int)
+    starts = trial_starts(trial)
+    noise = NoiseModel(1.0, 0.0, 0.8, 1.0)
+    ps = []
+    for _ in range(40):
+        r = signal.lfilter([1.0], [1.0, -0.8], rng.standard_normal(n + 200))[200:] * 0.6
+        nf = noise_floor(r, x, trial, noise, np.zeros(n), starts, rng, draws=199)
+        ps.append(nf.p_consistent)
+    ps = np.array(ps)
+    assert np.sum(ps < 0.01) <= 2 and 0.2 < np.median(ps) < 0.8
