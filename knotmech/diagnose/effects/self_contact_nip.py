@@ -14,7 +14,14 @@ import numpy as np
 from knotmech.diagnose.baselines import build_model
 from knotmech.diagnose.effects._common import CLOVE
 from knotmech.diagnose.effects.base import Effect
-from knotmech.diagnose.fitting import fit_model, param_vector, whiten_columns
+from knotmech.diagnose.fitting import (
+    FIT_ROWS,
+    fit_model,
+    param_vector,
+    refit_all_rows,
+    thinned_null,
+    whiten_columns,
+)
 
 __all__ = ["SelfContactNip"]
 
@@ -50,10 +57,20 @@ class SelfContactNip(Effect):
         return key.startswith("nip_")
 
     def output(self, rec, p, value):
+        k = _count(p)
+        if k == 0:
+            return value
         s = rec.x
-        for j in range(_count(p)):
-            value = value * np.where(s > p[f"nip_position_{j}"], 1.0 - p[f"nip_drop_{j}"], 1.0)
-        return value
+        out = np.array(value, dtype=float)  # a copy, multiplied in place nip by nip
+        # arc lengths in order (one trial): the rows above a nip are a tail of the array
+        ordered = bool(np.all(s[1:] >= s[:-1]))
+        for j in range(k):
+            pos, keep = p[f"nip_position_{j}"], 1.0 - p[f"nip_drop_{j}"]
+            if ordered:
+                out[int(np.searchsorted(s, pos, side="right")) :] *= keep
+            else:
+                out[s > pos] *= keep
+        return out
 
     def fit(self, current, data, starts, *, given_sigma=None):
         """Score every sample gap for one more drop (GLS on [d/dmu, step], all gaps at
@@ -89,24 +106,15 @@ class SelfContactNip(Effect):
         c2 = (a11 * b2 - a12 * b1) / det
         score = (b1**2 * a22 - 2 * a12 * b1 * b2 + b2**2 * a11) / det
         score = np.where(c2 > 0, score, -np.inf)
-        best = None
+        cands = []
         for idx in _two_best(score, mids, 0.01 * float(np.ptp(s))):
             fx = dict(fixed)
             fx[f"nip_position_{j}"] = float(mids[idx])
-            model = build_model(rec, effects, fx)
             v = dict(current.params)
             v[f"nip_drop_{j}"] = float(np.clip(c2[idx], 0.01, 0.9))
             v.update(fx)
-            fit = fit_model(
-                model,
-                data,
-                [param_vector(model, v)],
-                current.noise,
-                starts,
-                given_sigma=given_sigma,
-            )
-            if best is None or fit.loglik > best.loglik:
-                best = fit
+            cands.append((fx, v))
+        best = _fit_best(rec, effects, cands, current, data, starts, given_sigma)
         if best is None:  # no drop-shaped candidate: a null step at the middle
             fx = dict(fixed)
             fx[f"nip_position_{j}"] = float(np.median(s))
@@ -196,6 +204,39 @@ class SelfContactNip(Effect):
             cur[f"nip_position_{j}"] = float(s_j)
             cur[f"nip_drop_{j}"] = drop
         return cur, {"positions_m": [float(v) for v in pos]}
+
+
+def _fit_best(rec, effects, cands, current, data, starts, given_sigma):
+    """The best-likelihood fit of the candidate nips ``cands`` ((fixed, values) pairs).
+
+    Each candidate model is fitted from its values under ``current``'s noise. On a
+    recording longer than :data:`~knotmech.diagnose.fitting.FIT_ROWS` the candidates are
+    fitted and compared on its thinned rows (:func:`~knotmech.diagnose.fitting.thinned_null`:
+    the same positions, the noise's correlation ``rho**k``) and only the best one is
+    refitted on every row, from the thinned fit's values
+    (:func:`~knotmech.diagnose.fitting.refit_all_rows`). None when there is no candidate.
+    """
+    if cands and rec.n > FIT_ROWS:
+        sub, sdata, sstarts, sgs = thinned_null(current, data, starts, given_sigma, FIT_ROWS)
+        thin = None
+        for fx, v in cands:
+            model = build_model(sub.model.rec, effects, fx)
+            fit = fit_model(
+                model, sdata, [param_vector(model, v)], sub.noise, sstarts, given_sigma=sgs
+            )
+            if thin is None or fit.loglik > thin[0].loglik:
+                thin = (fit, fx)
+        model = build_model(rec, effects, thin[1])
+        return refit_all_rows(model, data, thin[0].p, starts, given_sigma=given_sigma)
+    best = None
+    for fx, v in cands:
+        model = build_model(rec, effects, fx)
+        fit = fit_model(
+            model, data, [param_vector(model, v)], current.noise, starts, given_sigma=given_sigma
+        )
+        if best is None or fit.loglik > best.loglik:
+            best = fit
+    return best
 
 
 def _two_best(score, mids, apart):
