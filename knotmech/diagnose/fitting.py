@@ -260,17 +260,26 @@ def fit_with_effect(current: Fit, effect, data: Data, starts, *, given_sigma=Non
     """Fit ``current``'s model with ``effect`` (an Effect object) added.
 
     The effect's own ``fit`` when it has one (searched positions), else a fit from the
-    effect's starting vectors (and the moderate-correlation second pass). Returns the
+    effect's starting vectors (and the moderate-correlation second pass); on a recording
+    longer than :data:`FIT_ROWS` that fit runs on its thinned rows (:func:`thinned_null`)
+    and its result is refitted on every row (:func:`refit_all_rows`). Returns the
     best fit found; the same routine runs on simulated recordings in the bootstrap, so
     the maximisation over onsets and positions is calibrated.
     """
     own = effect.fit(current, data, starts, given_sigma=given_sigma)
     if own is not None:
         return _second_pass_own(own, current, effect, data, starts, given_sigma)
-    model = build_model(
-        current.model.rec, current.model.effect_objects_added + (effect,), current.model.fixed
-    )
+    effects = current.model.effect_objects_added + (effect,)
+    model = build_model(current.model.rec, effects, current.model.fixed)
     p_starts = effect.starts(current, model, data, starts)
+    if model.rec.n > FIT_ROWS:
+        # a long recording: the search from every start (and its second pass) on the
+        # thinned rows, then the best fit refitted on every row
+        sub, sdata, sstarts, sgs = thinned_null(current, data, starts, given_sigma, FIT_ROWS)
+        smodel = build_model(sub.model.rec, effects, current.model.fixed)
+        thin = fit_model(smodel, sdata, p_starts, sub.noise, sstarts, given_sigma=sgs)
+        thin = _second_pass(thin, smodel, sdata, p_starts, sub.noise, sstarts, sgs)
+        return refit_all_rows(model, data, thin.p, starts, given_sigma=given_sigma)
     fit = fit_model(model, data, p_starts, current.noise, starts, given_sigma=given_sigma)
     return _second_pass(fit, model, data, p_starts, current.noise, starts, given_sigma)
 
