@@ -243,8 +243,10 @@ def _second_pass_own(own, current, effect, data, starts, given_sigma):
 
     With rho near 1 the effect's own search (nip positions scored on whitened steps)
     runs again under a moderate-correlation copy of the current noise; the model it
-    finds is refitted from there under the current noise, and the better likelihood
-    is kept.
+    finds is refitted from there under the current noise (on a recording of at most
+    :data:`FIT_ROWS` rows; beyond, the effect's fit refits its candidate on every row
+    under a noise estimated from them, :func:`refit_all_rows`), and the better
+    likelihood is kept.
     """
     if current.noise.rho <= _RHO_SECOND_PASS:
         return own
@@ -252,7 +254,10 @@ def _second_pass_own(own, current, effect, data, starts, given_sigma):
     alt = effect.fit(moderate, data, starts, given_sigma=given_sigma)
     if alt is None:
         return own
-    alt = fit_model(alt.model, data, [alt.p], current.noise, starts, given_sigma=given_sigma)
+    if alt.model.rec.n <= FIT_ROWS:
+        # (beyond FIT_ROWS the effect's fit already ends with a fit on every row under a
+        # noise estimated from every row's residuals: refit_all_rows)
+        alt = fit_model(alt.model, data, [alt.p], current.noise, starts, given_sigma=given_sigma)
     return alt if alt.loglik > own.loglik else own
 
 

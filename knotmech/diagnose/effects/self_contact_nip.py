@@ -137,7 +137,8 @@ class SelfContactNip(Effect):
         Every gap between consecutive arc lengths within ``window`` gaps of the current
         position (and not beyond a neighbouring nip) is scored with the exact mean,
         whitened (in O(n log n), :func:`_step_sums`); the model is refitted when the
-        position moves.
+        position moves (beyond ``FIT_ROWS`` rows one round,
+        :func:`~knotmech.diagnose.fitting.refit_all_rows`).
         """
         rec = fit.model.rec
         s = rec.x
@@ -172,6 +173,10 @@ class SelfContactNip(Effect):
         model = build_model(rec, fit.model.effect_objects_added, fx)
         v = dict(p)
         v.update(fx)
+        if rec.n > FIT_ROWS:
+            return refit_all_rows(
+                model, data, param_vector(model, v), starts, given_sigma=given_sigma
+            )
         return fit_model(
             model, data, [param_vector(model, v)], fit.noise, starts, given_sigma=given_sigma
         )
