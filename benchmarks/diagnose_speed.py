@@ -239,7 +239,7 @@ def _write_csv(rec, path) -> None:
     head += [
         f"# {k}: {v if isinstance(v, str) else repr(v)}"
         for k, v in rec.metadata.items()
-        if k != "experiment"
+        if k not in ("experiment", "knotmech-recording")  # (a read recording carries both)
     ]
     cols = [rec.x, rec.y]
     names = list(rec.columns)
