@@ -245,16 +245,18 @@ def _second_pass_own(own, current, effect, data, starts, given_sigma):
     runs again under a moderate-correlation copy of the current noise; the model it
     finds is refitted from there under the current noise (on a recording of at most
     :data:`FIT_ROWS` rows; beyond, the effect's fit refits its candidate on every row
-    under a noise estimated from them, :func:`refit_all_rows`), and the better
-    likelihood is kept.
+    under a noise estimated from them, :func:`refit_all_rows`, and is given ``own`` to
+    return when it finds the same model), and the better likelihood is kept.
     """
     if current.noise.rho <= _RHO_SECOND_PASS:
         return own
     moderate = replace(current, noise=replace(current.noise, rho=0.5))
-    alt = effect.fit(moderate, data, starts, given_sigma=given_sigma)
-    if alt is None:
+    long = current.model.rec.n > FIT_ROWS
+    known = {"known": own} if long else {}
+    alt = effect.fit(moderate, data, starts, given_sigma=given_sigma, **known)
+    if alt is None or alt is own:
         return own
-    if alt.model.rec.n <= FIT_ROWS:
+    if not long:
         # (beyond FIT_ROWS the effect's fit already ends with a fit on every row under a
         # noise estimated from every row's residuals: refit_all_rows)
         alt = fit_model(alt.model, data, [alt.p], current.noise, starts, given_sigma=given_sigma)
