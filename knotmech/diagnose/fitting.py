@@ -23,9 +23,10 @@ from knotmech.errors import DiagnoseError
 #: above this lag-one correlation, effects are also fitted from a moderate-noise first pass
 _RHO_SECOND_PASS = 0.95
 
-#: longest recording whose held-out refits (:func:`heldout_errors`) and searched
-#: candidates (:func:`refit_all_rows`) are fitted on every row; beyond it on every k-th
-#: row (at most this many), and the candidate kept is refitted on every row
+#: longest recording whose candidate effect fits (:func:`fit_with_effect`, the nip's
+#: candidates) and held-out refits (:func:`heldout_errors`) use every row; beyond it they
+#: use every k-th row (at most this many) and the fit kept is refitted on every row
+#: (:func:`refit_all_rows`)
 FIT_ROWS = 20_000
 
 #: longest recording the parametric bootstraps simulate in full; beyond it each draw is a
