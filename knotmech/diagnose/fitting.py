@@ -24,6 +24,12 @@ from knotmech.errors import DiagnoseError
 #: above this lag-one correlation, effects are also fitted from a moderate-noise first pass
 _RHO_SECOND_PASS = 0.95
 
+#: longest recording whose candidate effect fits (:func:`fit_with_effect`, the nip's
+#: candidates) and held-out refits (:func:`heldout_errors`) use every row; beyond it they
+#: use every k-th row (at most this many) and the fit kept is refitted on every row
+#: (:func:`refit_all_rows`)
+FIT_ROWS = 20_000
+
 #: longest recording the parametric bootstraps simulate in full; beyond it each draw is a
 #: recording of every k-th row of each trial (:func:`thinned_rows`, :func:`thinned_null`)
 BOOT_ROWS = 4000
@@ -42,6 +48,8 @@ __all__ = [
     "heldout_rms",
     "heldout_innovation_rms",
     "BOOT_ROWS",
+    "FIT_ROWS",
+    "refit_all_rows",
     "thinned_rows",
     "thinned_noise",
     "thinned_null",
@@ -186,6 +194,17 @@ def fit_model(model, data, p_starts, noise, starts, *, given_sigma=None, rounds=
     return Fit(model, p, mean, noise, _loglik(model, data, p, noise, starts))
 
 
+def refit_all_rows(model, data, p, starts, *, given_sigma=None) -> Fit:
+    """``model`` refitted on every row from ``p``, the values of a fit on thinned rows.
+
+    One round of :func:`fit_model` in place of its first: the noise estimated from the
+    residuals at ``p``, the mean fitted under it (from ``p``), the noise estimated again.
+    """
+    mean = model.mean(p)
+    noise = estimate_noise(data.y - mean, mean, starts, given_sigma=given_sigma)
+    return fit_model(model, data, [p], noise, starts, given_sigma=given_sigma, rounds=1)
+
+
 def param_vector(model: Model, values: dict, defaults: dict | None = None) -> np.ndarray:
     """Parameter vector of ``model`` from ``values`` by name (else ``defaults``, else 0)."""
     defaults = defaults or {}
@@ -226,16 +245,23 @@ def _second_pass_own(own, current, effect, data, starts, given_sigma):
 
     With rho near 1 the effect's own search (nip positions scored on whitened steps)
     runs again under a moderate-correlation copy of the current noise; the model it
-    finds is refitted from there under the current noise, and the better likelihood
-    is kept.
+    finds is refitted from there under the current noise (on a recording of at most
+    :data:`FIT_ROWS` rows; beyond, the effect's fit refits its candidate on every row
+    under a noise estimated from them, :func:`refit_all_rows`, and is given ``own`` to
+    return when it finds the same model), and the better likelihood is kept.
     """
     if current.noise.rho <= _RHO_SECOND_PASS:
         return own
     moderate = replace(current, noise=replace(current.noise, rho=0.5))
-    alt = effect.fit(moderate, data, starts, given_sigma=given_sigma)
-    if alt is None:
+    long = current.model.rec.n > FIT_ROWS
+    known = {"known": own} if long else {}
+    alt = effect.fit(moderate, data, starts, given_sigma=given_sigma, **known)
+    if alt is None or alt is own:
         return own
-    alt = fit_model(alt.model, data, [alt.p], current.noise, starts, given_sigma=given_sigma)
+    if not long:
+        # (beyond FIT_ROWS the effect's fit already ends with a fit on every row under a
+        # noise estimated from every row's residuals: refit_all_rows)
+        alt = fit_model(alt.model, data, [alt.p], current.noise, starts, given_sigma=given_sigma)
     return alt if alt.loglik > own.loglik else own
 
 
@@ -243,17 +269,26 @@ def fit_with_effect(current: Fit, effect, data: Data, starts, *, given_sigma=Non
     """Fit ``current``'s model with ``effect`` (an Effect object) added.
 
     The effect's own ``fit`` when it has one (searched positions), else a fit from the
-    effect's starting vectors (and the moderate-correlation second pass). Returns the
+    effect's starting vectors (and the moderate-correlation second pass); on a recording
+    longer than :data:`FIT_ROWS` that fit runs on its thinned rows (:func:`thinned_null`)
+    and its result is refitted on every row (:func:`refit_all_rows`). Returns the
     best fit found; the same routine runs on simulated recordings in the bootstrap, so
     the maximisation over onsets and positions is calibrated.
     """
     own = effect.fit(current, data, starts, given_sigma=given_sigma)
     if own is not None:
         return _second_pass_own(own, current, effect, data, starts, given_sigma)
-    model = build_model(
-        current.model.rec, current.model.effect_objects_added + (effect,), current.model.fixed
-    )
+    effects = current.model.effect_objects_added + (effect,)
+    model = build_model(current.model.rec, effects, current.model.fixed)
     p_starts = effect.starts(current, model, data, starts)
+    if model.rec.n > FIT_ROWS:
+        # a long recording: the search from every start (and its second pass) on the
+        # thinned rows, then the best fit refitted on every row
+        sub, sdata, sstarts, sgs = thinned_null(current, data, starts, given_sigma, FIT_ROWS)
+        smodel = build_model(sub.model.rec, effects, current.model.fixed)
+        thin = fit_model(smodel, sdata, p_starts, sub.noise, sstarts, given_sigma=sgs)
+        thin = _second_pass(thin, smodel, sdata, p_starts, sub.noise, sstarts, sgs)
+        return refit_all_rows(model, data, thin.p, starts, given_sigma=given_sigma)
     fit = fit_model(model, data, p_starts, current.noise, starts, given_sigma=given_sigma)
     return _second_pass(fit, model, data, p_starts, current.noise, starts, given_sigma)
 
@@ -272,7 +307,11 @@ def heldout_errors(fit: Fit, data: Data, trial: np.ndarray, *, n_folds=5):
     """Held-out prediction errors: contiguous blocks (n/50 rows), assigned to folds in turn.
 
     Each fold's rows are left out, the model is refitted on the rest (weighted by
-    the fitted noise sd, warm start; nip positions stay fixed) and predicts them.
+    the fitted noise sd, warm start; nip positions stay fixed) and predicts them. On a
+    recording longer than :data:`FIT_ROWS` the refit uses every k-th of the rest's rows
+    (at most ``FIT_ROWS``): the fold's parameters then carry the error of ``FIT_ROWS``
+    rows (a relative change of the held-out mean square of order ``n_free / FIT_ROWS``),
+    and every fold still predicts all of its held-out rows.
 
     Returns
     -------
@@ -293,9 +332,21 @@ def heldout_errors(fit: Fit, data: Data, trial: np.ndarray, *, n_folds=5):
     for k in range(n_folds):
         train = fold != k
         test = ~train
+        fold_model = model
+        if n > FIT_ROWS:
+            # a long recording: the fold's model fitted on every k-th of its training rows
+            rows = np.flatnonzero(train)
+            step = int(np.ceil(rows.size / FIT_ROWS))
+            train = np.zeros(n, bool)
+            train[rows[::step]] = True
+            sub = without_rows(model.rec, np.flatnonzero(~train))
+            fold_model = build_model(sub, model.effect_objects_added, model.fixed)
+        y_t, sd_t = data.y[train], sd[train]
 
-        def fun(p, train=train):
-            e = (data.y[train] - model.mean(p)[train]) / sd[train]
+        def fun(p, fold_model=fold_model, y_t=y_t, sd_t=sd_t, train=train):
+            f = fold_model.mean(p)
+            whole = f.size != y_t.size
+            e = (y_t - (f[train] if whole else f)) / sd_t
             if prior:
                 e = np.append(e, (p[mu_idx] - data.mu_nominal) / data.mu_sigma)
             return e

@@ -88,9 +88,11 @@ class Effect:
 
         return [param_vector(model, current.params)]
 
-    def fit(self, current, data, starts, *, given_sigma=None):
+    def fit(self, current, data, starts, *, given_sigma=None, known=None):
         """A fit of its own (searched positions...), or None for the default
-        (:func:`knotmech.diagnose.fitting.fit_with_effect`)."""
+        (:func:`knotmech.diagnose.fitting.fit_with_effect`). ``known`` (long recordings,
+        second pass): a fit of its own from the same model, which it may return when it
+        finds that model again."""
         return None
 
     # --- report --------------------------------------------------------------------------

@@ -14,7 +14,16 @@ import numpy as np
 from knotmech.diagnose.baselines import build_model
 from knotmech.diagnose.effects._common import CLOVE
 from knotmech.diagnose.effects.base import Effect
-from knotmech.diagnose.fitting import fit_model, param_vector, whiten_columns
+from knotmech.diagnose.fitting import (
+    FIT_ROWS,
+    Fit,
+    fit_model,
+    param_vector,
+    refit_all_rows,
+    thinned_null,
+    whiten_columns,
+)
+from knotmech.diagnose.stats import estimate_noise
 
 __all__ = ["SelfContactNip"]
 
@@ -50,15 +59,33 @@ class SelfContactNip(Effect):
         return key.startswith("nip_")
 
     def output(self, rec, p, value):
+        k = _count(p)
+        if k == 0:
+            return value
         s = rec.x
-        for j in range(_count(p)):
-            value = value * np.where(s > p[f"nip_position_{j}"], 1.0 - p[f"nip_drop_{j}"], 1.0)
-        return value
+        out = np.array(value, dtype=float)  # a copy, multiplied in place nip by nip
+        # arc lengths in order (one trial): the rows above a nip are a tail of the array
+        ordered = bool(np.all(s[1:] >= s[:-1]))
+        for j in range(k):
+            pos, keep = p[f"nip_position_{j}"], 1.0 - p[f"nip_drop_{j}"]
+            if ordered:
+                out[int(np.searchsorted(s, pos, side="right")) :] *= keep
+            else:
+                out[s > pos] *= keep
+        return out
 
-    def fit(self, current, data, starts, *, given_sigma=None):
+    def fit(self, current, data, starts, *, given_sigma=None, known=None):
         """Score every sample gap for one more drop (GLS on [d/dmu, step], all gaps at
         once in O(n log n), :func:`_step_sums`); fit the best candidate and the best one
-        away from it, refine the better fit locally (:meth:`_refine`)."""
+        away from it, refine the better fit locally (:meth:`_refine`).
+
+        On a recording longer than :data:`~knotmech.diagnose.fitting.FIT_ROWS` the
+        candidates are fitted on its thinned rows and the refinement scores the gaps
+        with the thinned fit's values (:meth:`_fit_long`); ``known``, a fit of this
+        effect from the same current model (the first pass, for the second pass of
+        :func:`~knotmech.diagnose.fitting.fit_with_effect`), is returned when the
+        refined positions are its own, instead of refitting that model on every row.
+        """
         rec = current.model.rec
         s = rec.x
         fixed = dict(current.model.fixed)
@@ -89,24 +116,17 @@ class SelfContactNip(Effect):
         c2 = (a11 * b2 - a12 * b1) / det
         score = (b1**2 * a22 - 2 * a12 * b1 * b2 + b2**2 * a11) / det
         score = np.where(c2 > 0, score, -np.inf)
-        best = None
+        cands = []
         for idx in _two_best(score, mids, 0.01 * float(np.ptp(s))):
             fx = dict(fixed)
             fx[f"nip_position_{j}"] = float(mids[idx])
-            model = build_model(rec, effects, fx)
             v = dict(current.params)
             v[f"nip_drop_{j}"] = float(np.clip(c2[idx], 0.01, 0.9))
             v.update(fx)
-            fit = fit_model(
-                model,
-                data,
-                [param_vector(model, v)],
-                current.noise,
-                starts,
-                given_sigma=given_sigma,
-            )
-            if best is None or fit.loglik > best.loglik:
-                best = fit
+            cands.append((fx, v))
+        if cands and rec.n > FIT_ROWS:
+            return self._fit_long(cands, j, current, data, starts, given_sigma, known)
+        best = _fit_best(rec, effects, cands, current, data, starts, given_sigma)
         if best is None:  # no drop-shaped candidate: a null step at the middle
             fx = dict(fixed)
             fx[f"nip_position_{j}"] = float(np.median(s))
@@ -123,13 +143,62 @@ class SelfContactNip(Effect):
             )
         return self._refine(best, j, data, starts, given_sigma=given_sigma)
 
-    def _refine(self, fit, j, data, starts, *, given_sigma=None, window=60):
-        """Move nip ``j`` to the best sample gap near it (exact model, other values fixed).
+    def _refine(self, fit, j, data, starts, *, given_sigma=None):
+        """Move nip ``j`` to the best sample gap near it (:meth:`_refined_position`); the
+        model is refitted when the position moves."""
+        pos = self._refined_position(fit, j, data, starts)
+        if pos == fit.params[f"nip_position_{j}"]:
+            return fit
+        fx = dict(fit.model.fixed)
+        fx[f"nip_position_{j}"] = pos
+        model = build_model(fit.model.rec, fit.model.effect_objects_added, fx)
+        v = dict(fit.params)
+        v.update(fx)
+        return fit_model(
+            model, data, [param_vector(model, v)], fit.noise, starts, given_sigma=given_sigma
+        )
+
+    def _fit_long(self, cands, j, current, data, starts, given_sigma, known):
+        """:meth:`fit` on a recording longer than ``FIT_ROWS``: the candidates ``cands``
+        ((fixed, values) pairs) fitted and compared on the thinned rows
+        (:func:`~knotmech.diagnose.fitting.thinned_null`: the same positions, the
+        noise's correlation ``rho**k``); the best one's position refined on every row
+        with its thinned values (mean and noise sd computed on every row); ``known`` when
+        its fixed positions are the refined ones, else that model refitted on every row
+        (:func:`~knotmech.diagnose.fitting.refit_all_rows`)."""
+        rec = current.model.rec
+        effects = current.model.effect_objects_added + (self,)
+        sub, sdata, sstarts, sgs = thinned_null(current, data, starts, given_sigma, FIT_ROWS)
+        thin = None
+        for fx, v in cands:
+            model = build_model(sub.model.rec, effects, fx)
+            fit = fit_model(
+                model, sdata, [param_vector(model, v)], sub.noise, sstarts, given_sigma=sgs
+            )
+            if thin is None or fit.loglik > thin[0].loglik:
+                thin = (fit, fx)
+        fx = dict(thin[1])
+        model = build_model(rec, effects, fx)
+        mean = model.mean(thin[0].p)
+        noise = estimate_noise(data.y - mean, mean, starts, given_sigma=given_sigma)
+        at_thin = Fit(model, thin[0].p, mean, noise, float("nan"))
+        fx[f"nip_position_{j}"] = self._refined_position(at_thin, j, data, starts)
+        if known is not None and known.model.effects == model.effects:
+            if known.model.fixed == fx:
+                return known
+        model = build_model(rec, effects, fx)
+        v = dict(thin[0].params)
+        v.update(fx)
+        return refit_all_rows(model, data, param_vector(model, v), starts, given_sigma=given_sigma)
+
+    def _refined_position(self, fit, j, data, starts, window=60):
+        """The best sample gap for nip ``j`` near its position (exact model, the fit's
+        other values fixed).
 
         Every gap between consecutive arc lengths within ``window`` gaps of the current
         position (and not beyond a neighbouring nip) is scored with the exact mean,
-        whitened (in O(n log n), :func:`_step_sums`); the model is refitted when the
-        position moves.
+        whitened (in O(n log n), :func:`_step_sums`). Returns the current position when
+        the drop is 0 or there is no other gap.
         """
         rec = fit.model.rec
         s = rec.x
@@ -137,7 +206,7 @@ class SelfContactNip(Effect):
         pos = p[f"nip_position_{j}"]
         drop = p[f"nip_drop_{j}"]
         if drop <= 0:
-            return fit
+            return pos
         order = np.unique(s)
         mids = 0.5 * (order[1:] + order[:-1])
         others = [
@@ -149,24 +218,14 @@ class SelfContactNip(Effect):
         cand = mids[max(0, k - window) : k + window + 1]
         cand = cand[(cand > lo) & (cand < hi)]
         if cand.size < 2:
-            return fit
+            return pos
         # mean with nip j at m: without * (1 - drop H(s > m)); residual
         # (y - without) + drop * without * H, whitened: ew0 + drop * W(without H / sd)
         without = fit.mean / np.where(s > pos, 1.0 - drop, 1.0)
         sd = fit.noise.sd(fit.mean)
         ew0 = fit.noise.whiten(data.y - without, sd, starts)
         (lin,), quad = _step_sums(s, without / sd, [ew0], fit.noise.rho, starts, cand)
-        best = float(cand[int(np.argmin(2.0 * drop * lin + drop**2 * quad))])
-        if best == pos:
-            return fit
-        fx = dict(fit.model.fixed)
-        fx[f"nip_position_{j}"] = best
-        model = build_model(rec, fit.model.effect_objects_added, fx)
-        v = dict(p)
-        v.update(fx)
-        return fit_model(
-            model, data, [param_vector(model, v)], fit.noise, starts, given_sigma=given_sigma
-        )
+        return float(cand[int(np.argmin(2.0 * drop * lin + drop**2 * quad))])
 
     def public(self, params, rec, out):
         n = _count(params)
@@ -196,6 +255,20 @@ class SelfContactNip(Effect):
             cur[f"nip_position_{j}"] = float(s_j)
             cur[f"nip_drop_{j}"] = drop
         return cur, {"positions_m": [float(v) for v in pos]}
+
+
+def _fit_best(rec, effects, cands, current, data, starts, given_sigma):
+    """The best-likelihood fit of the candidate nips ``cands`` ((fixed, values) pairs),
+    each fitted from its values under ``current``'s noise; None without a candidate."""
+    best = None
+    for fx, v in cands:
+        model = build_model(rec, effects, fx)
+        fit = fit_model(
+            model, data, [param_vector(model, v)], current.noise, starts, given_sigma=given_sigma
+        )
+        if best is None or fit.loglik > best.loglik:
+            best = fit
+    return best
 
 
 def _two_best(score, mids, apart):
