@@ -295,6 +295,19 @@ def diagnose(
             verdict = "undetermined"
     if verdict == "none":
         floor, verdict, floor_reason, regions = _noise_floor_check(rec, final, starts, rng, alpha)
+    short = None
+    if verdict not in ("none", "undetermined") and _short_unreplicated(rec):
+        # as for a would-be none (noisefloor.short_recording_verdict): so few rows cannot
+        # tell correlated noise from a mismatch either way (AR(2) nulls of 8-20 rows were
+        # called unexplained or an effect 5 times in 24)
+        short = {
+            "rows": int(rec.n),
+            "was": verdict,
+            "reason": f"{rec.n} rows without a sigma column: the fit calls it {verdict}, but "
+            "so few rows cannot tell correlated noise from a mismatch; record at least "
+            f"{SHORT_ROWS} rows or give the sensor's sigma",
+        }
+        verdict = "undetermined"
     leftover = None
     if accepted and verdict != "unexplained":
         leftover = _leftover_check(rec, final, starts, seed, alpha)
@@ -354,6 +367,7 @@ def diagnose(
         **({"outliers": outliers} if outliers else {}),
         **({"leftover": leftover} if leftover else {}),
         **({"power_law": power_law} if power_law else {}),
+        **({"short_recording": short} if short else {}),
         "alpha": alpha,
         "seed": seed,
         **({"der": der[0].settings()} if der is not None else {}),
@@ -429,6 +443,20 @@ def _without_outliers(rec, rows, size):
     return without_rows(rec, rows), out
 
 
+#: replicate degrees of freedom (rows beyond the distinct control values) that measure
+#: the noise of a short recording well enough to judge it without a sigma column
+REPLICATE_DOF = 10
+
+
+def _short_unreplicated(rec) -> bool:
+    """Fewer than :data:`~knotmech.diagnose.noisefloor.SHORT_ROWS` rows, no ``sigma``
+    column and fewer than :data:`REPLICATE_DOF` replicate rows (repeated control values,
+    whose scatter measures the noise: the capstan yarn rig's 22 holds at 7 angles have 15)."""
+    if rec.n >= SHORT_ROWS or rec.sigma is not None:
+        return False
+    return rec.n - np.unique(rec.x).size < REPLICATE_DOF
+
+
 def _noise_floor_check(rec, final, starts, rng, alpha):
     """A would-be ``none`` judged against the high-frequency noise floor.
 
@@ -444,7 +472,9 @@ def _noise_floor_check(rec, final, starts, rng, alpha):
         resid, rec.x, rec.trial, final.noise, final.mean, starts, rng, draws=max(draws, 199)
     )
     verdict, reason = noise_floor_verdict(floor, alpha)
-    if verdict == "none" or (rec.sigma is not None and rec.n < SHORT_ROWS):
+    if (verdict == "none" and _short_unreplicated(rec)) or (
+        rec.sigma is not None and rec.n < SHORT_ROWS
+    ):
         # a short recording: its stated sigma decides, or it is undetermined without one
         verdict, reason = short_recording_verdict(resid, rec.sigma, floor, len(final.p), alpha)
     regions = []
@@ -748,7 +778,8 @@ def _verdict_line(report: Report, rec, fin_mis, effect) -> str:
             f"none: the {report.details['baseline_model']} baseline explains the data within its "
             f"noise (mu = {_fmt(p['mu'])}, rms = {_fmt(report.final['rms'])})"
         )
-    reason = (report.details.get("noise_floor", {}).get("reason")
+    reason = (report.details.get("short_recording", {}).get("reason")
+              or report.details.get("noise_floor", {}).get("reason")
               or report.details.get("power_law", {}).get("reason"))  # fmt: skip
     if v in ("unexplained", "undetermined") and reason:
         return f"{v}: {reason}"

@@ -309,3 +309,34 @@ def test_consistency_of_the_level_with_ar1_noise_holds_on_ar1_nulls():
         ps.append(nf.p_consistent)
     ps = np.array(ps)
     assert np.sum(ps < 0.01) <= 2 and 0.2 < np.median(ps) < 0.8
+
+
+@pytest.mark.parametrize(("kind", "seed", "rows", "was"), [
+    ("pinch", 300, 8, "unexplained"), ("capstan_pull", 303, 20, "displacement_offset"),
+])  # fmt: skip
+def test_short_recordings_without_sigma_make_no_positive_claim(kind, seed, rows, was):
+    """AR(2) nulls of 8 and 20 rows (``noise_robustness`` row sweep) were called
+    ``unexplained`` or an effect (5 of 24): under 30 rows without a sigma column and
+    without replicates every verdict but none is ``undetermined``, with the reason."""
+    nr = load_case("noise_robustness")
+    rec, _ = nr.make(kind, None, 0.0, "ar2", seed, rows)
+    rep = diagnose(rec, seed=seed)
+    assert rep.verdict == "undetermined"
+    short = rep.details["short_recording"]
+    assert short["rows"] == rows and short["was"] == was
+    assert rep.summary.startswith(f"undetermined: {rows} rows without a sigma column")
+
+
+def test_replicates_measure_the_noise_of_a_short_recording():
+    """22 rows at 7 control values (15 replicate rows, like the capstan yarn rig) are not
+    'short': a 10-sd step is judged (not undetermined by the short-recording rule)."""
+    from knotmech.diagnose.engine import _short_unreplicated
+
+    x = np.repeat(np.linspace(1.0, 10.0, 7), 3)[:21]
+    x = np.append(x, 10.0)
+    rec = _pinch(lambda v: 0.6 * v, n=22)
+    y = 0.6 * x + 0.01 * np.random.default_rng(1).standard_normal(22) + 0.1 * (x > 5)
+    rep_rec = recording_from_arrays("pinch", x, y, metadata=PINCH_META)
+    assert _short_unreplicated(rec) and not _short_unreplicated(rep_rec)
+    rep = diagnose(rep_rec, seed=0)
+    assert "short_recording" not in rep.details
