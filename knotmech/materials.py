@@ -15,8 +15,9 @@ Each preset also carries a **bending scale** :math:`\kappa` (``bending_scale``):
 rope's bending stiffness is :math:`B = \kappa\, E \pi d^4/64`, :math:`\kappa = 1` for a
 solid rod. A rope's fibres and yarns slide on one another when it bends, so it bends
 far more easily than a solid rod of its diameter and axial modulus. No rope-level
-bending measurement was found for these ropes (searches: "rope bending stiffness
-measurement", "flexural rigidity of ropes yarns"); the fibre-rope values are
+bending measurement with a number we could read was found for these ropes (the searches
+and the two papers that did measure rope bending, on a 3x7 steel wire rope and on
+polyethylene ropes, are listed in docs/notes/ropek.md); the fibre-rope values are
 ESTIMATES from the full-slip bound of a rope of :math:`N` independent, equal yarns
 or strands of diameter :math:`d_y`, :math:`\pi N d_y^2/4 = \phi\, \pi d^2/4` (packing
 :math:`\phi`): :math:`B = N E_y \pi d_y^4/64` with the yarn modulus
@@ -87,8 +88,10 @@ Presets and sources (conversions: 1 kgf = 9.80665 N, 1 lbf = 4.44822 N):
     kappa = 0.02 (estimate, range 0.009-0.1): the full-slip bound is the sum of the
     wires' own EI, 114 wires of about d/15 and 200 GPa: kappa_min =
     114 (1/15)^4 x 200 / 49 = 0.0092; friction between wires under tension raises the
-    effective value towards a small multiple of that (the no-slip bound is kappa
-    near 1 on the metallic area).
+    effective value towards a small multiple of that (the no-slip bound, the wires stuck
+    as a solid, is kappa of order 1). Bounds EI_min (independent wires) and EI_max
+    (solid) as in A. Cardou's review "Taut helical strand bending stiffness" and
+    Paradis & Legeron (multilayer cable free bending); see docs/notes/ropek.md.
 ``vps32`` (the clove-hitch paper's silicone rod)
     E = 1.26 MPa, density 1160 kg/m^3: vinylpolysiloxane (VPS32, Elite Double 32,
     Zhermack), clove-hitch paper (Extreme Mech. Lett., DOI
