@@ -416,6 +416,28 @@ def _bending_scale(mat, bending_scale):
     )
 
 
+#: a DER table answers only for a rope whose elastic-wave rate sqrt(E/rho)/d is within
+#: this factor of its rod's: the protocol (settle, load, hold) and the creep criterion are in
+#: seconds, so a table is not in T_high/EA, d/2R, mu and kappa alone (at d/2R 0.118, 0.1 EA,
+#: mu 0.3, kappa 0.01 the 4 mm silicone rod slips at 1.3e-2 d/s where a 6 mm nylon rope,
+#: a rate 9.5 times higher, holds at -6.7e-9 d/s)
+ROD_RATE_FACTOR = 3.0
+
+
+def _table_rod(table):
+    """(d [m], E [Pa], rho [kg/m^3]) of the rod a DER table was run on (its meta ``rod``;
+    the scene's silicone defaults when absent)."""
+    from knotmech.scenes import phase_table as pt
+
+    meta = getattr(table, "meta", None) or {}
+    rod = meta.get("rod") or {}
+    try:
+        return (float(rod.get("d_m", pt.ROD_DIAMETER)), float(rod.get("E_Pa", pt.YOUNGS_MODULUS)),
+                float(rod.get("rho", pt.DENSITY)))  # fmt: skip
+    except (TypeError, ValueError):
+        raise InputError("a DER table's meta rod must hold numbers d_m, E_Pa, rho") from None
+
+
 def _table_kappa(table, name="the DER table") -> float:
     """The bending scale a DER table was built with (meta ``bending_scale``, 1 if absent).
 
@@ -634,10 +656,13 @@ def _der(
     creep_limit=None,
     bending_scale=1.0,
     command="",
+    density=None,
 ):
     """The DER answer for a hitch with a free end: (details dict, ModelAnswer or None,
     creep dict or None, shape). A table answers only when its bending scale is within
-    :data:`BENDING_SCALE_FACTOR` of ``bending_scale`` (else undecided, ``command`` decides)."""
+    :data:`BENDING_SCALE_FACTOR` of ``bending_scale`` and its rod's elastic-wave rate within
+    :data:`ROD_RATE_FACTOR` of the rope's (``density`` [kg/m^3]: the material's; None, the
+    table's); else undecided, ``command`` decides. ``simulate`` runs at that density."""
     from knotmech.analytic.hitch import ModelAnswer
     from knotmech.scenes import phase_table as pt
 
@@ -662,17 +687,34 @@ def _der(
     kappa = float(bending_scale)
 
     def refused(table, name):
-        """The reason a table built at another kappa may not answer, "" when it may."""
+        """The reason a table built at another kappa, or for a rod of another elastic-wave
+        rate, may not answer; "" when it may."""
         tk = _table_kappa(table, name)
         out["table_bending_scale"] = tk
-        if max(tk / kappa, kappa / tk) <= BENDING_SCALE_FACTOR:
-            return ""
-        kind = "solid rods" if tk == 1.0 else "rods"
-        return (
-            f"not decided by the table: the tables are for {kind} (kappa = {tk:g}); this "
-            f"rope's kappa = {kappa:g} (more than a factor {BENDING_SCALE_FACTOR:g} apart)"
-            + (f"; decide with: {command}" if command else "")
-        )
+        then = f"; decide with: {command}" if command else ""
+        if max(tk / kappa, kappa / tk) > BENDING_SCALE_FACTOR:
+            kind = "solid rods" if tk == 1.0 else "rods"
+            out["refused"] = "bending_scale"
+            return (
+                f"not decided by the table: the tables are for {kind} (kappa = {tk:g}); this "
+                f"rope's kappa = {kappa:g} (more than a factor {BENDING_SCALE_FACTOR:g} apart)"
+                + then
+            )
+        td, tE, trho = _table_rod(table)
+        rho = trho if density is None else float(density)
+        rate_t, rate = math.sqrt(tE / trho) / td, math.sqrt(E / rho) / d
+        out["table_rod"] = {"d_m": td, "E_Pa": tE, "rho": trho, "wave_rate_per_s": rate_t}
+        out["wave_rate_per_s"] = rate
+        if max(rate / rate_t, rate_t / rate) > ROD_RATE_FACTOR:
+            out["refused"] = "rod"
+            return (
+                f"not decided by the table: it was run on a rod of E = {tE / 1e6:.3g} MPa, d = "
+                f"{td * 1e3:.3g} mm (elastic-wave rate sqrt(E/rho)/d = {rate_t:.3g} per s); "
+                f"this rope's is {rate:.3g} per s (more than a factor {ROD_RATE_FACTOR:g} "
+                "apart), and the DER protocol runs in seconds, so its answer is not in "
+                "T_high/EA alone" + then
+            )
+        return ""
 
     creep = None
     shape = None
@@ -683,6 +725,7 @@ def _der(
             d_over_2R=x, t_over_EA=y, mu=mu, mu_rr=mu_rr, rod_diameter=d, youngs_modulus=E,
             bending_scale=kappa, creep_limit=lim, recheck=True, progress=progress, keep_result=True,
             **({} if knot == "clove-hitch" else {"knot": knot}),
+            **({} if density is None else {"density": float(density)}),
         )  # fmt: skip
         shape = _shape(p.get("result"), d=d, D=D)
         if p["holds"] is None:
@@ -715,8 +758,7 @@ def _der(
             law = "imc"
             why = refused(user, f"phase table {str(phase_table)!r}")
             if why:
-                out.update(source="table", table=str(phase_table), law=law, message=why,
-                           refused="bending_scale")  # fmt: skip
+                out.update(source="table", table=str(phase_table), law=law, message=why)
                 return out, None, None, shape
             a = user.lookup(x, y, mu=mu, mu_rr=mu_rr)
             out.update(
@@ -742,7 +784,7 @@ def _der(
             why = refused(table, (f"phase table {str(phase_table)!r}" if user is not None
                                   else f"the shipped {knot} hold table"))  # fmt: skip
             if why:
-                out.update(source="table", law=law, message=why, refused="bending_scale",
+                out.update(source="table", law=law, message=why,
                            table=("shipped" if user is None else str(phase_table)))  # fmt: skip
                 return out, None, None, shape
             a = table.lookup(x, y, mu=mu, mu_rr=mu_rr, creep_limit=lim)
@@ -1058,6 +1100,7 @@ def hold(
                 load=load, E=E, simulate=bool(simulate), phase_table=phase_table,
                 progress=progress, ideal_holds=ideal, creep_limit=creep_limit,
                 bending_scale=kappa, command=cmd,
+                density=None if mat is None else mat.density,
             )  # fmt: skip
             if der_answer is not None:
                 answers.append(der_answer)

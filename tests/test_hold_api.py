@@ -174,7 +174,7 @@ def test_bending_scale_is_an_input_stated_in_the_assumptions():
     assert nylon.inputs["bending_scale"] == 0.01
     assert any(a.startswith("bending scale kappa = 0.01") for a in nylon.assumptions)
     bare = knotmech.hold("clove-hitch", youngs_modulus=0.25e9, **kw)
-    assert bare.inputs["bending_scale"] == 1.0 and bare.decided_by == "DER-table"
+    assert bare.inputs["bending_scale"] == 1.0 and bare.der["refused"] == "rod"
     assert any("kappa = 1 " in a and "no material given" in a for a in bare.assumptions)
     vps = knotmech.hold("clove-hitch", material="vps32", **{**kw, "load": 1.47})
     assert vps.inputs["bending_scale"] == 1.0
@@ -213,7 +213,7 @@ def test_a_table_built_at_the_ropes_bending_scale_answers(tmp_path):
     from knotmech.scenes.phase_table import HoldTable
 
     d = _shipped_hold_tables()["clove-hitch"].to_dict()
-    d["meta"] = {**d["meta"], "bending_scale": 0.01}
+    d["meta"] = {**d["meta"], "bending_scale": 0.01, "rod": NYLON_ROD}
     path = tmp_path / "rope_table.json"
     HoldTable.from_dict(d).write(path)
     kw = dict(rod_diameter=6e-3, post_diameter=40e-3, mu=0.4, load=200.0, phase_table=path)
@@ -222,6 +222,25 @@ def test_a_table_built_at_the_ropes_bending_scale_answers(tmp_path):
     solid = knotmech.hold("clove-hitch", material="nylon", bending_scale=1.0, **kw)
     assert solid.der["holds"] is None and "kappa = 0.01" in solid.der["message"]
     assert "this rope's kappa = 1" in solid.der["message"]
+
+
+#: the rod of a table run for 6 mm nylon rope (the preset's E and density)
+NYLON_ROD = {"d_m": 0.006, "E_Pa": 0.25e9, "rho": 800.0}
+
+
+def test_a_table_answers_only_for_rods_like_its_own():
+    """The DER protocol runs in seconds, so a table is not in T_high/EA alone: the shipped
+    tables' 4 mm silicone rod (elastic-wave rate sqrt(E/rho)/d = 8.3e3 per s) answers for a
+    6 mm silicone rope (5.5e3, a factor 1.5) and not for 6 mm nylon (9.3e4, a factor 11),
+    whose own kappa-1 run at d/2R 0.1176, 0.1 EA, mu 0.3 ran off where the table held."""
+    kw = dict(rod_diameter=6e-3, post_diameter=40e-3, mu=0.4, bending_scale=1.0)
+    sil = knotmech.hold("clove-hitch", youngs_modulus=1.26e6, load=1.008, **kw)
+    assert sil.decided_by == "DER-table"
+    assert sil.der["wave_rate_per_s"] == pytest.approx((1.26e6 / 1150) ** 0.5 / 6e-3, rel=1e-9)
+    nyl = knotmech.hold("clove-hitch", material="nylon", load=200.0, **kw)
+    assert nyl.der["refused"] == "rod" and nyl.der["holds"] is None
+    assert nyl.der["wave_rate_per_s"] / nyl.der["table_rod"]["wave_rate_per_s"] > 11
+    assert "--simulate" in nyl.der["message"] and nyl.decided_by == "thick-nip"
 
 
 @pytest.mark.parametrize("bad", ["abc", None, 0, 2.0, True])
@@ -265,7 +284,7 @@ def test_the_shipped_table_nearest_the_ropes_kappa_answers(monkeypatch):
 
     solid = h._shipped_hold_tables()["clove-hitch"]
     d = solid.to_dict()
-    d["meta"] = {**d["meta"], "bending_scale": 0.01}
+    d["meta"] = {**d["meta"], "bending_scale": 0.01, "rod": NYLON_ROD}
     from knotmech.scenes.phase_table import HoldTable
 
     rope = HoldTable.from_dict(d)
@@ -280,6 +299,7 @@ def test_the_shipped_table_nearest_the_ropes_kappa_answers(monkeypatch):
     assert v.decided_by == "DER-table" and v.der["table_bending_scale"] == 0.01
     w = knotmech.hold("clove-hitch", bending_scale=0.2, **kw)
     assert w.der["holds"] is None and w.der["table_bending_scale"] == 1.0
+    assert w.der["refused"] == "bending_scale"  # a factor 5 from kappa 1
 
 
 def test_simulate_passes_the_bending_scale_to_the_scene(monkeypatch):

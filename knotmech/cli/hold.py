@@ -353,7 +353,7 @@ def format_verdict(verdict, *, verbose: bool = False) -> str:
     if verdict.creep is not None:
         lines.append(format_creep(verdict.creep))
     der = verdict.der or {}
-    if not verbose and der.get("refused") == "bending_scale":
+    if not verbose and der.get("refused") in ("bending_scale", "rod"):
         lines.append(f"DER: undecided, {der['message']}")
     if verdict.next_step and verdict.holds is not None:
         lines.append(verdict.next_step)

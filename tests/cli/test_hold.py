@@ -89,13 +89,20 @@ def test_issue_example_no_longer_decided_by_a_model_outside_its_validity(capsys)
     assert first.startswith("verdict: HOLDS") and "thick-nip" in first
     assert "ideal-rope slips (outside its validity)" in out
     # with the rope's material: nylon kernmantle E = 0.25 GPa, EA = 7.07 kN, 200 N is
-    # 0.0283 EA at d/2R = 6/46 = 0.130, mu 0.4: inside the anchor-law hold table, whose
-    # eight neighbouring points (d/2R 0.1176, 0.2308 x 0.01, 0.1 EA x mu 0.3, 0.5) all held;
-    # the tables are solid rods (kappa = 1), so this is the solid-rod check --bending-scale 1
-    data = _json(ISSUE + ["--material", "nylon", "--bending-scale", "1"], capsys)
+    # 0.0283 EA at d/2R = 6/46 = 0.130, mu 0.4: inside the anchor-law hold table, but the
+    # table's silicone rod has an elastic-wave rate sqrt(E/rho)/d 11x below this rope's,
+    # even as a solid rod (--bending-scale 1): refused (a 6 mm nylon rod at kappa 1 ran
+    # off at d/2R 0.1176, 0.1 EA, mu 0.3 where the silicone table point held)
+    nylon = _json(ISSUE + ["--material", "nylon", "--bending-scale", "1"], capsys)
+    assert nylon["der"]["holds"] is None and nylon["der"]["refused"] == "rod"
+    assert "elastic-wave rate" in nylon["der"]["message"]
+    # a silicone rope of the same size at the same T_high/EA (1.008 N): the table decides,
+    # its eight neighbouring points (d/2R 0.1176, 0.2308 x 0.01, 0.1 EA x mu 0.3, 0.5) held
+    args = [a if a != "200N" else "1.008N" for a in ISSUE] + ["--youngs-modulus", "1.26MPa"]
+    data = _json(args, capsys)
     assert data["holds"] is True and data["decided_by"] == "DER-table"
     assert data["der"]["rule"] == "grid" and data["der"]["mu_tables"] == [0.3, 0.5]
-    assert data["inputs"]["youngs_modulus"] == 0.25e9
+    assert data["inputs"]["youngs_modulus"] == 1.26e6
     assert data["der"]["t_over_EA"] == pytest.approx(200 / (0.25e9 * math.pi * 0.006**2 / 4))
     # the largest creep of the eight (d/2R 0.1176, 0.1 EA, mu 0.5), over the last second
     assert data["creep"]["speed_d_per_s"] == pytest.approx(6.5e-5, rel=0.02)
@@ -378,15 +385,16 @@ def test_nylon_rope_is_not_answered_by_the_solid_rod_table(capsys):
     assert data["der"]["holds"] is None and data["der"]["refused"] == "bending_scale"
     assert data["der"]["table_bending_scale"] == 1.0 and data["inputs"]["bending_scale"] == 0.01
     assert "DER-table" not in [a["model"] for a in data["answers"]]
-    # --bending-scale 0.5 is within a factor 3 of the table's 1: the table answers
+    # --bending-scale 0.5 is within a factor 3 of the table's 1, but the rod is not
     half = _json(ISSUE + ["--material", "nylon", "--bending-scale", "0.5"], capsys)
-    assert half["decided_by"] == "DER-table" and half["inputs"]["bending_scale"] == 0.5
+    assert half["der"]["refused"] == "rod" and half["inputs"]["bending_scale"] == 0.5
 
 
 def test_bending_scale_factor_three_is_the_edge(capsys):
     """kappa = 1/3 is exactly a factor 3 from the table's 1 (accepted); 0.33 is 3.03 (not)."""
-    ok = _json(ISSUE + ["--youngs-modulus", "0.25GPa", "--bending-scale", str(1 / 3)], capsys)
+    sil = [a if a != "200N" else "1.008N" for a in ISSUE] + ["--youngs-modulus", "1.26MPa"]
+    ok = _json(sil + ["--bending-scale", str(1 / 3)], capsys)
     assert ok["decided_by"] == "DER-table"
-    no = _json(ISSUE + ["--youngs-modulus", "0.25GPa", "--bending-scale", "0.33"], capsys)
+    no = _json(sil + ["--bending-scale", "0.33"], capsys)
     assert no["decided_by"] == "thick-nip" and no["der"]["refused"] == "bending_scale"
     assert "--bending-scale 0.33 --simulate" in no["der"]["message"]
