@@ -937,8 +937,12 @@ def hold(
         (overrides the material's; default the material's, 1 (a solid rod) without a
         material; stated in the assumptions). A DER table answers only when its own
         kappa (meta ``bending_scale``, 1 for the shipped solid-rod tables) is within a
-        factor :data:`BENDING_SCALE_FACTOR` of it; otherwise the DER answer is undecided
-        and the other models decide as for an undecided table. ``simulate`` runs at it.
+        factor :data:`BENDING_SCALE_FACTOR` of it, and the rope's elastic-wave rate
+        sqrt(E/rho)/d within :data:`ROD_RATE_FACTOR` of the table's rod's (meta ``rod``; the
+        shipped tables' is the 4 mm VPS32 silicone rod's, and the protocol runs in seconds);
+        otherwise the DER answer is undecided (``der["refused"]``: ``"bending_scale"`` or
+        ``"rod"``) and the other models decide as for an undecided table. ``simulate`` runs
+        at the rope's kappa and density.
     simulate : bool
         One DER run of this geometry instead of the tables (:data:`SIMULATE_COST`): the
         hitches with a DER scene (clove hitch, two half hitches, round turn and two half
