@@ -68,7 +68,7 @@ def checks(table) -> str:
             for i, a in enumerate(pts):
                 if not (a.solved and a.holds(lim)):
                     continue
-                for b in pts[i + 1:]:
+                for b in pts[i + 1 :]:
                     if b.solved and not b.holds(lim):
                         bad.append((x, y, a.mu, b.mu))
     lines = [f"\nmonotonicity in mu: {len(bad)} (d/2R, T/EA) with a hold at a lower mu and a "
@@ -86,8 +86,10 @@ def checks(table) -> str:
                 differ.append(f"(d/2R {x:g}, mu {m:g}: {_cell(a, lim, set())} / "
                               f"{_cell(b, lim, set())})")  # fmt: skip
     n = len(mus) * len(ax["d_over_2R"])
-    lines.append(f"lightest loads ({y0:g}, {y1:g} EA) agree in {agree} of {n} (d/2R, mu) "
-                 "columns" + ("; not in " + ", ".join(differ) if differ else ""))
+    lines.append(
+        f"lightest loads ({y0:g}, {y1:g} EA) agree in {agree} of {n} (d/2R, mu) "
+        "columns" + ("; not in " + ", ".join(differ) if differ else "")
+    )
     solved = [p for p in table.points if p.solved]
     held = sum(p.holds(lim) for p in solved)
     meta = table.meta
