@@ -439,19 +439,12 @@ def _table_rod(table):
 
 
 def _table_kappa(table, name="the DER table") -> float:
-    """The bending scale a DER table was built with (meta ``bending_scale``, 1 if absent).
+    """The bending scale a DER table was built with (meta ``bending_scale``, 1 if absent;
+    :func:`knotmech.scenes.phase_table.meta_bending_scale`: a one-line InputError naming
+    ``name`` when it is not a number in (0, 1])."""
+    from knotmech.scenes import phase_table as pt
 
-    Raises
-    ------
-    InputError
-        The meta's ``bending_scale`` is not a number in (0, 1] (one line naming ``name``).
-    """
-    meta = getattr(table, "meta", None) or {}
-    k = meta.get("bending_scale", 1.0)
-    ok = not isinstance(k, bool) and isinstance(k, (int, float)) and 0 < k <= 1
-    if not ok:
-        raise InputError(f"{name}: meta bending_scale must be a number in (0, 1], got {k!r}")
-    return float(k)
+    return pt.meta_bending_scale(getattr(table, "meta", None), name)
 
 
 def _warnings(mu, mu_rr, d, D, load, E, theta):

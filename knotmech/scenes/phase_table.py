@@ -78,6 +78,7 @@ __all__ = [
     "build_hold_table",
     "load_hold_tables",
     "load_hold_table_sets",
+    "meta_bending_scale",
     "read_hold_table",
     "creep_speed",
     "creep_verdict",
@@ -1185,10 +1186,7 @@ class HoldTable:
                     )
                 )
             meta = dict(data.get("meta", {}))
-            if "bending_scale" in meta:
-                k = meta["bending_scale"]
-                if isinstance(k, bool) or not isinstance(k, (int, float)) or not 0 < k <= 1:
-                    raise ValueError(f"meta bending_scale must be a number in (0, 1], got {k!r}")
+            meta_bending_scale(meta, "its meta")  # an InputError is a ValueError: wrapped below
             return cls(str(data["knot"]), pts, meta, str(data["law"]),
                        dict(data["criterion"]))  # fmt: skip
         except (KeyError, TypeError, ValueError, AttributeError) as exc:
@@ -1197,7 +1195,7 @@ class HoldTable:
     @property
     def bending_scale(self) -> float:
         """The rods' bending scale kappa the table was built with (meta, 1 when absent)."""
-        return float(self.meta.get("bending_scale", 1.0))
+        return meta_bending_scale(self.meta)
 
     def write(self, path) -> None:
         """Compact JSON (one point per line)."""
@@ -1219,6 +1217,20 @@ class HoldTable:
             ))  # fmt: skip
         pts.sort(key=lambda p: (p.mu, p.d_over_2R, p.t_over_EA))
         return cls(knot, pts, dict(meta or {}))
+
+
+def meta_bending_scale(meta, name: str = "the DER table") -> float:
+    """A table's bending scale kappa from its meta (``bending_scale``, 1 when absent).
+
+    Raises
+    ------
+    InputError
+        It is not a number in (0, 1] (one line naming ``name``).
+    """
+    k = (meta or {}).get("bending_scale", 1.0)
+    if isinstance(k, bool) or not isinstance(k, (int, float)) or not 0 < k <= 1:
+        raise InputError(f"{name}: meta bending_scale must be a number in (0, 1], got {k!r}")
+    return float(k)
 
 
 def _num(v):
