@@ -531,12 +531,10 @@ def _shipped_tables():
     return pt.load_tables()
 
 
-@functools.lru_cache(maxsize=1)
 def _shipped_hold_tables():
-    """The shipped anchor-law solid-rod hold tables {knot: HoldTable}, read once per process."""
-    from knotmech.scenes import phase_table as pt
-
-    return pt.load_hold_tables()
+    """The shipped anchor-law solid-rod hold tables {knot: HoldTable} (those nearest kappa = 1
+    of :func:`_shipped_hold_table_sets`, which reads the files once per process)."""
+    return {knot: _shipped_hold_table(knot, 1.0) for knot in _shipped_hold_table_sets()}
 
 
 @functools.lru_cache(maxsize=1)
