@@ -550,10 +550,7 @@ def _power_law_check(rec, base, final, accepted, unexplained, fin_mis, data, sta
         what = f"a located mismatch ({fin_mis.shape}, p = {fin_mis.p_value:.2g} under AR(1) noise)"
         p_pl = mis.p_value
     else:
-        ok, _ = applicable_effects(rec)
-        if only is not None:
-            ok = [e for e in ok if e in only]
-        alpha_each = alpha / max(len(ok), 1)
+        _, _, alpha_each = _tested_effects(rec, only, alpha)
         cur, p_pl, what = base, 0.0, ""
         out["tested"] = []
         for eff, ev, _ in accepted:
@@ -602,13 +599,20 @@ def _leftover_check(rec, final, starts, seed, alpha):
     }
 
 
+def _tested_effects(rec, only, alpha):
+    """The catalogue effects the selection tests on ``rec`` (those applicable, within
+    ``only`` when given), the skipped ones with their reasons, and the per-effect level
+    ``alpha / (number tested)``."""
+    ok, skipped = applicable_effects(rec)
+    if only is not None:
+        ok = [e for e in ok if e in only]
+    return ok, skipped, alpha / max(len(ok), 1)
+
+
 def _select_closed_form(base, rec, data, starts, gs, rng, alpha, effects, max_effects):
     """Forward selection over the catalogue with the parametric bootstrap."""
     n = rec.n
-    ok, skipped = applicable_effects(rec)
-    if effects is not None:
-        ok = [e for e in ok if e in effects]
-    alpha_each = alpha / max(len(ok), 1)
+    ok, skipped, alpha_each = _tested_effects(rec, effects, alpha)
     err_cur, block = heldout_errors(base, data, rec.trial)
     held_before = _rms(err_cur)
     held_cur = held_before
