@@ -17,7 +17,6 @@ from scipy.optimize import least_squares
 from knotmech.diagnose.baselines import Model, build_model
 from knotmech.diagnose.experiments import get_experiment
 from knotmech.diagnose.noisefloor import without_rows
-from knotmech.diagnose.powerlaw import PowerLawNoise
 from knotmech.diagnose.stats import NoiseModel, estimate_noise, require_finite
 from knotmech.errors import DiagnoseError
 
@@ -417,9 +416,7 @@ def thinned_noise(noise: NoiseModel, rows: np.ndarray, k: int) -> NoiseModel:
     if k == 1:
         return noise
     gs = None if noise.given_sigma is None else noise.given_sigma[rows]
-    # power-law draws are made at the full rows and thinned (their spectrum stays exact)
-    extra = {"thin": noise.thin * k} if isinstance(noise, PowerLawNoise) else {}
-    return replace(noise, rho=float(noise.rho**k), given_sigma=gs, **extra)
+    return noise.thinned(k, gs)
 
 
 def thinned_null(fit: Fit, data: Data, starts, given_sigma, n_max: int = BOOT_ROWS):

@@ -22,7 +22,7 @@ twice the trial's length and cut to it (so they are not circular), times the per
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 
@@ -140,6 +140,11 @@ class PowerLawNoise(NoiseModel):
                 spec[-1] = np.sqrt(s[-1] * n2) * rng.standard_normal()
             z[a:b] = np.fft.irfft(spec, n2)[:m:k]
         return self.sd(mean) * z
+
+    def thinned(self, k: int, given_sigma=None) -> PowerLawNoise:
+        """On every ``k``-th row: the draws are made at ``k`` times the rows and cut (their
+        spectrum stays exact); the AR(1) part as :meth:`NoiseModel.thinned`."""
+        return replace(super().thinned(k, given_sigma), thin=self.thin * int(k))
 
     def describe(self) -> dict:
         return {**super().describe(), "spectrum": f"power law, beta {self.beta:.3g}"}

@@ -21,7 +21,7 @@ correlated noise (Box, Jenkins & Reinsel, *Time Series Analysis*, ch. 7).
 
 from __future__ import annotations
 
-from dataclasses import dataclass
+from dataclasses import dataclass, replace
 
 import numpy as np
 from scipy import signal, stats
@@ -114,6 +114,11 @@ class NoiseModel:
         for a, b in zip(bounds[:-1], bounds[1:], strict=True):
             z[a:b] = signal.lfilter([1.0], [1.0, -self.rho], x[a:b])
         return self.sd(mean) * z
+
+    def thinned(self, k: int, given_sigma=None) -> NoiseModel:
+        """This noise on every ``k``-th row (AR(1): correlation ``rho**k``), with the kept
+        rows' ``given_sigma``."""
+        return replace(self, rho=float(self.rho**k), given_sigma=given_sigma)
 
     def describe(self) -> dict:
         out = {"rho": round(self.rho, 4)}
