@@ -416,11 +416,13 @@ def _bending_scale(mat, bending_scale):
     )
 
 
-#: a DER table answers only for a rope whose elastic-wave rate sqrt(E/rho)/d is within
-#: this factor of its rod's: the protocol (settle, load, hold) and the creep criterion are in
-#: seconds, so a table is not in T_high/EA, d/2R, mu and kappa alone (at d/2R 0.118, 0.1 EA,
-#: mu 0.3, kappa 0.01 the 4 mm silicone rod slips at 1.3e-2 d/s where a 6 mm nylon rope,
-#: a rate 9.5 times higher, holds at -6.7e-9 d/s)
+#: a DER table built before the protocol ran on the rod's own clock (its meta has no
+#: ``protocol_clock``) answers only for a rope whose protocol time scale
+#: (:func:`knotmech.scenes.phase_table.protocol_time_scale`) is within this factor of its
+#: rod's: such a table ran in seconds, and a run in seconds is not in T_high/EA, d/2R, mu and
+#: kappa alone (at d/2R 0.118, 0.1 EA, mu 0.3, kappa 1 a 6 mm nylon rod ran off in seconds
+#: where the silicone table held). The shipped tables ran on the reference rod (time scale
+#: 1), so they are on the flexural clock and answer for every material.
 ROD_RATE_FACTOR = 3.0
 
 
@@ -436,6 +438,19 @@ def _table_rod(table):
                 float(rod.get("rho", pt.DENSITY)))  # fmt: skip
     except (TypeError, ValueError):
         raise InputError("a DER table's meta rod must hold numbers d_m, E_Pa, rho") from None
+
+
+def _table_time_scale(table, kappa) -> tuple[float, bool]:
+    """(protocol time scale of the rod the table ran on, whether the table is on the
+    flexural clock: meta ``protocol_clock`` == "flexural", or a time scale of 1, the
+    reference rod, on which seconds and protocol seconds are the same)."""
+    from knotmech.scenes import phase_table as pt
+
+    td, tE, trho = _table_rod(table)
+    ts = pt.protocol_time_scale(rod_diameter=td, youngs_modulus=tE, density=trho,
+                                bending_scale=kappa)  # fmt: skip
+    meta = getattr(table, "meta", None) or {}
+    return ts, meta.get("protocol_clock") == pt.PROTOCOL_CLOCK or abs(ts - 1.0) < 1e-9
 
 
 def _table_kappa(table, name="the DER table") -> float:
@@ -589,34 +604,49 @@ def simulate_command(
     return " ".join(parts + ["--simulate"])
 
 
-def _criterion_text(limit: float, window: float | None = None) -> str:
+def _criterion_text(limit: float, window: float | None = None, time_scale: float = 1.0) -> str:
+    """The criterion in words; ``limit`` [d per protocol s] and ``window`` [protocol s], with
+    ``time_scale`` the rope's real seconds per protocol second."""
     from knotmech.scenes import phase_table as pt
 
     w = pt.CREEP_WINDOW if window is None else float(window)
+    s = float(time_scale)
+    clock = "" if s == 1.0 else (
+        f" (the protocol's {limit:g} d/s over {w:g} s, on the rod's flexural clock "
+        f"d/(sqrt(kappa) sqrt(E/rho)): 1 protocol s = {s:.3g} s for this rope)"
+    )  # fmt: skip
     return (
         f"{pt.CREEP_CRITERION} criterion: holds when the loose end creeps slower than "
-        f"{limit:g} d/s over the last {w:g} s of the hold once the load is on, "
-        "topology kept"
+        f"{limit / s:.3g} d/s over the last {w * s:.3g} s of the hold once the load is "
+        f"on{clock}, topology kept"
     )
 
 
-def _creep_dict(source, speed, d, *, limit, ran_to_end=True, window=None):
-    """The measured creep as the verdict reports it (speed in d/s and m/s; ``window`` [s]
-    the measuring window, default the clove hitch's :data:`~knotmech.scenes.phase_table.
-    CREEP_WINDOW`)."""
+def _creep_dict(source, speed, d, *, limit, ran_to_end=True, window=None, time_scale=1.0):
+    """The measured creep as the verdict reports it, in real seconds for this rope.
+
+    ``speed`` [d per protocol s], ``limit`` [d per protocol s] and ``window`` [protocol s,
+    default the clove hitch's :data:`~knotmech.scenes.phase_table.CREEP_WINDOW`] are on the
+    protocol's clock; ``time_scale`` is the rope's real seconds per protocol second
+    (:func:`knotmech.scenes.phase_table.protocol_time_scale`). The dict has the speed in
+    d/s and m/s, the limit in d/s and the window in s (real), and the protocol's values."""
     from knotmech.scenes import phase_table as pt
 
     ok = ran_to_end and speed is not None and math.isfinite(speed)
     w = pt.CREEP_WINDOW if window is None else float(window)
+    s = float(time_scale)
     return {
         "source": source,
         "criterion": pt.CREEP_CRITERION,
-        "limit_d_per_s": limit,
-        "window_s": w,
-        "speed_d_per_s": float(speed) if ok else None,
-        "speed_m_per_s": float(speed) * d if ok else None,
+        "limit_d_per_s": limit / s,
+        "window_s": w * s,
+        "speed_d_per_s": float(speed) / s if ok else None,
+        "speed_m_per_s": float(speed) / s * d if ok else None,
         "creep_m": float(speed) * d * w if ok else None,
         "ran_off": not ran_to_end,
+        "time_scale": s,
+        "limit_d_per_protocol_s": limit,
+        "speed_d_per_protocol_s": float(speed) if ok else None,
     }
 
 
@@ -651,9 +681,11 @@ def _der(
 ):
     """The DER answer for a hitch with a free end: (details dict, ModelAnswer or None,
     creep dict or None, shape). A table answers only when its bending scale is within
-    :data:`BENDING_SCALE_FACTOR` of ``bending_scale`` and its rod's elastic-wave rate within
+    :data:`BENDING_SCALE_FACTOR` of ``bending_scale`` and, unless it ran on the protocol's
+    flexural clock (every shipped table does), its rod's protocol time scale within
     :data:`ROD_RATE_FACTOR` of the rope's (``density`` [kg/m^3]: the material's; None, the
-    table's); else undecided, ``command`` decides. ``simulate`` runs at that density."""
+    reference rod's); else undecided, ``command`` decides. ``simulate`` runs at that
+    density, on the rope's clock. Creep is reported in the rope's real seconds."""
     from knotmech.analytic.hitch import ModelAnswer
     from knotmech.scenes import phase_table as pt
 
@@ -676,6 +708,11 @@ def _der(
         "bending_scale": float(bending_scale),
     }
     kappa = float(bending_scale)
+    # the rope's real seconds per protocol second (the DER runs on the rod's flexural clock)
+    ts = pt.protocol_time_scale(rod_diameter=d, youngs_modulus=E, bending_scale=kappa,
+                                density=pt.DENSITY if density is None else float(density))
+    out["time_scale"] = ts
+    out["criterion"] = _criterion_text(lim, None, ts)
 
     def refused(table, name):
         """The reason a table built at another kappa, or for a rod of another elastic-wave
@@ -692,18 +729,19 @@ def _der(
                 + then
             )
         td, tE, trho = _table_rod(table)
-        rho = trho if density is None else float(density)
-        rate_t, rate = math.sqrt(tE / trho) / td, math.sqrt(E / rho) / d
-        out["table_rod"] = {"d_m": td, "E_Pa": tE, "rho": trho, "wave_rate_per_s": rate_t}
-        out["wave_rate_per_s"] = rate
-        if max(rate / rate_t, rate_t / rate) > ROD_RATE_FACTOR:
+        ts_table, clocked = _table_time_scale(table, tk)
+        out["table_rod"] = {"d_m": td, "E_Pa": tE, "rho": trho, "time_scale": ts_table,
+                            "protocol_clock": pt.PROTOCOL_CLOCK if clocked else "seconds"}
+        if clocked:
+            return ""
+        # a table run in seconds: only for a rope whose clock ticks like its rod's
+        if max(ts / ts_table, ts_table / ts) > ROD_RATE_FACTOR:
             out["refused"] = "rod"
             return (
-                f"not decided by the table: it was run on a rod of E = {tE / 1e6:.3g} MPa, d = "
-                f"{td * 1e3:.3g} mm (elastic-wave rate sqrt(E/rho)/d = {rate_t:.3g} per s); "
-                f"this rope's is {rate:.3g} per s (more than a factor {ROD_RATE_FACTOR:g} "
-                "apart), and the DER protocol runs in seconds, so its answer is not in "
-                "T_high/EA alone" + then
+                f"not decided by the table: it ran in seconds on a rod of E = {tE / 1e6:.3g} "
+                f"MPa, d = {td * 1e3:.3g} mm, {trho:g} kg/m^3 (protocol time scale "
+                f"{ts_table:.3g}); this rope's is {ts:.3g} (more than a factor "
+                f"{ROD_RATE_FACTOR:g} apart), so its answer is not in T_high/EA alone" + then
             )
         return ""
 
@@ -722,13 +760,17 @@ def _der(
         if p["holds"] is None:
             out["message"] = f"the DER simulation failed: {p['message']}"
             return out, None, None, shape
-        speed = float(p.get("creep_speed", math.nan))
+        ts = float(p.get("time_scale", 1.0))
+        speed = float(p.get("creep_speed_protocol", ts * p.get("creep_speed", math.nan)))
         ran = bool(p.get("ran_to_end", math.isfinite(speed)))
+        win = float(p.get("creep_window_s", ts * pt.CREEP_WINDOW)) / ts
         creep = _creep_dict("DER simulation of this geometry", speed, d, limit=lim,
-                            ran_to_end=ran, window=p.get("creep_window_s"))  # fmt: skip
-        out["criterion"] = _criterion_text(lim, p.get("creep_window_s"))
+                            ran_to_end=ran, window=win, time_scale=ts)  # fmt: skip
+        out["time_scale"] = ts
+        out["criterion"] = _criterion_text(lim, win, ts)
         crept = (
-            f"loaded end creeps {speed:.3g} d/s over the last {creep['window_s']:g} s of the hold"
+            f"loaded end creeps {creep['speed_d_per_s']:.3g} d/s over the last "
+            f"{creep['window_s']:.3g} s of the hold"
             if creep["speed_d_per_s"] is not None
             else "the loaded end ran off before the hold's measuring window"
         )
@@ -742,7 +784,8 @@ def _der(
             ),
         )
         run_s = sum(pt.PROTOCOL[k] for k in ("settle_time", "load_time", "hold_time"))
-        validity = f"one run of the user's geometry ({run_s:g} s of simulated time)"
+        validity = (f"one run of the user's geometry ({run_s:g} protocol s of simulated time"
+                    + ("" if ts == 1.0 else f", {run_s * ts:.3g} s for this rope") + ")")
     else:
         user = None if phase_table is None else _load_user_table(phase_table)
         if user is not None and not isinstance(user, pt.HoldTable):
@@ -780,8 +823,12 @@ def _der(
                 return out, None, None, shape
             a = table.lookup(x, y, mu=mu, mu_rr=mu_rr, creep_limit=lim)
             ax = table.axes
+            clock = "" if ts == 1.0 else (
+                f" (grid creep speeds in d per protocol s; 1 protocol s = {ts:.3g} s for this "
+                "rope)")  # fmt: skip
             out.update(
-                source="table", holds=a.holds, inside_table=bool(a.inside), message=a.message,
+                source="table", holds=a.holds, inside_table=bool(a.inside),
+                message=a.message + clock,
                 rule=a.rule,
                 critical_t_over_EA=a.critical if math.isfinite(a.critical) else None,
                 capacity_t_over_EA=(a.capacity_t_over_EA
@@ -795,18 +842,18 @@ def _der(
                 n = len(a.corners)
                 src = f"DER {knot} table, {n} neighbouring grid point{'s' if n > 1 else ''}"
                 win = table.criterion.get("window_s")
-                out["criterion"] = _criterion_text(lim, win)
+                out["criterion"] = _criterion_text(lim, win, ts)
                 if a.holds and math.isfinite(a.creep_speed):
                     creep = _creep_dict(
                         src + " (largest creep of the points that held)", a.creep_speed, d,
-                        limit=lim, window=win,
+                        limit=lim, window=win, time_scale=ts,
                     )  # fmt: skip
                 elif finite:
                     creep = _creep_dict(src + " (smallest creep measured)", min(finite), d,
-                                        limit=lim, window=win)  # fmt: skip
+                                        limit=lim, window=win, time_scale=ts)  # fmt: skip
                 else:
                     creep = _creep_dict(src, math.nan, d, limit=lim, ran_to_end=False,
-                                        window=win)  # fmt: skip
+                                        window=win, time_scale=ts)  # fmt: skip
             if a.holds and math.isfinite(a.capacity_t_over_EA):
                 capacity = a.capacity_t_over_EA * EA
             if a.holds is None:
@@ -928,9 +975,10 @@ def hold(
         (overrides the material's; default the material's, 1 (a solid rod) without a
         material; stated in the assumptions). A DER table answers only when its own
         kappa (meta ``bending_scale``, 1 for the shipped solid-rod tables) is within a
-        factor :data:`BENDING_SCALE_FACTOR` of it, and the rope's elastic-wave rate
-        sqrt(E/rho)/d within :data:`ROD_RATE_FACTOR` of the table's rod's (meta ``rod``; the
-        shipped tables' is the 4 mm VPS32 silicone rod's, and the protocol runs in seconds);
+        factor :data:`BENDING_SCALE_FACTOR` of it. The DER protocol runs on the rod's
+        flexural clock (:func:`knotmech.scenes.phase_table.protocol_time_scale`), so a table
+        answers for every material; a table run in seconds on another rod (meta without
+        ``protocol_clock``) only within :data:`ROD_RATE_FACTOR` of its rod's time scale;
         otherwise the DER answer is undecided (``der["refused"]``: ``"bending_scale"`` or
         ``"rod"``) and the other models decide as for an undecided table. ``simulate`` runs
         at the rope's kappa and density.
@@ -1332,7 +1380,7 @@ def plot_verdict(verdict: Verdict, path, *, phase_table=None) -> Path:
     from knotmech.scenes import phase_table as pt
 
     if isinstance(tables, pt.HoldTable):
-        lim = (verdict.creep or {}).get("limit_d_per_s") or pt.CREEP_LIMIT
+        lim = (verdict.creep or {}).get("limit_d_per_protocol_s") or pt.CREEP_LIMIT
         used = [tables.slice(m, creep_limit=lim) for m in der["mu_tables"]]
     else:
         used = [tables.table(m) for m in der["mu_tables"]]

@@ -97,7 +97,8 @@ Presets and sources (conversions: 1 kgf = 9.80665 N, 1 lbf = 4.44822 N):
     Zhermack), clove-hitch paper (Extreme Mech. Lett., DOI
     10.1016/j.eml.2022.101788), sec. 2. A solid elastic rod, not a rope: E is the
     material's. The shipped DER phase tables were computed for this rod (with a
-    density of 1150 kg/m^3; the verdict does not depend on it). kappa = 1: a solid
+    density of 1150 kg/m^3: a protocol second is sqrt(1160/1150) = 1.004 s for the preset,
+    :func:`knotmech.scenes.phase_table.protocol_time_scale`). kappa = 1: a solid
     rod (exact by construction; the tables' meta has no ``bending_scale``, i.e. 1).
 """
 

@@ -174,7 +174,7 @@ def test_bending_scale_is_an_input_stated_in_the_assumptions():
     assert nylon.inputs["bending_scale"] == 0.01
     assert any(a.startswith("bending scale kappa = 0.01") for a in nylon.assumptions)
     bare = knotmech.hold("clove-hitch", youngs_modulus=0.25e9, **kw)
-    assert bare.inputs["bending_scale"] == 1.0 and bare.der["refused"] == "rod"
+    assert bare.inputs["bending_scale"] == 1.0 and bare.decided_by == "DER-table"
     assert any("kappa = 1 " in a and "no material given" in a for a in bare.assumptions)
     vps = knotmech.hold("clove-hitch", material="vps32", **{**kw, "load": 1.47})
     assert vps.inputs["bending_scale"] == 1.0
@@ -228,19 +228,38 @@ def test_a_table_built_at_the_ropes_bending_scale_answers(tmp_path):
 NYLON_ROD = {"d_m": 0.006, "E_Pa": 0.25e9, "rho": 800.0}
 
 
-def test_a_table_answers_only_for_rods_like_its_own():
-    """The DER protocol runs in seconds, so a table is not in T_high/EA alone: the shipped
-    tables' 4 mm silicone rod (elastic-wave rate sqrt(E/rho)/d = 8.3e3 per s) answers for a
-    6 mm silicone rope (5.5e3, a factor 1.5) and not for 6 mm nylon (9.3e4, a factor 11),
-    whose own kappa-1 run at d/2R 0.1176, 0.1 EA, mu 0.3 ran off where the table held."""
+def test_the_shipped_tables_answer_for_every_material_on_the_flexural_clock(tmp_path):
+    """The shipped tables ran on the reference rod (protocol time scale 1), so they answer
+    for a solid rod of any material (:func:`protocol_time_scale`: 6 mm nylon at kappa 1,
+    E = 0.25 GPa, 800 kg/m^3: s = sqrt(1.26e6/1150 / 2.5e8 x 800) x 6/4 = 0.0888), with the
+    creep limit and window converted to the rope's seconds. A table run in seconds on
+    another rod (meta without protocol_clock) is refused beyond a factor 3 of its rod's
+    time scale."""
+    from knotmech.hold import _shipped_hold_tables
+    from knotmech.scenes.phase_table import CREEP_LIMIT, HoldTable
+
     kw = dict(rod_diameter=6e-3, post_diameter=40e-3, mu=0.4, bending_scale=1.0)
-    sil = knotmech.hold("clove-hitch", youngs_modulus=1.26e6, load=1.008, **kw)
-    assert sil.decided_by == "DER-table"
-    assert sil.der["wave_rate_per_s"] == pytest.approx((1.26e6 / 1150) ** 0.5 / 6e-3, rel=1e-9)
     nyl = knotmech.hold("clove-hitch", material="nylon", load=200.0, **kw)
-    assert nyl.der["refused"] == "rod" and nyl.der["holds"] is None
-    assert nyl.der["wave_rate_per_s"] / nyl.der["table_rod"]["wave_rate_per_s"] > 11
-    assert "--simulate" in nyl.der["message"] and nyl.decided_by == "thick-nip"
+    s = (1.26e6 / 1150 / (0.25e9 / 800)) ** 0.5 * 1.5
+    assert nyl.der["time_scale"] == pytest.approx(s, rel=1e-9)
+    assert nyl.decided_by == "DER-table" and nyl.der["table_rod"]["protocol_clock"] == "flexural"
+    assert nyl.creep["limit_d_per_s"] == pytest.approx(CREEP_LIMIT / s, rel=1e-9)
+    assert nyl.creep["speed_d_per_s"] == pytest.approx(
+        nyl.creep["speed_d_per_protocol_s"] / s, rel=1e-9)  # fmt: skip
+    # the same table relabelled as run in seconds on a 6 mm nylon rod: refused for silicone
+    d = _shipped_hold_tables()["clove-hitch"].to_dict()
+    meta = {k: v for k, v in d["meta"].items() if k != "protocol_clock"}
+    d["meta"] = {**meta, "rod": {"d_m": 0.006, "E_Pa": 0.25e9, "rho": 800.0}}
+    legacy = tmp_path / "legacy.json"
+    HoldTable.from_dict(d).write(legacy)
+    sil = dict(youngs_modulus=1.26e6, load=1.008, **kw)
+    v = knotmech.hold("clove-hitch", phase_table=legacy, **sil)
+    assert v.der["refused"] == "rod" and v.der["holds"] is None
+    assert v.der["table_rod"]["protocol_clock"] == "seconds" and "--simulate" in v.der["message"]
+    d["meta"]["protocol_clock"] = "flexural"
+    HoldTable.from_dict(d).write(legacy)
+    v = knotmech.hold("clove-hitch", phase_table=legacy, **sil)
+    assert v.decided_by == "DER-table" and "refused" not in v.der
 
 
 @pytest.mark.parametrize("bad", ["abc", None, 0, 2.0, True])

@@ -332,7 +332,7 @@ def format_creep(c: dict) -> str:
     rel = "slower than" if abs(v) < c["limit_d_per_s"] else "not slower than"
     return (
         f"creep: {v:.3g} d/s ({c['speed_m_per_s'] * 1e3:.3g} mm/s) over the last "
-        f"{c['window_s']:g} s of the hold, {rel} the {c['limit_d_per_s']:g} d/s of the "
+        f"{c['window_s']:.3g} s of the hold, {rel} the {c['limit_d_per_s']:.3g} d/s of the "
         f"{c['criterion']} criterion; {c['source']}"
     )
 

@@ -455,6 +455,7 @@ def run_hitch(
     max_node_steps: float | None = None,
     friction: str = "anchor",
     creep_limit: float | None = None,
+    creep_window: float | None = None,
     result_type: type | None = None,
 ) -> HitchResult:
     r"""Tie ``knot`` on a post and load it (the parameters of every hitch scene).
@@ -521,6 +522,9 @@ def run_hitch(
     creep_limit : float or None [d/s]
         Free-end verdict: also slip when end 0 creeps faster than this over the creep
         window (None: only the ``slip_distance`` rule).
+    creep_window : float [s], optional
+        Window of :attr:`HitchResult.creep_speed`: the last this-long of the hold (default
+        1 s, at most half the hold).
     result_type : type, optional
         Class of the result (a :class:`HitchResult` subclass).
 
@@ -549,6 +553,7 @@ def run_hitch(
     if friction not in ("anchor", "imc"):
         raise InputError(f"friction must be 'anchor' or 'imc', got {friction!r}")
     climit = None if creep_limit is None else float(check_positive("creep_limit", creep_limit))
+    cwin = 1.0 if creep_window is None else float(check_positive("creep_window", creep_window))
     if loading == "symmetric":
         tl = th if t_low is None else float(check_positive("t_low", t_low))
     elif loading == "asymmetric":
@@ -724,7 +729,7 @@ def run_hitch(
     window = float("nan")
     v_end = v_tail = float("nan")
     if loading != "pull" and times[-1] > t2:
-        window = min(1.0, 0.5 * (times[-1] - t2))
+        window = min(cwin, 0.5 * (times[-1] - t2))
         ta = times[-1] - window
         if window > 0:
             # along the end edge's last direction: a tail swinging about the knot does

@@ -113,7 +113,38 @@ IMC_PROTOCOL = dict(settle_time=0.2, load_time=0.2, hold_time=0.4, dt=2e-3, n_fr
 CREEP_CRITERION = "creep-speed"
 CREEP_LIMIT = 1e-3  #: [d/s] default: holds when the loose end creeps slower than this
 CREEP_WINDOW = 1.0  #: [s] the creep speed is measured over the last this-long of the hold
+#: the protocol's clock: its times (and its drag rate, set by the settle time) are in units of
+#: this rod's flexural time d / (sqrt(kappa) sqrt(E/rho)), the clove-hitch paper's VPS32 rod
+#: (:data:`ROD_DIAMETER`, :data:`YOUNGS_MODULUS`, :data:`DENSITY`, kappa = 1): 0.121 ms
+#: meta ``protocol_clock`` of a table whose points ran on that clock
+PROTOCOL_CLOCK = "flexural"
+REFERENCE_FLEXURAL_TIME = ROD_DIAMETER / (YOUNGS_MODULUS / DENSITY) ** 0.5
 MAX_NODES = 200  #: node cap of :func:`point_geometry` (large posts get longer edges)
+
+
+def protocol_time_scale(*, rod_diameter=ROD_DIAMETER, youngs_modulus=YOUNGS_MODULUS,
+                        density=DENSITY, bending_scale=1.0) -> float:
+    r"""The factor s by which :func:`simulate_point` stretches :data:`PROTOCOL`'s seconds.
+
+    .. math:: s = \frac{d / (\sqrt{\kappa}\,\sqrt{E/\rho})}{t_\mathrm{ref}}
+
+    with :math:`t_\mathrm{ref}` = :data:`REFERENCE_FLEXURAL_TIME` (the tables' VPS32 rod, s = 1).
+    A rod's motion under the protocol depends on its material only through the time in units
+    of its own elastic time (there is no gravity, and the contact penalties, the friction
+    anchors and the solver tolerances scale with the loads and d); the bending waves that
+    let a hitch re-seat are slower by 1/sqrt(kappa). Run in units of d/(sqrt(kappa) c),
+    with the creep limit in d per protocol second, every rod of the same kappa, d/2R,
+    T_high/EA and mu is the same dimensionless run, so one table per kappa serves every
+    material. A 6 mm nylon rope (E = 0.25 GPa, 1140 kg/m^3, kappa 0.01) has s = 1.06; a
+    solid nylon rod (kappa 1) 0.11; a 6 mm steel wire rope (80 GPa, 5000 kg/m^3, 0.02) 0.09.
+    """
+    d = float(check_positive("rod_diameter", rod_diameter))
+    E = float(check_positive("youngs_modulus", youngs_modulus))
+    rho = float(check_positive("density", density))
+    from knotmech.errors import check_bending_scale
+
+    kappa = check_bending_scale(bending_scale)
+    return float(d / (kappa * E / rho) ** 0.5 / REFERENCE_FLEXURAL_TIME)
 
 
 def creep_speed(times, end_displacement, *, rod_diameter, window=CREEP_WINDOW) -> float:
@@ -258,6 +289,7 @@ def simulate_point(
     creep_limit: float = CREEP_LIMIT,
     hold_time: float | None = None,
     recheck: bool = False,
+    time_scale: float | None = None,
     knot: str = "clove-hitch",
     progress: bool = False,
     keep_result: bool = False,
@@ -282,7 +314,14 @@ def simulate_point(
     :math:`B = \kappa E\pi d^4/64` (:class:`knotmech.rod.Rod`; 1, the solid rod of the
     shipped tables); it is returned as ``bending_scale``.
 
-    ``hold_time`` [s] replaces the protocol's hold. With ``recheck`` (what ``hold
+    ``time_scale`` s stretches the protocol's times, its step and its creep window, and
+    divides its settling drag rate and the creep limit (which is in d per protocol second)
+    by s. None (the default): :func:`protocol_time_scale` of the rod, so a run is the same
+    dimensionless run for every material (1 for the tables' VPS32 rod at kappa 1).
+    The returned ``creep_speed`` is in d per real second; ``creep_speed_protocol`` = s x
+    ``creep_speed`` is what is compared with ``creep_limit``.
+
+    ``hold_time`` [protocol s] replaces the protocol's hold. With ``recheck`` (what ``hold
     --simulate`` uses), a run whose creep speed lies in :data:`RECHECK_BAND` around the
     limit (:func:`needs_recheck`) is run again with a hold :data:`RECHECK_HOLD_FACTOR`
     times as long, and that run decides (``first_creep_speed`` keeps the first speed).
@@ -309,6 +348,11 @@ def simulate_point(
     kappa = check_bending_scale(bending_scale)
     if friction not in ("anchor", "imc"):
         raise InputError(f"friction must be 'anchor' or 'imc', got {friction!r}")
+    if time_scale is None:
+        ts = protocol_time_scale(rod_diameter=d, youngs_modulus=E, density=density,
+                                 bending_scale=kappa)  # fmt: skip
+    else:
+        ts = float(check_positive("time_scale", time_scale))
     scene = hold_scene(knot)
     geo = point_geometry(d_over_2R, rod_diameter=d)
     if knot == "clove-hitch":
@@ -323,6 +367,11 @@ def simulate_point(
         proto["hold_time"] = h
         proto["n_frames"] = int(round((proto["settle_time"] + proto["load_time"] + h) / 0.05)) + 1
     t_high = tea * E * np.pi * d * d / 4
+    run_proto = {k: (v * ts if k in ("settle_time", "load_time", "hold_time", "dt") else v)
+                 for k, v in proto.items()}  # fmt: skip
+    window = min(CREEP_WINDOW, proto["hold_time"]) * ts
+    if knot != "clove-hitch":  # the hitch scenes' own window: at most half the hold
+        run_proto["creep_window"] = min(CREEP_WINDOW, 0.5 * proto["hold_time"]) * ts
     c0 = time.process_time()
     r = scene(
         loading="free",
@@ -338,14 +387,13 @@ def simulate_point(
         mu_rod_rod=float(mu if mu_rr is None else mu_rr),
         friction=friction,
         progress=progress,
-        **proto,
+        **run_proto,
     )
     cpu = time.process_time() - c0
-    t_end = sum(proto[k] for k in ("settle_time", "load_time", "hold_time"))
+    t_end = sum(run_proto[k] for k in ("settle_time", "load_time", "hold_time"))
     times = np.asarray(r.times, dtype=float)
-    ran = bool(times.size and times[-1] >= t_end - 1e-9)
+    ran = bool(times.size and times[-1] >= t_end - 1e-9 * ts)
     solver_ok = r.status == "success" or r.verdict == "slip"
-    window = min(CREEP_WINDOW, proto["hold_time"])
     if not ran:
         speed = float("nan")
     elif knot == "clove-hitch":
@@ -355,7 +403,7 @@ def simulate_point(
         window = float(r.creep_window)  # the scene's window: the last half of a 1.5 s hold
     if friction == "anchor":
         holds, reason = creep_verdict(
-            speed, ran_to_end=ran, topology_preserved=bool(r.topology_preserved),
+            speed * ts, ran_to_end=ran, topology_preserved=bool(r.topology_preserved),
             solver_ok=solver_ok, limit=lim,
         )  # fmt: skip
         criterion = CREEP_CRITERION
@@ -379,12 +427,14 @@ def simulate_point(
         "creep_limit": lim,
         "creep_window_s": window,
         "hold_time": proto["hold_time"],
+        "time_scale": ts,
         "creep_speed_signed": True,
         "verdict": "" if holds is None else ("hold" if holds else "slip"),
         "holds": holds,
         "reason": reason,
         "creep": float(r.creep),
         "creep_speed": speed,
+        "creep_speed_protocol": speed * ts,
         "ran_to_end": ran,
         "status": r.status,
         "message": r.message,
@@ -394,12 +444,12 @@ def simulate_point(
     }
     if keep_result:
         out["result"] = r
-    if recheck and friction == "anchor" and ran and needs_recheck(speed, limit=lim):
+    if recheck and friction == "anchor" and ran and needs_recheck(speed * ts, limit=lim):
         again = simulate_point(
             d_over_2R=d_over_2R, t_over_EA=t_over_EA, mu=mu, mu_rr=mu_rr, rod_diameter=d,
             youngs_modulus=E, density=density, friction=friction, n_nodes=n_nodes,
             bending_scale=kappa, creep_limit=lim,
-            hold_time=RECHECK_HOLD_FACTOR * proto["hold_time"],
+            hold_time=RECHECK_HOLD_FACTOR * proto["hold_time"], time_scale=time_scale,
             knot=knot, progress=progress, keep_result=keep_result,
         )  # fmt: skip
         again["first_creep_speed"] = speed
@@ -409,7 +459,9 @@ def simulate_point(
     return out
 
 
-simulate_point.__sweep_version__ = "3"
+#: 4: the protocol runs on the rod's flexural clock (:func:`protocol_time_scale`; the same
+#: as 3 for the reference rod at kappa 1, different for every other rod)
+simulate_point.__sweep_version__ = "4"
 
 
 @dataclass(frozen=True)
@@ -1365,7 +1417,7 @@ def build_hold_table(
     if res.failures:
         f = res.failures[0]
         raise InputError(f"hold table of {knot}: {len(res.failures)} runs raised; first: {f}")
-    results = [_signed(r) for r in res]
+    results = [_on_protocol_clock(_signed(r)) for r in res]
     # second pass: points within a decade of the limit, with a hold twice as long
     again = [
         i
@@ -1383,7 +1435,7 @@ def build_hold_table(
         if res2.failures:
             raise InputError(f"hold table of {knot}: a recheck run raised: {res2.failures[0]}")
         for i, r2 in zip(again, res2, strict=True):
-            r2 = dict(_signed(r2))
+            r2 = dict(_on_protocol_clock(_signed(r2)))
             r2["first_creep_speed"] = results[i]["creep_speed"]
             r2["cpu_s"] = float(r2.get("cpu_s", 0.0)) + float(results[i].get("cpu_s", 0.0))
             results[i] = r2
@@ -1400,6 +1452,20 @@ def _signed(r: dict) -> dict:
     s = abs(float(r["creep_speed"]))
     return {**r, "creep_speed": math.copysign(s, c) if math.isfinite(c) and c != 0 else s,
             "creep_speed_signed": True}  # fmt: skip
+
+
+def _on_protocol_clock(r: dict) -> dict:
+    """A point result with its creep speed [d per protocol s] and window [protocol s] on the
+    protocol's clock (``time_scale`` s: real seconds per protocol second; a result without
+    it ran on the reference rod, s = 1). A table stores these, so it is the same for every
+    material."""
+    s = float(r.get("time_scale", 1.0))
+    if s == 1.0:
+        return r
+    out = {**r, "creep_speed": float(r["creep_speed"]) * s}
+    if "creep_window_s" in r:
+        out["creep_window_s"] = float(r["creep_window_s"]) / s
+    return out
 
 
 def hold_table_from_results(knot: str, results, *, meta=None) -> HoldTable:
@@ -1425,6 +1491,10 @@ def hold_table_from_results(knot: str, results, *, meta=None) -> HoldTable:
         "grid": g,
         "rod": {"d_m": ROD_DIAMETER, "E_Pa": YOUNGS_MODULUS, "rho": DENSITY},
         "protocol": dict(PROTOCOL),
+        "protocol_clock": PROTOCOL_CLOCK,
+        "protocol_clock_note": "times in protocol seconds: real seconds / protocol_time_scale "
+        "(d / (sqrt(kappa) sqrt(E/rho)) over the VPS32 rod's); creep speeds in d per "
+        "protocol second",
         "n_nodes": {
             f"{float(r['d_over_2R']):g}": int(r["n_nodes"]) for r in results if "n_nodes" in r
         },  # fmt: skip
