@@ -237,7 +237,10 @@ class Verdict:
     creep : dict or None
         Creep of the loaded end measured by the DER (simulation, or the nearest grid
         point that held): ``creep_m`` over ``window_s``, ``speed_m_per_s``,
-        ``speed_d_per_s`` and ``source``.
+        ``speed_d_per_s``, ``limit_d_per_s`` (in the rope's own seconds) and ``source``;
+        the DER runs on the rod's flexural clock, so also ``time_scale`` (real seconds per
+        protocol second, :func:`knotmech.scenes.phase_table.protocol_time_scale`),
+        ``speed_d_per_protocol_s`` and ``limit_d_per_protocol_s``.
     inputs : dict
         The inputs in SI units.
     der : dict or None
@@ -709,8 +712,12 @@ def _der(
     }
     kappa = float(bending_scale)
     # the rope's real seconds per protocol second (the DER runs on the rod's flexural clock)
-    ts = pt.protocol_time_scale(rod_diameter=d, youngs_modulus=E, bending_scale=kappa,
-                                density=pt.DENSITY if density is None else float(density))
+    ts = pt.protocol_time_scale(
+        rod_diameter=d,
+        youngs_modulus=E,
+        bending_scale=kappa,
+        density=pt.DENSITY if density is None else float(density),
+    )
     out["time_scale"] = ts
     out["criterion"] = _criterion_text(lim, None, ts)
 
@@ -730,8 +737,13 @@ def _der(
             )
         td, tE, trho = _table_rod(table)
         ts_table, clocked = _table_time_scale(table, tk)
-        out["table_rod"] = {"d_m": td, "E_Pa": tE, "rho": trho, "time_scale": ts_table,
-                            "protocol_clock": pt.PROTOCOL_CLOCK if clocked else "seconds"}
+        out["table_rod"] = {
+            "d_m": td,
+            "E_Pa": tE,
+            "rho": trho,
+            "time_scale": ts_table,
+            "protocol_clock": pt.PROTOCOL_CLOCK if clocked else "seconds",
+        }
         if clocked:
             return ""
         # a table run in seconds: only for a rope whose clock ticks like its rod's
@@ -784,8 +796,11 @@ def _der(
             ),
         )
         run_s = sum(pt.PROTOCOL[k] for k in ("settle_time", "load_time", "hold_time"))
-        validity = (f"one run of the user's geometry ({run_s:g} protocol s of simulated time"
-                    + ("" if ts == 1.0 else f", {run_s * ts:.3g} s for this rope") + ")")
+        validity = (
+            f"one run of the user's geometry ({run_s:g} protocol s of simulated time"
+            + ("" if ts == 1.0 else f", {run_s * ts:.3g} s for this rope")
+            + ")"
+        )
     else:
         user = None if phase_table is None else _load_user_table(phase_table)
         if user is not None and not isinstance(user, pt.HoldTable):
@@ -995,7 +1010,10 @@ def hold(
     creep_limit : float, optional
         The DER hold criterion's limit [rod diameters per second]: the hitch holds when
         its loose end creeps slower than this over the last second of the hold once the
-        load is on (default :data:`knotmech.scenes.phase_table.CREEP_LIMIT`, 1e-3 d/s).
+        load is on (default :data:`knotmech.scenes.phase_table.CREEP_LIMIT`, 1e-3 d/s),
+        in protocol seconds: the DER runs on the rod's flexural clock
+        (:func:`knotmech.scenes.phase_table.protocol_time_scale`); the verdict's creep
+        gives the limit in the rope's own seconds too.
         The tables store each point's measured creep speed, so they are re-judged at
         this limit.
 

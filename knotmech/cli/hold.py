@@ -119,7 +119,8 @@ def register(subparsers) -> None:
         metavar="D_PER_S",
         help="DER hold criterion: holds when the loaded end creeps slower than this many "
         "rope diameters per second at the end of the hold (clove hitch: the last second; "
-        "the other hitches: the last 0.75 s) (default 1e-3)",
+        "the other hitches: the last 0.75 s), in protocol seconds: the DER runs on the "
+        "rod's flexural clock and the verdict converts to the rope's seconds (default 1e-3)",
     )
     p.add_argument(
         "--phase-table",

@@ -122,8 +122,9 @@ REFERENCE_FLEXURAL_TIME = ROD_DIAMETER / (YOUNGS_MODULUS / DENSITY) ** 0.5
 MAX_NODES = 200  #: node cap of :func:`point_geometry` (large posts get longer edges)
 
 
-def protocol_time_scale(*, rod_diameter=ROD_DIAMETER, youngs_modulus=YOUNGS_MODULUS,
-                        density=DENSITY, bending_scale=1.0) -> float:
+def protocol_time_scale(
+    *, rod_diameter=ROD_DIAMETER, youngs_modulus=YOUNGS_MODULUS, density=DENSITY, bending_scale=1.0
+) -> float:
     r"""The factor s by which :func:`simulate_point` stretches :data:`PROTOCOL`'s seconds.
 
     .. math:: s = \frac{d / (\sqrt{\kappa}\,\sqrt{E/\rho})}{t_\mathrm{ref}}
