@@ -46,6 +46,7 @@ from __future__ import annotations
 
 import argparse
 import datetime
+import math
 import os
 import sys
 from pathlib import Path
@@ -598,11 +599,11 @@ def write_table(
 
 
 def write_hold_table(path=None, *, knot="clove-hitch", cache_dir=None, processes=2,
-                     progress=True, note=None, bending_scale=1.0):  # fmt: skip
+                     progress=True, note=None, bending_scale=1.0, loads=None):  # fmt: skip
     """Run the anchor-law hold-table grid of ``knot`` (:data:`knotmech.scenes.phase_table.
-    HOLD_GRID`) through the sweep, with the rods' bending scale ``bending_scale``, and write
-    the shipped table (default ``knotmech/data/`` + :func:`~knotmech.scenes.phase_table.
-    hold_table_resource`)."""
+    HOLD_GRID`; ``loads``, a sequence of T_high/EA, replaces its loads) through the sweep,
+    with the rods' bending scale ``bending_scale``, and write the shipped table (default
+    ``knotmech/data/`` + :func:`~knotmech.scenes.phase_table.hold_table_resource`)."""
     t0 = datetime.datetime.now()
     k = float(bending_scale)
     if path is None:
@@ -610,10 +611,17 @@ def write_hold_table(path=None, *, knot="clove-hitch", cache_dir=None, processes
     gen = f"python -m validation.clove_phase_diagram --write-hold-table --knot {knot}"
     if k != 1.0:
         gen += f" --bending-scale {k:g}"
+    grid = None
+    if loads is not None:
+        ys = sorted({float(y) for y in loads})
+        if not ys or not all(math.isfinite(y) and 0 < y < 1 for y in ys):
+            raise InputError(f"loads must be T_high/EA values in (0, 1), got {list(loads)!r}")
+        grid = {**pt.HOLD_GRID, "t_over_EA": tuple(ys)}
+        gen += " --loads " + ",".join(f"{y:g}" for y in ys)
     meta = {"generator": gen}
     if note:
         meta["note"] = note
-    table = pt.build_hold_table(knot, processes=processes, cache_dir=cache_dir,
+    table = pt.build_hold_table(knot, grid, processes=processes, cache_dir=cache_dir,
                                 progress=progress, meta=meta, bending_scale=k)  # fmt: skip
     table.meta["written"] = datetime.datetime.now(datetime.timezone.utc).isoformat(
         timespec="seconds")  # fmt: skip
@@ -657,11 +665,25 @@ def _main(argv=None) -> int:
         help="--write-hold-table: the rods' bending scale kappa, B = kappa E pi d^4/64 "
         "(default 1, a solid rod; a fibre rope is of order 0.01)",
     )  # fmt: skip
+    parser.add_argument(
+        "--loads", default=None, metavar="Y1,Y2,...",
+        help="--write-hold-table: the T_high/EA values (default the grid's 1e-4,1e-3,1e-2,0.1,0.3)",
+    )  # fmt: skip
     args = parser.parse_args(argv)
     if args.write_hold_table is not None:
-        table = write_hold_table(args.write_hold_table or None, knot=args.knot,
-                                 cache_dir=args.cache, processes=args.processes,
-                                 note=args.note, bending_scale=args.bending_scale)  # fmt: skip
+        loads = None
+        if args.loads is not None:
+            try:
+                loads = [float(v) for v in args.loads.split(",")]
+            except ValueError:
+                parser.error(f"--loads: comma-separated numbers, got {args.loads!r}")
+        try:
+            table = write_hold_table(args.write_hold_table or None, knot=args.knot,
+                                     cache_dir=args.cache, processes=args.processes,
+                                     note=args.note, bending_scale=args.bending_scale,
+                                     loads=loads)  # fmt: skip
+        except InputError as e:
+            parser.exit(2, f"error: {e}\n")
         print(f"wrote the {table.knot} hold table (kappa = {table.bending_scale:g}): "
               f"{len(table.points)} points")  # fmt: skip
         return 0

@@ -161,3 +161,18 @@ def test_figure_shows_every_mu_line_clear_of_the_legend(tmp_path, monkeypatch):
     ys = [tuple(np.round(np.asarray(ln.get_ydata(), dtype=float), 6)) for ln in lines]
     assert len(set(ys)) == len(ys)  # none hidden under another
     assert any(lab.startswith("mu = 0.5:") for lab in labels)
+
+
+@pytest.mark.parametrize("loads, what", [("0.1,abc", "comma-separated numbers"),
+                                         ("0,0.1", "T_high/EA values in (0, 1)"),
+                                         ("nan", "T_high/EA values in (0, 1)")])  # fmt: skip
+def test_write_hold_table_loads_bad_input_is_one_line(loads, what, tmp_path, capsys):
+    """``--loads`` (the T_high/EA values of a hold table's grid) refuses bad values with one
+    line and exit 2 before any run."""
+    from validation.clove_phase_diagram import _main
+
+    with pytest.raises(SystemExit) as e:
+        _main(["--write-hold-table", str(tmp_path / "t.json"), "--loads", loads])
+    assert e.value.code == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert what in err[-1] and not (tmp_path / "t.json").exists()
