@@ -378,22 +378,26 @@ def test_huge_friction_does_not_overflow(knot, free, capsys):
         assert data["holds"] is (free != "0N")
 
 
-def test_nylon_rope_is_not_answered_by_the_solid_rod_table(capsys):
-    """Nylon's bending scale kappa = 0.01 is 100x below the shipped tables' solid rod
-    (kappa = 1, factor limit 3): the DER answer is undecided with the reason and the
-    --simulate command, and the thick-nip closed form (inside its validity: d <= D, strain
-    200 N / 7.07 kN = 0.0283 <= the limit) decides as for an undecided table."""
+def test_nylon_rope_is_answered_by_the_kappa_001_table(capsys):
+    """Nylon's bending scale kappa = 0.01 picks the shipped kappa-0.01 clove-hitch table
+    (loads 1e-4 to 1e-2 EA, on the flexural clock). 200 N = 0.0283 EA is above its heaviest
+    load, which held there: no answer one way, so the DER is undecided with --simulate and
+    thick-nip decides (inside its validity). 50 N (0.0071 EA) lies inside: the table's eight
+    neighbours (d/2R 0.1176, 0.2308 x 1e-3, 1e-2 EA x mu 0.3, 0.5) held, and it decides."""
     assert main(ISSUE + ["--material", "nylon"]) == 0
     out = capsys.readouterr().out
     assert out.splitlines()[0].startswith("verdict: HOLDS") and "thick-nip" in out
     assert "assumed: bending scale kappa = 0.01" in out
-    der_line = next(x for x in out.splitlines() if x.startswith("DER: undecided"))
-    assert "solid rods (kappa = 1)" in der_line and "kappa = 0.01" in der_line
-    assert "--material nylon --simulate" in der_line
+    nxt = next(x for x in out.splitlines() if x.startswith("next:"))
+    assert "--material nylon --simulate" in nxt
     data = _json(ISSUE + ["--material", "nylon"], capsys)
-    assert data["der"]["holds"] is None and data["der"]["refused"] == "bending_scale"
-    assert data["der"]["table_bending_scale"] == 1.0 and data["inputs"]["bending_scale"] == 0.01
-    assert "DER-table" not in [a["model"] for a in data["answers"]]
+    assert "above the heaviest tabulated (0.01 EA)" in data["der"]["message"]
+    assert data["der"]["holds"] is None and "refused" not in data["der"]
+    assert data["der"]["table_bending_scale"] == 0.01 and data["inputs"]["bending_scale"] == 0.01
+    light = _json([a if a != "200N" else "50N" for a in ISSUE] + ["--material", "nylon"], capsys)
+    assert light["holds"] is True and light["decided_by"] == "DER-table"
+    assert light["der"]["table_bending_scale"] == 0.01 and light["der"]["rule"] == "grid"
+    assert light["creep"]["time_scale"] == pytest.approx(0.888, rel=1e-3)
     # --bending-scale 0.5 is within a factor 3 of the table's 1: the table answers
     half = _json(ISSUE + ["--material", "nylon", "--bending-scale", "0.5"], capsys)
     assert "refused" not in half["der"] and half["inputs"]["bending_scale"] == 0.5
