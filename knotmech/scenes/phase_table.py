@@ -113,11 +113,11 @@ IMC_PROTOCOL = dict(settle_time=0.2, load_time=0.2, hold_time=0.4, dt=2e-3, n_fr
 CREEP_CRITERION = "creep-speed"
 CREEP_LIMIT = 1e-3  #: [d/s] default: holds when the loose end creeps slower than this
 CREEP_WINDOW = 1.0  #: [s] the creep speed is measured over the last this-long of the hold
+#: meta ``protocol_clock`` of a table whose points ran on the flexural clock below
+PROTOCOL_CLOCK = "flexural"
 #: the protocol's clock: its times (and its drag rate, set by the settle time) are in units of
 #: this rod's flexural time d / (sqrt(kappa) sqrt(E/rho)), the clove-hitch paper's VPS32 rod
 #: (:data:`ROD_DIAMETER`, :data:`YOUNGS_MODULUS`, :data:`DENSITY`, kappa = 1): 0.121 ms
-#: meta ``protocol_clock`` of a table whose points ran on that clock
-PROTOCOL_CLOCK = "flexural"
 REFERENCE_FLEXURAL_TIME = ROD_DIAMETER / (YOUNGS_MODULUS / DENSITY) ** 0.5
 MAX_NODES = 200  #: node cap of :func:`point_geometry` (large posts get longer edges)
 
