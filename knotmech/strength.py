@@ -36,7 +36,7 @@ from __future__ import annotations
 
 import json
 from fractions import Fraction
-from functools import lru_cache
+from functools import cache
 from importlib import resources
 from typing import NamedTuple
 
@@ -145,7 +145,7 @@ class FrictionRange(NamedTuple):
 # --------------------------------------------------------------------------- data
 
 
-@lru_cache(maxsize=None)
+@cache
 def _data(name: str) -> dict:
     text = resources.files("knotmech").joinpath("data", "strength", name).read_text("utf-8")
     return json.loads(text)
@@ -165,7 +165,7 @@ class _Table(NamedTuple):
     source: str
 
 
-@lru_cache(maxsize=None)
+@cache
 def _mbs_tables() -> tuple:
     tables = []
     for t in _data("mbs.json")["tables"]:
@@ -272,7 +272,7 @@ def breaking_load(material, rod_diameter) -> Estimate:
         )
     first = np.argmax(covered, axis=0)
     nominal = values[first, np.arange(flat.size)]
-    used = [t.source for t, c in zip(tables, covered.any(axis=1)) if c]
+    used = [t.source for t, c in zip(tables, covered.any(axis=1), strict=True) if c]
     shape = np.shape(d)
     return Estimate(
         _shaped(nominal, shape),
@@ -306,7 +306,7 @@ class _Row(NamedTuple):
     source: str
 
 
-@lru_cache(maxsize=None)
+@cache
 def _efficiency_rows() -> tuple:
     data = _data("knot_efficiency.json")
     rows = []
@@ -364,7 +364,7 @@ def _nearest_post(rows: list, post_diameter: float | None) -> list:
         return rows
     gap = [abs(np.log(r.post_diameter / post_diameter)) for r in sized]
     best = min(gap)
-    keep = {id(r) for r, g in zip(sized, gap) if g == best}
+    keep = {id(r) for r, g in zip(sized, gap, strict=True) if g == best}
     return [r for r in rows if r.post_diameter is None or id(r) in keep]
 
 
@@ -486,9 +486,7 @@ def friction_range(material, counterface) -> FrictionRange:
             + (f" ({note})" if note else "")
         )
     sources = "; ".join(f"{r['source']} ({r['where']})" for r in rows)
-    return FrictionRange(
-        min(r["mu"][0] for r in rows), max(r["mu"][1] for r in rows), sources
-    )
+    return FrictionRange(min(r["mu"][0] for r in rows), max(r["mu"][1] for r in rows), sources)
 
 
 # ------------------------------------------------------------------- slip tests
