@@ -302,3 +302,11 @@ def test_out_of_table_message_gives_the_range():
 def test_unknown_counterface_lists_the_known_names():
     with pytest.raises(InputError, match="aluminium, rope, steel, wood"):
         strength.friction_range("nylon", "glass")
+
+
+def test_kernmantle_ratings_meet_the_en1891_minimums():
+    # EN 1891: type A >= 22 kN, type B >= 18 kN new, without terminations
+    # (hoater-ropes.com 'EN 1891 Standard Explained'; besafety manual: type A MBL 2200 kg)
+    t = _table("nylon-kernmantle-bluewater")
+    assert np.all(t.loads >= 18e3)
+    assert np.all(t.loads[t.diameters >= 10.5e-3] >= 22e3)
