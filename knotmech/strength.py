@@ -49,6 +49,7 @@ __all__ = [
     "Estimate",
     "FrictionRange",
     "NoDataError",
+    "StrengthTable",
     "breaking_load",
     "breaking_load_tables",
     "counterface_names",
@@ -157,7 +158,9 @@ def _length(text: str, unit: str) -> float:
     return float(value) * LENGTH_UNITS[unit]
 
 
-class _Table(NamedTuple):
+class StrengthTable(NamedTuple):
+    """One breaking-strength table: ``diameters`` [m] increasing, ``loads`` [N]."""
+
     id: str
     material: str
     diameters: np.ndarray  # [m], increasing
@@ -172,7 +175,7 @@ def _mbs_tables() -> tuple:
         d = np.array([_length(row[0], t["diameter_unit"]) for row in t["rows"]])
         f = np.array([float(row[1]) * LOAD_UNITS[t["load_unit"]] for row in t["rows"]])
         source = f"{t['source']} ({t['where']})"
-        tables.append(_Table(t["id"], t["material"], d, f, source))
+        tables.append(StrengthTable(t["id"], t["material"], d, f, source))
     return tuple(tables)
 
 
@@ -186,7 +189,8 @@ def breaking_load_tables(material) -> tuple:
 
     Returns
     -------
-    tuple of (id, diameters [m], loads [N], source)
+    tuple of StrengthTable
+        (id, material, diameters [m], loads [N], source), in priority order.
     """
     key = _material_key(material)
     return tuple(t for t in _mbs_tables() if t.material == key)
@@ -219,6 +223,13 @@ def _diameter(argument: str, value) -> np.ndarray:
     if not np.all(np.isfinite(arr)) or np.any(arr <= 0):
         raise InputError(f"{argument} must be finite and > 0 m, got {value!r}")
     return arr
+
+
+def _one_diameter(argument: str, value) -> float:
+    arr = _diameter(argument, value)
+    if arr.size != 1:
+        raise InputError(f"{argument} must be one diameter in metres, got {value!r}")
+    return float(arr.reshape(()))
 
 
 # ---------------------------------------------------------------- breaking load
@@ -282,7 +293,7 @@ def breaking_load(material, rod_diameter) -> Estimate:
     )
 
 
-def _interp_d2(table: _Table, d: np.ndarray) -> np.ndarray:
+def _interp_d2(table: StrengthTable, d: np.ndarray) -> np.ndarray:
     """Loads of ``table`` at diameters ``d`` [m], linear in d^2; NaN outside."""
     d2 = d**2
     out = np.interp(d2, table.diameters**2, table.loads)
@@ -398,7 +409,7 @@ def knot_efficiency(knot, material=None, post_diameter=None) -> Estimate:
     """
     name = _knot_key(knot)
     key = None if material is None else _material_key(material)
-    post = None if post_diameter is None else float(_diameter("post_diameter", post_diameter))
+    post = None if post_diameter is None else _one_diameter("post_diameter", post_diameter)
     rows = _nearest_post(_candidate_rows(name, key), post)
     if not rows:
         what = name if key is None else f"{name} in {key}"

@@ -279,6 +279,7 @@ BAD_CALLS = [
     ("knot", lambda: strength.knot_efficiency(True)),
     ("post_diameter", lambda: strength.knot_efficiency("bowline", post_diameter=-1)),
     ("post_diameter", lambda: strength.knot_efficiency("bowline", post_diameter=False)),
+    ("post_diameter", lambda: strength.knot_efficiency("bowline", post_diameter=[0.01, 0.02])),
     ("counterface", lambda: strength.friction_range("nylon", "glass")),
     ("counterface", lambda: strength.friction_range("nylon", 3)),
     ("material", lambda: strength.friction_range("cotton", "steel")),
@@ -310,3 +311,10 @@ def test_kernmantle_ratings_meet_the_en1891_minimums():
     t = _table("nylon-kernmantle-bluewater")
     assert np.all(t.loads >= 18e3)
     assert np.all(t.loads[t.diameters >= 10.5e-3] >= 22e3)
+
+
+def test_a_material_object_is_accepted():
+    from knotmech.materials import material
+
+    est = strength.breaking_load(material("nylon"), 0.0127)
+    assert est.nominal == strength.breaking_load("polyamide", 0.0127).nominal
