@@ -47,7 +47,7 @@ def _skew(a):
     return s
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _write_block(rows, cols, vals, k0, row_dofs, col_dofs, m):
     """Write the 3x3 block ``m`` (d force[row_dofs] / d q[col_dofs]) as triplets at slots
     k0 + 3 a + b."""
@@ -59,7 +59,7 @@ def _write_block(rows, cols, vals, k0, row_dofs, col_dofs, m):
             vals[k] = m[a, b]
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _clear_contact(i, c, base, node_dofs, rows, cols, vals, out_normal, out_friction, out_slip):
     """Zero the ENTRIES_PER_CONTACT triplet slots and the outputs of node ``i`` and
     cylinder ``c`` (mode 0: slots left unused stay zero-valued)."""
@@ -73,7 +73,7 @@ def _clear_contact(i, c, base, node_dofs, rows, cols, vals, out_normal, out_fric
         out_friction[i, c, m] = 0.0
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _radial_gap(x, point, axis, cyl_radius, half_length, node_radius, sharpness):
     """Radial vector, its length rho [m] and the signed gap g = rho - (R + r) [m] of a node
     at ``x`` from a cylinder; ``far``: beyond the penalty's reach (k g > 40), past the
@@ -87,7 +87,7 @@ def _radial_gap(x, point, axis, cyl_radius, half_length, node_radius, sharpness)
     return radial, rho, gap, far
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _normal_term(n, axis, rho, de, d2e, normal, dofs, base, force, rows, cols, vals):
     """Penalty force N n on the node and its Jacobian block at ``base``:
     dF/dx = -(d2E n n^T + dE (P_a - n n^T)/rho), P_a = I - a a^T (module docstring's E)."""
@@ -98,7 +98,7 @@ def _normal_term(n, axis, rho, de, d2e, normal, dofs, base, force, rows, cols, v
     _write_block(rows, cols, vals, base, dofs, dofs, K)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _friction_trial(x, anc, n, kw, mu, normal):
     """Trial of the return mapping (Wriggers sect. 5.2.2): the tangential offset u from the
     anchor, |u|, the Coulomb limit mu N [N] and whether the trial force k_t w |u| exceeds
@@ -111,7 +111,7 @@ def _friction_trial(x, anc, n, kw, mu, normal):
     return u, unorm, limit, slip
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _friction_energy(limit, unorm, kw, slip):
     """Stored energy [J] of the tangential spring (stick) or the plastic potential
     mu N |u| - (mu N)^2/(2 k_t w) (slip), continuous at the yield point."""
@@ -120,7 +120,7 @@ def _friction_energy(limit, unorm, kw, slip):
     return 0.5 * kw * unorm * unorm
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _commit_anchor(i, c, x, anc, u, unorm, limit, kw, slip, anchor, anchor_valid, slipping):
     """Return mapping's state update (mode 1): a sliding contact's anchor follows the node
     to the yield distance mu N/(k_t w) behind it; a sticking one keeps its anchor."""
@@ -132,7 +132,7 @@ def _commit_anchor(i, c, x, anc, u, unorm, limit, kw, slip, anchor, anchor_valid
     slipping[i, c] = slip
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _friction_force(u, unorm, n, kw, mu, limit, slip, dnormal_dg):
     """Friction force F_t [N] and its Jacobian dF_t/dx (normal direction lagged): stick
     F_t = -k_t w u, J = -k_t w P_n; slip F_t = -mu N u/|u|, J = -(mu N/|u|)(I - uh uh^T) P_n
