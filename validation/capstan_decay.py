@@ -33,6 +33,7 @@ import numpy as np
 
 from knotmech.analytic.capstan import mu_eff, mu_from_mu_eff
 from knotmech.errors import InputError
+from knotmech.materials import CLOVE_ROD_DIAMETER, VPS32_DENSITY, VPS32_YOUNGS_MODULUS
 from knotmech.plotting import new_axes, tension_decay_plot
 from knotmech.sweep import TaskFailure
 
@@ -85,9 +86,9 @@ def fit_decay_rate(s_over_R, tension, *, s_min=None, s_max=None) -> float:
 
 
 # DER set-up (the clove-hitch paper's rod: d = 4 mm, VPS32 E = 1.26 MPa, 1160 kg/m^3)
-ROD_DIAMETER = 4e-3  #: [m]
-YOUNGS_MODULUS = 1.26e6  #: [Pa]
-DENSITY = 1160.0  #: [kg/m^3]
+ROD_DIAMETER = CLOVE_ROD_DIAMETER  #: [m]
+YOUNGS_MODULUS = VPS32_YOUNGS_MODULUS  #: [Pa]
+DENSITY = VPS32_DENSITY  #: [kg/m^3]
 T_LOW = 0.05  #: [N] dead load on the low-tension end
 EPS2 = 0.01  #: EI / (T_low R^2): rope-like bending, short lift-off boundary layers
 TRIM = 0.1  #: fraction of the contact arc left out of the fit at each end (lift-off layers)

@@ -30,6 +30,7 @@ from pathlib import Path
 import numpy as np
 
 from knotmech.analytic.pinch import PINCH_AMONTONS_LIMIT, pinch_load_parameter
+from knotmech.materials import CLOVE_ROD_DIAMETER, VPS32_YOUNGS_MODULUS
 from knotmech.plotting import new_axes
 from knotmech.sweep import TaskFailure, sweep
 
@@ -43,9 +44,9 @@ SUMMARY = (
     "paper, sec. 9 and Fig. 5d: within 3 % for x < 0.05)."
 )
 MU = 0.32  #: rod-cylinder friction coefficient (the clove-hitch paper's VPS32 value)
-ROD_DIAMETER = 4e-3  #: [m] d
+ROD_DIAMETER = CLOVE_ROD_DIAMETER  #: [m] d
 CYLINDER_DIAMETER = 8e-3  #: [m] D (clove-hitch paper, sec. 9)
-YOUNGS_MODULUS = 1.26e6  #: [Pa] VPS32
+YOUNGS_MODULUS = VPS32_YOUNGS_MODULUS  #: [Pa] VPS32
 X_QUICK = (0.005, 0.01, 0.02, 0.04, 0.08, 0.15, 0.3)
 X_FULL = tuple(np.round(np.geomspace(0.005, 0.3, 13), 5))
 N_ELEMENTS = 180  #: rod elements (edge 0.5 mm = d/8 on the 9 cm rod)
