@@ -58,14 +58,15 @@ import time
 import numpy as np
 
 from knotmech.analytic.capstan import mu_eff
+from knotmech.materials import CLOVE_ROD_DIAMETER, VPS32_DENSITY, VPS32_YOUNGS_MODULUS
 from knotmech.scenes.capstan import _centreline, capstan
 
-D_ROD = 4e-3
+D_ROD = CLOVE_ROD_DIAMETER
 DD = 4.0
 MU = 0.5
 THETA = np.pi
-E = 1.26e6
-RHO = 1160.0
+E = VPS32_YOUNGS_MODULUS
+RHO = VPS32_DENSITY
 N_EL = 120
 T_END = 1.0
 RAMP = 0.1

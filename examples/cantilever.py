@@ -13,8 +13,6 @@ import argparse
 import sys
 from pathlib import Path
 
-import numpy as np
-
 #: default output folder, relative to the current directory (a scratch folder, gitignored)
 DEFAULT_OUT = Path("knotmech-examples")
 
@@ -52,33 +50,15 @@ def summary_lines(system, result) -> list[str]:
 
 def plot(result, path) -> Path:
     """Draw the snapshots and the tip height against time into ``path`` (PNG)."""
-    import matplotlib
+    from knotmech.plotting import new_figure, node_track_plot, rod_snapshots_plot, save_figure
 
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    path = Path(path)
-    fig, (ax1, ax2) = plt.subplots(1, 2, figsize=(9, 3.6), gridspec_kw={"width_ratios": [1.2, 1]})
-    cmap = plt.get_cmap("viridis")
-    frames = np.linspace(0, len(result.times) - 1, 9).astype(int)
-    for k in frames:
-        x = result.positions[k]
-        ax1.plot(x[:, 0], x[:, 2], color=cmap(k / frames[-1]), lw=1.5)
-    ax1.plot(result.positions[-1, :, 0], result.positions[-1, :, 2], "k", lw=2.5, label="t = 2 s")
-    ax1.set_aspect("equal")
-    ax1.set_xlabel("x [m]")
-    ax1.set_ylabel("z [m]")
-    ax1.set_title("snapshots, every 0.25 s")
-    ax1.legend(loc="lower left")
-    ax2.plot(result.times, result.positions[:, -1, 2], "C0")
-    ax2.set_xlabel("t [s]")
+    fig, (ax1, ax2) = new_figure(2, figsize=(9, 3.6), width_ratios=[1.2, 1])
+    rod_snapshots_plot(result, n_frames=9, plane="xz", ax=ax1, title="snapshots, every 0.25 s")
+    node_track_plot(result, node=-1, axis="z", ax=ax2,
+                    title=f"{result.stats['steps']} steps, "
+                    f"{result.stats['newton_iterations']} Newton its")  # fmt: skip
     ax2.set_ylabel("tip height [m]")
-    ax2.set_title(f"{result.stats['steps']} steps, {result.stats['newton_iterations']} Newton its")
-    fig.tight_layout()
-    path.parent.mkdir(parents=True, exist_ok=True)
-    fig.savefig(path, dpi=120)
-    plt.close(fig)
-    return path
+    return save_figure(fig, path)
 
 
 def main(argv=None) -> int:

@@ -100,6 +100,10 @@ Presets and sources (conversions: 1 kgf = 9.80665 N, 1 lbf = 4.44822 N):
     density of 1150 kg/m^3: a protocol second is sqrt(1160/1150) = 1.004 s for the preset,
     :func:`knotmech.scenes.phase_table.protocol_time_scale`). kappa = 1: a solid
     rod (exact by construction; the tables' meta has no ``bending_scale``, i.e. 1).
+
+The reference rods of the source papers (VPS32, the clove-hitch scene's rod geometry, the
+implicit-contact-model paper's rod, the coated-rod paper's rubber rod, the tables' density)
+are module constants below, each with its source: import them, do not retype them.
 """
 
 from __future__ import annotations
@@ -108,7 +112,70 @@ from dataclasses import asdict, dataclass
 
 from knotmech.errors import InputError
 
-__all__ = ["Material", "MATERIALS", "material", "material_names", "format_modulus", "VPS32"]
+__all__ = [
+    "Material",
+    "MATERIALS",
+    "material",
+    "material_names",
+    "format_modulus",
+    "VPS32",
+    "VPS32_YOUNGS_MODULUS",
+    "VPS32_DENSITY",
+    "CLOVE_ROD_DIAMETER",
+    "CLOVE_ROD_TAIL",
+    "CLOVE_ROD_EDGE",
+    "PHASE_TABLE_DENSITY",
+    "IMC_YOUNGS_MODULUS",
+    "IMC_DENSITY",
+    "COATED_YOUNGS_MODULUS",
+    "COATED_ROD_DIAMETER",
+    "COATED_DENSITY",
+    "DEMO_ROD_YOUNGS_MODULUS",
+    "DEMO_ROD_DENSITY",
+]
+
+# --- the reference rods of the source papers (one home for each number) ----------------
+# Every rod the scenes, validations, benchmarks and tests simulate with a paper's numbers
+# takes them from here. Where two numbers were used for what looks like one rod, both are
+# named below with what each one is.
+
+#: [Pa] VPS32 (Elite Double 32, Zhermack): clove-hitch paper (Extreme Mech. Lett., DOI
+#: 10.1016/j.eml.2022.101788), sec. 2 (a): "Young's modulus E = 1.26 MPa, density
+#: rho = 1160 kg/m^3"
+VPS32_YOUNGS_MODULUS = 1.26e6
+#: [kg/m^3] VPS32's density, same place (the only density either paper states for VPS32;
+#: the coated-rod paper's rod is natural rubber and states none)
+VPS32_DENSITY = 1160.0
+#: [m] the clove-hitch paper's rod diameter for the mechanical tests (sec. 2, sec. 4)
+CLOVE_ROD_DIAMETER = 4e-3
+#: [m] straight tail at each end of the clove-hitch scene's rod (the paper's L = 374 mm
+#: at D = 30 mm: 374 mm less the wraps)
+CLOVE_ROD_TAIL = 0.064
+#: [m] rest edge length of the clove-hitch scene's rod (120 nodes on 374 mm)
+CLOVE_ROD_EDGE = 0.374 / 119
+#: [kg/m^3] the density the shipped DER clove-hitch phase tables (``clove_phase_table*.json``)
+#: were computed with: NOT a measured value (VPS32 is 1160 kg/m^3), kept because the
+#: tables are golden; ``knotmech.scenes.phase_table.protocol_time_scale`` converts
+#: (a protocol second is sqrt(1160/1150) = 1.004 s of the VPS32 rod)
+PHASE_TABLE_DENSITY = 1150.0
+#: [Pa] the implicit-contact-model paper's rod (Choi, Tong & Jawed, J. Appl. Mech. 88,
+#: 051010, 2021; its option file): E = 0.18 MPa (another rod than VPS32)
+IMC_YOUNGS_MODULUS = 0.18e6
+#: [kg/m^3] its density, same option file
+IMC_DENSITY = 1180.0
+#: [Pa] the coated-rod paper's rod (J. Appl. Mech., DOI 10.1115/1.4055544), sec. 3.1:
+#: natural rubber, E = 1.83 MPa, d = 1/16 in
+COATED_YOUNGS_MODULUS = 1.83e6
+#: [m] its diameter, 1/16 in (the paper: "1.59 mm approximately")
+COATED_ROD_DIAMETER = 1.59e-3
+#: [kg/m^3] natural rubber, ASSUMED: the paper gives no density (inertia is negligible at
+#: its pull speeds)
+COATED_DENSITY = 930.0
+#: [Pa] the soft rod of the bend scenes' defaults (and the centreline tests): NOT a paper's rod, a
+#: round generic elastomer (E = 1 MPa) for demonstrations and tests
+DEMO_ROD_YOUNGS_MODULUS = 1.0e6
+#: [kg/m^3] its density (a generic silicone rubber, 1100 kg/m^3; no source)
+DEMO_ROD_DENSITY = 1100.0
 
 
 @dataclass(frozen=True)
@@ -157,9 +224,9 @@ class Material:
 VPS32 = Material(
     "vps32",
     "VPS32 silicone rod (the clove-hitch paper's; the DER tables' material)",
-    1.26e6,
-    (1.26e6, 1.26e6),
-    1160.0,
+    VPS32_YOUNGS_MODULUS,
+    (VPS32_YOUNGS_MODULUS, VPS32_YOUNGS_MODULUS),
+    VPS32_DENSITY,
     "clove-hitch paper (Extreme Mech. Lett., DOI 10.1016/j.eml.2022.101788), sec. 2",
     1.0,
     (1.0, 1.0),

@@ -81,3 +81,30 @@ def test_regions_are_shaded_and_force_curves_marked():
     assert mark.get_xdata()[0] == 0.25
     with pytest.raises(InputError, match="non-empty"):
         force_curve_plot({})
+
+
+def test_rod_plots_draw_the_recorded_frames(tmp_path):
+    """Snapshots and a node's track of a (hand-made) Result: what is drawn is the data."""
+    from types import SimpleNamespace
+
+    from knotmech.plotting import new_figure, node_track_plot, rod_snapshots_plot, save_figure
+
+    t = np.linspace(0.0, 1.0, 5)
+    s = np.linspace(0.0, 0.1, 4)
+    # frame k: a straight rod along x drooping linearly, tip height -0.01 k
+    pos = np.array([np.c_[s, 0 * s, -0.1 * k * s] for k in range(5)])
+    res = SimpleNamespace(times=t, positions=pos)
+    fig, (a1, a2) = new_figure(2)
+    rod_snapshots_plot(res, n_frames=3, plane="xz", ax=a1)
+    lines = a1.get_lines()
+    assert len(lines) == 4  # frames 0, 2, 4 and the last one in black
+    np.testing.assert_allclose(lines[1].get_ydata(), pos[2, :, 2])
+    assert lines[-1].get_label() == "t = 1 s"
+    (track,) = node_track_plot(res, node=-1, axis="z", ax=a2).get_lines()
+    np.testing.assert_allclose(track.get_ydata(), -0.01 * np.arange(5))
+    path = save_figure(fig, tmp_path / "sub" / "rod.png")
+    assert path.stat().st_size > 1000
+    with pytest.raises(InputError, match="plane"):
+        rod_snapshots_plot(res, plane="xx")
+    with pytest.raises(InputError, match="node"):
+        node_track_plot(res, node=7)

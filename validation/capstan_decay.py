@@ -33,6 +33,7 @@ import numpy as np
 
 from knotmech.analytic.capstan import mu_eff, mu_from_mu_eff
 from knotmech.errors import InputError
+from knotmech.materials import CLOVE_ROD_DIAMETER, VPS32_DENSITY, VPS32_YOUNGS_MODULUS
 from knotmech.plotting import new_axes, tension_decay_plot
 from knotmech.sweep import TaskFailure
 
@@ -85,9 +86,9 @@ def fit_decay_rate(s_over_R, tension, *, s_min=None, s_max=None) -> float:
 
 
 # DER set-up (the clove-hitch paper's rod: d = 4 mm, VPS32 E = 1.26 MPa, 1160 kg/m^3)
-ROD_DIAMETER = 4e-3  #: [m]
-YOUNGS_MODULUS = 1.26e6  #: [Pa]
-DENSITY = 1160.0  #: [kg/m^3]
+ROD_DIAMETER = CLOVE_ROD_DIAMETER  #: [m]
+YOUNGS_MODULUS = VPS32_YOUNGS_MODULUS  #: [Pa]
+DENSITY = VPS32_DENSITY  #: [kg/m^3]
 T_LOW = 0.05  #: [N] dead load on the low-tension end
 EPS2 = 0.01  #: EI / (T_low R^2): rope-like bending, short lift-off boundary layers
 TRIM = 0.1  #: fraction of the contact arc left out of the fit at each end (lift-off layers)
@@ -212,12 +213,8 @@ def run(quick=True, out_dir=".", progress=False, scheduler=None, der=None, proce
     """
     ratios = D_OVER_D_QUICK if quick else D_OVER_D_FULL
     me = {Dt: float(mu_eff(MU, Dt)) for Dt in ratios}
-
     # closed-form curves, and the fitting routine checked on them
     s_cf = np.linspace(0.0, 2 * np.pi * WRAP_TURNS, 200 if quick else 1000)
-    cf_fitted = {Dt: fit_decay_rate(s_cf, np.exp(-me[Dt] * s_cf)) for Dt in ratios}
-    cf_err = max(abs(cf_fitted[Dt] - me[Dt]) / me[Dt] for Dt in ratios)
-
     sim = None
     if der is not False:
         sim = der_profiles(
@@ -231,7 +228,36 @@ def run(quick=True, out_dir=".", progress=False, scheduler=None, der=None, proce
         if sim is None and der:
             raise InputError("der=True but knotmech.scenes.capstan is not available")
     source = "DER (knotmech.scenes.capstan)" if sim else "closed form only (no DER scene)"
+    numbers, checks, notes = _closed_form_summary(ratios, me, s_cf, source)
+    profiles, der_fitted = {}, {}
+    if sim:
+        profiles, der_fitted = _der_summary(sim, ratios, me, numbers, checks, notes)
+        s_plot = np.linspace(0.0, max(p[0].max() for p in profiles.values()), 200)
+    else:
+        notes.append(
+            "DER tension profiles are not in this run (knotmech.scenes.capstan unavailable or "
+            "der=False); the fitted rates only check the fitting routine."
+        )
+        s_plot = s_cf
+    figures = [
+        _profiles_figure(s_plot, ratios, profiles, sim, out_dir),
+        _mu_eff_figure(ratios, der_fitted, numbers, out_dir),
+    ]
+    return finish(
+        NAME,
+        out_dir=out_dir,
+        checks=checks,
+        numbers=numbers,
+        figures=figures,
+        notes=notes,
+        quick=quick,
+    )
 
+
+def _closed_form_summary(ratios, me, s_cf, source):
+    """Numbers, checks and notes of the closed forms (mu_eff and the fitting routine)."""
+    cf_fitted = {Dt: fit_decay_rate(s_cf, np.exp(-me[Dt] * s_cf)) for Dt in ratios}
+    cf_err = max(abs(cf_fitted[Dt] - me[Dt]) / me[Dt] for Dt in ratios)
     numbers = {
         "mu": MU,
         "D_over_d": list(ratios),
@@ -262,69 +288,68 @@ def run(quick=True, out_dir=".", progress=False, scheduler=None, der=None, proce
         "Reference: clove-hitch paper (Extreme Mech. Lett., DOI 10.1016/j.eml.2022.101788), "
         "eq. 3 and Fig. 3b; Jung, Pan & Kang, Mech. Mach. Theory 43 (2008) 661.",
     ]
+    return numbers, checks, notes
 
+
+def _der_summary(sim, ratios, me, numbers, checks, notes):
+    """Fit the DER profiles; add their numbers, checks and notes (in place). Returns the
+    profiles {D/d: (s/R, T/T_high)} and the fitted rates {D/d: rate}."""
     profiles, der_fitted = {}, {}
-    if sim:
-        wrap = sim["wrap_angle"]
-        for Dt, (s_, t_, keep) in sim["profiles"].items():
-            profiles[Dt] = (s_, t_)
-            der_fitted[Dt] = fit_decay_rate(s_[keep], t_[keep])
-        ok = [Dt for Dt in ratios if Dt in der_fitted]
-        der_err = {Dt: abs(der_fitted[Dt] - me[Dt]) / me[Dt] for Dt in ok}
-        wraps = {Dt: _wrap_of(Dt, wrap) for Dt in ratios}
-        ratio_err = {Dt: abs(sim["ratio"][Dt] / float(np.exp(me[Dt] * wraps[Dt])) - 1) for Dt in ok}
-        control = sim["control"]
-        control_rate = (
-            fit_decay_rate(control[0][control[2]], control[1][control[2]]) if control else None
-        )
-        numbers.update(
-            {
-                "der_wrap_angle": wrap,
-                "der_wrap_angle_per_D_over_d": [wraps[Dt] for Dt in ratios],
-                "der_fitted_rate": [der_fitted.get(Dt) for Dt in ratios],
-                "der_rel_err_vs_mu_eff": [der_err.get(Dt) for Dt in ratios],
-                "der_ratio_T_high_over_T_low": [sim["ratio"].get(Dt) for Dt in ratios],
-                "der_ratio_rel_err_vs_exp_mu_eff_theta": [ratio_err.get(Dt) for Dt in ratios],
-                "der_control_centreline_friction_D_over_d": ratios[0],
-                "der_control_rate": control_rate,
-                "der_failed": sim["failed"],
-                "der_runs_computed": sim["n_computed"],
-                "der_runs_cached": sim["n_cached"],
-            }
-        )
-        checks.update(
-            {
-                "every DER run slid and touched the post": not sim["failed"],
-                "DER decay rate = mu_eff within 5 % for every D/d": bool(ok)
-                and max(der_err.values()) < 0.05,
-                "DER T_high/T_low = exp(mu_eff theta) within 5 %": bool(ok)
-                and max(ratio_err.values()) < 0.05,
-                "control: friction at the centreline decays at mu within 5 %": control_rate
-                is not None
-                and abs(control_rate - MU) / MU < 0.05,
-            }
-        )
-        notes.append(
-            f"DER: rod d = {ROD_DIAMETER * 1e3:g} mm, E = {YOUNGS_MODULUS / 1e6:g} MPa, pulled "
-            f"over a post with T_low = {T_LOW:g} N, wrap {wrap / np.pi:g} pi, mu = {MU:g}; "
-            f"bending stiffness reduced to EI = {EPS2:g} T_low R^2 (rope-like) so that the "
-            "lift-off boundary layers are short; the contact diameter stays d. Rates fitted on "
-            f"the contact arc without {TRIM:.0%} at each end."
-        )
-        notes.append(
-            "Control: the same thickest rod with friction applied at the centreline (no "
-            "couple) decays at mu, as the ideal rope: the couple of the surface friction is "
-            "what lowers the rate to mu_eff."
-        )
-        s_plot = np.linspace(0.0, max(p[0].max() for p in profiles.values()), 200)
-    else:
-        notes.append(
-            "DER tension profiles are not in this run (knotmech.scenes.capstan unavailable or "
-            "der=False); the fitted rates only check the fitting routine."
-        )
-        s_plot = s_cf
+    wrap = sim["wrap_angle"]
+    for Dt, (s_, t_, keep) in sim["profiles"].items():
+        profiles[Dt] = (s_, t_)
+        der_fitted[Dt] = fit_decay_rate(s_[keep], t_[keep])
+    ok = [Dt for Dt in ratios if Dt in der_fitted]
+    der_err = {Dt: abs(der_fitted[Dt] - me[Dt]) / me[Dt] for Dt in ok}
+    wraps = {Dt: _wrap_of(Dt, wrap) for Dt in ratios}
+    ratio_err = {Dt: abs(sim["ratio"][Dt] / float(np.exp(me[Dt] * wraps[Dt])) - 1) for Dt in ok}
+    control = sim["control"]
+    control_rate = (
+        fit_decay_rate(control[0][control[2]], control[1][control[2]]) if control else None
+    )
+    numbers.update(
+        {
+            "der_wrap_angle": wrap,
+            "der_wrap_angle_per_D_over_d": [wraps[Dt] for Dt in ratios],
+            "der_fitted_rate": [der_fitted.get(Dt) for Dt in ratios],
+            "der_rel_err_vs_mu_eff": [der_err.get(Dt) for Dt in ratios],
+            "der_ratio_T_high_over_T_low": [sim["ratio"].get(Dt) for Dt in ratios],
+            "der_ratio_rel_err_vs_exp_mu_eff_theta": [ratio_err.get(Dt) for Dt in ratios],
+            "der_control_centreline_friction_D_over_d": ratios[0],
+            "der_control_rate": control_rate,
+            "der_failed": sim["failed"],
+            "der_runs_computed": sim["n_computed"],
+            "der_runs_cached": sim["n_cached"],
+        }
+    )
+    checks.update(
+        {
+            "every DER run slid and touched the post": not sim["failed"],
+            "DER decay rate = mu_eff within 5 % for every D/d": bool(ok)
+            and max(der_err.values()) < 0.05,
+            "DER T_high/T_low = exp(mu_eff theta) within 5 %": bool(ok)
+            and max(ratio_err.values()) < 0.05,
+            "control: friction at the centreline decays at mu within 5 %": control_rate is not None
+            and abs(control_rate - MU) / MU < 0.05,
+        }
+    )
+    notes.append(
+        f"DER: rod d = {ROD_DIAMETER * 1e3:g} mm, E = {YOUNGS_MODULUS / 1e6:g} MPa, pulled "
+        f"over a post with T_low = {T_LOW:g} N, wrap {wrap / np.pi:g} pi, mu = {MU:g}; "
+        f"bending stiffness reduced to EI = {EPS2:g} T_low R^2 (rope-like) so that the "
+        "lift-off boundary layers are short; the contact diameter stays d. Rates fitted on "
+        f"the contact arc without {TRIM:.0%} at each end."
+    )
+    notes.append(
+        "Control: the same thickest rod with friction applied at the centreline (no "
+        "couple) decays at mu, as the ideal rope: the couple of the surface friction is "
+        "what lowers the rate to mu_eff."
+    )
+    return profiles, der_fitted
 
-    figures = []
+
+def _profiles_figure(s_plot, ratios, profiles, sim, out_dir):
+    """Tension profiles against the closed forms (and the centreline-friction control)."""
     ax = tension_decay_plot(
         s_plot,
         mu=MU,
@@ -343,8 +368,11 @@ def run(quick=True, out_dir=".", progress=False, scheduler=None, der=None, proce
             label=f"DER, friction at the centreline, D/d={ratios[0]:g} (control)",
         )
         ax.legend(fontsize=7, loc="lower left")
-    figures.append(save_figure(ax.figure, out_dir, f"{NAME}_profiles"))
+    return save_figure(ax.figure, out_dir, f"{NAME}_profiles")
 
+
+def _mu_eff_figure(ratios, der_fitted, numbers, out_dir):
+    """mu_eff/mu against D/d for four mu, with the DER fitted rates."""
     dense = np.geomspace(0.5, 1000.0, 200)
     ax = new_axes()
     for m in (0.1, 0.3, 0.5, 1.0):
@@ -371,17 +399,7 @@ def run(quick=True, out_dir=".", progress=False, scheduler=None, der=None, proce
     ax.set_title("thick rods grip less: effective friction on a post")
     ax.legend(fontsize=7)
     ax.grid(True, which="both", alpha=0.3)
-    figures.append(save_figure(ax.figure, out_dir, f"{NAME}_mu_eff"))
-
-    return finish(
-        NAME,
-        out_dir=out_dir,
-        checks=checks,
-        numbers=numbers,
-        figures=figures,
-        notes=notes,
-        quick=quick,
-    )
+    return save_figure(ax.figure, out_dir, f"{NAME}_mu_eff")
 
 
 if __name__ == "__main__":

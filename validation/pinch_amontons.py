@@ -30,6 +30,7 @@ from pathlib import Path
 import numpy as np
 
 from knotmech.analytic.pinch import PINCH_AMONTONS_LIMIT, pinch_load_parameter
+from knotmech.materials import CLOVE_ROD_DIAMETER, VPS32_YOUNGS_MODULUS
 from knotmech.plotting import new_axes
 from knotmech.sweep import TaskFailure, sweep
 
@@ -43,9 +44,9 @@ SUMMARY = (
     "paper, sec. 9 and Fig. 5d: within 3 % for x < 0.05)."
 )
 MU = 0.32  #: rod-cylinder friction coefficient (the clove-hitch paper's VPS32 value)
-ROD_DIAMETER = 4e-3  #: [m] d
+ROD_DIAMETER = CLOVE_ROD_DIAMETER  #: [m] d
 CYLINDER_DIAMETER = 8e-3  #: [m] D (clove-hitch paper, sec. 9)
-YOUNGS_MODULUS = 1.26e6  #: [Pa] VPS32
+YOUNGS_MODULUS = VPS32_YOUNGS_MODULUS  #: [Pa] VPS32
 X_QUICK = (0.005, 0.01, 0.02, 0.04, 0.08, 0.15, 0.3)
 X_FULL = tuple(np.round(np.geomspace(0.005, 0.3, 13), 5))
 N_ELEMENTS = 180  #: rod elements (edge 0.5 mm = d/8 on the 9 cm rod)
@@ -86,6 +87,26 @@ def run(
         x_values = X_QUICK if quick else X_FULL
     xs = np.asarray(x_values, dtype=float)
     loads = normal_load_for(xs)
+    if processes is None:
+        processes = min(2, os.cpu_count() or 1)
+    res = _pull_outs(loads, n_elements, processes, scheduler, out_dir, progress)
+    ratio, ft, failed = _sliding_ratios(xs, res)
+    numbers, checks, max_dev_large = _summary(xs, loads, ratio, ft, failed, res, n_elements)
+    notes = _notes(numbers, max_dev_large, n_elements)
+    figures = [_ratio_figure(xs, ratio, max_dev_large, out_dir)]
+    return finish(
+        NAME,
+        out_dir=out_dir,
+        checks=checks,
+        numbers=numbers,
+        figures=figures,
+        notes=notes,
+        quick=quick,
+    )
+
+
+def _pull_outs(loads, n_elements, processes, scheduler, out_dir, progress):
+    """The DER pinch pull-outs at the normal loads ``loads`` [N] (a cached sweep)."""
     params = [
         dict(
             normal_load=float(f),
@@ -97,9 +118,7 @@ def run(
         )
         for f in loads
     ]
-    if processes is None:
-        processes = min(2, os.cpu_count() or 1)
-    res = sweep(
+    return sweep(
         _pinch_task,
         params,
         processes=processes,
@@ -109,6 +128,10 @@ def run(
         on_error="return",
         desc="pinch DER",
     )
+
+
+def _sliding_ratios(xs, res):
+    """F_t*/(2 mu F_n) and F_t* [N] of each run (nan where it failed) and the failed x."""
     ratio, ft, failed = [], [], []
     for x, r in zip(xs, res, strict=True):
         ok = not isinstance(r, TaskFailure) and r.status == "success"
@@ -117,9 +140,13 @@ def run(
             failed.append(float(x))
         ratio.append(float(r.ratio) if ok else float("nan"))
         ft.append(float(r.sliding_force) if ok else float("nan"))
-    ratio, ft = np.array(ratio), np.array(ft)
-    x_check = pinch_load_parameter(loads, YOUNGS_MODULUS, ROD_DIAMETER, CYLINDER_DIAMETER)
+    return np.array(ratio), np.array(ft), failed
 
+
+def _summary(xs, loads, ratio, ft, failed, res, n_elements):
+    """Numbers and checks of the case; also the largest |ratio - 1| beyond x = 0.1 (or
+    None)."""
+    x_check = pinch_load_parameter(loads, YOUNGS_MODULUS, ROD_DIAMETER, CYLINDER_DIAMETER)
     small = xs < X_SMALL
     large = xs > PINCH_AMONTONS_LIMIT
     err = np.abs(ratio - 1.0)
@@ -130,7 +157,6 @@ def run(
     deviates = max_dev_large is not None and max_dev_large > DEVIATION
     fit_ok = np.isfinite(ft) & small
     slope = float(np.polyfit(loads[fit_ok], ft[fit_ok], 1)[0]) if fit_ok.sum() >= 2 else None
-
     numbers = {
         "mu": MU,
         "rod_diameter_m": ROD_DIAMETER,
@@ -162,6 +188,13 @@ def run(
         checks["dF_t*/dF_n = 2 mu within 3 % (x < 0.05)"] = abs(slope / (2 * MU) - 1) < 0.03
     strain = ft / (YOUNGS_MODULUS * np.pi * ROD_DIAMETER**2 / 4)
     numbers["axial_strain_at_sliding"] = strain
+    return numbers, checks, max_dev_large
+
+
+def _notes(numbers, max_dev_large, n_elements):
+    """What the DER model can and cannot show, the set-up and the reference."""
+    strain = numbers["axial_strain_at_sliding"]
+    large = numbers["x"] > PINCH_AMONTONS_LIMIT
     large_txt = (
         f" For x > 0.1 the DER ratio departs from 1 by up to {max_dev_large:.1%} (the pulled "
         f"rod is then stretched by up to {np.nanmax(strain[large]):.0%}); whatever its cause, "
@@ -183,7 +216,11 @@ def run(
         "Reference: clove-hitch paper (Extreme Mech. Lett., DOI 10.1016/j.eml.2022.101788), "
         "sec. 9, Fig. 5d: Amontons within 3 % for x < 0.05, deviations beyond x ~ 0.1.",
     ]
+    return notes
 
+
+def _ratio_figure(xs, ratio, max_dev_large, out_dir):
+    """F_t*/(2 mu F_n) against x with the Amontons band and the paper's x = 0.1."""
     ax = new_axes(figsize=(6.4, 4.4))
     ok = np.isfinite(ratio)
     ax.semilogx(xs[ok], ratio[ok], "ko-", mfc="none", label="DER pinch (centreline model)")
@@ -206,17 +243,7 @@ def run(
             transform=ax.transAxes, fontsize=7, va="bottom")  # fmt: skip
     ax.legend(fontsize=7, loc="upper left")
     ax.grid(True, which="both", alpha=0.3)
-    figures = [save_figure(ax.figure, out_dir, f"{NAME}_ratio")]
-
-    return finish(
-        NAME,
-        out_dir=out_dir,
-        checks=checks,
-        numbers=numbers,
-        figures=figures,
-        notes=notes,
-        quick=quick,
-    )
+    return save_figure(ax.figure, out_dir, f"{NAME}_ratio")
 
 
 if __name__ == "__main__":

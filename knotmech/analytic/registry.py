@@ -137,6 +137,7 @@ def _optional(module: str, attr: str):
 
 def _register_builtin() -> None:
     from knotmech.analytic import coating, film, knots, pinch
+    from knotmech.materials import VPS32_YOUNGS_MODULUS as E_VPS32  # a leaf, like errors
 
     water = {"viscosity": 1e-3, "speed": 5e-3, "surface_tension": 0.0343}
     # --- film (LLD) -------------------------------------------------------------------
@@ -182,7 +183,7 @@ def _register_builtin() -> None:
     # --- pinch ------------------------------------------------------------------------
     pinch_sample = {
         "normal_force": 1.0,
-        "youngs_modulus": 1.26e6,
+        "youngs_modulus": E_VPS32,
         "rod_diameter": 4e-3,
         "pinch_diameter": 8e-3,
     }
@@ -203,10 +204,10 @@ def _register_builtin() -> None:
     )
     register(
         pinch.effective_modulus,
-        sample={"youngs_modulus": 1.26e6, "poisson_ratio": 0.5},
+        sample={"youngs_modulus": E_VPS32, "poisson_ratio": 0.5},
         positive=("youngs_modulus",),
         nonnegative=("poisson_ratio",),
-        limits=(Limit("rigid partner, nu = 0.5", {}, 1.26e6 / 0.75),),
+        limits=(Limit("rigid partner, nu = 0.5", {}, E_VPS32 / 0.75),),
         reference="Johnson 1985, eq. (4.22)",
     )
     register(
@@ -223,7 +224,7 @@ def _register_builtin() -> None:
             "normal_force": 1.0,
             "radius_1": 2e-3,
             "radius_2": 4e-3,
-            "youngs_modulus": 1.26e6,
+            "youngs_modulus": E_VPS32,
             "poisson_ratio": 0.5,
         },
         positive=("radius_1", "radius_2", "youngs_modulus"),
@@ -233,7 +234,7 @@ def _register_builtin() -> None:
             Limit(
                 "equal radii: a = (3 P R/(4 E*))^(1/3)",
                 {"radius_2": 2e-3},
-                (3.0 * 1.0 * 2e-3 / (4.0 * 1.26e6 / 0.75)) ** (1.0 / 3.0),
+                (3.0 * 1.0 * 2e-3 / (4.0 * E_VPS32 / 0.75)) ** (1.0 / 3.0),
             ),
         ),
         reference="Johnson 1985, sec. 4.2",

@@ -24,7 +24,6 @@ from knotmech.errors import InputError
 __all__ = [
     "TourContext",
     "SECTIONS",
-    "TOUR_KERNELS",
     "kernels_cold",
     "register_section",
     "register",
@@ -43,46 +42,17 @@ class TourContext:
 
 Section = Callable[[TourContext], list]
 
-#: numba kernels that every DER simulation of the tour compiles on a first run (module of
-#: ``knotmech.rod._kernels``, function); with no valid on-disk cache for any of them the
-#: tour says it is compiling
-TOUR_KERNELS = (
-    "stretch.stretch_grad_hess",
-    "bend.bend_grad_hess",
-    "twist.twist_grad_hess",
-    "frames.material_frames",
-    "envelope.env_factor",
-    "envelope.env_solve",
-    "contact_cylinder.cylinder_assemble",
-)
-
 #: printed first when the kernels still have to be compiled
 COMPILING_NOTICE = "compiling kernels (first run only, about 1 min; later runs take seconds) ..."
 
 
-def kernels_cold(kernels=TOUR_KERNELS) -> bool:
-    """True when one of ``kernels`` has no valid numba cache on disk (it will compile).
+def kernels_cold() -> bool:
+    """True when a kernel of the tour's DER simulations (a rod on a post: elastic, solver
+    and rod-cylinder contact kernels) has no valid numba cache yet: it will compile
+    (:func:`knotmech.rod.kernels_cold`)."""
+    from knotmech.rod import kernels_cold as rod_kernels_cold
 
-    Cheap: imports the kernel modules (no compilation) and reads each kernel's cache
-    index, the same check numba makes before it compiles (an index written for another
-    numba version or an older source file counts as missing). Returns False when numba
-    caching is off (``NUMBA_DISABLE_JIT``), since nothing is compiled then.
-    """
-    import importlib
-
-    for name in kernels:
-        module, func = name.rsplit(".", 1)
-        kernel = getattr(importlib.import_module(f"knotmech.rod._kernels.{module}"), func)
-        cache = getattr(kernel, "_cache", None)
-        index = getattr(cache, "_cache_file", None)
-        if index is None:  # not a caching numba dispatcher (e.g. NUMBA_DISABLE_JIT=1)
-            continue
-        try:
-            if not index._load_index():
-                return True
-        except Exception:  # an unreadable index: numba recompiles, so does the tour
-            return True
-    return False
+    return rod_kernels_cold(cylinder_contact=True)
 
 
 #: reference values of mu_eff for mu = 0.3 (clove-hitch paper, as quoted in issue 2)
@@ -218,14 +188,15 @@ def section_figure(ctx: TourContext) -> list[str]:
 
 def section_der_capstan(ctx: TourContext) -> list[str]:
     """DER: a rod pulled over a post; friction on the surface gives mu_eff, not mu."""
+    from knotmech.materials import VPS32_DENSITY, VPS32_YOUNGS_MODULUS
     from knotmech.scenes.capstan import capstan
 
-    d, D, E = 4e-3, 16e-3, 1.26e6
+    d, D, E = 4e-3, 16e-3, VPS32_YOUNGS_MODULUS
     EA = E * math.pi * d**2 / 4
     R = 0.5 * (D + d)
     common = dict(
         wrap_angle=math.pi, mu=0.5, rod_diameter=d, post_diameter=D, youngs_modulus=E,
-        density=1160.0, t_low=0.01 * EA, bending_stiffness=1e-4 * EA * R**2, n_elements=120,
+        density=VPS32_DENSITY, t_low=0.01 * EA, bending_stiffness=1e-4 * EA * R**2, n_elements=120,
         pull_speed=0.01, pull_distance=0.0085, ramp_time=0.1, dt=0.05,
     )  # fmt: skip
     t0 = time.perf_counter()

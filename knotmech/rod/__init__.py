@@ -30,6 +30,8 @@ Solve
             reaction_torques (+ reaction_edges), tension, bending_moment, twisting_moment,
             energies, final_state; save(path) / load_result(path)
     ElasticWorkspace  elastic energy, gradient and Hessian of a system (for analyses)
+    kernels_cold(cylinder_contact=False, rod_contact=False) -> bool  True when the first
+        simulation of that kind will compile numba kernels (no valid on-disk cache)
 
 Example
 -------
@@ -52,6 +54,7 @@ from .friction import (
 )
 from .interactions import Interaction, PointSpring
 from .jacobian import Triplets
+from .kernels import kernels_cold
 from .loads import EdgeTorque, Gravity, NodeForce, ViscousDamping
 from .results import Result, load_result
 from .solver import SolverOptions, simulate
@@ -85,4 +88,5 @@ __all__ = [
     "stick_slip_weight",
     "default_stick_slip_parameters",
     "candidate_edge_pairs",
+    "kernels_cold",
 ]

@@ -150,6 +150,11 @@ class SolverOptions:
                 raise InputError(f"{name} must be an integer >= 1, got {v!r}")
         if self.save_every is not None:
             check_positive("save_every", self.save_every)
+        self._check_guards()
+        self._check_choices()
+
+    def _check_guards(self) -> None:
+        """The stall, strain and stagnation guards' options."""
         check_range("stall_fraction", self.stall_fraction, 0.0, 1.0)
         if self.stall_steps is not None and (
             int(self.stall_steps) != self.stall_steps or self.stall_steps < 1
@@ -169,6 +174,9 @@ class SolverOptions:
             and (isinstance(sg, (str, bool)) or int(sg) != sg or sg < 1)
         ):
             raise InputError(f"stagnation must be an integer >= 1, 'auto' or None, got {sg!r}")
+
+    def _check_choices(self) -> None:
+        """The options that name a method."""
         if self.predictor not in ("quadratic", "linear"):
             raise InputError(f"predictor must be 'quadratic' or 'linear', got {self.predictor!r}")
         if self.linear_solver not in ("auto", "banded", "sparse"):
@@ -655,30 +663,19 @@ class Stepper:
             raise _StepFailed(f"evaluation failed ({type(exc).__name__}: {exc})") from None
 
     def _iterate(self, q, st, dt, t_new, scales, cross):
+        """Newton iterations from the evaluated start ``q``: return (q_new, iterations) or
+        raise _StepFailed. ``cross``: the first solve may reuse the last step's factors."""
         opt = self.opt
         rel_prev = np.inf
-        stag = self._stagnation
         best, k_best = np.inf, 0
         for k in range(opt.max_newton + 1):
-            if not np.all(np.isfinite(self.f)):
-                raise _StepFailed("non-finite residual", k)
-            ok, rel = self._converged(scales)
-            if k > 0:
-                self._last_ratio = rel / rel_prev
+            ok, rel = self._assess(scales, k, rel_prev)
             if ok:
                 self._check(q, st, dt)
                 return q, k
             if k == opt.max_newton:
                 break
-            if rel <= 0.5 * best:
-                best, k_best = rel, k
-            elif stag is not None and k - k_best >= stag:
-                raise _StepFailed(
-                    f"Newton stagnated: the residual did not halve in {stag} iterations "
-                    f"(residual {rel:.2e} of the tolerance)",
-                    k,
-                    stalled=True,
-                )
+            best, k_best = self._watch_stagnation(rel, k, best, k_best)
             # chord step (the last factors of this step) while they still cut the
             # residual by the factor jacobian_reuse per iteration
             reuse = cross if k == 0 else rel <= opt.jacobian_reuse * rel_prev
@@ -686,40 +683,77 @@ class Stepper:
             rel_prev = rel
             if not np.all(np.isfinite(dq)):
                 raise _StepFailed("non-finite Newton step", k)
-            # backtracking: accept when the incremental potential decreases (Armijo, with a
-            # round-off slack) or the residual norm does
-            r0 = self.rnorm
-            p0 = self.phi
-            slope = float(np.dot(self.f, dq))
-            slack = 1e-13 * (abs(p0) + 1.0)
-            alpha = 1.0
-            for _ in range(opt.max_backtracks + 1):
-                q_try = q + alpha * dq
-                self.last_iterate = q_try  # what a failed attempt reached (strain check)
-                scales = self.evaluate(q_try, st, dt, t_new)
-                r1 = self.rnorm
-                if np.isfinite(r1) and (
-                    not opt.line_search
-                    or r1 <= (1.0 - 1e-4 * alpha) * r0
-                    or (slope < 0 and self.phi <= p0 + 1e-4 * alpha * slope + slack)
-                ):
-                    break
-                alpha *= 0.5
-            else:
-                if not (np.isfinite(r1) and rel < 1e3):
-                    raise _StepFailed("line search found no decrease of the residual", k)
-            q = q_try
-            stepx, stept = _asm.max_abs_split(dq, alpha, self.fx, self.ft)
-            if (
-                stepx <= opt.xtol * self.length_scale
-                and stept <= opt.xtol
-                and np.all(np.isfinite(self.f))
-            ):
+            q, alpha, scales = self._line_search(q, dq, st, dt, t_new, rel, k)
+            if self._step_small(dq, alpha):
                 self._check(q, st, dt)
                 return q, k + 1
         raise _StepFailed(
             f"Newton did not converge in {opt.max_newton} iterations (residual {rel:.2e})",
             opt.max_newton,
+        )
+
+    def _assess(self, scales, k: int, rel_prev: float) -> tuple[bool, float]:
+        """(converged, residual relative to the tolerance) of iteration ``k``; records the
+        residual's ratio to the last iteration's (the reuse test of the next step)."""
+        if not np.all(np.isfinite(self.f)):
+            raise _StepFailed("non-finite residual", k)
+        ok, rel = self._converged(scales)
+        if k > 0:
+            self._last_ratio = rel / rel_prev
+        return ok, rel
+
+    def _watch_stagnation(self, rel: float, k: int, best: float, k_best: int):
+        """The best residual so far and its iteration; raise _StepFailed when it has not
+        halved in ``SolverOptions.stagnation`` iterations."""
+        stag = self._stagnation
+        if rel <= 0.5 * best:
+            return rel, k
+        if stag is not None and k - k_best >= stag:
+            raise _StepFailed(
+                f"Newton stagnated: the residual did not halve in {stag} iterations "
+                f"(residual {rel:.2e} of the tolerance)",
+                k,
+                stalled=True,
+            )
+        return best, k_best
+
+    def _line_search(self, q, dq, st, dt, t_new, rel, k):
+        """Backtracking along the Newton step ``dq``: accept when the incremental potential
+        decreases (Armijo, with a round-off slack) or the residual norm does. Returns
+        (q_new, alpha, scales); after ``max_backtracks`` halvings the last try is kept
+        (alpha then halved once more) unless the residual is not finite or far from
+        converged (``rel`` >= 1e3), which fails the attempt."""
+        opt = self.opt
+        r0 = self.rnorm
+        p0 = self.phi
+        slope = float(np.dot(self.f, dq))
+        slack = 1e-13 * (abs(p0) + 1.0)
+        alpha = 1.0
+        for _ in range(opt.max_backtracks + 1):
+            q_try = q + alpha * dq
+            self.last_iterate = q_try  # what a failed attempt reached (strain check)
+            scales = self.evaluate(q_try, st, dt, t_new)
+            r1 = self.rnorm
+            if np.isfinite(r1) and (
+                not opt.line_search
+                or r1 <= (1.0 - 1e-4 * alpha) * r0
+                or (slope < 0 and self.phi <= p0 + 1e-4 * alpha * slope + slack)
+            ):
+                return q_try, alpha, scales
+            alpha *= 0.5
+        if not (np.isfinite(r1) and rel < 1e3):
+            raise _StepFailed("line search found no decrease of the residual", k)
+        return q_try, alpha, scales
+
+    def _step_small(self, dq, alpha: float) -> bool:
+        """The Newton step below ``xtol`` (positions relative to the mean rest edge length,
+        angles absolute) and a finite residual: converged."""
+        opt = self.opt
+        stepx, stept = _asm.max_abs_split(dq, alpha, self.fx, self.ft)
+        return (
+            stepx <= opt.xtol * self.length_scale
+            and stept <= opt.xtol
+            and bool(np.all(np.isfinite(self.f)))
         )
 
 
@@ -828,6 +862,41 @@ def simulate(
     Result  (raises SolverError on failure unless ``options.throw`` is False; the error's
     ``state`` is the last good state and its ``result`` the partial Result)
     """
+    system, st, dt, t_end = _checked_start(system, state0, dt, t_end)
+    opt = options
+    stepper = Stepper(system, _as_tuple(loads, "loads"), _as_tuple(constraints, "constraints"),
+                      _as_tuple(interactions, "interactions"), opt)  # fmt: skip
+    restore_interaction_state(stepper.interactions, st.interactions)  # friction anchors
+    stepper.load_linear_state(st.linear)  # ordering and LU factors (bit-identical resume)
+    recorder = _Recorder(stepper)
+    # frame 0: static reaction (no inertia known yet)
+    stepper.evaluate(st.q, st, dt, st.t, jacobian=False)
+    f0 = stepper.ws.grad - stepper.fext  # interactions excluded: they have not begun
+    recorder.record(st, f0)
+    wall0 = time.perf_counter()
+    run = _Run(stepper, recorder, st, dt=dt, t_end=t_end, wall0=wall0, callback=callback)
+    bar = None
+    if progress:
+        from tqdm.auto import tqdm
+
+        bar = tqdm(total=t_end - st.t, unit="s", unit_scale=True, desc="simulate")
+    try:
+        run.loop(bar)
+    finally:
+        if bar is not None:
+            bar.close()
+    run.stats["wall_s"] = time.perf_counter() - wall0
+    res = recorder.result(run.status, run.message, run.stats, run.st)
+    if run.status != "success" and (opt.throw if throw is None else throw):
+        err = SolverError(run.message, state=run.st)
+        err.result = res
+        raise err
+    return res
+
+
+def _checked_start(system, state0, dt, t_end):
+    """(system, start state, dt, t_end) of :func:`simulate`, checked: a lone Rod becomes a
+    one-rod system."""
     from .system import Rod
 
     if isinstance(system, Rod):
@@ -841,35 +910,49 @@ def simulate(
     t_end = float(t_end)
     if not np.isfinite(t_end) or t_end < st.t:
         raise InputError(f"t_end must be finite and >= the start time {st.t:g}, got {t_end!r}")
-    opt = options
-    save_every = dt if opt.save_every is None else float(opt.save_every)
-    stepper = Stepper(system, _as_tuple(loads, "loads"), _as_tuple(constraints, "constraints"),
-                      _as_tuple(interactions, "interactions"), opt)  # fmt: skip
-    restore_interaction_state(stepper.interactions, st.interactions)  # friction anchors
-    stepper.load_linear_state(st.linear)  # ordering and LU factors (bit-identical resume)
+    return system, st, dt, t_end
 
-    node_lists = [c.node_indices(system) for c in stepper.constraints]
-    edge_lists = [c.edge_indices(system) for c in stepper.constraints]
-    r_nodes = np.concatenate(node_lists) if node_lists else np.zeros(0, dtype=np.int64)
-    r_edges = np.concatenate(edge_lists) if edge_lists else np.zeros(0, dtype=np.int64)
-    frames = {k: [] for k in ("times", "positions", "thetas", "reactions", "reaction_torques",
-                              "tension", "bending_moment", "twisting_moment")}  # fmt: skip
-    energies = {k: [] for k in ("stretch", "bend", "twist", "kinetic", "external", "interaction")}
 
-    def record(state: State, residual: np.ndarray) -> None:
-        q = state.q
-        ws = stepper.ws
+_FRAMES = ("times", "positions", "thetas", "reactions", "reaction_torques", "tension",
+           "bending_moment", "twisting_moment")  # fmt: skip
+_ENERGIES = ("stretch", "bend", "twist", "kinetic", "external", "interaction")
+
+
+class _Recorder:
+    """The frames of a :func:`simulate` run: :meth:`record` one state, :meth:`result` the
+    :class:`Result`. Reactions are the residual on the constrained nodes and edges."""
+
+    def __init__(self, stepper: Stepper):
+        self.stepper = stepper
+        system = stepper.system
+        node_lists = [c.node_indices(system) for c in stepper.constraints]
+        edge_lists = [c.edge_indices(system) for c in stepper.constraints]
+        empty = np.zeros(0, dtype=np.int64)
+        self.r_nodes = np.concatenate(node_lists) if node_lists else empty
+        self.r_edges = np.concatenate(edge_lists) if edge_lists else empty
+        self.frames = {k: [] for k in _FRAMES}
+        self.energies = {k: [] for k in _ENERGIES}
+
+    def record(self, state: State, residual: np.ndarray) -> None:
+        """Append the frame of ``state`` (``residual``: f at that state, for the reactions)."""
+        stepper, frames = self.stepper, self.frames
+        system, ws, q = stepper.system, stepper.ws, state.q
         ws.frames(q, state.tangents, state.d1, state.ref_twist)
         frames["times"].append(state.t)
         frames["positions"].append(system.positions(q))
         frames["thetas"].append(system.thetas(q))
-        frames["reactions"].append(residual[system.node_dofs[r_nodes]])
-        frames["reaction_torques"].append(residual[system.edge_theta_dof[r_edges]])
+        frames["reactions"].append(residual[system.node_dofs[self.r_nodes]])
+        frames["reaction_torques"].append(residual[system.edge_theta_dof[self.r_edges]])
         frames["tension"].append(ws.tension(q))
         mb, mt = ws.moments(q)
         frames["bending_moment"].append(mb)
         frames["twisting_moment"].append(mt)
-        es, eb, et = ws.energies(q)
+        self._record_energies(state)
+
+    def _record_energies(self, state: State) -> None:
+        stepper, energies = self.stepper, self.energies
+        system, q = stepper.system, state.q
+        es, eb, et = stepper.ws.energies(q)
         energies["stretch"].append(es)
         energies["bend"].append(eb)
         energies["twist"].append(et)
@@ -877,139 +960,167 @@ def simulate(
         energies["external"].append(sum(ld.energy(system, q, state.t) for ld in stepper.loads))
         energies["interaction"].append(sum(it.energy(system, q) for it in stepper.interactions))
 
-    # frame 0: static reaction (no inertia known yet)
-    stepper.evaluate(st.q, st, dt, st.t, jacobian=False)
-    f0 = stepper.ws.grad - stepper.fext  # interactions excluded: they have not begun
-    record(st, f0)
-
-    stats = {"steps": 0, "newton_iterations": 0, "rejected_steps": 0, "wall_s": 0.0}
-    wall0 = time.perf_counter()
-    dt_cur = dt if not np.isfinite(st.dt_next) else min(st.dt_next, dt)
-    n_good = st.n_good
-    k_save = int(np.floor(st.t / save_every + 1e-9)) + 1
-    status, message = "success", f"reached t_end = {t_end:g} s"
-    worst = (0, 0.0, st.t)  # largest edge strain of the failed attempts since the last step
-    stepper.last_iterate = None
-    stall = _StallGuard(opt, dt, st.t, wall0)
-    bar = None
-    if progress:
-        from tqdm.auto import tqdm
-
-        bar = tqdm(total=t_end - st.t, unit="s", unit_scale=True, desc="simulate")
-    try:
-        while st.t < t_end:
-            t_save = k_save * save_every
-            target = min(t_save, t_end)
-            gap = target - st.t
-            hit = gap <= dt_cur * (1.0 + 1e-6)
-            h = gap if hit else dt_cur
-            why = stall.check(dt_cur, st.t)
-            if why:
-                status, message = "failed", why
-                break
-            try:
-                q_new, iters = stepper.step(st, h)
-            except _StepFailed as exc:
-                stall.last_reason = str(exc)
-                stats["rejected_steps"] += 1
-                if opt.max_strain is not None and stepper.last_iterate is not None:
-                    k, e = _worst_strain(system, stepper.last_iterate)
-                    if np.isfinite(e) and abs(e) > abs(worst[1]):
-                        worst = (k, e, st.t + h)
-                dt_cur = 0.5 * min(dt_cur, h)
-                n_good = 0
-                if dt_cur < opt.dt_min:
-                    status = "failed"
-                    if opt.max_strain is not None and not abs(worst[1]) <= opt.max_strain:
-                        # every attempt down to dt_min failed and Newton's iterates went
-                        # beyond the strain limit: the loads, not the step size, are the
-                        # cause (numerics may differ in how the attempts fail: a converged
-                        # step beyond the limit or an evaluation error on the way there)
-                        message = _strain_message(*worst, opt.max_strain, " (on the way)")
-                    else:
-                        message = (
-                            f"step failed at t = {st.t:.6g} s with dt = {2 * dt_cur:.3g} s < "
-                            f"2 dt_min ({exc}); last good state kept"
-                        )
-                    break
-                continue
-            worst = (0, 0.0, st.t)
-            if opt.max_strain is not None:
-                k_max, e_max = _worst_strain(system, q_new)
-                if not abs(e_max) <= opt.max_strain:
-                    status = "failed"
-                    message = _strain_message(k_max, e_max, st.t + h, opt.max_strain, "")
-                    break
-            stats["steps"] += 1
-            stats["newton_iterations"] += iters
-            t_new = target if hit else st.t + h
-            n_good += 1
-            if dt_cur < dt and n_good >= opt.grow_after:
-                dt_cur = min(2.0 * dt_cur, dt)
-                n_good = 0
-            ws = stepper.ws
-            for it in stepper.interactions:
-                it.end_step(system, q_new, st.q, h)
-            h_step = t_new - st.t
-            v_new = (q_new - st.q) / h
-            accel = None
-            if np.isfinite(st.h_last):  # v is the mean rate over a step: centred difference
-                accel = (v_new - st.v) / (0.5 * (h_step + st.h_last))
-            new = State(
-                t=t_new,
-                q=q_new,
-                v=v_new,
-                tangents=ws.tangents.copy(),
-                d1=ws.d1.copy(),
-                ref_twist=ws.ref_twist.copy(),
-                dt_next=dt_cur,
-                n_good=n_good,
-                accel=accel,
-                h_last=h_step,
-                interactions=interaction_state(stepper.interactions),
-                linear=stepper.linear_state(),
-            )
-            residual = stepper.f.copy()
-            if bar is not None:
-                bar.update(t_new - st.t)
-            st = new
-            if hit:
-                record(st, residual)
-                if target == t_save:
-                    k_save += 1
-            if callback is not None and callback(st):
-                message = f"stopped by callback at t = {st.t:g} s"
-                if not hit:
-                    record(st, residual)
-                break
-    finally:
-        if bar is not None:
-            bar.close()
-    stats["wall_s"] = time.perf_counter() - wall0
-
-    def stack(name, shape):
-        v = frames[name]
+    def _stack(self, name, shape):
+        v = self.frames[name]
         return np.array(v) if v else np.zeros((0,) + shape)
 
-    res = Result(
-        status=status,
-        message=message,
-        stats=stats,
-        times=np.array(frames["times"]),
-        positions=stack("positions", (system.n_nodes, 3)),
-        thetas=stack("thetas", (system.n_edges,)),
-        reaction_nodes=r_nodes,
-        reactions=stack("reactions", (r_nodes.size, 3)),
-        reaction_edges=r_edges,
-        reaction_torques=stack("reaction_torques", (r_edges.size,)),
-        tension=stack("tension", (system.n_edges,)),
-        bending_moment=stack("bending_moment", (system.n_stencils, 2)),
-        twisting_moment=stack("twisting_moment", (system.n_stencils,)),
-        energies={k: np.array(v) for k, v in energies.items()},
-        final_state=st,
-    )
-    if status != "success" and (opt.throw if throw is None else throw):
-        err = SolverError(message, state=st)
-        err.result = res
-        raise err
-    return res
+    def result(self, status: str, message: str, stats: dict, final: State) -> Result:
+        """The :class:`Result` of the recorded frames."""
+        system, stack = self.stepper.system, self._stack
+        return Result(
+            status=status,
+            message=message,
+            stats=stats,
+            times=np.array(self.frames["times"]),
+            positions=stack("positions", (system.n_nodes, 3)),
+            thetas=stack("thetas", (system.n_edges,)),
+            reaction_nodes=self.r_nodes,
+            reactions=stack("reactions", (self.r_nodes.size, 3)),
+            reaction_edges=self.r_edges,
+            reaction_torques=stack("reaction_torques", (self.r_edges.size,)),
+            tension=stack("tension", (system.n_edges,)),
+            bending_moment=stack("bending_moment", (system.n_stencils, 2)),
+            twisting_moment=stack("twisting_moment", (system.n_stencils,)),
+            energies={k: np.array(v) for k, v in self.energies.items()},
+            final_state=final,
+        )
+
+
+class _Run:
+    """The time loop of :func:`simulate`: step size control (halving on a failed step,
+    doubling back after ``grow_after`` good ones), frames at multiples of ``save_every``,
+    the strain and stall guards, the callback. ``status``, ``message``, ``stats`` and the
+    last good state ``st`` are its outcome."""
+
+    def __init__(self, stepper, recorder, st, *, dt, t_end, wall0, callback):
+        opt = stepper.opt
+        self.stepper, self.recorder, self.opt = stepper, recorder, opt
+        self.st, self.dt, self.t_end, self.callback = st, dt, t_end, callback
+        self.save_every = dt if opt.save_every is None else float(opt.save_every)
+        self.stats = {"steps": 0, "newton_iterations": 0, "rejected_steps": 0, "wall_s": 0.0}
+        self.dt_cur = dt if not np.isfinite(st.dt_next) else min(st.dt_next, dt)
+        self.n_good = st.n_good
+        self.k_save = int(np.floor(st.t / self.save_every + 1e-9)) + 1
+        self.status, self.message = "success", f"reached t_end = {t_end:g} s"
+        # largest edge strain of the failed attempts since the last step
+        self.worst = (0, 0.0, st.t)
+        stepper.last_iterate = None
+        self.stall = _StallGuard(opt, dt, st.t, wall0)
+
+    def _fail(self, message: str) -> bool:
+        self.status, self.message = "failed", message
+        return True
+
+    def loop(self, bar) -> None:
+        """Step from ``st`` to ``t_end`` (or until a failure or the callback stops it)."""
+        while self.st.t < self.t_end:
+            st = self.st
+            t_save = self.k_save * self.save_every
+            target = min(t_save, self.t_end)
+            gap = target - st.t
+            hit = gap <= self.dt_cur * (1.0 + 1e-6)
+            h = gap if hit else self.dt_cur
+            why = self.stall.check(self.dt_cur, st.t)
+            if why and self._fail(why):
+                break
+            try:
+                q_new, iters = self.stepper.step(st, h)
+            except _StepFailed as exc:
+                if self._rejected(exc, h):
+                    break
+                continue
+            if self._strain_exceeded(q_new, h) or self._accept(q_new, iters, h, hit, bar):
+                break
+            if hit and target == t_save:
+                self.k_save += 1
+
+    def _rejected(self, exc: _StepFailed, h: float) -> bool:
+        """Count a failed attempt and halve the step; True when that went below dt_min
+        (the run then fails)."""
+        opt, st = self.opt, self.st
+        self.stall.last_reason = str(exc)
+        self.stats["rejected_steps"] += 1
+        if opt.max_strain is not None and self.stepper.last_iterate is not None:
+            k, e = _worst_strain(self.stepper.system, self.stepper.last_iterate)
+            if np.isfinite(e) and abs(e) > abs(self.worst[1]):
+                self.worst = (k, e, st.t + h)
+        self.dt_cur = 0.5 * min(self.dt_cur, h)
+        self.n_good = 0
+        if self.dt_cur >= opt.dt_min:
+            return False
+        if opt.max_strain is not None and not abs(self.worst[1]) <= opt.max_strain:
+            # every attempt down to dt_min failed and Newton's iterates went beyond the
+            # strain limit: the loads, not the step size, are the cause (numerics may
+            # differ in how the attempts fail: a converged step beyond the limit or an
+            # evaluation error on the way there)
+            return self._fail(_strain_message(*self.worst, opt.max_strain, " (on the way)"))
+        return self._fail(
+            f"step failed at t = {st.t:.6g} s with dt = {2 * self.dt_cur:.3g} s < "
+            f"2 dt_min ({exc}); last good state kept"
+        )
+
+    def _strain_exceeded(self, q_new, h: float) -> bool:
+        """A converged step beyond ``max_strain``: True (the run fails)."""
+        self.worst = (0, 0.0, self.st.t)
+        if self.opt.max_strain is None:
+            return False
+        k_max, e_max = _worst_strain(self.stepper.system, q_new)
+        if abs(e_max) <= self.opt.max_strain:
+            return False
+        return self._fail(_strain_message(k_max, e_max, self.st.t + h, self.opt.max_strain, ""))
+
+    def _accept(self, q_new, iters: int, h: float, hit: bool, bar) -> bool:
+        """Commit the converged step (interactions' end_step, the new State, its frame if
+        it hit a save time); True when the callback stops the run."""
+        st = self.st
+        self.stats["steps"] += 1
+        self.stats["newton_iterations"] += iters
+        t_new = min(self.k_save * self.save_every, self.t_end) if hit else st.t + h
+        self._grow_dt()
+        for it in self.stepper.interactions:
+            it.end_step(self.stepper.system, q_new, st.q, h)
+        new = self._new_state(q_new, t_new, h)
+        residual = self.stepper.f.copy()
+        if bar is not None:
+            bar.update(t_new - st.t)
+        self.st = new
+        if hit:
+            self.recorder.record(new, residual)
+        if self.callback is not None and self.callback(new):
+            self.message = f"stopped by callback at t = {new.t:g} s"
+            if not hit:
+                self.recorder.record(new, residual)
+            return True
+        return False
+
+    def _grow_dt(self) -> None:
+        """After ``grow_after`` good steps a reduced step doubles back toward dt."""
+        self.n_good += 1
+        if self.dt_cur < self.dt and self.n_good >= self.opt.grow_after:
+            self.dt_cur = min(2.0 * self.dt_cur, self.dt)
+            self.n_good = 0
+
+    def _new_state(self, q_new, t_new: float, h: float) -> State:
+        """The State at the end of an accepted step of length ``h`` (velocity: the mean
+        rate over the step; acceleration: its centred difference with the last step's)."""
+        st, stepper = self.st, self.stepper
+        ws = stepper.ws
+        h_step = t_new - st.t
+        v_new = (q_new - st.q) / h
+        accel = None
+        if np.isfinite(st.h_last):  # v is the mean rate over a step: centred difference
+            accel = (v_new - st.v) / (0.5 * (h_step + st.h_last))
+        return State(
+            t=t_new,
+            q=q_new,
+            v=v_new,
+            tangents=ws.tangents.copy(),
+            d1=ws.d1.copy(),
+            ref_twist=ws.ref_twist.copy(),
+            dt_next=self.dt_cur,
+            n_good=self.n_good,
+            accel=accel,
+            h_last=h_step,
+            interactions=interaction_state(stepper.interactions),
+            linear=stepper.linear_state(),
+        )

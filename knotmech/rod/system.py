@@ -336,66 +336,14 @@ class RodSystem:
 
     @staticmethod
     def _build(rods) -> dict:
-        nn = np.array([r.n_nodes for r in rods])
-        ne = nn - 1
-        n_dof_rod = 4 * ne + 3
-        dof_start = np.concatenate([[0], np.cumsum(n_dof_rod)])
-        node_start = np.concatenate([[0], np.cumsum(nn)])
-        edge_start = np.concatenate([[0], np.cumsum(ne)])
-        n_nodes, n_edges, n_dof = int(node_start[-1]), int(edge_start[-1]), int(dof_start[-1])
-        node_dofs = np.empty((n_nodes, 3), dtype=np.int64)
-        edge_nodes = np.empty((n_edges, 2), dtype=np.int64)
-        edge_dof0 = np.empty(n_edges, dtype=np.int64)
-        node_rod = np.empty(n_nodes, dtype=np.int64)
-        edge_rod = np.empty(n_edges, dtype=np.int64)
-        stencil_edge, stencil_rod = [], []
-        for r, rod in enumerate(rods):
-            i = np.arange(rod.n_nodes)
-            node_dofs[node_start[r] : node_start[r + 1]] = (
-                dof_start[r] + 4 * i[:, None] + np.arange(3)
-            )
-            node_rod[node_start[r] : node_start[r + 1]] = r
-            k = np.arange(rod.n_edges)
-            edge_nodes[edge_start[r] : edge_start[r + 1], 0] = node_start[r] + k
-            edge_nodes[edge_start[r] : edge_start[r + 1], 1] = node_start[r] + k + 1
-            edge_dof0[edge_start[r] : edge_start[r + 1]] = dof_start[r] + 4 * k
-            edge_rod[edge_start[r] : edge_start[r + 1]] = r
-            stencil_edge.append(edge_start[r] + np.arange(1, rod.n_edges))
-            stencil_rod.append(np.full(rod.n_edges - 1, r))
-        stencil_edge = np.concatenate(stencil_edge).astype(np.int64)
-        stencil_rod = np.concatenate(stencil_rod).astype(np.int64)
-
-        q0 = np.zeros(n_dof)
-        v0 = np.zeros(n_dof)
-        qbar = np.zeros(n_dof)
-        for r, rod in enumerate(rods):
-            sl = slice(node_start[r], node_start[r + 1])
-            for j in range(3):
-                q0[node_dofs[sl, j]] = rod.positions[:, j]
-                v0[node_dofs[sl, j]] = rod.velocities[:, j]
-                qbar[node_dofs[sl, j]] = rod.positions[:, j]
-            q0[edge_dof0[edge_start[r] : edge_start[r + 1]] + 3] = rod.thetas
-            qbar[edge_dof0[edge_start[r] : edge_start[r + 1]] + 3] = rod.thetas
-        tangents = np.empty((n_edges, 3))
-        lengths = np.empty(n_edges)
-        _fr.edge_tangents(q0, edge_dof0, tangents, lengths)
-        d1 = np.empty((n_edges, 3))
-        d2 = np.empty((n_edges, 3))
-        for r, rod in enumerate(rods):
-            a, b = int(edge_start[r]), int(edge_start[r + 1])
-            dd = rod.director if rod.director is not None else _default_director(tangents[a])
-            _fr.space_parallel_frames(tangents, a, b, np.asarray(dd, dtype=float), d1, d2)
-        ref_twist = np.zeros(len(stencil_edge))
-        m1 = np.empty_like(d1)
-        m2 = np.empty_like(d1)
-        _fr.material_frames(q0, edge_dof0, d1, d2, m1, m2)
-        kappa_bar = np.zeros((len(stencil_edge), 2))
-        twist_bar = np.zeros(len(stencil_edge))
-        _fr.curvatures(q0, edge_dof0, stencil_edge, m1, m2, kappa_bar)
-        _fr.twists(q0, edge_dof0, stencil_edge, ref_twist, twist_bar)
-        straight = np.array([rods[r].natural == "straight" for r in stencil_rod], dtype=bool)
-        kappa_bar[straight] = 0.0
-        twist_bar[straight] = 0.0
+        idx = _index_arrays(rods)
+        node_dofs, edge_dof0 = idx["node_dofs"], idx["edge_dof0"]
+        edge_rod, stencil_rod = idx["edge_rod"], idx["stencil_rod"]
+        stencil_edge = idx["stencil_edge"]
+        dof_start, node_start, edge_start = idx["dof_start"], idx["node_start"], idx["edge_start"]
+        n_dof = int(dof_start[-1])
+        q0, v0 = _initial_dofs(rods, idx)
+        tangents, lengths, d1, kappa_bar, twist_bar = _rest_shape(rods, idx, q0)
 
         rest_length = lengths.copy()
         voronoi = 0.5 * (rest_length[stencil_edge - 1] + rest_length[stencil_edge])
@@ -414,14 +362,14 @@ class RodSystem:
         out = dict(
             n_rods=len(rods),
             n_dof=n_dof,
-            n_nodes=n_nodes,
-            n_edges=n_edges,
+            n_nodes=int(node_start[-1]),
+            n_edges=int(edge_start[-1]),
             n_stencils=len(stencil_edge),
             node_dofs=node_dofs,
-            edge_nodes=edge_nodes,
+            edge_nodes=idx["edge_nodes"],
             edge_theta_dof=edge_dof0 + 3,
             edge_rod=edge_rod,
-            node_rod=node_rod,
+            node_rod=idx["node_rod"],
             stencil_rod=stencil_rod,
             rod_radius_edge=radius_e,
             rod_dof_start=dof_start.astype(np.int64),
@@ -475,3 +423,94 @@ class RodSystem:
             d1=self._d10.copy(),
             ref_twist=np.zeros(self.n_stencils),
         )
+
+
+def _index_arrays(rods) -> dict:
+    """Global numbering of a system's dofs: per rod, its nodes' (x, y, z) then each edge's
+    twist angle interleaved (x0 y0 z0 theta0 x1 y1 z1 theta1 ... x_n y_n z_n); the edges'
+    nodes, first dofs and rods; the bending stencils (interior nodes, named by their
+    second edge) and their rods; the rods' first dof, node and edge."""
+    nn = np.array([r.n_nodes for r in rods])
+    ne = nn - 1
+    n_dof_rod = 4 * ne + 3
+    dof_start = np.concatenate([[0], np.cumsum(n_dof_rod)])
+    node_start = np.concatenate([[0], np.cumsum(nn)])
+    edge_start = np.concatenate([[0], np.cumsum(ne)])
+    n_nodes, n_edges = int(node_start[-1]), int(edge_start[-1])
+    node_dofs = np.empty((n_nodes, 3), dtype=np.int64)
+    edge_nodes = np.empty((n_edges, 2), dtype=np.int64)
+    edge_dof0 = np.empty(n_edges, dtype=np.int64)
+    node_rod = np.empty(n_nodes, dtype=np.int64)
+    edge_rod = np.empty(n_edges, dtype=np.int64)
+    stencil_edge, stencil_rod = [], []
+    for r, rod in enumerate(rods):
+        i = np.arange(rod.n_nodes)
+        node_dofs[node_start[r] : node_start[r + 1]] = dof_start[r] + 4 * i[:, None] + np.arange(3)
+        node_rod[node_start[r] : node_start[r + 1]] = r
+        k = np.arange(rod.n_edges)
+        edge_nodes[edge_start[r] : edge_start[r + 1], 0] = node_start[r] + k
+        edge_nodes[edge_start[r] : edge_start[r + 1], 1] = node_start[r] + k + 1
+        edge_dof0[edge_start[r] : edge_start[r + 1]] = dof_start[r] + 4 * k
+        edge_rod[edge_start[r] : edge_start[r + 1]] = r
+        stencil_edge.append(edge_start[r] + np.arange(1, rod.n_edges))
+        stencil_rod.append(np.full(rod.n_edges - 1, r))
+    return dict(
+        dof_start=dof_start,
+        node_start=node_start,
+        edge_start=edge_start,
+        node_dofs=node_dofs,
+        edge_nodes=edge_nodes,
+        edge_dof0=edge_dof0,
+        node_rod=node_rod,
+        edge_rod=edge_rod,
+        stencil_edge=np.concatenate(stencil_edge).astype(np.int64),
+        stencil_rod=np.concatenate(stencil_rod).astype(np.int64),
+    )
+
+
+def _initial_dofs(rods, idx) -> tuple[np.ndarray, np.ndarray]:
+    """The start configuration q0 (node positions [m], twist angles [rad]) and velocity v0
+    [m/s] (angles at rest) as dof vectors."""
+    node_dofs, edge_dof0 = idx["node_dofs"], idx["edge_dof0"]
+    node_start, edge_start = idx["node_start"], idx["edge_start"]
+    n_dof = int(idx["dof_start"][-1])
+    q0 = np.zeros(n_dof)
+    v0 = np.zeros(n_dof)
+    for r, rod in enumerate(rods):
+        sl = slice(node_start[r], node_start[r + 1])
+        for j in range(3):
+            q0[node_dofs[sl, j]] = rod.positions[:, j]
+            v0[node_dofs[sl, j]] = rod.velocities[:, j]
+        q0[edge_dof0[edge_start[r] : edge_start[r + 1]] + 3] = rod.thetas
+    return q0, v0
+
+
+def _rest_shape(rods, idx, q0):
+    """Tangents, lengths [m] and space-parallel reference directors d1 of the start
+    configuration (each rod's first d1 from its ``director`` or a default), and the rest
+    material curvatures (n_stencils, 2) [1/m] and twists (n_stencils,) [rad]: those of the
+    start shape (``natural="initial"``) or zero (``"straight"``)."""
+    edge_dof0, edge_start = idx["edge_dof0"], idx["edge_start"]
+    stencil_edge, stencil_rod = idx["stencil_edge"], idx["stencil_rod"]
+    n_edges = edge_dof0.size
+    tangents = np.empty((n_edges, 3))
+    lengths = np.empty(n_edges)
+    _fr.edge_tangents(q0, edge_dof0, tangents, lengths)
+    d1 = np.empty((n_edges, 3))
+    d2 = np.empty((n_edges, 3))
+    for r, rod in enumerate(rods):
+        a, b = int(edge_start[r]), int(edge_start[r + 1])
+        dd = rod.director if rod.director is not None else _default_director(tangents[a])
+        _fr.space_parallel_frames(tangents, a, b, np.asarray(dd, dtype=float), d1, d2)
+    ref_twist = np.zeros(len(stencil_edge))
+    m1 = np.empty_like(d1)
+    m2 = np.empty_like(d1)
+    _fr.material_frames(q0, edge_dof0, d1, d2, m1, m2)
+    kappa_bar = np.zeros((len(stencil_edge), 2))
+    twist_bar = np.zeros(len(stencil_edge))
+    _fr.curvatures(q0, edge_dof0, stencil_edge, m1, m2, kappa_bar)
+    _fr.twists(q0, edge_dof0, stencil_edge, ref_twist, twist_bar)
+    straight = np.array([rods[r].natural == "straight" for r in stencil_rod], dtype=bool)
+    kappa_bar[straight] = 0.0
+    twist_bar[straight] = 0.0
+    return tangents, lengths, d1, kappa_bar, twist_bar

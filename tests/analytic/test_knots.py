@@ -7,9 +7,10 @@ from hypothesis import strategies as st
 
 from knotmech.analytic import knots
 from knotmech.errors import InputError
+from knotmech.materials import IMC_YOUNGS_MODULUS
 
 H = 1.6e-3
-B = 0.18e6 * np.pi * H**4 / 4  # IMC option file: E = 0.18 MPa, h = 1.6 mm
+B = IMC_YOUNGS_MODULUS * np.pi * H**4 / 4  # IMC option file: E = 0.18 MPa, h = 1.6 mm
 turns = st.integers(1, 6)
 mu = st.floats(0.01, 1.0)
 shortening = st.floats(60.0, 1e5)  # e / (n^2 h)

@@ -7,6 +7,7 @@ from hypothesis import strategies as st
 
 from knotmech.analytic import pinch
 from knotmech.errors import InputError
+from knotmech.materials import VPS32_YOUNGS_MODULUS as E_VPS32
 
 force = st.floats(1e-3, 1e3)
 modulus = st.floats(1e5, 1e11)
@@ -30,12 +31,12 @@ def test_clove_hitch_paper_pinch_threshold():
     """Clove-hitch paper, sec. 9: VPS32 rod d = 4 mm, E = 1.26 MPa, pinching cylinders
     D = 8 mm; Amontons-Coulomb holds for 4 F_n/(pi E d D) below about 0.1, i.e. F_n up to
     0.1 * pi * 1.26e6 * 4e-3 * 8e-3 / 4 = 3.167 N."""
-    f_limit = 0.1 * np.pi * 1.26e6 * 4e-3 * 8e-3 / 4
+    f_limit = 0.1 * np.pi * E_VPS32 * 4e-3 * 8e-3 / 4
     assert f_limit == pytest.approx(3.167, rel=1e-3)
-    ok = pinch.pinch_amontons_applies([0.99 * f_limit, 1.01 * f_limit], 1.26e6, 4e-3, 8e-3)
+    ok = pinch.pinch_amontons_applies([0.99 * f_limit, 1.01 * f_limit], E_VPS32, 4e-3, 8e-3)
     assert list(ok) == [True, False]
     # the paper's clove hitch sits at x ~ 0.05: half that load
-    assert pinch.pinch_load_parameter(0.5 * f_limit, 1.26e6, 4e-3, 8e-3) == pytest.approx(0.05)
+    assert pinch.pinch_load_parameter(0.5 * f_limit, E_VPS32, 4e-3, 8e-3) == pytest.approx(0.05)
 
 
 @settings(max_examples=40, deadline=None)
@@ -95,7 +96,7 @@ def _boussinesq_displacement(px, py, a, b, p0, es, n_phi=4000):
 def test_crossed_cylinder_contact_reproduces_the_gap_by_boussinesq():
     """Independent check of the elliptical solution: the displacement field of its pressure
     must equal delta - A x^2 - B y^2 inside the patch (rod d = 4 mm on a pinch D = 8 mm)."""
-    r1, r2, p, e, nu = 2e-3, 4e-3, 1.5, 1.26e6, 0.5
+    r1, r2, p, e, nu = 2e-3, 4e-3, 1.5, E_VPS32, 0.5
     c = pinch.hertz_crossed_cylinders(
         normal_force=p, radius_1=r1, radius_2=r2, youngs_modulus=e, poisson_ratio=nu
     )

@@ -152,59 +152,8 @@ def bend_grad_hess(
             nn_f[j] = r1 * m1f[j] + r2 * m2f[j]
         _cross3(tf, dv, tfc_d)
         _cross3(te, dv, tec_d)
-        ie2 = 1.0 / (ne * ne)
-        if2 = 1.0 / (nf * nf)
-        ief = 1.0 / (ne * nf)
-        ichi = 1.0 / chi
-        for i in range(3):
-            for j in range(3):
-                ttij = 2.0 * kr * tt[i] * tt[j]
-                idt = 1.0 if i == j else 0.0
-                h[i, j] = ie2 * (
-                    ttij - tfc_d[i] * tt[j] - tt[i] * tfc_d[j]
-                    - kr * ichi * (idt - te[i] * te[j])
-                    + 0.25 * (kb[i] * me[j] + me[i] * kb[j])
-                )  # fmt: skip
-                h[4 + i, 4 + j] = if2 * (
-                    ttij + tec_d[i] * tt[j] + tt[i] * tec_d[j]
-                    - kr * ichi * (idt - tf[i] * tf[j])
-                    + 0.25 * (kb[i] * mf[j] + mf[i] * kb[j])
-                )  # fmt: skip
-                h[i, 4 + j] = ief * (
-                    -kr * ichi * (idt + te[i] * tf[j]) + ttij - tfc_d[i] * tt[j] + tt[i] * tec_d[j]
-                )
-        # - [D]_x / (|e||f|)
-        h[0, 5] += dv[2] * ief
-        h[0, 6] -= dv[1] * ief
-        h[1, 4] -= dv[2] * ief
-        h[1, 6] += dv[0] * ief
-        h[2, 4] += dv[1] * ief
-        h[2, 5] -= dv[0] * ief
-        h[3, 3] = -0.5 * _dot3(kb, me)
-        h[7, 7] = -0.5 * _dot3(kb, mf)
-        h[3, 7] = 0.0
-        h[7, 3] = 0.0
-        kbn_e = 0.5 * _dot3(kb, nn_e)
-        kbn_f = 0.5 * _dot3(kb, nn_f)
-        _cross3(tf, nn_e, tmp)
-        for j in range(3):
-            h[j, 3] = (kbn_e * tt[j] - tmp[j] * ichi) / ne
-        _cross3(tf, nn_f, tmp)
-        for j in range(3):
-            h[j, 7] = (kbn_f * tt[j] - tmp[j] * ichi) / ne
-        _cross3(te, nn_e, tmp)
-        for j in range(3):
-            h[4 + j, 3] = (kbn_e * tt[j] + tmp[j] * ichi) / nf
-        _cross3(te, nn_f, tmp)
-        for j in range(3):
-            h[4 + j, 7] = (kbn_f * tt[j] + tmp[j] * ichi) / nf
-        for i in range(3):
-            h[3, i] = h[i, 3]
-            h[7, i] = h[i, 7]
-            h[3, 4 + i] = h[4 + i, 3]
-            h[7, 4 + i] = h[4 + i, 7]
-            for j in range(3):
-                h[4 + j, i] = h[i, 4 + j]
+        _hess_positions(h, kr, chi, ne, nf, tt, te, tf, kb, dv, me, mf, tfc_d, tec_d)
+        _hess_angles(h, chi, ne, nf, tt, te, tf, kb, me, mf, nn_e, nn_f, tmp)
         # ---- energy Hessian
         for i in range(8):
             for j in range(8):
@@ -229,3 +178,70 @@ def _add_edge_grad(grad, d0, i, gi):
         grad[d0 + 4 + i] += gi
     else:
         grad[d0 + 7] += gi
+
+
+@njit(cache=True, fastmath=True, inline="always")
+def _hess_positions(h, kr, chi, ne, nf, tt, te, tf, kb, dv, me, mf, tfc_d, tec_d):
+    """Edge-vector blocks d2/de2, d2/df2, d2/dedf of r1 H1 + r2 H2 (the formulas of
+    :func:`bend_grad_hess`'s docstring) into h[:3, :3], h[4:7, 4:7], h[:3, 4:7]."""
+    ie2 = 1.0 / (ne * ne)
+    if2 = 1.0 / (nf * nf)
+    ief = 1.0 / (ne * nf)
+    ichi = 1.0 / chi
+    for i in range(3):
+        for j in range(3):
+            ttij = 2.0 * kr * tt[i] * tt[j]
+            idt = 1.0 if i == j else 0.0
+            h[i, j] = ie2 * (
+                ttij - tfc_d[i] * tt[j] - tt[i] * tfc_d[j]
+                - kr * ichi * (idt - te[i] * te[j])
+                + 0.25 * (kb[i] * me[j] + me[i] * kb[j])
+            )  # fmt: skip
+            h[4 + i, 4 + j] = if2 * (
+                ttij + tec_d[i] * tt[j] + tt[i] * tec_d[j]
+                - kr * ichi * (idt - tf[i] * tf[j])
+                + 0.25 * (kb[i] * mf[j] + mf[i] * kb[j])
+            )  # fmt: skip
+            h[i, 4 + j] = ief * (
+                -kr * ichi * (idt + te[i] * tf[j]) + ttij - tfc_d[i] * tt[j] + tt[i] * tec_d[j]
+            )
+    # - [D]_x / (|e||f|)
+    h[0, 5] += dv[2] * ief
+    h[0, 6] -= dv[1] * ief
+    h[1, 4] -= dv[2] * ief
+    h[1, 6] += dv[0] * ief
+    h[2, 4] += dv[1] * ief
+    h[2, 5] -= dv[0] * ief
+
+
+@njit(cache=True, fastmath=True, inline="always")
+def _hess_angles(h, chi, ne, nf, tt, te, tf, kb, me, mf, nn_e, nn_f, tmp):
+    """Twist-angle rows and columns of r1 H1 + r2 H2 (d2/dtheta^j2, d2/de dtheta^j,
+    d2/df dtheta^j of :func:`bend_grad_hess`'s docstring), then the lower blocks by
+    symmetry."""
+    ichi = 1.0 / chi
+    h[3, 3] = -0.5 * _dot3(kb, me)
+    h[7, 7] = -0.5 * _dot3(kb, mf)
+    h[3, 7] = 0.0
+    h[7, 3] = 0.0
+    kbn_e = 0.5 * _dot3(kb, nn_e)
+    kbn_f = 0.5 * _dot3(kb, nn_f)
+    _cross3(tf, nn_e, tmp)
+    for j in range(3):
+        h[j, 3] = (kbn_e * tt[j] - tmp[j] * ichi) / ne
+    _cross3(tf, nn_f, tmp)
+    for j in range(3):
+        h[j, 7] = (kbn_f * tt[j] - tmp[j] * ichi) / ne
+    _cross3(te, nn_e, tmp)
+    for j in range(3):
+        h[4 + j, 3] = (kbn_e * tt[j] + tmp[j] * ichi) / nf
+    _cross3(te, nn_f, tmp)
+    for j in range(3):
+        h[4 + j, 7] = (kbn_f * tt[j] + tmp[j] * ichi) / nf
+    for i in range(3):
+        h[3, i] = h[i, 3]
+        h[7, i] = h[i, 7]
+        h[3, 4 + i] = h[4 + i, 3]
+        h[7, 4 + i] = h[4 + i, 7]
+        for j in range(3):
+            h[4 + j, i] = h[i, 4 + j]
