@@ -152,17 +152,28 @@ def analyse_profile(s_over_R, tension, *, rate, t_high, deviation=DEVIATION):
     }
 
 
+def _clove_task(**kw):
+    """One free-end clove hitch (:func:`knotmech.scenes.clove_hitch.clove_hitch`).
+
+    Defined here, at module level, so that the sweep's worker processes can receive it by
+    name: the scene function itself is made by a factory, and pickle cannot find it under
+    the module its name gives.
+    """
+    from knotmech.scenes.clove_hitch import clove_hitch
+
+    return clove_hitch(**kw)
+
+
 def der_runs(
     mu_values, *, quick=True, progress=False, scheduler=None, cache_dir=None, processes=None
 ):
     """DER free-end clove hitches, one per mu_rc (list of results or TaskFailure)."""
-    from knotmech.scenes.clove_hitch import clove_hitch
     from knotmech.sweep import sweep
 
     if processes is None:
         processes = min(2, os.cpu_count() or 1)
     return sweep(
-        clove_hitch,
+        _clove_task,
         _runs(mu_values, quick),
         processes=processes,
         scheduler=scheduler,
