@@ -42,7 +42,7 @@ README = ROOT / "README.md"
 
 # seconds; a README command that needs longer has stalled (or the README must say so)
 QUICK_TIMEOUT = 240
-SLOW_TIMEOUT = 1800  # knotmech validate --quick took 15-20 min on the shared machine under load
+SLOW_TIMEOUT = 1800  # knotmech validate --quick: 23 min of wall on the busy shared machine
 # a command containing one of these runs for minutes: marked slow
 SLOW_MARKERS = (
     "knotmech simulate clove-hitch",
