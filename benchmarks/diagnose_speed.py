@@ -35,6 +35,7 @@ import subprocess
 import sys
 import tempfile
 import time
+from importlib import resources
 from pathlib import Path
 
 import numpy as np
@@ -134,8 +135,9 @@ def main(argv=None) -> dict:
 def _yarn_and_summary(out) -> None:
     from knotmech.diagnose import read_recording
 
-    yarn = Path(__file__).parents[1] / "knotmech" / "data" / "recordings" / "capstan_yarn_rig.csv"
-    rec = read_recording(yarn)
+    yarn = resources.files("knotmech") / "data" / "recordings" / "capstan_yarn_rig.csv"
+    with resources.as_file(yarn) as path:
+        rec = read_recording(path)
     t0 = time.perf_counter()
     rep = diagnose(rec, seed=0)
     out["cases"]["capstan_yarn_rig.csv"] = {
@@ -291,12 +293,21 @@ def _one_big(kind, effect, rows) -> dict:
     return res
 
 
+def _import_path() -> str:
+    """PYTHONPATH for the child processes: the folder holding the ``knotmech`` this process
+    imported (the checkout, which also holds ``validation/``), then the caller's path, so a
+    copy of this script run from another folder times the same code."""
+    import knotmech
+
+    checkout = str(Path(knotmech.__file__).resolve().parents[1])
+    return os.pathsep.join(p for p in (checkout, os.environ.get("PYTHONPATH", "")) if p)
+
+
 def _big_cases(rows_list, kinds=None, repeats=1) -> dict:
     """Each long case in a fresh process (its own peak memory); with ``repeats`` > 1 the
     medians of wall, CPU and peak memory over that many processes (and each run's)."""
     out = {"target_seconds": 60.0, "target_peak_mb": 2048.0, "cases": {}}
-    root = Path(__file__).resolve().parents[1]
-    env = dict(os.environ, PYTHONPATH=str(root), OPENBLAS_NUM_THREADS="1")
+    env = dict(os.environ, PYTHONPATH=_import_path(), OPENBLAS_NUM_THREADS="1")
     for rows in rows_list:
         for kind, effect in BIG_CASES:
             if kinds and kind not in kinds:

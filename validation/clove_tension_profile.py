@@ -152,17 +152,28 @@ def analyse_profile(s_over_R, tension, *, rate, t_high, deviation=DEVIATION):
     }
 
 
+def _clove_task(**kw):
+    """One free-end clove hitch (:func:`knotmech.scenes.clove_hitch.clove_hitch`).
+
+    Defined here, at module level, so that the sweep's worker processes can receive it by
+    name: the scene function itself is made by a factory, and pickle cannot find it under
+    the module its name gives.
+    """
+    from knotmech.scenes.clove_hitch import clove_hitch
+
+    return clove_hitch(**kw)
+
+
 def der_runs(
     mu_values, *, quick=True, progress=False, scheduler=None, cache_dir=None, processes=None
 ):
     """DER free-end clove hitches, one per mu_rc (list of results or TaskFailure)."""
-    from knotmech.scenes.clove_hitch import clove_hitch
     from knotmech.sweep import sweep
 
     if processes is None:
         processes = min(2, os.cpu_count() or 1)
     return sweep(
-        clove_hitch,
+        _clove_task,
         _runs(mu_values, quick),
         processes=processes,
         scheduler=scheduler,
@@ -171,6 +182,165 @@ def der_runs(
         on_error="return",
         desc="clove hitch DER",
     )
+
+
+def _analyse_run(m, r, R) -> dict | None:
+    """Analysis of one DER profile at mu_rc = ``m`` (None when the run or its profile failed).
+
+    Returns the run, its :func:`analyse_profile` result and the numbers the case reports:
+    mu_eff, the entry position ``x0`` [s/R], fitted rates and their relative errors, nip
+    regions in turns from the entry, how many of them contain rod-rod contact, the end
+    tensions over T_high, the verdict, the creep [m] and the wall time [s].
+    """
+    if isinstance(r, TaskFailure) or r.status != "success":
+        return None
+    me = float(mu_eff(m, POST_DIAMETER / ROD_DIAMETER))
+    x = r.s / R
+    an = analyse_profile(x, r.tension, rate=me, t_high=T_HIGH)
+    if an["span"] is None:
+        return None
+    x0 = x[an["span"][0]]
+    nips_in_contact = sum(
+        bool(np.any(r.rod_contact[(x >= a) & (x <= b)])) for a, b in an["regions"]
+    )
+    return {
+        "result": r,
+        "analysis": an,
+        "mu_eff": me,
+        "x0": x0,
+        "rates": an["rates"],
+        "rate_rel_err": [abs(k - me) / me for k in an["rates"]],
+        "nip_regions_turns": [
+            ((a - x0) / (2 * np.pi), (b - x0) / (2 * np.pi)) for a, b in an["regions"]
+        ],
+        "nips_with_rod_contact": nips_in_contact,
+        "t_end_over_t_high": float(abs(r.tension[-1]) / T_HIGH),
+        "t_start_over_t_high": float(r.tension[0] / T_HIGH),
+        "verdict": r.verdict,
+        "creep": float(r.creep),
+        "wall_s": float(r.stats.get("wall_s", np.nan)),
+    }
+
+
+def _numbers(mus, quick, failed, per_mu) -> dict:
+    """The case's JSON numbers: the set-up, then one entry per analysed mu_rc."""
+    numbers = {
+        "d_D_L_mm": [ROD_DIAMETER * 1e3, POST_DIAMETER * 1e3, ROD_LENGTH * 1e3],
+        "mu_rr": MU_RR,
+        "T_high_N": T_HIGH,
+        "mu_rc": list(mus),
+        "n_nodes": N_NODES[bool(quick)],
+        "failed_mu_rc": failed,
+        "rate_tolerance": RATE_TOL,
+    }
+    for m, p in per_mu.items():
+        numbers[f"mu_rc={m:g}"] = {
+            "mu_eff": p["mu_eff"],
+            "fitted_rates": p["rates"],
+            "rate_rel_err": p["rate_rel_err"],
+            "nip_regions_s_over_2piR_from_entry": p["nip_regions_turns"],
+            "n_nip_regions": len(p["nip_regions_turns"]),
+            "nip_regions_with_rod_contact": p["nips_with_rod_contact"],
+            "T_free_end_over_T_high": p["t_end_over_t_high"],
+            "T_loaded_end_over_T_high": p["t_start_over_t_high"],
+            "verdict": p["verdict"],
+            "creep_m": p["creep"],
+            "wall_s": p["wall_s"],
+        }
+    return numbers
+
+
+def _checks(failed, per_mu) -> dict:
+    """The case's pass/fail checks; each fails when no profile was analysed."""
+    ps = list(per_mu.values())
+    ok = bool(ps)
+    return {
+        "every DER run finished": not failed and ok,
+        "two or more exponential segments per profile": ok
+        and all(len(p["rates"]) >= 2 for p in ps),
+        f"fitted decay rates = mu_eff within {RATE_TOL:.0%}": ok
+        and all(p["rates"] and max(p["rate_rel_err"]) < RATE_TOL for p in ps),
+        "at least two nip regions located per profile": ok
+        and all(len(p["nip_regions_turns"]) >= 2 for p in ps),
+        "T at the free end < 2 % of T_high": ok and all(p["t_end_over_t_high"] < 0.02 for p in ps),
+        "the loaded end carries T_high (2 %)": ok
+        and all(abs(p["t_start_over_t_high"] - 1) < 0.02 for p in ps),
+    }
+
+
+def _notes(quick) -> list[str]:
+    """What the case did and how to read it, for the validation page."""
+    return [
+        "DER (knotmech.scenes.clove_hitch, free end): a pre-shaped hitch relaxed on the post, "
+        f"loaded with T_high = {T_HIGH} N on end 0 (0.2 s settle, 0.2 s ramp, 0.4 s hold), "
+        f"{N_NODES[bool(quick)]} nodes.",
+        "s is measured from the knot's entry (where T first leaves T_high); the paper's Fig. 3b "
+        "puts the entry nip at s/(2 pi R) ~ 0.1, the middle region at 1.0-1.5 and the exit at "
+        "~2.25 of its own origin.",
+        f"Nip regions: |k - mu_eff| > {DEVIATION:g} mu_eff with k = -dlnT/d(s/R), grouped by "
+        "knotmech.diagnose.locate.regions_from_mask; found from T(s) alone.",
+        "Centreline DER: the pinched cross-section of a real nip is not modelled (the paper's "
+        "FEM resolves it); the nips here come from rod-rod contact with friction on the surface.",
+        "Reference: clove-hitch paper, DOI 10.1016/j.eml.2022.101788, sec. 7, eq. 3, Fig. 3b.",
+    ]
+
+
+def _plot_fits(ax, p, R, col, first) -> None:
+    """The exponential mu_eff decay through each fitted segment of one profile (dashed)."""
+    r, an = p["result"], p["analysis"]
+    x = r.s / R
+    for j, (a, b) in enumerate(an["segments"]):
+        xs = x[a : b + 1]
+        ts = r.tension[a : b + 1] / T_HIGH
+        xm = 0.5 * (xs[0] + xs[-1])
+        tm = float(np.exp(np.interp(xm, xs, np.log(ts))))
+        xx = np.linspace(xs[0] - 0.3, xs[-1] + 0.3, 20)
+        ax.semilogy(
+            (xx - p["x0"]) / (2 * np.pi),
+            tm * np.exp(-p["mu_eff"] * (xx - xm)),
+            "--",
+            color=col,
+            lw=1,
+            label=r"$e^{-\mu_{eff}s/R}$" if (first and j == 0) else None,
+        )
+
+
+def _shade_nips(ax, p, u) -> None:
+    """Shade the located non-exponential (nip) regions of one profile."""
+    dx = 0.5 * float(np.median(np.diff(u)))
+    for k, (a, b) in enumerate(p["nip_regions_turns"]):
+        label = "non-exponential (nip) region, located" if k == 0 else None
+        ax.axvspan(a - dx, b + dx, color="C1", alpha=0.2, lw=0, label=label)
+
+
+def _plot(per_mu, R, out_dir):
+    """T(s)/T_high against s/(2 pi R) from the entry, with the fits and the first profile's
+    nips shaded; returns the saved figure's path."""
+    ax = new_axes(figsize=(7.0, 4.6))
+    for i, (m, p) in enumerate(per_mu.items()):
+        r = p["result"]
+        u = (r.s / R - p["x0"]) / (2 * np.pi)
+        col = f"C{i}"
+        ax.semilogy(
+            u,
+            np.maximum(r.tension / T_HIGH, 1e-3),
+            "-",
+            color=col,
+            lw=1.5,
+            label=rf"DER, $\mu_{{rc}}$={m:g} ($\mu_{{eff}}$={p['mu_eff']:.3f})",
+        )
+        _plot_fits(ax, p, R, col, first=i == 0)
+        if i == 0:
+            _shade_nips(ax, p, u)
+    ax.set_xlabel(r"$s/(2\pi R)$ from the knot's entry  ($R=(D+d)/2$)")
+    ax.set_ylabel(r"$T(s)/T_\mathrm{high}$")
+    ax.set_ylim(1e-3, 1.5)
+    ax.set_title(
+        "clove hitch, free end: DER tension profile (cf. clove-hitch paper Fig. 3b)", fontsize=9
+    )
+    ax.grid(True, which="both", alpha=0.3)
+    ax.legend(fontsize=7, loc="lower left")
+    return save_figure(ax.figure, out_dir, f"{NAME}")
 
 
 def run(
@@ -188,7 +358,6 @@ def run(
     cached in ``<out_dir>/cache/``.
     """
     mus = tuple(MU_RC if mu_values is None else mu_values)
-    Dt = POST_DIAMETER / ROD_DIAMETER
     R = 0.5 * (POST_DIAMETER + ROD_DIAMETER)
     res = der_runs(
         mus,
@@ -200,150 +369,18 @@ def run(
     )
     per_mu, failed = {}, []
     for m, r in zip(mus, res, strict=True):
-        if isinstance(r, TaskFailure) or r.status != "success":
+        analysed = _analyse_run(m, r, R)
+        if analysed is None:
             failed.append(m)
-            continue
-        me = float(mu_eff(m, Dt))
-        x = r.s / R
-        an = analyse_profile(x, r.tension, rate=me, t_high=T_HIGH)
-        if an["span"] is None:
-            failed.append(m)
-            continue
-        x0 = x[an["span"][0]]
-        nips_in_contact = sum(
-            bool(np.any(r.rod_contact[(x >= a) & (x <= b)])) for a, b in an["regions"]
-        )
-        per_mu[m] = {
-            "result": r,
-            "analysis": an,
-            "mu_eff": me,
-            "x0": x0,
-            "rates": an["rates"],
-            "rate_rel_err": [abs(k - me) / me for k in an["rates"]],
-            "nip_regions_turns": [
-                ((a - x0) / (2 * np.pi), (b - x0) / (2 * np.pi)) for a, b in an["regions"]
-            ],
-            "nips_with_rod_contact": nips_in_contact,
-            "t_end_over_t_high": float(abs(r.tension[-1]) / T_HIGH),
-            "t_start_over_t_high": float(r.tension[0] / T_HIGH),
-            "verdict": r.verdict,
-            "creep": float(r.creep),
-            "wall_s": float(r.stats.get("wall_s", np.nan)),
-        }
-
-    ok = [m for m in mus if m in per_mu]
-    numbers = {
-        "d_D_L_mm": [ROD_DIAMETER * 1e3, POST_DIAMETER * 1e3, ROD_LENGTH * 1e3],
-        "mu_rr": MU_RR,
-        "T_high_N": T_HIGH,
-        "mu_rc": list(mus),
-        "n_nodes": N_NODES[bool(quick)],
-        "failed_mu_rc": failed,
-        "rate_tolerance": RATE_TOL,
-    }
-    for m in ok:
-        p = per_mu[m]
-        key = f"mu_rc={m:g}"
-        numbers[key] = {
-            "mu_eff": p["mu_eff"],
-            "fitted_rates": p["rates"],
-            "rate_rel_err": p["rate_rel_err"],
-            "nip_regions_s_over_2piR_from_entry": p["nip_regions_turns"],
-            "n_nip_regions": len(p["nip_regions_turns"]),
-            "nip_regions_with_rod_contact": p["nips_with_rod_contact"],
-            "T_free_end_over_T_high": p["t_end_over_t_high"],
-            "T_loaded_end_over_T_high": p["t_start_over_t_high"],
-            "verdict": p["verdict"],
-            "creep_m": p["creep"],
-            "wall_s": p["wall_s"],
-        }
-    checks = {
-        "every DER run finished": not failed and bool(ok),
-        "two or more exponential segments per profile": bool(ok)
-        and all(len(per_mu[m]["rates"]) >= 2 for m in ok),
-        f"fitted decay rates = mu_eff within {RATE_TOL:.0%}": bool(ok)
-        and all(per_mu[m]["rates"] and max(per_mu[m]["rate_rel_err"]) < RATE_TOL for m in ok),
-        "at least two nip regions located per profile": bool(ok)
-        and all(len(per_mu[m]["nip_regions_turns"]) >= 2 for m in ok),
-        "T at the free end < 2 % of T_high": bool(ok)
-        and all(per_mu[m]["t_end_over_t_high"] < 0.02 for m in ok),
-        "the loaded end carries T_high (2 %)": bool(ok)
-        and all(abs(per_mu[m]["t_start_over_t_high"] - 1) < 0.02 for m in ok),
-    }
-    notes = [
-        "DER (knotmech.scenes.clove_hitch, free end): a pre-shaped hitch relaxed on the post, "
-        f"loaded with T_high = {T_HIGH} N on end 0 (0.2 s settle, 0.2 s ramp, 0.4 s hold), "
-        f"{N_NODES[bool(quick)]} nodes.",
-        "s is measured from the knot's entry (where T first leaves T_high); the paper's Fig. 3b "
-        "puts the entry nip at s/(2 pi R) ~ 0.1, the middle region at 1.0-1.5 and the exit at "
-        "~2.25 of its own origin.",
-        f"Nip regions: |k - mu_eff| > {DEVIATION:g} mu_eff with k = -dlnT/d(s/R), grouped by "
-        "knotmech.diagnose.locate.regions_from_mask; found from T(s) alone.",
-        "Centreline DER: the pinched cross-section of a real nip is not modelled (the paper's "
-        "FEM resolves it); the nips here come from rod-rod contact with friction on the surface.",
-        "Reference: clove-hitch paper, DOI 10.1016/j.eml.2022.101788, sec. 7, eq. 3, Fig. 3b.",
-    ]
-
-    figures = []
-    ax = new_axes(figsize=(7.0, 4.6))
-    shaded = False
-    for i, m in enumerate(ok):
-        p = per_mu[m]
-        r, an = p["result"], p["analysis"]
-        x = r.s / R
-        u = (x - p["x0"]) / (2 * np.pi)
-        col = f"C{i}"
-        ax.semilogy(
-            u,
-            np.maximum(r.tension / T_HIGH, 1e-3),
-            "-",
-            color=col,
-            lw=1.5,
-            label=rf"DER, $\mu_{{rc}}$={m:g} ($\mu_{{eff}}$={p['mu_eff']:.3f})",
-        )
-        for j, (a, b) in enumerate(an["segments"]):
-            xs = x[a : b + 1]
-            ts = r.tension[a : b + 1] / T_HIGH
-            xm = 0.5 * (xs[0] + xs[-1])
-            tm = float(np.exp(np.interp(xm, xs, np.log(ts))))
-            xx = np.linspace(xs[0] - 0.3, xs[-1] + 0.3, 20)
-            ax.semilogy(
-                (xx - p["x0"]) / (2 * np.pi),
-                tm * np.exp(-p["mu_eff"] * (xx - xm)),
-                "--",
-                color=col,
-                lw=1,
-                label=r"$e^{-\mu_{eff}s/R}$" if (i == 0 and j == 0) else None,
-            )
-        if i == 0:
-            dx = 0.5 * float(np.median(np.diff(u)))
-            for a, b in p["nip_regions_turns"]:
-                ax.axvspan(
-                    a - dx,
-                    b + dx,
-                    color="C1",
-                    alpha=0.2,
-                    lw=0,
-                    label=None if shaded else "non-exponential (nip) region, located",
-                )
-                shaded = True
-    ax.set_xlabel(r"$s/(2\pi R)$ from the knot's entry  ($R=(D+d)/2$)")
-    ax.set_ylabel(r"$T(s)/T_\mathrm{high}$")
-    ax.set_ylim(1e-3, 1.5)
-    ax.set_title(
-        "clove hitch, free end: DER tension profile (cf. clove-hitch paper Fig. 3b)", fontsize=9
-    )
-    ax.grid(True, which="both", alpha=0.3)
-    ax.legend(fontsize=7, loc="lower left")
-    figures.append(save_figure(ax.figure, out_dir, f"{NAME}"))
-
+        else:
+            per_mu[m] = analysed
     return finish(
         NAME,
         out_dir=out_dir,
-        checks=checks,
-        numbers=numbers,
-        figures=figures,
-        notes=notes,
+        checks=_checks(failed, per_mu),
+        numbers=_numbers(mus, quick, failed, per_mu),
+        figures=[_plot(per_mu, R, out_dir)],
+        notes=_notes(quick),
         quick=quick,
     )
 

@@ -231,55 +231,78 @@ def _is_scalar(v) -> bool:
     return v is None or isinstance(v, bool | int | float | str)
 
 
-def _cell(v, depth: int = 0) -> str:
-    """HTML of one value of ``numbers``: scalars formatted, lists and dicts as tables."""
+def _more(shown: int, total: int, text: str, colspan: int | None = None) -> str:
+    """The table row saying how many items there are in all, when some are not shown."""
+    if total <= shown:
+        return ""
+    span = f' colspan="{colspan}"' if colspan is not None else ""
+    return f'<tr><td{span} class="more">&hellip; {total} {text} in all</td></tr>'
+
+
+def _dict_cell(v: dict, depth: int) -> str:
+    """HTML of a dict: a two-column table of its keys and their values."""
     esc = html.escape
+    if depth >= 3:
+        return esc(f"({len(v)} entries, see the JSON)")
+    rows = "".join(
+        f"<tr><th>{esc(str(k))}</th><td>{_cell(x, depth + 1)}</td></tr>" for k, x in v.items()
+    )
+    return f'<table class="sub">{rows}</table>'
+
+
+def _scalars_cell(v) -> str:
+    """HTML of a list of scalars: the first ``_MAX_ITEMS``, comma-separated."""
+    shown = [format_number(x) if x is not None else "\u2014" for x in v[:_MAX_ITEMS]]
+    more = (
+        f' <span class="more">&hellip; {len(v)} values in all</span>' if len(v) > _MAX_ITEMS else ""
+    )
+    return html.escape(", ".join(shown)) + more
+
+
+def _is_row_table(v) -> bool:
+    """True for a list of equal-length lists of scalars, at most 8 columns wide."""
+    rowlike = all(isinstance(x, list | tuple) and all(_is_scalar(y) for y in x) for x in v)
+    return rowlike and len({len(x) for x in v}) == 1 and len(v[0]) <= 8
+
+
+def _rows_cell(v) -> str:
+    """HTML of a table of rows: the first ``_MAX_ROWS`` rows."""
+    rows = "".join(
+        "<tr>" + "".join(f"<td>{_cell(y)}</td>" for y in x) + "</tr>" for x in v[:_MAX_ROWS]
+    )
+    more = _more(_MAX_ROWS, len(v), "rows", colspan=len(v[0]))
+    return f'<table class="sub">{rows}{more}</table>'
+
+
+def _list_cell(v, depth: int) -> str:
+    """HTML of a list: scalars inline, a table of rows, else one row per item."""
+    if all(_is_scalar(x) for x in v):
+        return _scalars_cell(v)
+    if _is_row_table(v):
+        return _rows_cell(v)
+    if depth >= 3:
+        return html.escape(f"({len(v)} items, see the JSON)")
+    rows = "".join(f"<tr><td>{_cell(x, depth + 1)}</td></tr>" for x in v[:_MAX_ROWS])
+    return f'<table class="sub">{rows}{_more(_MAX_ROWS, len(v), "items")}</table>'
+
+
+def _cell(v, depth: int = 0) -> str:
+    """HTML of one value of ``numbers``: scalars formatted, lists and dicts as tables.
+
+    ``depth`` counts the tables this one is nested in; below three levels a dict or a list
+    of non-scalars is summarised by its length (the full value is in the case's JSON).
+    """
     if v is None:
         return '<span class="none">&mdash;</span>'
     if _is_scalar(v):
-        return esc(format_number(v))
+        return html.escape(format_number(v))
+    if isinstance(v, dict | list | tuple) and not v:
+        return '<span class="none">(none)</span>'
     if isinstance(v, dict):
-        if not v:
-            return '<span class="none">(none)</span>'
-        if depth >= 3:
-            return esc(f"({len(v)} entries, see the JSON)")
-        rows = "".join(
-            f"<tr><th>{esc(str(k))}</th><td>{_cell(x, depth + 1)}</td></tr>" for k, x in v.items()
-        )
-        return f'<table class="sub">{rows}</table>'
+        return _dict_cell(v, depth)
     if isinstance(v, list | tuple):
-        if not v:
-            return '<span class="none">(none)</span>'
-        if all(_is_scalar(x) for x in v):
-            shown = [format_number(x) if x is not None else "\u2014" for x in v[:_MAX_ITEMS]]
-            more = (
-                f' <span class="more">&hellip; {len(v)} values in all</span>'
-                if len(v) > _MAX_ITEMS
-                else ""
-            )
-            return esc(", ".join(shown)) + more
-        rowlike = all(isinstance(x, list | tuple) and all(_is_scalar(y) for y in x) for x in v)
-        if rowlike and len({len(x) for x in v}) == 1 and len(v[0]) <= 8:
-            rows = "".join(
-                "<tr>" + "".join(f"<td>{_cell(y)}</td>" for y in x) + "</tr>" for x in v[:_MAX_ROWS]
-            )
-            more = (
-                f'<tr><td colspan="{len(v[0])}" class="more">&hellip; {len(v)} rows in all</td>'
-                "</tr>"
-                if len(v) > _MAX_ROWS
-                else ""
-            )
-            return f'<table class="sub">{rows}{more}</table>'
-        if depth >= 3:
-            return esc(f"({len(v)} items, see the JSON)")
-        rows = "".join(f"<tr><td>{_cell(x, depth + 1)}</td></tr>" for x in v[:_MAX_ROWS])
-        more = (
-            f'<tr><td class="more">&hellip; {len(v)} items in all</td></tr>'
-            if len(v) > _MAX_ROWS
-            else ""
-        )
-        return f'<table class="sub">{rows}{more}</table>'
-    return esc(str(v))
+        return _list_cell(v, depth)
+    return html.escape(str(v))
 
 
 def _badge(verdict: str) -> str:
@@ -319,6 +342,79 @@ details { margin: 0.6em 0; } pre { background: #f6f8fa; padding: 0.6em; overflow
 """
 
 
+def _seconds(r: dict) -> str:
+    """A case's run time for the summary table, or "" when it has none."""
+    seconds = r.get("seconds")
+    return f"{float(seconds):.1f}" if isinstance(seconds, int | float) else ""
+
+
+def _summary_row(r: dict) -> str:
+    """One row of the page's summary table: case, badge, sentence, checks, seconds."""
+    esc = html.escape
+    name = str(r["name"])
+    checks = r.get("checks", {}) or {}
+    n_ok = sum(bool(ok) for ok in checks.values())
+    return (
+        f'<tr><td><a href="#{esc(name)}">{esc(name)}</a></td><td>{_badge(r["verdict"])}</td>'
+        f'<td class="what">{esc(str(r.get("summary") or ""))}</td>'
+        f"<td>{n_ok} of {len(checks)}</td><td>{_seconds(r)}</td></tr>"
+    )
+
+
+def _checks_html(checks: dict) -> str:
+    """The heading and list of a case's checks, each ticked or crossed ("" if none)."""
+    if not checks:
+        return ""
+    esc = html.escape
+    n_ok = sum(bool(ok) for ok in checks.values())
+    items = "".join(
+        f'<li><span class="{"ok" if ok else "no"}">{"&#10003;" if ok else "&#10007;"}'
+        f"</span> {esc(str(k))}</li>"
+        for k, ok in checks.items()
+    )
+    return f'<h3>Checks ({n_ok} of {len(checks)} hold)</h3><ul class="checks">{items}</ul>'
+
+
+def _figures_html(figures) -> str:
+    """Each figure as a thumbnail linking to its full-size PNG beside the page."""
+    esc = html.escape
+    return "".join(
+        f'<figure><a href="{esc(Path(f).name)}" title="open full size">'
+        f'<img src="{esc(Path(f).name)}" alt="{esc(Path(f).stem)}" loading="lazy"></a>'
+        f"<figcaption>{esc(Path(f).name)} (click for full size)</figcaption></figure>"
+        for f in figures
+    )
+
+
+def _numbers_html(numbers: dict) -> str:
+    """The case's numbers as a table, 4 significant digits ("" if none)."""
+    esc = html.escape
+    rows = "".join(
+        f"<tr><th>{esc(str(k))}</th><td>{_cell(v)}</td></tr>" for k, v in numbers.items()
+    )
+    return f'<h3>Numbers</h3><table class="numbers">{rows}</table>' if rows else ""
+
+
+def _section(r: dict) -> str:
+    """One case's section: sentence, checks, figures, numbers, notes, traceback, JSON link."""
+    esc = html.escape
+    name = str(r["name"])
+    what = str(r.get("summary") or "")
+    notes = "".join(f"<li>{esc(str(n))}</li>" for n in r.get("notes", []))
+    tb = r.get("traceback")
+    parts = [
+        f'<section id="{esc(name)}"><h2>{esc(name)} {_badge(r["verdict"])}</h2>',
+        f'<p class="what">{esc(what)}</p>' if what else "",
+        _checks_html(r.get("checks", {}) or {}),
+        _figures_html(r.get("figures", [])),
+        _numbers_html(r.get("numbers", {}) or {}),
+        f"<h3>Notes</h3><ul>{notes}</ul>" if notes else "",
+        f"<details><summary>traceback</summary><pre>{esc(tb)}</pre></details>" if tb else "",
+        f'<p>All values, unrounded: <a href="{esc(name)}.json">{esc(name)}.json</a></p></section>',
+    ]
+    return "".join(parts)
+
+
 def write_index(out_dir, results, *, quick: bool = True) -> Path:
     """Write ``<out_dir>/index.html``, the page a reviewer reads.
 
@@ -326,59 +422,25 @@ def write_index(out_dir, results, *, quick: bool = True) -> Path:
     against what, checks passed, time), then one section per case: the sentence, its
     checks, its figures (each a link to the full-size PNG), its numbers as tables with 4
     significant digits (the full values are in ``<name>.json``) and its notes.
+
+    Parameters
+    ----------
+    out_dir : str or Path
+        Folder of the page (created if missing); the figures are expected beside it.
+    results : list of dict
+        One dict per case, as :func:`run_case` returns them.
+    quick : bool
+        Whether the cases ran in quick mode (said in the title).
+
+    Returns
+    -------
+    Path
+        The page written.
     """
     out = Path(out_dir)
     out.mkdir(parents=True, exist_ok=True)
-    esc = html.escape
-    rows, sections = [], []
-    for r in results:
-        name = str(r["name"])
-        badge = _badge(r["verdict"])
-        what = str(r.get("summary") or "")
-        checks = r.get("checks", {}) or {}
-        n_ok = sum(bool(ok) for ok in checks.values())
-        seconds = r.get("seconds")
-        sec = f"{float(seconds):.1f}" if isinstance(seconds, int | float) else ""
-        rows.append(
-            f'<tr><td><a href="#{esc(name)}">{esc(name)}</a></td><td>{badge}</td>'
-            f'<td class="what">{esc(what)}</td><td>{n_ok} of {len(checks)}</td>'
-            f"<td>{sec}</td></tr>"
-        )
-        check_items = "".join(
-            f'<li><span class="{"ok" if ok else "no"}">{"&#10003;" if ok else "&#10007;"}'
-            f"</span> {esc(str(k))}</li>"
-            for k, ok in checks.items()
-        )
-        figs = "".join(
-            f'<figure><a href="{esc(Path(f).name)}" title="open full size">'
-            f'<img src="{esc(Path(f).name)}" alt="{esc(Path(f).stem)}" loading="lazy"></a>'
-            f"<figcaption>{esc(Path(f).name)} (click for full size)</figcaption></figure>"
-            for f in r.get("figures", [])
-        )
-        nums = "".join(
-            f"<tr><th>{esc(str(k))}</th><td>{_cell(v)}</td></tr>"
-            for k, v in (r.get("numbers", {}) or {}).items()
-        )
-        notes = "".join(f"<li>{esc(str(n))}</li>" for n in r.get("notes", []))
-        tb = (
-            f"<details><summary>traceback</summary><pre>{esc(r['traceback'])}</pre></details>"
-            if r.get("traceback")
-            else ""
-        )
-        parts = [
-            f'<section id="{esc(name)}"><h2>{esc(name)} {badge}</h2>',
-            f'<p class="what">{esc(what)}</p>' if what else "",
-            f'<h3>Checks ({n_ok} of {len(checks)} hold)</h3><ul class="checks">{check_items}</ul>'
-            if checks
-            else "",
-            figs,
-            f'<h3>Numbers</h3><table class="numbers">{nums}</table>' if nums else "",
-            f"<h3>Notes</h3><ul>{notes}</ul>" if notes else "",
-            tb,
-            f'<p>All values, unrounded: <a href="{esc(name)}.json">{esc(name)}.json</a></p>'
-            "</section>",
-        ]
-        sections.append("".join(parts))
+    rows = [_summary_row(r) for r in results]
+    sections = [_section(r) for r in results]
     n_pass = sum(r["verdict"] == "pass" for r in results)
     mode = "quick" if quick else "full"
     overall = _badge("pass" if n_pass == len(results) and results else "fail")

@@ -109,7 +109,7 @@ class RodContact:
     system. Friction, one of two laws:
 
     - :class:`~knotmech.rod.friction.SmoothFriction` ("imc"): coated-rod paper eqs.
-      (11)-(12), with dF/dq through the velocity (and |F_n|; the normal lagged). Stateless;
+      (11)-(12), with dF/dq through the velocity (and ``|F_n|``; the normal lagged). Stateless;
       it vanishes at zero slip, so a held load creeps.
     - :class:`~knotmech.rod.friction.AnchorFriction` ("anchor"): an elasto-plastic anchor
       per pair in contact, two material points (parameters on the lines of the pair's two
@@ -146,8 +146,8 @@ class RodContact:
         code). It does not stop a penalty that is too soft for the load from being pushed
         through quasi-statically: raise ``stiffness`` for that.
     friction_normal_derivative : bool
-        Include the derivative of |F_n| (through the penalty) in the friction's dF/dq
-        (default True; False: only the velocity derivative, |F_n| and n lagged, as before).
+        Include the derivative of ``|F_n|`` (through the penalty) in the friction's dF/dq
+        (default True; False: only the velocity derivative, ``|F_n|`` and n lagged, as before).
         Unsymmetric, closer to the exact Jacobian: at mu = 0.9 (coated n = 3 quick pull)
         Newton needs 2.9x fewer iterations.
     """
@@ -184,7 +184,7 @@ class RodContact:
         """Hint for :class:`knotmech.rod.SolverOptions` ``stagnation="auto"``: with the
         anchor law, an attempt whose residual has not halved in 4 Newton iterations is
         given up (retried, then halved). A sliding pair whose tangential gap passes near
-        zero during the solve (a lightly loaded pair: the cap's width mu |F_n|/k_t is then
+        zero during the solve (a lightly loaded pair: the cap's width ``mu |F_n| / k_t`` is then
         much smaller than the motion of a step) can make Newton cycle; measured on the
         first 12 s of the overhand benchmark (n = 1, 301 nodes), 88 attempts spent 21 % of
         all residual evaluations and 63 % of the LU factorizations so, and the cut brings

@@ -37,7 +37,7 @@ def stick_slip_weight(tangential_speed, *, sharpness, threshold):
     Returns
     -------
     gamma : ndarray, in [0, 1]
-        0 (static) ... 1 (fully sliding friction mu |F_n|).
+        0 (static) ... 1 (fully sliding friction ``mu |F_n|``).
 
     References
     ----------

@@ -42,7 +42,7 @@ class Result:
         (at a pulled end: the force the gripper applies, i.e. the measured pull force)
     reaction_edges : (m,) int  edges with a constrained twist angle
     reaction_torques : (n_frames, m) [N m]  axial torque the constraints exert on them
-    tension : (n_frames, n_edges) [N]  EA (|e|/|ebar| - 1)
+    tension : (n_frames, n_edges) [N]  ``EA (|e|/|ebar| - 1)``
     bending_moment : (n_frames, n_stencils, 2) [N m]  EI (kappa - kbar)/l, material frame
     twisting_moment : (n_frames, n_stencils) [N m]  GJ (m - mbar)/l
     energies : dict of (n_frames,) arrays [J]  stretch, bend, twist, kinetic, external

@@ -6,7 +6,7 @@ Each step solves, for q = q_new (coated-rod paper eqs. (7)-(9); Bergou et al. 20
     J = M/dt^2 + d2E/dq2 - dF_ext/dq - sum dF_interaction/dq,
 
 with the reference frames carried from the step start by time-parallel transport. Newton
-iterations use a backtracking line search on |f|; constrained dofs are eliminated (their rows
+iterations use a backtracking line search on ``|f|``; constrained dofs are eliminated (their rows
 and columns replaced by the identity), and the residual left on them is the reaction. The
 Jacobian is solved in LAPACK band storage (half bandwidth 10: Cholesky dpbsv, falling back to
 LU dgbsv when J is not positive definite) unless interactions add triplets; then the free
@@ -77,7 +77,7 @@ class SolverOptions:
     max_newton : int  Newton iterations per attempt before the step is halved (default 25)
     rtol : float  residual tolerance relative to the force scale of the step (default 1e-8)
     xtol : float  step tolerance relative to the mean rest edge length (default 1e-12)
-    line_search : bool  backtracking on |f| (default True)
+    line_search : bool  backtracking on ``|f|`` (default True)
     max_backtracks : int  halvings of the Newton step before the attempt fails (default 8)
     grow_after : int  accepted steps before a reduced dt doubles back toward dt (default 4)
     save_every : float or None [s]  frame interval (default: every nominal dt)
@@ -106,7 +106,7 @@ class SolverOptions:
         of wall time, it spent more than this many wall seconds per simulated second
         (default 3600: less than 1/60 s simulated in a minute; None: off)
     stall_wall_window : float [s]  wall-clock window of that rate (default 60)
-    max_strain : float or None  an accepted step whose largest edge strain |l/l0 - 1|
+    max_strain : float or None  an accepted step whose largest edge strain ``|l/l0 - 1|``
         exceeds this ends the run with status "failed" (last good state kept): a rod
         stretched to many times its length, or crushed to a point, is no longer a result of
         the model (default 1.0; None turns the check off)

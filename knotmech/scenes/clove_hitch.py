@@ -143,7 +143,7 @@ clove_hitch = hitch_scene(
         :data:`knotmech.scenes._common.MAX_NODE_STEPS`; ``inf`` lifts it).
     friction : {"anchor", "imc"}
         Rod-rod friction law: ``"anchor"`` (default) the elasto-plastic anchor per contact
-        pair, which sticks below mu |F_n| (:class:`~knotmech.rod.friction.AnchorFriction`;
+        pair, which sticks below ``mu |F_n|`` (:class:`~knotmech.rod.friction.AnchorFriction`;
         a held hitch does not creep); ``"imc"`` the regularised law of the implicit
         contact model and the coated-rod paper (:class:`~knotmech.rod.friction.
         SmoothFriction`), which vanishes at zero slip, so that a hitch held by its nips

@@ -74,3 +74,36 @@ def test_three_friction_coefficients(tmp_path):
     assert res["verdict"] == "pass", res["checks"]
     rates = [np.mean(res["numbers"][f"mu_rc={m:g}"]["fitted_rates"]) for m in (0.2, 0.3, 0.4)]
     assert rates[0] < rates[1] < rates[2]
+
+
+GOLDEN = Path(__file__).parents[1] / "golden" / "docs_clove_tension_profile.json"
+
+
+def _comparable(numbers: dict) -> dict:
+    """The case's numbers without the run's wall time, through JSON (tuples as lists)."""
+    out = json.loads(json.dumps(numbers))
+    for value in out.values():
+        if isinstance(value, dict):
+            value.pop("wall_s", None)
+    return out
+
+
+def test_numbers_unchanged(der):
+    """The quick mu_rc = 0.3 run's numbers and checks equal, bit for bit, those written
+    before ``run`` was split into short functions (issue 22; the DER run is deterministic,
+    its wall time is left out)."""
+    golden = json.loads(GOLDEN.read_text(encoding="utf-8"))
+    assert _comparable(der["numbers"]) == golden["numbers"]
+    assert der["checks"] == golden["checks"]
+
+
+if __name__ == "__main__":  # regenerate (only on the commit whose output is the reference)
+    import tempfile
+
+    with tempfile.TemporaryDirectory() as tmp:
+        res = case.run(quick=True, out_dir=tmp, processes=1, mu_values=(0.3,))
+    GOLDEN.write_text(
+        json.dumps({"numbers": _comparable(res["numbers"]), "checks": res["checks"]}, indent=1)
+        + "\n",
+        encoding="utf-8",
+    )

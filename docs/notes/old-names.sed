@@ -1,0 +1,30 @@
+# Old paths of the engineering notes -> their topic folders (issue 22).
+# Usage: git grep -l 'docs/notes/' | xargs sed -i -f docs/notes/old-names.sed
+s#docs/notes/fric\.md#docs/notes/contact-and-friction/anchor-friction.md#g
+s#docs/notes/fricspeed\.md#docs/notes/contact-and-friction/anchor-friction-cost.md#g
+s#docs/notes/stall\.md#docs/notes/contact-and-friction/clove-pull-stall.md#g
+s#docs/notes/sceneguard\.md#docs/notes/contact-and-friction/scene-checks.md#g
+s#docs/notes/hold\.md#docs/notes/hold-tables-and-clock/hold-verdict.md#g
+s#docs/notes/phase03\.md#docs/notes/hold-tables-and-clock/mu03-anchor-table.md#g
+s#docs/notes/holdtab\.md#docs/notes/hold-tables-and-clock/hold-tables.md#g
+s#docs/notes/tables\.md#docs/notes/hold-tables-and-clock/more-hitch-tables.md#g
+s#docs/notes/ropebend\.md#docs/notes/hold-tables-and-clock/bending-scale.md#g
+s#docs/notes/ropek\.md#docs/notes/hold-tables-and-clock/rope-bending-stiffness-sources.md#g
+s#docs/notes/ropetable\.md#docs/notes/hold-tables-and-clock/rope-table.md#g
+s#docs/notes/clock\.md#docs/notes/hold-tables-and-clock/flexural-clock.md#g
+s#docs/notes/diaginput\.md#docs/notes/diagnose-noise-and-statistics/input-robustness.md#g
+s#docs/notes/diagplug\.md#docs/notes/diagnose-noise-and-statistics/plugins-and-yarn-rig.md#g
+s#docs/notes/diagknot\.md#docs/notes/diagnose-noise-and-statistics/knot-pull-and-joint.md#g
+s#docs/notes/diag14\.md#docs/notes/diagnose-noise-and-statistics/noise-floor.md#g
+s#docs/notes/diag12\.md#docs/notes/diagnose-noise-and-statistics/effect-recovery.md#g
+s#docs/notes/diagbig\.md#docs/notes/diagnose-noise-and-statistics/long-recordings.md#g
+s#docs/notes/kpull\.md#docs/notes/diagnose-noise-and-statistics/knot-pull-tabulated.md#g
+s#docs/notes/diagnoise\.md#docs/notes/diagnose-noise-and-statistics/ar-noise-and-outliers.md#g
+s#docs/notes/coloured\.md#docs/notes/diagnose-noise-and-statistics/coloured-noise.md#g
+s#docs/notes/bigrip\.md#docs/notes/diagnose-noise-and-statistics/long-out-of-catalogue.md#g
+s#docs/notes/knots\.md#docs/notes/knots-and-curves/scene-base-bends-centreline.md#g
+s#docs/notes/hitches\.md#docs/notes/knots-and-curves/hitches-on-one-base.md#g
+s#docs/notes/clisim\.md#docs/notes/cli/units-and-simulate.md#g
+s#docs/notes/cliwire\.md#docs/notes/cli/bend-and-centreline-cli.md#g
+s#docs/notes/docsux\.md#docs/notes/cli/validation-page-notebooks-tour.md#g
+s#docs/notes/README\.md#docs/notes/index.md#g
