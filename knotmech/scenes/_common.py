@@ -233,6 +233,79 @@ def check_run_size(*, n_nodes, t_end, dt, max_node_steps=None, hint="") -> float
     return work
 
 
+#: default bound on the memory one scene run may ask for [bytes] (see check_memory)
+MAX_MEMORY = 4e9
+
+
+def pair_check_bytes(n_edges) -> float:
+    """Memory [bytes] of one all-pairs edge-distance check on ``n_edges`` edges
+    (:func:`knotmech.scenes.curves._edge_distances`: two (n, n, 3) and about eight (n, n)
+    float64 temporaries)."""
+    return 112.0 * float(n_edges) ** 2
+
+
+def frames_bytes(n_frames, n_nodes) -> float:
+    """Memory [bytes] of ``n_frames`` recorded frames of ``n_nodes`` positions (float64)."""
+    return 24.0 * float(n_frames) * float(n_nodes)
+
+
+def check_memory(n_bytes, *, what: str, hint: str, max_memory=None) -> float:
+    """Refuse, before anything is allocated, a run whose arrays would not fit in memory.
+
+    Parameters
+    ----------
+    n_bytes : float [bytes]
+        Estimate of the largest allocation(s) of the run.
+    what : str
+        What takes the memory (e.g. "the strands' pair-distance check on 2e4 edges").
+    hint : str
+        The option(s) that bring it down.
+    max_memory : float [bytes], optional
+        The bound (default :data:`MAX_MEMORY`, 4 GB).
+
+    Returns
+    -------
+    float
+        The estimate [bytes].
+
+    Raises
+    ------
+    InputError
+        The estimate is above the bound, or not finite.
+    """
+    limit = MAX_MEMORY if max_memory is None else float(max_memory)
+    b = float(n_bytes)
+    if not math.isfinite(b) or b > limit:
+        raise InputError(
+            f"this run would need about {_bytes(b)} of memory for {what}, above the limit of "
+            f"{_bytes(limit)}; {hint}"
+        )
+    return b
+
+
+def _bytes(n: float) -> str:
+    if not math.isfinite(n):
+        return "unbounded memory"
+    for unit, size in (("PB", 1e15), ("TB", 1e12), ("GB", 1e9), ("MB", 1e6)):
+        if n >= size:
+            return f"{n / size:.3g} {unit}"
+    return f"{n:.3g} bytes"
+
+
+def check_numbers(**quantities) -> str | None:
+    """The reason a result may not be ``success``, or None: the name of the first quantity
+    the user asked for (a float or an array) that is not a number (NaN or infinite).
+
+    ``success`` means every number is a number (issue 27): a run whose requested result
+    is NaN is ``failed`` with this reason.
+    """
+    for name, value in quantities.items():
+        a = np.asarray(value, dtype=float)
+        if a.size and not np.all(np.isfinite(a)):
+            return f"{name} is not a number (NaN or infinite): the run gave no value for it"
+    return None
+
+
 def _duration(seconds: float) -> str:
     if not math.isfinite(seconds):
         return "forever"
