@@ -86,10 +86,10 @@ CASES = {
                                   n_frames=10),  # fmt: skip
         False,
     ),
-    "round_turn_free_longer": (
-        lambda: scenes.round_turn_two_half_hitches(loading="free", t_high=0.3, n_nodes=120,
-                                                   settle_time=0.1, load_time=0.1,
-                                                   hold_time=0.2, n_frames=11),  # fmt: skip
+    "two_half_hitches_pull": (
+        lambda: scenes.two_half_hitches(loading="pull", t_low=0.069, n_nodes=100,
+                                        settle_time=0.1, load_time=0.1, pull_distance=2e-3,
+                                        n_frames=11),  # fmt: skip
         True,
     ),
     "bend_granny_longer": (
