@@ -52,11 +52,15 @@ from knotmech.rod.constraints import Clamp, MovingNodes
 from knotmech.rod.contact import RodContact
 from knotmech.rod.friction import AnchorFriction, SmoothFriction
 from knotmech.scenes._common import (
+    check_memory,
+    check_numbers,
     check_pull_step,
     check_run_size,
     check_strain,
     fail,
+    frames_bytes,
     measured_strain,
+    pair_check_bytes,
 )
 from knotmech.scenes._scene import RampedEndLoad, RunControl, Scene, SceneRun, post_contact
 from knotmech.scenes.curves import _edge_distances
@@ -670,6 +674,7 @@ class HitchScene(Scene):
         )
         o = self.rod_opts
         n = None if o.n_nodes is None else int(o.n_nodes)
+        self._check_memory(n if n is not None else (self.L_arg or 0.0) / 3.1e-3)
         self.curve = self.knot.curve(self.D, self.d, self.L_arg, n)
         self.x0 = self.curve.nodes
         self.N = len(self.x0)
@@ -769,6 +774,34 @@ class HitchScene(Scene):
         )
         if self.pull:
             check_pull_step(self.pstep, speed=self.v, edge_length=h, name="pull_dt")
+        self._check_memory(self.N)
+        self._check_tied()
+
+    def _check_memory(self, n_nodes: float) -> None:
+        """The all-pairs distance watch (every step) and the frames, before allocation."""
+        n = float(n_nodes)
+        check_memory(
+            pair_check_bytes(n) + frames_bytes(self.control.n_frames, n),
+            what=f"the strands' distance watch on {n:.3g} nodes",
+            hint="use fewer nodes (n_nodes) or a shorter rod (rod_length)",
+        )
+
+    def _check_tied(self) -> None:
+        """Refuse a start curve the scene cannot tie: strands closer than half a diameter
+        (the rod thicker than the post allows for this knot) or the rod inside the post;
+        the run would start from a shape that already failed its topology check."""
+        x, d = self.x0, self.d
+        idx = np.arange(self.N - 1)
+        gaps = _edge_distances(x)[np.abs(idx[:, None] - idx[None, :]) >= 3]
+        gap = float(gaps.min()) if gaps.size else np.inf
+        post_gap = float(np.min(np.hypot(x[:, 0], x[:, 1]))) - 0.5 * (self.D + d)
+        if gap <= 0.5 * d or post_gap <= -0.25 * d:
+            raise InputError(
+                f"{self.knot.name} cannot be tied with a {d * 1e3:.3g} mm rod on a "
+                f"{self.D * 1e3:.3g} mm post: its start curve's strands come {gap / d:.2f} d "
+                f"apart (< 0.5 d) or it enters the post; use a thicker post "
+                f"(post_diameter) or a thinner rod (rod_diameter)"
+            )
 
     # -- build -----------------------------------------------------------------------
     def build(self) -> SceneRun:
@@ -965,6 +998,8 @@ class HitchScene(Scene):
             np.concatenate([run.tension, self.pull_force]), self.ea, warned=bool(self.warnings)
         )
         status, message = fail(run.status, run.message, reason)
+        if self.pull:
+            status, message = fail(status, message, check_numbers(t_high=th))
         return self.result_type(
             loading=self.load.loading,
             t_high=th,
