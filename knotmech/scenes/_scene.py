@@ -366,6 +366,22 @@ class SceneRun:
             callback=callback,
         )
         k0 = len(self.times)
+        start = self._record(res)
+        status, message = res.status, res.message
+        if verdict["msg"]:
+            status, message = "failed", f"{name}: {verdict['msg']}"
+        elif status != "success":
+            message = f"{name}: {message}"
+        self.phases.append(Phase(name, t0, self.t, status, message, (k0, len(self.times)), start))
+        if status != "success":
+            self.status, self.message = status, message
+            return False
+        return True
+
+    def _record(self, res) -> dict:
+        """Append a phase's frames, reactions, tensions and statistics to the run's, and
+        resume from its last state; returns the static reactions at the phase's start."""
+        k0 = len(self.times)
         tt = np.asarray(res.times)[1:]
         self.times.extend(tt.tolist())
         self.positions.extend(list(np.asarray(res.positions)[1:]))
@@ -385,16 +401,7 @@ class SceneRun:
             self.stats[k] = self.stats.get(k, 0) + v
         if res.final_state is not None:
             self.state = res.final_state
-        status, message = res.status, res.message
-        if verdict["msg"]:
-            status, message = "failed", f"{name}: {verdict['msg']}"
-        elif status != "success":
-            message = f"{name}: {message}"
-        self.phases.append(Phase(name, t0, self.t, status, message, (k0, len(self.times)), start))
-        if status != "success":
-            self.status, self.message = status, message
-            return False
-        return True
+        return start
 
     def tension_frames(self) -> np.ndarray:
         """Edge tensions [N] at every recorded frame, (n_frames, n_edges) (the first
