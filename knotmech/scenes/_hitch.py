@@ -1000,6 +1000,10 @@ class HitchScene(Scene):
         status, message = fail(run.status, run.message, reason)
         if self.pull:
             status, message = fail(status, message, check_numbers(t_high=th))
+        unsettled = self._unsettled(run)
+        if unsettled is not None:  # no verdict from a run that never reached its load
+            verdict = ""
+            status, message = fail(status, message, unsettled)
         return self.result_type(
             loading=self.load.loading,
             t_high=th,
@@ -1088,6 +1092,19 @@ class HitchScene(Scene):
         fast = self.climit is not None and not (abs(v_end) <= self.climit * self.d)
         undone = kept is False  # the knot came apart (or a strand passed through)
         return "slip" if stopped_early or not (creep <= self.slip) or fast or undone else "hold"
+
+    def _unsettled(self, run) -> str | None:
+        """Why a dead-load run gives no verdict: it stopped (end 0 ran out, or the solver
+        failed) before its settling ended, so the load was never applied; else None."""
+        if self.pull or run.t >= self.t1 - 1e-9:
+            return None
+        if run.status != "success":
+            return run.message
+        return (
+            f"the knot came apart while it settled under the pre-tension ({self.pre:.3g} N): "
+            f"end 0 ran out 0.3 L by t = {run.t:.3g} s, before the load phase (from "
+            f"{self.t1:g} s); no verdict"
+        )
 
 
 def _mean_speed(times, u, t_a, window) -> float:

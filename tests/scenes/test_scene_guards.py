@@ -178,3 +178,14 @@ def test_a_plain_quarter_circle_runs_with_default_options():
     assert res.verdict == "holds"
     assert np.all(np.isfinite(res.pull_force)) and res.max_force > 0
     assert res.topology_preserved
+
+
+def test_a_hitch_that_fails_in_settling_gives_no_verdict():
+    # before: a free-end hitch whose solver failed in settling read "slip" (creep nan)
+    opts = rod.SolverOptions(max_newton=1, rtol=1e-15, dt_min=1e-3, throw=False)
+    res = two_half_hitches(loading="free", t_high=0.3, n_nodes=100, settle_time=0.05,
+                           load_time=0.05, hold_time=0.05, options=opts)  # fmt: skip
+    assert res.status == "failed"
+    assert res.message.startswith("settle: ")
+    assert res.verdict == ""
+    assert res.times[-1] < 0.05  # the last good state, inside the settling
