@@ -80,6 +80,15 @@ def test_overhand_frames_are_bounded():
         overhand(1, 0.3, n_frames=10**9)
 
 
+def test_every_scene_bounds_the_solver_memory():
+    # 1e7 nodes held for two steps pass the node-steps bound (2e7) but need 160 GB
+    with pytest.raises(InputError, match=r"160 GB of memory for the solver") as exc:
+        capstan(wrap_angle=np.pi, mu=0.3, rod_diameter=4e-3, post_diameter=30e-3,
+                youngs_modulus=1.26e6, t_low=0.1, mode="hold", t_high=0.1,
+                n_elements=10**7, dt=1.0, hold_time=1.0)  # fmt: skip
+    assert "n_elements" in _one_line(exc)
+
+
 def test_memory_estimates():
     # the all-pairs check: 112 bytes per pair of edges (the temporaries of _edge_distances)
     assert pair_check_bytes(1000) == 1.12e8
