@@ -3,7 +3,14 @@ r"""The hitch scene: a rod tied round a rigid post, loaded at its ends, held or 
 Every post hitch (:mod:`~knotmech.scenes.clove_hitch`,
 :mod:`~knotmech.scenes.two_half_hitches`, :mod:`~knotmech.scenes.round_turn_two_half_hitches`,
 :mod:`~knotmech.scenes.cow_hitch`) is this scene with its own start centreline: a
-:class:`HitchKnot` (a name and a curve) handed to :func:`run_hitch`, which
+:class:`HitchKnot` (a name and a curve) handed to :func:`run_hitch`. Its 31 keywords (the
+interface of every hitch scene, unchanged) are gathered into small frozen option objects,
+:class:`HitchRod`, :class:`HitchFriction`, :class:`HitchLoading`, :class:`HitchRule` and
+:class:`~knotmech.scenes._scene.RunControl`, and :class:`HitchScene` (a
+:class:`~knotmech.scenes._scene.Scene`) runs it; the run
+
+0. **sets up**: checks every input, refuses a rod the post cannot take (the start
+   curve's strands closer than d/2 or inside the post), bounds steps x nodes and memory;
 
 1. **builds** the naturally straight rod on the curve, the rigid post on the z axis
    (:class:`~knotmech.rod.contact.CylinderContact`, elasto-plastic friction on the rod
@@ -70,6 +77,11 @@ __all__ = [
     "HitchKnot",
     "HitchResult",
     "run_hitch",
+    "HitchScene",
+    "HitchRod",
+    "HitchFriction",
+    "HitchLoading",
+    "HitchRule",
     "hitch_scene",
     "darboux_profile",
     "PAPER_PRETENSION",

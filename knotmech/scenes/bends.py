@@ -38,7 +38,7 @@ from knotmech.scenes._scene import RunControl, Scene, SceneRun, grip_path, rod_c
 from knotmech.scenes.bend_curves import BEND_CODES, bend_curves, bend_invariants
 from knotmech.scenes.curves import _edge_distances
 
-__all__ = ["BendResult", "bend", "PATIL_ORDER"]
+__all__ = ["BendResult", "BendScene", "BendRopes", "BendPull", "bend", "PATIL_ORDER"]
 
 #: Stability order of the four bends attributed to Patil et al. (2020), most secure first,
 #: as recalled in docs/notes/knots.md. Only reef above granny is confirmed by a source we

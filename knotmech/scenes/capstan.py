@@ -51,7 +51,14 @@ from knotmech.scenes._common import (
 )
 from knotmech.scenes._scene import RunControl, Scene, SceneRun, post_contact
 
-__all__ = ["CapstanResult", "capstan", "capstan_two_loops"]
+__all__ = [
+    "CapstanResult",
+    "CapstanScene",
+    "CapstanRod",
+    "CapstanLoading",
+    "capstan",
+    "capstan_two_loops",
+]
 
 
 @dataclass

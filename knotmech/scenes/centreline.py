@@ -44,7 +44,14 @@ from knotmech.scenes._scene import (
 from knotmech.scenes.curves import _edge_distances, resample_polyline
 from knotmech.scenes.topology import close_curve, knot_invariant
 
-__all__ = ["CentrelineResult", "read_centreline", "centreline"]
+__all__ = [
+    "CentrelineResult",
+    "CentrelineScene",
+    "CentrelineRod",
+    "CentrelinePull",
+    "read_centreline",
+    "centreline",
+]
 
 _UNITS = {"m": 1.0, "cm": 1e-2, "mm": 1e-3}
 _END_KINDS = ("pull", "fixed", "free")

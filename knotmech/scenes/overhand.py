@@ -55,6 +55,7 @@ from knotmech.scenes.topology import knot_invariant
 __all__ = [
     "OverhandSetup",
     "OverhandResult",
+    "OverhandScene",
     "imc_setup",
     "coated_setup",
     "overhand",

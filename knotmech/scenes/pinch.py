@@ -39,7 +39,16 @@ from knotmech.scenes._common import (
 )
 from knotmech.scenes._scene import RunControl, Scene
 
-__all__ = ["LoadedCylinderContact", "PinchResult", "PinchSweep", "pinch", "pinch_sweep"]
+__all__ = [
+    "LoadedCylinderContact",
+    "PinchResult",
+    "PinchScene",
+    "PinchRod",
+    "PinchLoading",
+    "PinchSweep",
+    "pinch",
+    "pinch_sweep",
+]
 
 
 #: F_t*/(2 mu F_n) further than this from 1 gets a warning (the rigid-section model gives 1
