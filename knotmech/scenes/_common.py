@@ -13,7 +13,13 @@ Bounds (one place, used by every scene):
 - the pulled end moves at most one edge per step (default steps: a quarter of an edge);
 - quasi-static loading: the axial wave crosses the rod (L/c, c = sqrt(EA/(rho A))) in a
   tenth of the shortest loading time (ramp or pull) or less, else a warning; slower than
-  that loading time itself, refused (the measured force is the rod's inertia).
+  that loading time itself, refused (the measured force is the rod's inertia);
+- cost, before anything is allocated: nominal steps x nodes at most :data:`MAX_NODE_STEPS`
+  (:func:`check_run_size`), and memory at most :data:`MAX_MEMORY` (:func:`check_memory`:
+  the solver's arrays, :data:`SOLVER_BYTES_PER_NODE` per node, the all-pairs distance
+  checks of the knots and the recorded frames);
+- ``success`` only with numbers: a result whose requested quantity is NaN is ``failed``
+  (:func:`check_numbers`).
 """
 
 from __future__ import annotations
