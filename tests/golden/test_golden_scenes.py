@@ -32,9 +32,16 @@ EA = E_VPS * np.pi * D_ROD**2 / 4
 def _capstan_kw(D_over_d=2.0):
     D = D_over_d * D_ROD
     R = 0.5 * (D + D_ROD)
-    return dict(wrap_angle=np.pi, mu=0.5, rod_diameter=D_ROD, post_diameter=D,
-                youngs_modulus=E_VPS, bending_stiffness=1e-4 * EA * R**2, t_low=0.01 * EA,
-                n_elements=40)  # fmt: skip
+    return dict(
+        wrap_angle=np.pi,
+        mu=0.5,
+        rod_diameter=D_ROD,
+        post_diameter=D,
+        youngs_modulus=E_VPS,
+        bending_stiffness=1e-4 * EA * R**2,
+        t_low=0.01 * EA,
+        n_elements=40,
+    )
 
 
 def _quarter_circle(n=20, radius=0.05):
@@ -48,61 +55,100 @@ _HITCH_QUICK = dict(n_nodes=100, settle_time=0.05, load_time=0.05, hold_time=0.0
 CASES = {
     "capstan_pull": (lambda: scenes.capstan(**_capstan_kw(), pull_distance=2e-3), False),
     "capstan_hold": (
-        lambda: scenes.capstan(**_capstan_kw(), mode="hold", t_high=0.015 * EA,
-                               hold_time=0.1, ramp_time=0.05),  # fmt: skip
+        lambda: scenes.capstan(
+            **_capstan_kw(), mode="hold", t_high=0.015 * EA, hold_time=0.1, ramp_time=0.05
+        ),
         False,
     ),
     "capstan_two_loops": (
-        lambda: scenes.capstan_two_loops(n_elements=120, pull_distance=1e-3), False
+        lambda: scenes.capstan_two_loops(n_elements=120, pull_distance=1e-3),
+        False,
     ),
-    "pinch": (lambda: scenes.pinch(normal_load=0.3, mu=0.5, n_elements=60,
-                                   pull_distance=2e-3), False),  # fmt: skip
+    "pinch": (
+        lambda: scenes.pinch(normal_load=0.3, mu=0.5, n_elements=60, pull_distance=2e-3),
+        False,
+    ),
     "clove_hitch_free": (
-        lambda: scenes.clove_hitch(loading="free", t_high=1.47, **_HITCH_QUICK), False
+        lambda: scenes.clove_hitch(loading="free", t_high=1.47, **_HITCH_QUICK),
+        False,
     ),
     "clove_hitch_pull": (
-        lambda: scenes.clove_hitch(loading="pull", t_low=0.069, mu_rod_post=0.32,
-                                   mu_rod_rod=0.32, n_nodes=100, settle_time=0.05,
-                                   load_time=0.05, pull_distance=1e-3, n_frames=11),
+        lambda: scenes.clove_hitch(
+            loading="pull",
+            t_low=0.069,
+            mu_rod_post=0.32,
+            mu_rod_rod=0.32,
+            n_nodes=100,
+            settle_time=0.05,
+            load_time=0.05,
+            pull_distance=1e-3,
+            n_frames=11,
+        ),
         False,
-    ),  # fmt: skip
+    ),
     "two_half_hitches_free": (
-        lambda: scenes.two_half_hitches(loading="free", t_high=0.3, **_HITCH_QUICK), False
+        lambda: scenes.two_half_hitches(loading="free", t_high=0.3, **_HITCH_QUICK),
+        False,
     ),
     "overhand_n1": (
-        lambda: scenes.overhand(1, 0.3, n_frames=11, n_nodes=101, pull_speed=0.03, dt=5e-3,
-                                wait_time=0.05, pull_time=0.3),  # fmt: skip
+        lambda: scenes.overhand(
+            1,
+            0.3,
+            n_frames=11,
+            n_nodes=101,
+            pull_speed=0.03,
+            dt=5e-3,
+            wait_time=0.05,
+            pull_time=0.3,
+        ),
         False,
     ),
     "bend_reef": (
-        lambda: scenes.bend("reef", n_nodes=80, settle_time=0.02, set_travel=1e-3,
-                            pull_distance=2e-3, n_frames=10),  # fmt: skip
+        lambda: scenes.bend(
+            "reef", n_nodes=80, settle_time=0.02, set_travel=1e-3, pull_distance=2e-3, n_frames=10
+        ),
         False,
     ),
     "centreline_quarter_circle": (
-        lambda: scenes.centreline(_quarter_circle(), ends=[("fixed", "pull")], rod_diameter=4e-3,
-                                  youngs_modulus=1e6, density=1100.0, mu_rod_rod=0.3,
-                                  n_nodes=30, settle_time=0.02, pull_distance=1e-3,
-                                  n_frames=10),  # fmt: skip
+        lambda: scenes.centreline(
+            _quarter_circle(),
+            ends=[("fixed", "pull")],
+            rod_diameter=4e-3,
+            youngs_modulus=1e6,
+            density=1100.0,
+            mu_rod_rod=0.3,
+            n_nodes=30,
+            settle_time=0.02,
+            pull_distance=1e-3,
+            n_frames=10,
+        ),
         False,
     ),
     "two_half_hitches_pull": (
-        lambda: scenes.two_half_hitches(loading="pull", t_low=0.069, n_nodes=100,
-                                        settle_time=0.1, load_time=0.1, pull_distance=2e-3,
-                                        n_frames=11),  # fmt: skip
+        lambda: scenes.two_half_hitches(
+            loading="pull",
+            t_low=0.069,
+            n_nodes=100,
+            settle_time=0.1,
+            load_time=0.1,
+            pull_distance=2e-3,
+            n_frames=11,
+        ),
         True,
     ),
     "bend_granny_longer": (
-        lambda: scenes.bend("granny", n_nodes=80, settle_time=0.05, pull_distance=6e-3,
-                            n_frames=10),  # fmt: skip
+        lambda: scenes.bend(
+            "granny", n_nodes=80, settle_time=0.05, pull_distance=6e-3, n_frames=10
+        ),
         True,
     ),
 }
 
 
 def _value(v):
-    if isinstance(v, np.ndarray) or (isinstance(v, (list, tuple)) and v and
-                                     isinstance(v[0], np.ndarray)):  # fmt: skip
+    if isinstance(v, np.ndarray) or (
+        isinstance(v, (list, tuple)) and v and isinstance(v[0], np.ndarray)
+    ):
         a = np.ascontiguousarray(np.asarray(v))
         if a.dtype == object:
             return [_value(x) for x in v]
