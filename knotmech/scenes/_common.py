@@ -13,7 +13,13 @@ Bounds (one place, used by every scene):
 - the pulled end moves at most one edge per step (default steps: a quarter of an edge);
 - quasi-static loading: the axial wave crosses the rod (L/c, c = sqrt(EA/(rho A))) in a
   tenth of the shortest loading time (ramp or pull) or less, else a warning; slower than
-  that loading time itself, refused (the measured force is the rod's inertia).
+  that loading time itself, refused (the measured force is the rod's inertia);
+- cost, before anything is allocated: nominal steps x nodes at most :data:`MAX_NODE_STEPS`
+  (:func:`check_run_size`), and memory at most :data:`MAX_MEMORY` (:func:`check_memory`:
+  the solver's arrays, :data:`SOLVER_BYTES_PER_NODE` per node, the all-pairs distance
+  checks of the knots and the recorded frames);
+- ``success`` only with numbers: a result whose requested quantity is NaN is ``failed``
+  (:func:`check_numbers`).
 """
 
 from __future__ import annotations
@@ -215,7 +221,8 @@ def check_run_size(*, n_nodes, t_end, dt, max_node_steps=None, hint="") -> float
     Raises
     ------
     InputError
-        The estimate exceeds the bound, or is not finite.
+        The estimate exceeds the bound, or is not finite; or the solver's memory
+        (:func:`solver_bytes`) exceeds :data:`MAX_MEMORY`.
     """
     limit = MAX_NODE_STEPS if max_node_steps is None else float(max_node_steps)
     if not limit > 0:
@@ -230,7 +237,96 @@ def check_run_size(*, n_nodes, t_end, dt, max_node_steps=None, hint="") -> float
             f"{_duration(secs)}, above the limit of {limit:.3g} (max_node_steps)"
             + (f"; {hint}" if hint else "")
         )
+    check_memory(
+        solver_bytes(n_nodes),
+        what=f"the solver's arrays on {float(n_nodes):.3g} nodes (about 16 kB per node)",
+        hint="use fewer nodes (n_nodes, n_elements)",
+    )
     return work
+
+
+#: peak memory of the implicit solver per node [bytes]: measured on a capstan hold run,
+#: 2,000 -> 40,000 nodes added 620 MB of peak RSS (2026-12-03, numpy/numba, float64)
+SOLVER_BYTES_PER_NODE = 16e3
+
+
+def solver_bytes(n_nodes) -> float:
+    """Peak memory [bytes] of the solver on ``n_nodes`` nodes
+    (:data:`SOLVER_BYTES_PER_NODE` each)."""
+    return SOLVER_BYTES_PER_NODE * float(n_nodes)
+
+
+#: default bound on the memory one scene run may ask for [bytes] (see check_memory)
+MAX_MEMORY = 4e9
+
+
+def pair_check_bytes(n_edges) -> float:
+    """Memory [bytes] of one all-pairs edge-distance check on ``n_edges`` edges
+    (:func:`knotmech.scenes.curves._edge_distances`: two (n, n, 3) and about eight (n, n)
+    float64 temporaries)."""
+    return 112.0 * float(n_edges) ** 2
+
+
+def frames_bytes(n_frames, n_nodes) -> float:
+    """Memory [bytes] of ``n_frames`` recorded frames of ``n_nodes`` positions (float64)."""
+    return 24.0 * float(n_frames) * float(n_nodes)
+
+
+def check_memory(n_bytes, *, what: str, hint: str, max_memory=None) -> float:
+    """Refuse, before anything is allocated, a run whose arrays would not fit in memory.
+
+    Parameters
+    ----------
+    n_bytes : float [bytes]
+        Estimate of the largest allocation(s) of the run.
+    what : str
+        What takes the memory (e.g. "the strands' pair-distance check on 2e4 edges").
+    hint : str
+        The option(s) that bring it down.
+    max_memory : float [bytes], optional
+        The bound (default :data:`MAX_MEMORY`, 4 GB).
+
+    Returns
+    -------
+    float
+        The estimate [bytes].
+
+    Raises
+    ------
+    InputError
+        The estimate is above the bound, or not finite.
+    """
+    limit = MAX_MEMORY if max_memory is None else float(max_memory)
+    b = float(n_bytes)
+    if not math.isfinite(b) or b > limit:
+        raise InputError(
+            f"this run would need about {_bytes(b)} of memory for {what}, above the limit of "
+            f"{_bytes(limit)}; {hint}"
+        )
+    return b
+
+
+def _bytes(n: float) -> str:
+    if not math.isfinite(n):
+        return "unbounded memory"
+    for unit, size in (("PB", 1e15), ("TB", 1e12), ("GB", 1e9), ("MB", 1e6)):
+        if n >= size:
+            return f"{n / size:.3g} {unit}"
+    return f"{n:.3g} bytes"
+
+
+def check_numbers(**quantities) -> str | None:
+    """The reason a result may not be ``success``, or None: the name of the first quantity
+    the user asked for (a float or an array) that is not a number (NaN or infinite).
+
+    ``success`` means every number is a number (issue 27): a run whose requested result
+    is NaN is ``failed`` with this reason.
+    """
+    for name, value in quantities.items():
+        a = np.asarray(value, dtype=float)
+        if a.size and not np.all(np.isfinite(a)):
+            return f"{name} is not a number (NaN or infinite): the run gave no value for it"
+    return None
 
 
 def _duration(seconds: float) -> str:

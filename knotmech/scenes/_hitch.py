@@ -3,7 +3,14 @@ r"""The hitch scene: a rod tied round a rigid post, loaded at its ends, held or 
 Every post hitch (:mod:`~knotmech.scenes.clove_hitch`,
 :mod:`~knotmech.scenes.two_half_hitches`, :mod:`~knotmech.scenes.round_turn_two_half_hitches`,
 :mod:`~knotmech.scenes.cow_hitch`) is this scene with its own start centreline: a
-:class:`HitchKnot` (a name and a curve) handed to :func:`run_hitch`, which
+:class:`HitchKnot` (a name and a curve) handed to :func:`run_hitch`. Its 31 keywords (the
+interface of every hitch scene, unchanged) are gathered into small frozen option objects,
+:class:`HitchRod`, :class:`HitchFriction`, :class:`HitchLoading`, :class:`HitchRule` and
+:class:`~knotmech.scenes._scene.RunControl`, and :class:`HitchScene` (a
+:class:`~knotmech.scenes._scene.Scene`) runs it; the run
+
+0. **sets up**: checks every input, refuses a rod the post cannot take (the start
+   curve's strands closer than d/2 or inside the post), bounds steps x nodes and memory;
 
 1. **builds** the naturally straight rod on the curve, the rigid post on the z axis
    (:class:`~knotmech.rod.contact.CylinderContact`, elasto-plastic friction on the rod
@@ -52,13 +59,17 @@ from knotmech.rod.constraints import Clamp, MovingNodes
 from knotmech.rod.contact import RodContact
 from knotmech.rod.friction import AnchorFriction, SmoothFriction
 from knotmech.scenes._common import (
+    check_memory,
+    check_numbers,
     check_pull_step,
     check_run_size,
     check_strain,
     fail,
+    frames_bytes,
     measured_strain,
+    pair_check_bytes,
 )
-from knotmech.scenes._scene import RampedEndLoad, SceneRun, post_contact
+from knotmech.scenes._scene import RampedEndLoad, RunControl, Scene, SceneRun, post_contact
 from knotmech.scenes.curves import _edge_distances
 from knotmech.scenes.topology import post_crossing_code, winding_number
 
@@ -66,6 +77,11 @@ __all__ = [
     "HitchKnot",
     "HitchResult",
     "run_hitch",
+    "HitchScene",
+    "HitchRod",
+    "HitchFriction",
+    "HitchLoading",
+    "HitchRule",
     "hitch_scene",
     "darboux_profile",
     "PAPER_PRETENSION",
@@ -532,269 +548,575 @@ def run_hitch(
     -------
     HitchResult
     """
-    if not isinstance(knot, HitchKnot):
-        raise InputError(f"knot must be a HitchKnot, got {type(knot).__name__}")
-    if loading not in ("symmetric", "asymmetric", "free", "pull"):
-        raise InputError(
-            f"loading must be 'symmetric', 'asymmetric', 'free' or 'pull', got {loading!r}"
-        )
-    d = float(check_positive("rod_diameter", rod_diameter))
-    D = float(check_positive("post_diameter", post_diameter))
-    L_arg = None if rod_length is None else float(check_positive("rod_length", rod_length))
-    E = float(check_positive("youngs_modulus", youngs_modulus))
-    kappa = check_bending_scale(bending_scale)
-    rho = float(check_positive("density", density))
+    return HitchScene(
+        knot,
+        rod=HitchRod(
+            rod_diameter=rod_diameter,
+            post_diameter=post_diameter,
+            rod_length=rod_length,
+            youngs_modulus=youngs_modulus,
+            density=density,
+            bending_scale=bending_scale,
+            n_nodes=n_nodes,
+        ),
+        friction=HitchFriction(
+            mu_rod_post=mu_rod_post, mu_rod_rod=mu_rod_rod, mu_kinetic=mu_kinetic, law=friction
+        ),
+        load=HitchLoading(
+            loading=loading,
+            t_high=t_high,
+            t_low=t_low,
+            pretension=pretension,
+            settle_time=settle_time,
+            load_time=load_time,
+            hold_time=hold_time,
+            pull_speed=pull_speed,
+            pull_distance=pull_distance,
+            pull_dt=pull_dt,
+        ),
+        rule=HitchRule(
+            slip_distance=slip_distance, creep_limit=creep_limit, creep_window=creep_window
+        ),
+        control=RunControl(
+            dt=dt,
+            n_frames=n_frames,
+            options=options,
+            progress=progress,
+            max_node_steps=max_node_steps,
+        ),
+        result_type=result_type,
+    ).run()
+
+
+@dataclass(frozen=True)
+class HitchRod:
+    """The rod and the post of a hitch scene (SI units; :func:`run_hitch` documents them)."""
+
+    rod_diameter: float = 4e-3
+    post_diameter: float = 30e-3
+    rod_length: float | None = 0.374
+    youngs_modulus: float = 1.26e6
+    density: float = 1150.0
+    bending_scale: float = 1.0
+    n_nodes: int | None = 150
+
+
+@dataclass(frozen=True)
+class HitchFriction:
+    """Rod-post (static ``mu_rod_post``, kinetic ``mu_kinetic``) and rod-rod friction, and
+    the rod-rod law ``"anchor"`` or ``"imc"``."""
+
+    mu_rod_post: float = 0.3
+    mu_rod_rod: float = 0.3
+    mu_kinetic: float | None = None
+    law: str = "anchor"
+
+
+@dataclass(frozen=True)
+class HitchLoading:
+    """The loading and its schedule [N], [s], [m/s], [m] (:func:`run_hitch` documents them)."""
+
+    loading: str = "symmetric"
+    t_high: float = 1.47
+    t_low: float | None = None
+    pretension: float | None = None
+    settle_time: float = 0.5
+    load_time: float = 0.5
+    hold_time: float = 1.0
+    pull_speed: float = 0.02
+    pull_distance: float = 0.04
+    pull_dt: float | None = None
+
+
+@dataclass(frozen=True)
+class HitchRule:
+    """The free-end verdict's rule: ``slip_distance`` [m], ``creep_limit`` [d/s],
+    ``creep_window`` [s]."""
+
+    slip_distance: float | None = None
+    creep_limit: float | None = None
+    creep_window: float | None = None
+
+
+_LOADINGS = ("symmetric", "asymmetric", "free", "pull")
+
+
+def _end_loads(loading: str, t_high: float, t_low) -> tuple[float, float]:
+    """(T_high, T_low) [N] checked for ``loading``: T_low defaults to T_high (symmetric),
+    is required (asymmetric), is 0 (free) or the paper's 0.069 N (pull)."""
     th = float(check_positive("t_high", t_high))
-    mrc = float(check_nonnegative("mu_rod_post", mu_rod_post))
-    mrr = float(check_nonnegative("mu_rod_rod", mu_rod_rod))
-    mk = mrc if mu_kinetic is None else float(check_nonnegative("mu_kinetic", mu_kinetic))
-    if mk > mrc:
-        raise InputError(f"mu_kinetic must be <= mu_rod_post ({mrc:g}), got {mk:g}")
-    if friction not in ("anchor", "imc"):
-        raise InputError(f"friction must be 'anchor' or 'imc', got {friction!r}")
-    climit = None if creep_limit is None else float(check_positive("creep_limit", creep_limit))
-    cwin = 1.0 if creep_window is None else float(check_positive("creep_window", creep_window))
     if loading == "symmetric":
-        tl = th if t_low is None else float(check_positive("t_low", t_low))
-    elif loading == "asymmetric":
+        return th, th if t_low is None else float(check_positive("t_low", t_low))
+    if loading == "asymmetric":
         if t_low is None:
             raise InputError("t_low is required for the asymmetric loading")
-        tl = float(check_nonnegative("t_low", t_low))
-    elif loading == "pull":
-        tl = 0.069 if t_low is None else float(check_positive("t_low", t_low))
-    else:
-        if t_low not in (None, 0, 0.0):
-            raise InputError("t_low must be 0 (or omitted) for the free-end loading")
-        tl = 0.0
+        return th, float(check_nonnegative("t_low", t_low))
     if loading == "pull":
-        pre = PAPER_PRETENSION if pretension is None else pretension
-        pre = float(check_positive("pretension", pre))
-        v = float(check_positive("pull_speed", pull_speed))
-        dist = float(check_positive("pull_distance", pull_distance))
-    else:
-        pre = 0.1 * th if pretension is None else float(check_positive("pretension", pretension))
-    for name, val in (("settle_time", settle_time), ("load_time", load_time)):
-        check_positive(name, val)
-    check_nonnegative("hold_time", hold_time)
-    if n_nodes is not None and int(n_nodes) != n_nodes:
-        raise InputError(f"n_nodes must be an integer, got {n_nodes!r}")
-    ea = E * np.pi * d * d / 4
-    warnings = check_strain(max(th if loading != "pull" else 0.0, tl, pre), ea,
-                            what="the largest end load")  # fmt: skip
-    curve = knot.curve(D, d, L_arg, None if n_nodes is None else int(n_nodes))
-    x0 = curve.nodes
-    N = len(x0)
-    L = L_arg if L_arg is not None else float(curve.info.get("rod_length", curve.rod_length))
-    if loading == "pull":  # the pull phase's step (below): edge/4 or d/10 per step
-        t_work = settle_time + load_time + dist / v
-        dt_work = min(0.25 * L / N, 0.1 * d) / v if pull_dt is None else pull_dt
-    else:
-        t_work, dt_work = settle_time + load_time + hold_time, dt
-    check_run_size(n_nodes=N, t_end=t_work, dt=float(check_positive("dt", dt_work)),
-                   max_node_steps=max_node_steps,
-                   hint="use a larger dt, fewer nodes or a lower pull speed")  # fmt: skip
-    R = 0.5 * (D + d)
-    r = rod.Rod(
-        positions=x0,
-        radius=0.5 * d,
-        youngs_modulus=E,
-        density=rho,
-        natural="straight",
-        bending_scale=kappa,
-    )
-    system = rod.RodSystem([r])
-    dir0 = x0[0] - x0[1]
-    dir0 /= np.linalg.norm(dir0)
-    dir1 = x0[-1] - x0[-2]
-    dir1 /= np.linalg.norm(dir1)
-    t1 = float(settle_time)
-    t2 = t1 + float(load_time)
-    t_end = t2 + float(hold_time)
-    if loading == "pull":
-        t_end = t2 + dist / v
-    mass_per_length = rho * np.pi * d * d / 4
-    damp_settle = 2.0 * mass_per_length / (0.1 * t1)
-    if loading == "pull":
-        # settling: both ends at the pre-tension; then end 0 is clamped where it settled
-        # and only the other end carries a dead load (lowered to t_low)
-        settle_loads = [
-            RampedEndLoad(0, pre * dir0, 0.3 * t1),
-            RampedEndLoad(N - 1, pre * dir1, 0.3 * t1),
-            rod.ViscousDamping(coefficient=damp_settle),
+        return th, 0.069 if t_low is None else float(check_positive("t_low", t_low))
+    if t_low not in (None, 0, 0.0):
+        raise InputError("t_low must be 0 (or omitted) for the free-end loading")
+    return th, 0.0
+
+
+class HitchScene(Scene):
+    """A hitch tied on a post and loaded: the phases of :func:`run_hitch`."""
+
+    def __init__(self, knot, *, rod, friction, load, rule, control, result_type=None):
+        self.knot, self.rod_opts, self.fric, self.load = knot, rod, friction, load
+        self.rule, self.control = rule, control
+        self.result_type = HitchResult if result_type is None else result_type
+
+    # -- setup -----------------------------------------------------------------------
+    def setup(self) -> None:
+        """Check every input, build the start curve and bound the run's cost."""
+        if not isinstance(self.knot, HitchKnot):
+            raise InputError(f"knot must be a HitchKnot, got {type(self.knot).__name__}")
+        if self.load.loading not in _LOADINGS:
+            raise InputError(
+                f"loading must be 'symmetric', 'asymmetric', 'free' or 'pull', got "
+                f"{self.load.loading!r}"
+            )
+        self._check_rod()
+        self._check_friction()
+        self._check_loading()
+        self.warnings = check_strain(
+            max(self.th if not self.pull else 0.0, self.tl, self.pre),
+            self.ea,
+            what="the largest end load",
+        )
+        o = self.rod_opts
+        n = None if o.n_nodes is None else int(o.n_nodes)
+        self._check_memory(n if n is not None else (self.L_arg or 0.0) / 3.1e-3)
+        self.curve = self.knot.curve(self.D, self.d, self.L_arg, n)
+        self.x0 = self.curve.nodes
+        self.N = len(self.x0)
+        self.L = (
+            self.L_arg
+            if self.L_arg is not None
+            else float(self.curve.info.get("rod_length", self.curve.rod_length))
+        )
+        self._check_cost()
+
+    @property
+    def pull(self) -> bool:
+        """True for the ``"pull"`` loading."""
+        return self.load.loading == "pull"
+
+    def _check_rod(self) -> None:
+        o = self.rod_opts
+        self.d = float(check_positive("rod_diameter", o.rod_diameter))
+        self.D = float(check_positive("post_diameter", o.post_diameter))
+        self.L_arg = (
+            None if o.rod_length is None else float(check_positive("rod_length", o.rod_length))
+        )
+        self.E = float(check_positive("youngs_modulus", o.youngs_modulus))
+        self.kappa = check_bending_scale(o.bending_scale)
+        self.rho = float(check_positive("density", o.density))
+        if o.n_nodes is not None and int(o.n_nodes) != o.n_nodes:
+            raise InputError(f"n_nodes must be an integer, got {o.n_nodes!r}")
+        self.ea = self.E * np.pi * self.d * self.d / 4
+
+    def _check_friction(self) -> None:
+        f = self.fric
+        self.mrc = float(check_nonnegative("mu_rod_post", f.mu_rod_post))
+        self.mrr = float(check_nonnegative("mu_rod_rod", f.mu_rod_rod))
+        self.mk = (
+            self.mrc
+            if f.mu_kinetic is None
+            else float(check_nonnegative("mu_kinetic", f.mu_kinetic))
+        )
+        if self.mk > self.mrc:
+            raise InputError(f"mu_kinetic must be <= mu_rod_post ({self.mrc:g}), got {self.mk:g}")
+        if f.law not in ("anchor", "imc"):
+            raise InputError(f"friction must be 'anchor' or 'imc', got {f.law!r}")
+        r = self.rule
+        self.climit = (
+            None if r.creep_limit is None else float(check_positive("creep_limit", r.creep_limit))
+        )
+        self.cwin = (
+            1.0 if r.creep_window is None else float(check_positive("creep_window", r.creep_window))
+        )
+        self.slip = (
+            self.d
+            if r.slip_distance is None
+            else float(check_positive("slip_distance", r.slip_distance))
+        )
+
+    def _check_loading(self) -> None:
+        ld = self.load
+        self.th, self.tl = _end_loads(ld.loading, ld.t_high, ld.t_low)
+        if self.pull:
+            pre = PAPER_PRETENSION if ld.pretension is None else ld.pretension
+            self.pre = float(check_positive("pretension", pre))
+            self.v = float(check_positive("pull_speed", ld.pull_speed))
+            self.dist = float(check_positive("pull_distance", ld.pull_distance))
+        else:
+            self.pre = (
+                0.1 * self.th
+                if ld.pretension is None
+                else float(check_positive("pretension", ld.pretension))
+            )
+            self.v = ld.pull_speed
+        for name, val in (("settle_time", ld.settle_time), ("load_time", ld.load_time)):
+            check_positive(name, val)
+        check_nonnegative("hold_time", ld.hold_time)
+        self.step = float(check_positive("dt", self.control.dt))
+
+    def _check_cost(self) -> None:
+        """The node-steps bound, and the pull step (one edge at most per step)."""
+        ld = self.load
+        if self.pull:  # the pull phase's step: edge/4 or d/10 per step
+            t_work = ld.settle_time + ld.load_time + self.dist / self.v
+            h = self.L / (self.N - 1)
+            dt_work = (
+                min(0.25 * self.L / self.N, 0.1 * self.d) / self.v
+                if ld.pull_dt is None
+                else ld.pull_dt
+            )
+            pstep = min(0.25 * h, 0.1 * self.d) / self.v if ld.pull_dt is None else ld.pull_dt
+            self.pstep = float(check_positive("pull_dt", pstep))
+        else:
+            t_work, dt_work = ld.settle_time + ld.load_time + ld.hold_time, self.control.dt
+        check_run_size(
+            n_nodes=self.N,
+            t_end=t_work,
+            dt=float(check_positive("dt", dt_work)),
+            max_node_steps=self.control.max_node_steps,
+            hint="use a larger dt, fewer nodes or a lower pull speed",
+        )
+        if self.pull:
+            check_pull_step(self.pstep, speed=self.v, edge_length=h, name="pull_dt")
+        self._check_memory(self.N)
+        self._check_tied()
+
+    def _check_memory(self, n_nodes: float) -> None:
+        """The all-pairs distance watch (every step) and the frames, before allocation."""
+        n = float(n_nodes)
+        check_memory(
+            pair_check_bytes(n) + frames_bytes(self.control.n_frames, n),
+            what=f"the strands' distance watch on {n:.3g} nodes",
+            hint="use fewer nodes (n_nodes) or a shorter rod (rod_length)",
+        )
+
+    def _check_tied(self) -> None:
+        """Refuse a start curve the scene cannot tie: strands closer than half a diameter
+        (the rod thicker than the post allows for this knot) or the rod inside the post;
+        the run would start from a shape that already failed its topology check."""
+        x, d = self.x0, self.d
+        idx = np.arange(self.N - 1)
+        gaps = _edge_distances(x)[np.abs(idx[:, None] - idx[None, :]) >= 3]
+        gap = float(gaps.min()) if gaps.size else np.inf
+        post_gap = float(np.min(np.hypot(x[:, 0], x[:, 1]))) - 0.5 * (self.D + d)
+        if gap <= 0.5 * d or post_gap <= -0.25 * d:
+            raise InputError(
+                f"{self.knot.name} cannot be tied with a {d * 1e3:.3g} mm rod on a "
+                f"{self.D * 1e3:.3g} mm post: its start curve's strands come {gap / d:.2f} d "
+                f"apart (< 0.5 d) or it enters the post; use a thicker post "
+                f"(post_diameter) or a thinner rod (rod_diameter)"
+            )
+
+    # -- build -----------------------------------------------------------------------
+    def build(self) -> SceneRun:
+        """The rod on the start curve, the post, the rod-rod contact and the loads."""
+        x0, N, d, ld = self.x0, self.N, self.d, self.load
+        self.R = 0.5 * (self.D + d)
+        r = rod.Rod(
+            positions=x0,
+            radius=0.5 * d,
+            youngs_modulus=self.E,
+            density=self.rho,
+            natural="straight",
+            bending_scale=self.kappa,
+        )
+        self.system = rod.RodSystem([r])
+        dir0 = x0[0] - x0[1]
+        self.dir0 = dir0 / np.linalg.norm(dir0)
+        dir1 = x0[-1] - x0[-2]
+        self.dir1 = dir1 / np.linalg.norm(dir1)
+        self.t1 = float(ld.settle_time)
+        self.t2 = self.t1 + float(ld.load_time)
+        self.t_end = self.t2 + (self.dist / self.v if self.pull else float(ld.hold_time))
+        mass_per_length = self.rho * np.pi * d * d / 4
+        self.damp_settle = 2.0 * mass_per_length / (0.1 * self.t1)
+        t_max = self._pull_loads() if self.pull else self._dead_loads()
+        post = post_contact(
+            post_diameter=self.D,
+            rod_diameter=d,
+            force_scale=t_max,
+            mu_static=self.mrc,
+            mu_kinetic=self.mk,
+        )
+        rr_contact = RodContact(
+            stiffness=20.0 * t_max / d, sharpness=15.0 / (0.05 * d), friction=self._rod_friction()
+        )
+        self.closest = {"rod": np.inf, "post": np.inf}
+        idx_e = np.arange(N - 1)
+        self.far = np.abs(idx_e[:, None] - idx_e[None, :]) >= 3
+        c = self.control
+        base = c.options if c.options is not None else rod.SolverOptions(throw=False, rtol=1e-6)
+        return SceneRun(
+            self.system,
+            interactions=[post, rr_contact],
+            options=base,
+            watch=self._watch,
+            progress=c.progress,
+        )
+
+    def _rod_friction(self):
+        if self.mrr <= 0:
+            return None
+        if self.fric.law == "anchor":
+            return AnchorFriction(mu_static=self.mrr)
+        return SmoothFriction(self.mrr)
+
+    def _dead_loads(self) -> float:
+        """Pre-tension on both ends, ramped to T_high and T_low; returns the force scale."""
+        N, pre, t1, t2 = self.N, self.pre, self.t1, self.t2
+        self.loads = [
+            RampedEndLoad(0, pre * self.dir0, 0.3 * t1),
+            RampedEndLoad(N - 1, pre * self.dir1, 0.3 * t1),
+            RampedEndLoad(0, (self.th - pre) * self.dir0, t2 - t1, delay=t1),
+            RampedEndLoad(N - 1, (self.tl - pre) * self.dir1, t2 - t1, delay=t1),
+            rod.ViscousDamping(coefficient=self.damp_settle),
         ]
-        loads = [
-            RampedEndLoad(N - 1, pre * dir1, 0.3 * t1),
-            RampedEndLoad(N - 1, (tl - pre) * dir1, t2 - t1, delay=t1),
+        return max(self.th, self.tl, self.pre)
+
+    def _pull_loads(self) -> float:
+        """Settling: both ends at the pre-tension; then end 0 is clamped where it settled
+        and only the other end carries a dead load (lowered to t_low). Returns the force
+        scale: T_high up to about 2 T_low exp(mu theta)."""
+        N, pre, t1, t2, tl = self.N, self.pre, self.t1, self.t2, self.tl
+        self.settle_loads = [
+            RampedEndLoad(0, pre * self.dir0, 0.3 * t1),
+            RampedEndLoad(N - 1, pre * self.dir1, 0.3 * t1),
+            rod.ViscousDamping(coefficient=self.damp_settle),
+        ]
+        self.loads = [
+            RampedEndLoad(N - 1, pre * self.dir1, 0.3 * t1),
+            RampedEndLoad(N - 1, (tl - pre) * self.dir1, t2 - t1, delay=t1),
             # drag of the whole rod moving at v: 1 % of T_low
-            _ScheduledDamping(damp_settle, 0.01 * tl / (L * v), t2),
+            _ScheduledDamping(self.damp_settle, 0.01 * tl / (self.L * self.v), t2),
         ]
-        # contact penalties sized for T_high up to about 2 T_low exp(mu theta)
-        t_max = max(pre, 2.0 * tl * float(np.exp(mrc * knot.pull_angle)))
-    else:
-        loads = [
-            RampedEndLoad(0, pre * dir0, 0.3 * t1),
-            RampedEndLoad(N - 1, pre * dir1, 0.3 * t1),
-            RampedEndLoad(0, (th - pre) * dir0, t2 - t1, delay=t1),
-            RampedEndLoad(N - 1, (tl - pre) * dir1, t2 - t1, delay=t1),
-            rod.ViscousDamping(coefficient=damp_settle),
-        ]
-        t_max = max(th, tl, pre)
-    post = post_contact(post_diameter=D, rod_diameter=d, force_scale=t_max, mu_static=mrc,
-                        mu_kinetic=mk)  # fmt: skip
-    rr_contact = RodContact(
-        stiffness=20.0 * t_max / d,
-        sharpness=15.0 / (0.05 * d),
-        friction=None
-        if mrr <= 0
-        else (AnchorFriction(mu_static=mrr) if friction == "anchor" else SmoothFriction(mrr)),
-    )
-    slip = d if slip_distance is None else float(check_positive("slip_distance", slip_distance))
-    x_start = x0[0].copy()
-    lim = 0.3 * L if loading == "free" else np.inf
-    idx_e = np.arange(N - 1)
-    far = np.abs(idx_e[:, None] - idx_e[None, :]) >= 3
-    closest = {"rod": np.inf, "post": np.inf}
+        return max(pre, 2.0 * tl * float(np.exp(self.mrc * self.knot.pull_angle)))
 
-    def watch(x):
-        closest["rod"] = min(closest["rod"], float(_edge_distances(x)[far].min()))
-        closest["post"] = min(closest["post"], float(np.min(np.hypot(x[:, 0], x[:, 1])) - R))
+    def _watch(self, x) -> None:
+        c = self.closest
+        c["rod"] = min(c["rod"], float(_edge_distances(x)[self.far].min()))
+        c["post"] = min(c["post"], float(np.min(np.hypot(x[:, 0], x[:, 1])) - self.R))
 
-    def ran_out(x):
-        return float((x[0] - x_start) @ dir0) > lim
+    def _ran_out(self, x) -> bool:
+        lim = 0.3 * self.L if self.load.loading == "free" else np.inf
+        return float((x[0] - self.x0[0]) @ self.dir0) > lim
 
-    base = options if options is not None else rod.SolverOptions(throw=False, rtol=1e-6)
-    run = SceneRun(system, interactions=[post, rr_contact], options=base, watch=watch,
-                   progress=progress)  # fmt: skip
-    step = float(check_positive("dt", dt))
-    every = t_end / (int(n_frames) - 1)
-    pull_disp = pull_force = np.zeros(0)
-    if loading != "pull" and knot.hold_damping is None:
-        run.phase("settle-load-hold", t_end, dt=step, loads=loads, save_every=every, stop=ran_out)
-    elif loading != "pull":
-        ramps = loads[:-1]
-        hold_loads = [*ramps, rod.ViscousDamping(coefficient=damp_settle * knot.hold_damping)]
-        for name, t_a, t_b, lds in (("settle", 0.0, t1, loads), ("load", t1, t2, loads),
-                                    ("hold", t2, t_end, hold_loads)):  # fmt: skip
-            if t_b > t_a and not run.phase(name, t_b - t_a, dt=step, loads=lds,
-                                           save_every=every, stop=ran_out):  # fmt: skip
+    # -- phases ----------------------------------------------------------------------
+    def run_phases(self, run: SceneRun) -> None:
+        """Dead loads (one phase or settle/load/hold) or the pull test."""
+        self.every = self.t_end / (int(self.control.n_frames) - 1)
+        self.pull_disp = self.pull_force = np.zeros(0)
+        if self.pull:
+            self._pull_phases(run)
+        elif self.knot.hold_damping is None:
+            run.phase(
+                "settle-load-hold",
+                self.t_end,
+                dt=self.step,
+                loads=self.loads,
+                save_every=self.every,
+                stop=self._ran_out,
+            )
+        else:
+            self._dead_load_phases(run)
+
+    def _dead_load_phases(self, run: SceneRun) -> None:
+        ramps = self.loads[:-1]
+        drag = rod.ViscousDamping(coefficient=self.damp_settle * self.knot.hold_damping)
+        hold_loads = [*ramps, drag]
+        for name, t_a, t_b, lds in (
+            ("settle", 0.0, self.t1, self.loads),
+            ("load", self.t1, self.t2, self.loads),
+            ("hold", self.t2, self.t_end, hold_loads),
+        ):
+            if t_b > t_a and not run.phase(
+                name, t_b - t_a, dt=self.step, loads=lds, save_every=self.every, stop=self._ran_out
+            ):
                 break
             if run.t < t_b - 1e-9:  # stopped early: end 0 ran out
                 break
-    elif run.phase("settle", t1, dt=step, loads=settle_loads, save_every=min(every, t1 / 4)):
-        h = L / (N - 1)
-        pstep = min(0.25 * h, 0.1 * d) / v if pull_dt is None else pull_dt
-        pstep = float(check_positive("pull_dt", pstep))
-        check_pull_step(pstep, speed=v, edge_length=h, name="pull_dt")
-        xs = system.positions(run.state.q)
+
+    def _pull_phases(self, run: SceneRun) -> None:
+        """Settle, lower the dead load with end 0 held, pull end 0 along its tail; T_high is
+        the clamp's reaction on node 0 along the pull."""
+        if not run.phase(
+            "settle",
+            self.t1,
+            dt=self.step,
+            loads=self.settle_loads,
+            save_every=min(self.every, self.t1 / 4),
+        ):
+            return
+        xs = self.system.positions(run.state.q)
         pull_dir = (xs[0] - xs[1]) / np.linalg.norm(xs[0] - xs[1])
-        constraints = (MovingNodes(nodes=[0], path=_grip(xs[0].copy(), pull_dir, v, t2)),
-                       Clamp(edges=[0]))  # fmt: skip
+        constraints = (
+            MovingNodes(nodes=[0], path=_grip(xs[0].copy(), pull_dir, self.v, self.t2)),
+            Clamp(edges=[0]),
+        )
         # lower the dead load (end 0 held), then pull, each with its own nominal step
-        run.phase("lower", t2 - t1, dt=min(5 * step, pstep), loads=loads,
-                  constraints=constraints, save_every=every)  # fmt: skip
+        run.phase(
+            "lower",
+            self.t2 - self.t1,
+            dt=min(5 * self.step, self.pstep),
+            loads=self.loads,
+            constraints=constraints,
+            save_every=self.every,
+        )
         k0 = len(run.times)
-        if run.phase("pull", t_end - t2, dt=pstep, loads=loads, constraints=constraints,
-                     save_every=every) or len(run.times) > k0:  # fmt: skip
+        if (
+            run.phase(
+                "pull",
+                self.t_end - self.t2,
+                dt=self.pstep,
+                loads=self.loads,
+                constraints=constraints,
+                save_every=self.every,
+            )
+            or len(run.times) > k0
+        ):
             p = run.phases[-1]
             tt = np.asarray(run.times[k0 - 1 :])
             # the clamp's reaction on node 0 along the pull: what the machine reads (the
             # phase's first frame is its static reaction at the start)
             rx = np.vstack([p.start_reactions[0], run.reaction([0], tt[1:])])
-            pull_force = rx @ pull_dir
-            pull_disp = v * (tt - t2)
-    status, message = run.status, run.message
-    times, pos = run.frames()
-    st = run.state
-    tension_last = run.tension
-    disp = (pos[:, 0, :] - x0[0]) @ dir0
-    last = pos[-1]
-    rad = np.hypot(last[:, 0], last[:, 1])
-    on_post = rad < R + 0.05 * d
-    ed = _edge_distances(last)
-    idx = np.arange(N - 1)
-    ed[np.abs(idx[:, None] - idx[None, :]) < 3] = np.inf
-    on_rod = ed.min(axis=1) < 1.05 * d
-    q = st.q
-    thetas = system.thetas(q)
-    tang = st.tangents
-    ref1 = st.d1
-    ref2 = np.cross(tang, ref1)
-    m1 = np.cos(thetas)[:, None] * ref1 + np.sin(thetas)[:, None] * ref2
-    s_nodes, omega = darboux_profile(system.positions(q), m1)
-    verdict = ""
-    creep = float("nan")
-    sel = times >= t2 + 0.5 * (t_end - t2)
-    if np.any(sel) and loading != "pull":
-        creep = float(disp[-1] - disp[sel][0])
-    window = float("nan")
-    v_end = v_tail = float("nan")
-    if loading != "pull" and times[-1] > t2:
-        window = min(cwin, 0.5 * (times[-1] - t2))
-        ta = times[-1] - window
-        if window > 0:
-            # along the end edge's last direction: a tail swinging about the knot does
-            # not count, a tail drawn into it does
-            t_last = pos[-1, -1] - pos[-1, -2]
-            draw = (pos[:, -1, :] - x0[-1]) @ (-t_last / np.linalg.norm(t_last))
-            v_end, v_tail = (_mean_speed(times, u, ta, window) for u in (disp, draw))
-    inv0 = inv1 = kept = None
-    if knot.invariants is not None:
-        inv0, inv1, kept = _check_invariants(knot.invariants, x0, pos, disp, d)
-    if loading == "free":
-        stopped_early = times[-1] < t_end - 1e-9 and status == "success"
-        fast = climit is not None and not (abs(v_end) <= climit * d)
+            self.pull_force = rx @ pull_dir
+            self.pull_disp = self.v * (tt - self.t2)
+
+    # -- measure ---------------------------------------------------------------------
+    def measure(self, run: SceneRun) -> HitchResult:
+        """Profiles, contacts, creep and verdict, checked (strain) into a result."""
+        times, pos = run.frames()
+        disp = (pos[:, 0, :] - self.x0[0]) @ self.dir0
+        last = pos[-1]
+        on_post, on_rod = self._contacts(last)
+        s_nodes, omega = self._darboux(run.state)
+        creep, window, v_end, v_tail = self._creep(times, pos, disp)
+        inv0 = inv1 = kept = None
+        if self.knot.invariants is not None:
+            inv0, inv1, kept = _check_invariants(self.knot.invariants, self.x0, pos, disp, self.d)
+        verdict = self._verdict(run, times, creep, v_end, kept)
+        th = self.th
+        if self.pull:
+            th = float(self.pull_force[-1]) if self.pull_force.size else float("nan")
+        le = self.system.rest_length
+        reason, more = measured_strain(
+            np.concatenate([run.tension, self.pull_force]), self.ea, warned=bool(self.warnings)
+        )
+        status, message = fail(run.status, run.message, reason)
+        if self.pull:
+            status, message = fail(status, message, check_numbers(t_high=th))
+        unsettled = self._unsettled(run)
+        if unsettled is not None:  # no verdict from a run that never reached its load
+            verdict = ""
+            status, message = fail(status, message, unsettled)
+        return self.result_type(
+            loading=self.load.loading,
+            t_high=th,
+            t_low=self.tl,
+            times=times,
+            end_displacement=disp,
+            s=np.cumsum(le) - 0.5 * le,
+            tension=run.tension,
+            post_contact=on_post,
+            rod_contact=on_rod,
+            s_nodes=s_nodes,
+            darboux=omega,
+            wrap_radius=self.R,
+            mu_eff=float(_mu_eff(self.mrc, self.D / self.d)),
+            winding_start=winding_number(self.x0),
+            winding_end=winding_number(last),
+            code_start=post_crossing_code(self.x0),
+            code_end=post_crossing_code(last),
+            verdict=verdict,
+            creep=creep,
+            min_rod_distance=self.closest["rod"],
+            min_post_gap=self.closest["post"],
+            positions=pos,
+            status=status,
+            message=message,
+            stats=run.stats,
+            _rod_diameter=self.d,
+            pull_speed=self.v if self.pull else 0.0,
+            pull_displacement=self.pull_disp,
+            pull_force=self.pull_force,
+            mu_kinetic=self.mk,
+            warnings=self.warnings + more,
+            knot=self.knot.name,
+            creep_speed=v_end,
+            tail_creep_speed=v_tail,
+            creep_window=window,
+            creep_limit=self.climit,
+            invariants_start=inv0,
+            invariants_end=inv1,
+            invariants_kept=kept,
+        )
+
+    def _contacts(self, last):
+        """Nodes on the post and edges touching another part of the rod, at ``last``."""
+        d = self.d
+        on_post = np.hypot(last[:, 0], last[:, 1]) < self.R + 0.05 * d
+        ed = _edge_distances(last)
+        idx = np.arange(self.N - 1)
+        ed[np.abs(idx[:, None] - idx[None, :]) < 3] = np.inf
+        return on_post, ed.min(axis=1) < 1.05 * d
+
+    def _darboux(self, st):
+        q = st.q
+        thetas = self.system.thetas(q)
+        ref1 = st.d1
+        ref2 = np.cross(st.tangents, ref1)
+        m1 = np.cos(thetas)[:, None] * ref1 + np.sin(thetas)[:, None] * ref2
+        return darboux_profile(self.system.positions(q), m1)
+
+    def _creep(self, times, pos, disp):
+        """(creep [m] over the last half of the hold, window [s], end-0 speed, tail
+        draw-in speed [m/s]); nan for the pull."""
+        creep = window = v_end = v_tail = float("nan")
+        if self.pull:
+            return creep, window, v_end, v_tail
+        t2 = self.t2
+        sel = times >= t2 + 0.5 * (self.t_end - t2)
+        if np.any(sel):
+            creep = float(disp[-1] - disp[sel][0])
+        if times[-1] > t2:
+            window = min(self.cwin, 0.5 * (times[-1] - t2))
+            ta = times[-1] - window
+            if window > 0:
+                # along the end edge's last direction: a tail swinging about the knot does
+                # not count, a tail drawn into it does
+                t_last = pos[-1, -1] - pos[-1, -2]
+                draw = (pos[:, -1, :] - self.x0[-1]) @ (-t_last / np.linalg.norm(t_last))
+                v_end, v_tail = (_mean_speed(times, u, ta, window) for u in (disp, draw))
+        return creep, window, v_end, v_tail
+
+    def _verdict(self, run, times, creep, v_end, kept) -> str:
+        """Free-end loading: "slip" or "hold" (see the module docstring); else ""."""
+        if self.load.loading != "free":
+            return ""
+        stopped_early = times[-1] < self.t_end - 1e-9 and run.status == "success"
+        fast = self.climit is not None and not (abs(v_end) <= self.climit * self.d)
         undone = kept is False  # the knot came apart (or a strand passed through)
-        verdict = "slip" if stopped_early or not (creep <= slip) or fast or undone else "hold"
-    if loading == "pull":
-        th = float(pull_force[-1]) if pull_force.size else float("nan")
-    le = system.rest_length
-    s_mid = np.cumsum(le) - 0.5 * le
-    reason, more = measured_strain(np.concatenate([tension_last, pull_force]), ea,
-                                   warned=bool(warnings))  # fmt: skip
-    warnings += more
-    status, message = fail(status, message, reason)
-    cls = HitchResult if result_type is None else result_type
-    return cls(
-        loading=loading,
-        t_high=th,
-        t_low=tl,
-        times=times,
-        end_displacement=disp,
-        s=s_mid,
-        tension=tension_last,
-        post_contact=on_post,
-        rod_contact=on_rod,
-        s_nodes=s_nodes,
-        darboux=omega,
-        wrap_radius=R,
-        mu_eff=float(_mu_eff(mrc, D / d)),
-        winding_start=winding_number(x0),
-        winding_end=winding_number(last),
-        code_start=post_crossing_code(x0),
-        code_end=post_crossing_code(last),
-        verdict=verdict,
-        creep=creep,
-        min_rod_distance=closest["rod"],
-        min_post_gap=closest["post"],
-        positions=pos,
-        status=status,
-        message=message,
-        stats=run.stats,
-        _rod_diameter=d,
-        pull_speed=v if loading == "pull" else 0.0,
-        pull_displacement=pull_disp,
-        pull_force=pull_force,
-        mu_kinetic=mk,
-        warnings=warnings,
-        knot=knot.name,
-        creep_speed=v_end,
-        tail_creep_speed=v_tail,
-        creep_window=window,
-        creep_limit=climit,
-        invariants_start=inv0,
-        invariants_end=inv1,
-        invariants_kept=kept,
-    )
+        return "slip" if stopped_early or not (creep <= self.slip) or fast or undone else "hold"
+
+    def _unsettled(self, run) -> str | None:
+        """Why a dead-load run gives no verdict: it stopped (end 0 ran out, or the solver
+        failed) before its settling ended, so the load was never applied; else None."""
+        if self.pull or run.t >= self.t1 - 1e-9:
+            return None
+        if run.status != "success":
+            return run.message
+        return (
+            f"the knot came apart while it settled under the pre-tension ({self.pre:.3g} N): "
+            f"end 0 ran out 0.3 L by t = {run.t:.3g} s, before the load phase (from "
+            f"{self.t1:g} s); no verdict"
+        )
 
 
 def _mean_speed(times, u, t_a, window) -> float:

@@ -18,9 +18,14 @@ The loads and moving grips every scene needs are written once here: :class:`Ramp
 (a dead load on one node, ramped), :func:`grip_path` (a gripped end moved at constant speed
 along a direction after a delay).
 
-The post hitches (clove hitch, two half hitches, round turn and two half hitches, cow
-hitch) run on it through :mod:`knotmech.scenes._hitch`, and so does ``capstan``;
-``overhand`` still writes its ``simulate`` call by hand (see docs/notes/knots.md).
+Every scene is a :class:`Scene`: its parameters arrive as small frozen option objects
+(:class:`RunControl` for the solver and the frames, one or two of the scene's own), and
+:meth:`Scene.run` calls its phases in order, each a short method: ``setup`` (inputs checked,
+the cost bounded, before anything is allocated), ``build`` (the rods, the contacts, a
+:class:`SceneRun`), ``run_phases`` (settle, load, pull or hold), ``measure`` (the result,
+with its status checked). The post hitches (:mod:`knotmech.scenes._hitch`), ``capstan``,
+``bend`` and ``centreline`` run so; ``overhand`` and ``pinch`` keep their own one-call
+solver runs (see docs/notes/knots.md).
 """
 
 from __future__ import annotations
@@ -35,6 +40,8 @@ from knotmech.rod.contact import Cylinder, CylinderContact, RodContact
 from knotmech.rod.friction import AnchorFriction
 
 __all__ = [
+    "Scene",
+    "RunControl",
     "RampedEndLoad",
     "grip_path",
     "rod_contact",
@@ -42,6 +49,65 @@ __all__ = [
     "SceneRun",
     "Phase",
 ]
+
+
+@dataclass(frozen=True)
+class RunControl:
+    """How a scene runs, apart from its physics: step, frames, solver options, limits.
+
+    Attributes
+    ----------
+    dt : float or None [s]
+        Nominal step (None: the scene's default).
+    n_frames : int
+        Frames recorded (the scene's meaning: of the whole run or of its pull).
+    options : knotmech.rod.SolverOptions or None
+    progress : bool
+        Show a progress bar.
+    max_node_steps : float or None
+        Bound on (t_end/dt) x nodes checked before the run (None:
+        :data:`knotmech.scenes._common.MAX_NODE_STEPS`; ``inf`` lifts it).
+    """
+
+    dt: float | None = None
+    n_frames: int = 100
+    options: rod.SolverOptions | None = None
+    progress: bool = False
+    max_node_steps: float | None = None
+
+
+class Scene:
+    """A DER experiment as phases; a subclass writes the four steps of :meth:`run`.
+
+    1. :meth:`setup`: check the inputs and bound the cost (InputError, nothing allocated);
+    2. :meth:`build`: the rod system and contacts, returned as a :class:`SceneRun`;
+    3. :meth:`run_phases`: settle, load, pull or hold on that run (a failed phase stops it:
+       status ``"failed"`` with the phase's name and reason, the last good state kept);
+    4. :meth:`measure`: the result object, its status checked against what the scene
+       simulates.
+    """
+
+    def setup(self) -> None:
+        """Check the inputs and the cost before anything is allocated."""
+
+    def build(self) -> SceneRun:
+        """The rods, contacts and the :class:`SceneRun` the phases run on."""
+        raise NotImplementedError
+
+    def run_phases(self, run: SceneRun) -> None:
+        """Run the scene's phases on ``run``."""
+        raise NotImplementedError
+
+    def measure(self, run: SceneRun):
+        """The scene's result from what ``run`` recorded."""
+        raise NotImplementedError
+
+    def run(self):
+        """setup, build, run_phases, measure; returns the scene's result."""
+        self.setup()
+        run = self.build()
+        self.run_phases(run)
+        return self.measure(run)
 
 
 @dataclass(frozen=True)
@@ -300,6 +366,22 @@ class SceneRun:
             callback=callback,
         )
         k0 = len(self.times)
+        start = self._record(res)
+        status, message = res.status, res.message
+        if verdict["msg"]:
+            status, message = "failed", f"{name}: {verdict['msg']}"
+        elif status != "success":
+            message = f"{name}: {message}"
+        self.phases.append(Phase(name, t0, self.t, status, message, (k0, len(self.times)), start))
+        if status != "success":
+            self.status, self.message = status, message
+            return False
+        return True
+
+    def _record(self, res) -> dict:
+        """Append a phase's frames, reactions, tensions and statistics to the run's, and
+        resume from its last state; returns the static reactions at the phase's start."""
+        k0 = len(self.times)
         tt = np.asarray(res.times)[1:]
         self.times.extend(tt.tolist())
         self.positions.extend(list(np.asarray(res.positions)[1:]))
@@ -319,16 +401,7 @@ class SceneRun:
             self.stats[k] = self.stats.get(k, 0) + v
         if res.final_state is not None:
             self.state = res.final_state
-        status, message = res.status, res.message
-        if verdict["msg"]:
-            status, message = "failed", f"{name}: {verdict['msg']}"
-        elif status != "success":
-            message = f"{name}: {message}"
-        self.phases.append(Phase(name, t0, self.t, status, message, (k0, len(self.times)), start))
-        if status != "success":
-            self.status, self.message = status, message
-            return False
-        return True
+        return start
 
     def tension_frames(self) -> np.ndarray:
         """Edge tensions [N] at every recorded frame, (n_frames, n_edges) (the first

@@ -33,11 +33,12 @@ import numpy as np
 from knotmech import rod
 from knotmech.errors import InputError, check_nonnegative, check_positive
 from knotmech.rod.constraints import Clamp, MovingNodes
-from knotmech.scenes._scene import SceneRun, grip_path, rod_contact
+from knotmech.scenes._common import check_memory, check_run_size, frames_bytes, pair_check_bytes
+from knotmech.scenes._scene import RunControl, Scene, SceneRun, grip_path, rod_contact
 from knotmech.scenes.bend_curves import BEND_CODES, bend_curves, bend_invariants
 from knotmech.scenes.curves import _edge_distances
 
-__all__ = ["BendResult", "bend", "PATIL_ORDER"]
+__all__ = ["BendResult", "BendScene", "BendRopes", "BendPull", "bend", "PATIL_ORDER"]
 
 #: Stability order of the four bends attributed to Patil et al. (2020), most secure first,
 #: as recalled in docs/notes/knots.md. Only reef above granny is confirmed by a source we
@@ -133,6 +134,33 @@ def _grip(system, rope: int, end: str):
     return [int(nodes[-1]), int(nodes[-2])], int(edges[-1])
 
 
+@dataclass(frozen=True)
+class BendRopes:
+    """The two ropes and their contact (SI units; :func:`bend` documents them)."""
+
+    rod_diameter: float = 4e-3
+    youngs_modulus: float = 1.0e6
+    density: float = 1100.0
+    bending_scale: float = 1.0
+    mu_rod_rod: float = 0.3
+    mu_kinetic: float | None = None
+    n_nodes: int = 80
+    force_scale: float | None = None
+    contact_width: float = 0.2
+
+
+@dataclass(frozen=True)
+class BendPull:
+    """Settling, setting and pulling [s], [m/s], [m], [N] (:func:`bend` documents them)."""
+
+    pull_speed: float = 0.04
+    pull_distance: float | None = None
+    settle_time: float = 0.2
+    slip_draw_in: float | None = None
+    set_tension: float | None = None
+    set_travel: float | None = None
+
+
 def bend(
     kind: str,
     *,
@@ -204,189 +232,326 @@ def bend(
     Returns
     -------
     BendResult
+        ``status`` "failed" with the phase and the reason when the settling, the setting
+        or the pull stopped (the verdict is then ""), or when the topology changed.
+
+    Raises
+    ------
+    InputError
+        A bad argument, or a run whose steps x nodes or memory is above the bound
+        (:func:`knotmech.scenes._common.check_run_size`,
+        :func:`~knotmech.scenes._common.check_memory`), before anything is allocated.
 
     Notes
     -----
     Cost at the defaults (80 nodes per rope, 2 x 48 mm at 40 mm/s): about 800 steps and
     6000 Newton iterations, 1-2 minutes on a free core (docs/notes/knots.md gives the times).
     """
-    if kind not in BEND_CODES:
-        raise InputError(f"kind must be one of {', '.join(BEND_CODES)}, got {kind!r}")
-    d = float(check_positive("rod_diameter", rod_diameter))
-    E = float(check_positive("youngs_modulus", youngs_modulus))
-    rho = float(check_positive("density", density))
-    mu = float(check_nonnegative("mu_rod_rod", mu_rod_rod))
-    v = float(check_positive("pull_speed", pull_speed))
-    dist = (
-        12 * d if pull_distance is None else float(check_positive("pull_distance", pull_distance))
-    )
-    slip = 2 * d if slip_draw_in is None else float(check_positive("slip_draw_in", slip_draw_in))
-    if int(n_frames) < 10:
-        raise InputError(f"n_frames must be >= 10, got {n_frames!r}")
-    B = E * np.pi * d**4 / 64
-    f_set = (
-        0.1 * B / d**2 if set_tension is None else float(check_positive("set_tension", set_tension))
-    )
-    set_travel = 10 * d if set_travel is None else float(check_positive("set_travel", set_travel))
-    fs = 2 * B / d**2 if force_scale is None else float(check_positive("force_scale", force_scale))
-    curves = bend_curves(kind, rod_diameter=d, n_nodes=n_nodes)
-    rods = [
-        rod.Rod(
-            positions=x,
-            radius=0.5 * d,
-            youngs_modulus=E,
-            density=rho,
-            natural="straight",
+    return BendScene(
+        kind,
+        ropes=BendRopes(
+            rod_diameter=rod_diameter,
+            youngs_modulus=youngs_modulus,
+            density=density,
             bending_scale=bending_scale,
-        )
-        for x in (curves.rope_a, curves.rope_b)
-    ]
-    system = rod.RodSystem(rods)
-    N = int(n_nodes)
-    contact = rod_contact(
-        rod_diameter=d, force_scale=fs, mu_static=mu, mu_kinetic=mu_kinetic, width=contact_width
-    )
-    idx = np.arange(2 * N - 2)
-    far = np.abs(idx[:, None] - idx[None, :]) >= 3
-    far[N - 1 :, : N - 1] = far[: N - 1, N - 1 :] = True  # edges of different ropes
-    edge_rows = np.r_[np.arange(N - 1), np.arange(N, 2 * N - 1)]
+            mu_rod_rod=mu_rod_rod,
+            mu_kinetic=mu_kinetic,
+            n_nodes=n_nodes,
+            force_scale=force_scale,
+            contact_width=contact_width,
+        ),
+        pull=BendPull(
+            pull_speed=pull_speed,
+            pull_distance=pull_distance,
+            settle_time=settle_time,
+            slip_draw_in=slip_draw_in,
+            set_tension=set_tension,
+            set_travel=set_travel,
+        ),
+        control=RunControl(dt=dt, n_frames=n_frames, options=options, progress=progress),
+    ).run()
 
-    def watch(x):
-        gap = _edge_distances(x)[np.ix_(edge_rows, edge_rows)][far].min()
-        if gap < 0.5 * d:
-            return f"strands overlap by more than half a diameter (gap {gap / d:.2f} d)"
+
+_EX = np.array([1.0, 0.0, 0.0])
+
+
+class BendScene(Scene):
+    """Two ropes tied in a bend, set and pulled apart: the phases of :func:`bend`."""
+
+    def __init__(self, kind, *, ropes, pull, control):
+        self.kind, self.ropes, self.pull, self.control = kind, ropes, pull, control
+
+    # -- setup -----------------------------------------------------------------------
+    def setup(self) -> None:
+        """Inputs and cost checked; the start curves tied."""
+        if self.kind not in BEND_CODES:
+            raise InputError(f"kind must be one of {', '.join(BEND_CODES)}, got {self.kind!r}")
+        o, p = self.ropes, self.pull
+        self.d = d = float(check_positive("rod_diameter", o.rod_diameter))
+        self.E = float(check_positive("youngs_modulus", o.youngs_modulus))
+        self.rho = float(check_positive("density", o.density))
+        self.mu = float(check_nonnegative("mu_rod_rod", o.mu_rod_rod))
+        self.v = float(check_positive("pull_speed", p.pull_speed))
+        self.dist = (
+            12 * d
+            if p.pull_distance is None
+            else float(check_positive("pull_distance", p.pull_distance))
+        )
+        self.slip = (
+            2 * d
+            if p.slip_draw_in is None
+            else float(check_positive("slip_draw_in", p.slip_draw_in))
+        )
+        if int(self.control.n_frames) < 10:
+            raise InputError(f"n_frames must be >= 10, got {self.control.n_frames!r}")
+        self.B = B = self.E * np.pi * d**4 / 64
+        self.f_set = (
+            0.1 * B / d**2
+            if p.set_tension is None
+            else float(check_positive("set_tension", p.set_tension))
+        )
+        self.set_travel = (
+            10 * d if p.set_travel is None else float(check_positive("set_travel", p.set_travel))
+        )
+        self.fs = (
+            2 * B / d**2
+            if o.force_scale is None
+            else float(check_positive("force_scale", o.force_scale))
+        )
+        self.settle_time = float(check_positive("settle_time", p.settle_time))
+        self.dt = float(check_positive("dt", self.control.dt))
+        self._check_cost()
+        self.curves = bend_curves(self.kind, rod_diameter=d, n_nodes=o.n_nodes)
+
+    def _check_cost(self) -> None:
+        """Steps x nodes of settle, set and pull, and the memory of the overlap watch."""
+        n = self.ropes.n_nodes
+        try:
+            N = int(n)
+        except (TypeError, ValueError, OverflowError):
+            raise InputError(f"n_nodes must be an integer >= 40, got {n!r}") from None
+        t_end = self.settle_time + (self.set_travel + self.dist) / self.v
+        check_run_size(
+            n_nodes=2 * N,
+            t_end=t_end,
+            dt=self.dt,
+            hint="use fewer nodes (n_nodes), a larger dt or a shorter pull",
+        )
+        check_memory(
+            pair_check_bytes(2 * N) + frames_bytes(self.control.n_frames + 100, 2 * N),
+            what=f"the strands' overlap check on {2 * N} nodes",
+            hint="use fewer nodes (n_nodes)",
+        )
+
+    # -- build -----------------------------------------------------------------------
+    def build(self) -> SceneRun:
+        """The two ropes, their contact, the overlap watch and the grips."""
+        o, d = self.ropes, self.d
+        rods = [
+            rod.Rod(
+                positions=x,
+                radius=0.5 * d,
+                youngs_modulus=self.E,
+                density=self.rho,
+                natural="straight",
+                bending_scale=o.bending_scale,
+            )
+            for x in (self.curves.rope_a, self.curves.rope_b)
+        ]
+        self.system = system = rod.RodSystem(rods)
+        self.N = N = int(o.n_nodes)
+        contact = rod_contact(
+            rod_diameter=d,
+            force_scale=self.fs,
+            mu_static=self.mu,
+            mu_kinetic=o.mu_kinetic,
+            width=o.contact_width,
+        )
+        idx = np.arange(2 * N - 2)
+        far = np.abs(idx[:, None] - idx[None, :]) >= 3
+        far[N - 1 :, : N - 1] = far[: N - 1, N - 1 :] = True  # edges of different ropes
+        self.far = far
+        self.edge_rows = np.r_[np.arange(N - 1), np.arange(N, 2 * N - 1)]
+        # drag on the whole length moving at v: 1 % of B/d^2
+        c = 0.01 * self.B / d**2 / (float(system.rest_length.sum()) * self.v)
+        self.drag = rod.ViscousDamping(coefficient=c)
+        self._ends()
+        ctl = self.control
+        return SceneRun(
+            system,
+            interactions=[contact],
+            options=ctl.options,
+            watch=self._watch,
+            progress=ctl.progress,
+        )
+
+    def _ends(self) -> None:
+        """The four ends' grips, the pulled standing ends and the tails."""
+        system = self.system
+        self.ends = [_grip(system, 0, "start"), _grip(system, 0, "end")]
+        self.ends += [_grip(system, 1, "start"), _grip(system, 1, "end")]
+        pa, pb = self.curves.pulled
+        self.ga, self.gb = _grip(system, 0, pa), _grip(system, 1, pb)
+        self.tail_a = _grip(system, 0, "end" if pa == "start" else "start")
+        self.tail_b = _grip(system, 1, "end" if pb == "start" else "start")
+        self.ta, self.tb = self.tail_a[0][0], self.tail_b[0][0]
+
+    def _watch(self, x):
+        gap = _edge_distances(x)[np.ix_(self.edge_rows, self.edge_rows)][self.far].min()
+        if gap < 0.5 * self.d:
+            return f"strands overlap by more than half a diameter (gap {gap / self.d:.2f} d)"
         return None
 
-    mass = rho * np.pi * d * d / 4
-    # drag on the whole length moving at v: 1 % of B/d^2
-    drag = rod.ViscousDamping(coefficient=0.01 * B / d**2 / (float(system.rest_length.sum()) * v))
-    run = SceneRun(system, interactions=[contact], options=options, watch=watch, progress=progress)
-    ends = [_grip(system, 0, "start"), _grip(system, 0, "end")]
-    ends += [_grip(system, 1, "start"), _grip(system, 1, "end")]
-    hold_all = Clamp(nodes=[n for e in ends for n in e[0]], edges=[e[1] for e in ends])
-    t_wall = time.perf_counter()
-    run.phase(
-        "settle",
-        float(check_positive("settle_time", settle_time)),
-        dt=dt,
-        loads=[rod.ViscousDamping(coefficient=20.0 * mass / settle_time)],
-        constraints=[hold_all],
-    )
-    pa, pb = curves.pulled
-    ga, gb = _grip(system, 0, pa), _grip(system, 1, pb)
-    tail_a = _grip(system, 0, "end" if pa == "start" else "start")
-    tail_b = _grip(system, 1, "end" if pb == "start" else "start")
-    ta, tb = tail_a[0][0], tail_b[0][0]
-    ex = np.array([1.0, 0.0, 0.0])
-    # set (dress) the bend: all four ends pulled outwards until their mean tension reaches
-    # set_tension, as a rigger sets a bend before loading it; the tension is read on the
-    # first free edge of each end (the end edge itself is rigid: both its nodes are gripped)
-    inner = np.array([e[1] + 1 if k % 2 == 0 else e[1] - 1 for k, e in enumerate(ends)])
-    ea = system.ea[inner]
-    rest = system.rest_length[inner]
-    en = system.edge_nodes[inner]
-
-    def end_tension(x):
-        return float(np.mean(ea * (np.linalg.norm(x[en[:, 1]] - x[en[:, 0]], axis=1) / rest - 1)))
-
-    x_set = system.positions(run.state.q)
-    t_set = run.t
-    moving = []
-    for g, sign in ((ga, -1), (tail_a, -1), (gb, 1), (tail_b, 1)):
-        moving.append(MovingNodes(nodes=g[0], path=grip_path(x_set[g[0]], sign * ex, v, t_set)))
-    if run.ok:
+    # -- phases ----------------------------------------------------------------------
+    def run_phases(self, run: SceneRun) -> None:
+        """Settle (four ends held), set (four ends pulled out), pull (standing ends)."""
+        ends = self.ends
+        hold_all = Clamp(nodes=[n for e in ends for n in e[0]], edges=[e[1] for e in ends])
+        mass = self.rho * np.pi * self.d * self.d / 4
+        self.t_wall = time.perf_counter()
         run.phase(
-            "set",
-            set_travel / v,
-            dt=dt,
-            loads=[drag],
+            "settle",
+            self.settle_time,
+            dt=self.dt,
+            loads=[rod.ViscousDamping(coefficient=20.0 * mass / self.pull.settle_time)],
+            constraints=[hold_all],
+        )
+        self._set(run)
+        self._pull(run)
+
+    def _set(self, run: SceneRun) -> None:
+        """Set (dress) the bend: all four ends pulled outwards until their mean tension
+        reaches set_tension, as a rigger sets a bend before loading it; the tension is read
+        on the first free edge of each end (the end edge itself is rigid: both its nodes
+        are gripped)."""
+        system, ga, gb = self.system, self.ga, self.gb
+        inner = np.array([e[1] + 1 if k % 2 == 0 else e[1] - 1 for k, e in enumerate(self.ends)])
+        ea, rest, en = system.ea[inner], system.rest_length[inner], system.edge_nodes[inner]
+
+        def end_tension(x):
+            return float(
+                np.mean(ea * (np.linalg.norm(x[en[:, 1]] - x[en[:, 0]], axis=1) / rest - 1))
+            )
+
+        x_set = system.positions(run.state.q)
+        t_set = run.t
+        moving = [
+            MovingNodes(nodes=g[0], path=grip_path(x_set[g[0]], sign * _EX, self.v, t_set))
+            for g, sign in ((ga, -1), (self.tail_a, -1), (gb, 1), (self.tail_b, 1))
+        ]
+        if run.ok:
             # the tails' twist is left free: twist stored against a held tail would whirl
             # it into curls when it is let go
-            constraints=[*moving, Clamp(edges=[ga[1], gb[1]])],
-            stop=lambda x: end_tension(x) >= f_set,
-        )
-    x_settled = system.positions(run.state.q)
-    t0 = run.t
-    grips = [
-        MovingNodes(nodes=ga[0], path=grip_path(x_settled[ga[0]], -ex, v, t0)),
-        MovingNodes(nodes=gb[0], path=grip_path(x_settled[gb[0]], ex, v, t0)),
-        Clamp(edges=[ga[1], gb[1]]),
-    ]
-    if run.ok:
-        run.phase(
-            "pull",
-            dist / v,
-            dt=dt,
-            loads=[drag],
-            constraints=grips,
-            save_every=dist / v / int(n_frames),
-            stop=lambda x: (abs(x[ta, 0]) < 1.0 * d) or (abs(x[tb, 0]) < 1.0 * d),
-        )
-    times, pos = run.frames()
-    m = run.phase_mask("pull")
-    tp = times[m]
-    force = 0.5 * (run.reaction([ga[0][0]], tp) @ (-ex) + run.reaction([gb[0][0]], tp) @ ex)
-    # both gripped nodes of an end carry part of the pull: their reactions are summed
-    force = force + 0.5 * (run.reaction([ga[0][1]], tp) @ (-ex) + run.reaction([gb[0][1]], tp) @ ex)
-    disp = v * (tp - t0)
-    k0 = int(np.argmax(m))
-    draw = np.column_stack(
-        [pos[m][:, ta, 0] - pos[k0][ta, 0], -(pos[m][:, tb, 0] - pos[k0][tb, 0])]
-    )
-    verdict, slip_load, k_check = "", float("nan"), len(tp) - 1
-    max_force = float(np.nanmax(force)) if force.size else float("nan")
-    if force.size:
-        # slip: the tails are drawn in by more than slip_draw_in while the force is within
-        # 10 % of its largest value (a knot that tightens draws its tails in while the
-        # force still rises; one that slides does so at a plateau or a falling force)
-        k_near = int(np.nonzero(force >= 0.9 * max_force)[0][0])
-        beyond = draw.max(axis=1) - draw[k_near].max()
-        out = (np.abs(pos[m][:, ta, 0]) < 1.0 * d) | (np.abs(pos[m][:, tb, 0]) < 1.0 * d)
-        slipped = np.nonzero(((beyond > slip) & (np.arange(tp.size) >= k_near)) | out)[0]
-        if slipped.size:
-            k = int(slipped[0])
-            slip_load = float(np.nanmax(force[: k + 1]))
-            verdict, k_check = "slips", int(np.nanargmax(force[: k + 1]))
-        else:
-            verdict = "holds"
-    alex0, lk0 = bend_invariants(curves.rope_a, curves.rope_b)
-    alex1, lk1 = alex0, lk0
-    status, message = run.status, run.message
-    pm = pos[m]
-    for k in range(0, k_check + 1, max(1, (k_check + 1) // 30)):
-        xa, xb = pm[k][:N], pm[k][N:]
-        try:
-            alex1, lk1 = bend_invariants(xa, xb)
-        except InputError:
-            alex1, lk1 = (), lk0
-        if (alex1, lk1) != (alex0, lk0):
-            status = "failed"
-            message = f"topology changed at t = {tp[k]:.3f} s: a strand passed through another"
+            run.phase(
+                "set",
+                self.set_travel / self.v,
+                dt=self.dt,
+                loads=[self.drag],
+                constraints=[*moving, Clamp(edges=[ga[1], gb[1]])],
+                stop=lambda x: end_tension(x) >= self.f_set,
+            )
+
+    def _pull(self, run: SceneRun) -> None:
+        """The standing ends pulled apart, the tails free; stops when a tail runs out."""
+        ga, gb, d, v = self.ga, self.gb, self.d, self.v
+        x_settled = self.system.positions(run.state.q)
+        self.t0 = t0 = run.t
+        grips = [
+            MovingNodes(nodes=ga[0], path=grip_path(x_settled[ga[0]], -_EX, v, t0)),
+            MovingNodes(nodes=gb[0], path=grip_path(x_settled[gb[0]], _EX, v, t0)),
+            Clamp(edges=[ga[1], gb[1]]),
+        ]
+        ta, tb = self.ta, self.tb
+        if run.ok:
+            run.phase(
+                "pull",
+                self.dist / v,
+                dt=self.dt,
+                loads=[self.drag],
+                constraints=grips,
+                save_every=self.dist / v / int(self.control.n_frames),
+                stop=lambda x: (abs(x[ta, 0]) < 1.0 * d) or (abs(x[tb, 0]) < 1.0 * d),
+            )
+
+    # -- measure ---------------------------------------------------------------------
+    def measure(self, run: SceneRun) -> BendResult:
+        """Pull force, draw-in, verdict and topology; the status checked."""
+        times, pos = run.frames()
+        m = run.phase_mask("pull")
+        tp, pm = times[m], pos[m]
+        force = self._force(run, tp)
+        k0 = int(np.argmax(m))
+        ta, tb = self.ta, self.tb
+        draw = np.column_stack([pm[:, ta, 0] - pos[k0][ta, 0], -(pm[:, tb, 0] - pos[k0][tb, 0])])
+        out = (np.abs(pm[:, ta, 0]) < 1.0 * self.d) | (np.abs(pm[:, tb, 0]) < 1.0 * self.d)
+        verdict, slip_load, k_check = _bend_verdict(force, draw, out, self.slip)
+        max_force = float(np.nanmax(force)) if force.size else float("nan")
+        alex0, lk0 = bend_invariants(self.curves.rope_a, self.curves.rope_b)
+        status, message, (alex1, lk1) = self._topology(run, pm, tp, k_check, (alex0, lk0))
+        if status == "success" and not force.size:
+            status, message = "failed", "no pull frames recorded"
+        if status != "success":
             verdict = ""
-            break
-    if status == "success" and not force.size:
-        status, message = "failed", "no pull frames recorded"
-    if status != "success":
-        verdict = ""
-    stats = dict(run.stats)
-    stats["wall_s"] = time.perf_counter() - t_wall
-    return BendResult(
-        kind=kind,
-        verdict=verdict,
-        slip_load=slip_load,
-        max_force=max_force,
-        pull_speed=v,
-        mu_rod_rod=mu,
-        times=tp,
-        pull_displacement=disp,
-        pull_force=force,
-        draw_in=draw,
-        alexander_start=alex0,
-        alexander_checked=alex1,
-        linking_start=lk0,
-        linking_checked=lk1,
-        positions=pos,
-        status=status,
-        message=message,
-        stats=stats,
-    )
+        stats = dict(run.stats)
+        stats["wall_s"] = time.perf_counter() - self.t_wall
+        return BendResult(
+            kind=self.kind,
+            verdict=verdict,
+            slip_load=slip_load,
+            max_force=max_force,
+            pull_speed=self.v,
+            mu_rod_rod=self.mu,
+            times=tp,
+            pull_displacement=self.v * (tp - self.t0),
+            pull_force=force,
+            draw_in=draw,
+            alexander_start=alex0,
+            alexander_checked=alex1,
+            linking_start=lk0,
+            linking_checked=lk1,
+            positions=pos,
+            status=status,
+            message=message,
+            stats=stats,
+        )
+
+    def _force(self, run, tp) -> np.ndarray:
+        """Mean of the two grips' reactions along the pull [N]; both gripped nodes of an
+        end carry part of the pull: their reactions are summed."""
+        ga, gb = self.ga, self.gb
+        force = 0.5 * (run.reaction([ga[0][0]], tp) @ (-_EX) + run.reaction([gb[0][0]], tp) @ _EX)
+        return force + 0.5 * (
+            run.reaction([ga[0][1]], tp) @ (-_EX) + run.reaction([gb[0][1]], tp) @ _EX
+        )
+
+    def _topology(self, run, pm, tp, k_check, start):
+        """Status, message and the invariants at the last frame checked (every recorded
+        frame up to the slip, at most about 30)."""
+        status, message, got = run.status, run.message, start
+        N = self.N
+        for k in range(0, k_check + 1, max(1, (k_check + 1) // 30)):
+            try:
+                got = bend_invariants(pm[k][:N], pm[k][N:])
+            except InputError:
+                got = ((), start[1])
+            if got != start:
+                msg = f"topology changed at t = {tp[k]:.3f} s: a strand passed through another"
+                return "failed", msg, got
+        return status, message, got
+
+
+def _bend_verdict(force, draw, out, slip) -> tuple[str, float, int]:
+    """(verdict, slip load [N], frame checked): slip when the tails are drawn in by more
+    than ``slip`` while the force is within 10 % of its largest value (a knot that tightens
+    draws its tails in while the force still rises; one that slides does so at a plateau
+    or a falling force), or when a tail ran ``out``."""
+    if not force.size:
+        return "", float("nan"), len(force) - 1
+    max_force = float(np.nanmax(force))
+    k_near = int(np.nonzero(force >= 0.9 * max_force)[0][0])
+    beyond = draw.max(axis=1) - draw[k_near].max()
+    slipped = np.nonzero(((beyond > slip) & (np.arange(force.size) >= k_near)) | out)[0]
+    if slipped.size:
+        k = int(slipped[0])
+        return "slips", float(np.nanmax(force[: k + 1])), int(np.nanargmax(force[: k + 1]))
+    return "holds", float("nan"), len(force) - 1

@@ -40,6 +40,7 @@ from knotmech.rod.loads import NodeForce, ViscousDamping
 from knotmech.rod.solver import SolverOptions
 from knotmech.rod.system import Rod, RodSystem
 from knotmech.scenes._common import (
+    check_numbers,
     check_pull_step,
     check_quasi_static,
     check_run_size,
@@ -48,9 +49,16 @@ from knotmech.scenes._common import (
     fail,
     measured_strain,
 )
-from knotmech.scenes._scene import SceneRun, post_contact
+from knotmech.scenes._scene import RunControl, Scene, SceneRun, post_contact
 
-__all__ = ["CapstanResult", "capstan", "capstan_two_loops"]
+__all__ = [
+    "CapstanResult",
+    "CapstanScene",
+    "CapstanRod",
+    "CapstanLoading",
+    "capstan",
+    "capstan_two_loops",
+]
 
 
 @dataclass
@@ -114,9 +122,24 @@ class CapstanResult:
 
     def summary(self) -> dict:
         """Scalars as a JSON-ready dict."""
-        keys = ("mode", "wrap_angle", "mu", "rod_diameter", "post_diameter", "t_low", "ratio",
-                "creep", "contact_angle", "mu_eff", "exp_mu_theta", "exp_mu_eff_theta",
-                "bending_group", "ratio_bending", "status", "message")  # fmt: skip
+        keys = (
+            "mode",
+            "wrap_angle",
+            "mu",
+            "rod_diameter",
+            "post_diameter",
+            "t_low",
+            "ratio",
+            "creep",
+            "contact_angle",
+            "mu_eff",
+            "exp_mu_theta",
+            "exp_mu_eff_theta",
+            "bending_group",
+            "ratio_bending",
+            "status",
+            "message",
+        )
         out = {k: getattr(self, k) for k in keys}
         out["warnings"] = list(self.warnings)
         out["stats"] = dict(self.stats)
@@ -216,6 +239,38 @@ def _centreline(wrap_angle, radius, rise, lead_high, lead_low, h):
     return np.concatenate([p1, p2, p3]), t_end
 
 
+@dataclass(frozen=True)
+class CapstanRod:
+    """The wrap, the rod and the post (SI units; :func:`capstan` documents them)."""
+
+    wrap_angle: float
+    mu: float
+    rod_diameter: float
+    post_diameter: float
+    youngs_modulus: float
+    mu_kinetic: float | None = None
+    density: float = 1000.0
+    bending_stiffness: float | None = None
+    n_elements: int | None = None
+    lead_length: float | None = None
+    surface_friction: bool = True
+    contact_stiffness: float | None = None
+
+
+@dataclass(frozen=True)
+class CapstanLoading:
+    """Pull or hold, the loads [N] and their schedule [s], [m/s], [m]."""
+
+    t_low: float
+    mode: str = "pull"
+    t_high: float | None = None
+    pull_speed: float | None = None
+    pull_distance: float | None = None
+    hold_time: float | None = None
+    ramp_time: float | None = None
+    plateau: float = 0.3
+
+
 def capstan(
     *,
     wrap_angle,
@@ -254,7 +309,8 @@ def capstan(
     youngs_modulus : float [Pa]  E (EA = E pi d^2/4)
     t_low : float [N]  dead load on the low-tension end
     mode : {"pull", "hold"}
-    t_high : float [N]  hold mode: dead load on the high end (ramped up with T_low)
+    t_high : float [N]  hold mode: dead load on the high end (ramped up with T_low; at
+        least ``t_low``, else the ends swap roles and T_high/T_low is undefined)
     mu_kinetic : float or None  kinetic coefficient (default mu)
     density : float [kg/m^3]
     bending_stiffness : float or None [N m^2]  EI (default the solid pi E d^4/64; a lower
@@ -277,212 +333,397 @@ def capstan(
     Returns
     -------
     CapstanResult
+        ``status`` "success" only when the quantity asked for is a number: the sliding
+        ratio (pull) or the creep (hold).
     """
-    theta = float(check_positive("wrap_angle", wrap_angle))
-    mu = float(check_nonnegative("mu", mu))
-    d = float(check_positive("rod_diameter", rod_diameter))
-    D = float(check_positive("post_diameter", post_diameter))
-    E = float(check_positive("youngs_modulus", youngs_modulus))
-    t_low = float(check_positive("t_low", t_low))
-    if mode not in ("pull", "hold"):
-        raise InputError(f"mode must be 'pull' or 'hold', got {mode!r}")
-    if mode == "hold":
-        if t_high is None:
-            raise InputError("t_high is required in hold mode")
-        t_high = float(check_positive("t_high", t_high))
-    plateau = float(check_positive("plateau", plateau))
-    me = float(_mu_eff(mu, D / d))
-    exp_mu = float(np.exp(mu * theta))
-    exp_mue = float(np.exp(me * theta))
-    t_max = t_low * exp_mu if mode == "pull" else max(t_high, t_low)
+    return CapstanScene(
+        rod=CapstanRod(
+            wrap_angle=wrap_angle,
+            mu=mu,
+            rod_diameter=rod_diameter,
+            post_diameter=post_diameter,
+            youngs_modulus=youngs_modulus,
+            mu_kinetic=mu_kinetic,
+            density=density,
+            bending_stiffness=bending_stiffness,
+            n_elements=n_elements,
+            lead_length=lead_length,
+            surface_friction=surface_friction,
+            contact_stiffness=contact_stiffness,
+        ),
+        load=CapstanLoading(
+            t_low=t_low,
+            mode=mode,
+            t_high=t_high,
+            pull_speed=pull_speed,
+            pull_distance=pull_distance,
+            hold_time=hold_time,
+            ramp_time=ramp_time,
+            plateau=plateau,
+        ),
+        control=RunControl(
+            dt=dt, options=options, progress=progress, max_node_steps=max_node_steps
+        ),
+    ).run()
 
-    radius, e_rod, rho_rod = equivalent_section(
-        diameter=d, youngs_modulus=E, density=density, bending_stiffness=bending_stiffness
-    )
-    ea = E * np.pi * d**2 / 4
-    if mode == "pull":
-        # the sliding tension: a static peak above it is transient, and the strain it reaches
-        # is checked after the run (measured_strain)
-        mu_k = mu if mu_kinetic is None else min(float(mu_kinetic), mu)
-        t_check, what = (
-            t_low * float(np.exp(mu_k * theta)),
-            ("the expected sliding T_high = T_low exp(mu_k theta)"),
+
+_PULL_DIR = np.array([0.0, -1.0, 0.0])
+
+
+class CapstanScene(Scene):
+    """A rod wrapped round a post, pulled or held: the phases of :func:`capstan`."""
+
+    def __init__(self, *, rod, load, control):
+        self.opts, self.load, self.control = rod, load, control
+
+    # -- setup -----------------------------------------------------------------------
+    def setup(self) -> None:
+        """Inputs, the closed forms, the strain, the geometry and the cost, up front."""
+        self._check_inputs()
+        o, d = self.opts, self.d
+        self.me = float(_mu_eff(self.mu, self.D / d))
+        self.exp_mu = float(np.exp(self.mu * self.theta))
+        self.exp_mue = float(np.exp(self.me * self.theta))
+        self.radius, self.e_rod, self.rho_rod = equivalent_section(
+            diameter=d,
+            youngs_modulus=self.E,
+            density=o.density,
+            bending_stiffness=o.bending_stiffness,
         )
-    else:
-        t_check, what = t_max, "the largest load"
-    warnings = check_strain(t_check, ea, what=what)
-    R = 0.5 * (D + d)
-    rise = 0.0 if theta <= np.pi + 1e-9 else max(1.5 * d * theta / (2 * np.pi), 1.5 * d)
-    lead = 2.0 * R if lead_length is None else float(check_positive("lead_length", lead_length))
-    arc = float(np.hypot(theta * R, rise))
-    v = 0.02 if pull_speed is None else float(check_positive("pull_speed", pull_speed))
-    if pull_distance is None:
-        stretch = t_max * (arc + 2 * lead) / ea
-        pull_distance = 3.0 * stretch + 0.3 * R
-    pull_distance = float(check_positive("pull_distance", pull_distance))
-    lead_low = lead + (pull_distance if mode == "pull" else 0.0)
-    if n_elements is None:
-        h = 1.0 / (24.0 / R)
-    else:
-        n_el = int(n_elements)
-        if n_el < 8:
-            raise InputError(f"n_elements must be >= 8, got {n_elements}")
-        h = (arc + lead + lead_low) / n_el
-    # the work, estimated before anything is allocated (a huge load or a tiny dt otherwise
-    # asks for petabytes or days)
-    dt_est = None if dt is None else float(check_positive("dt", dt))
-    ramp_est = 0.1 if ramp_time is None else float(check_nonnegative("ramp_time", ramp_time))
-    if mode == "pull":
-        t_est, dt_est = ramp_est + 0.05 + pull_distance / v, dt_est or h / (4.0 * v)
-    else:
-        t_est = ramp_est + (2.0 if hold_time is None else float(hold_time))
-        dt_est = dt_est or 5e-3
-    # a pull faster than the rod's axial wave is refused as such, before the work estimate
-    check_quasi_static(length=arc + lead + lead_low, ea=ea,
-                       mass_per_length=rho_rod * np.pi * radius**2, times={},
-                       speed=v if mode == "pull" else None)  # fmt: skip
-    check_run_size(n_nodes=(arc + lead + lead_low) / h + 1, t_end=t_est, dt=dt_est,
-                   max_node_steps=max_node_steps,
-                   hint="use a larger dt, fewer elements, a lower pull speed or a load "
-                   "the rod can carry (T/EA well below 1)")  # fmt: skip
-    pts, t_end_dir = _centreline(theta, R, rise, lead, lead_low, h)
-    rod = Rod(
-        positions=pts,
-        radius=radius,
-        youngs_modulus=e_rod,
-        density=rho_rod,
-        natural="straight",
-    )
-    system = RodSystem((rod,))
-    h_mean = float(np.mean(system.rest_length))
-    K = 200.0 * t_max / (R * d) if contact_stiffness is None else float(contact_stiffness)
-    contact = post_contact(post_diameter=D, rod_diameter=d, force_scale=t_max, mu_static=mu,
-                           mu_kinetic=mu_kinetic, stiffness=K,
-                           surface_friction=surface_friction)  # fmt: skip
-    ramp = 0.1 if ramp_time is None else float(check_nonnegative("ramp_time", ramp_time))
-    low_load = NodeForce(nodes=-1, force=t_low * t_end_dir, ramp_time=ramp)
-    pull_dir = np.array([0.0, -1.0, 0.0])
-    x0 = pts[0].copy()
-    mass_per_length = rho_rod * np.pi * radius**2
-    total_len = float(np.sum(system.rest_length))
-    if mode == "pull":
-        t_start = ramp + 0.05
-        t_final = t_start + pull_distance / v
+        self.ea = self.E * np.pi * d**2 / 4
+        self.warnings = self._strain_warnings()
+        self._geometry()
+        self._check_cost()
+
+    def _check_inputs(self) -> None:
+        o, ld = self.opts, self.load
+        self.theta = float(check_positive("wrap_angle", o.wrap_angle))
+        self.mu = float(check_nonnegative("mu", o.mu))
+        self.d = float(check_positive("rod_diameter", o.rod_diameter))
+        self.D = float(check_positive("post_diameter", o.post_diameter))
+        self.E = float(check_positive("youngs_modulus", o.youngs_modulus))
+        self.t_low = float(check_positive("t_low", ld.t_low))
+        if ld.mode not in ("pull", "hold"):
+            raise InputError(f"mode must be 'pull' or 'hold', got {ld.mode!r}")
+        self.hold = ld.mode == "hold"
+        self.t_high = ld.t_high
+        if self.hold:
+            if ld.t_high is None:
+                raise InputError("t_high is required in hold mode")
+            self.t_high = float(check_positive("t_high", ld.t_high))
+            if self.t_high < self.t_low:
+                raise InputError(
+                    f"t_high ({self.t_high:g} N) must be >= t_low ({self.t_low:g} N) in hold "
+                    "mode: the high end carries the larger load (swap them to load the other "
+                    "end)"
+                )
+        self.plateau = float(check_positive("plateau", ld.plateau))
+
+    def _strain_warnings(self) -> list[str]:
+        """Up-front strain check: the sliding tension (pull; a static peak above it is
+        transient and checked after the run) or the largest load (hold)."""
+        if self.hold:
+            self.t_max = max(self.t_high, self.t_low)
+            return check_strain(self.t_max, self.ea, what="the largest load")
+        self.t_max = self.t_low * self.exp_mu
+        mk = self.opts.mu_kinetic
+        mu_k = self.mu if mk is None else min(float(mk), self.mu)
+        return check_strain(
+            self.t_low * float(np.exp(mu_k * self.theta)),
+            self.ea,
+            what="the expected sliding T_high = T_low exp(mu_k theta)",
+        )
+
+    def _geometry(self) -> None:
+        """Centreline radius, helix rise, leads, pull distance and element length [m]."""
+        o, ld, d, theta = self.opts, self.load, self.d, self.theta
+        self.R = R = 0.5 * (self.D + d)
+        self.rise = 0.0 if theta <= np.pi + 1e-9 else max(1.5 * d * theta / (2 * np.pi), 1.5 * d)
+        self.lead = (
+            2.0 * R
+            if o.lead_length is None
+            else float(check_positive("lead_length", o.lead_length))
+        )
+        self.arc = float(np.hypot(theta * R, self.rise))
+        self.v = (
+            0.02 if ld.pull_speed is None else float(check_positive("pull_speed", ld.pull_speed))
+        )
+        dist = ld.pull_distance
+        if dist is None:
+            stretch = self.t_max * (self.arc + 2 * self.lead) / self.ea
+            dist = 3.0 * stretch + 0.3 * R
+        self.pull_distance = float(check_positive("pull_distance", dist))
+        self.lead_low = self.lead + (self.pull_distance if not self.hold else 0.0)
+        if o.n_elements is None:
+            self.h = 1.0 / (24.0 / R)
+        else:
+            n_el = int(o.n_elements)
+            if n_el < 8:
+                raise InputError(f"n_elements must be >= 8, got {o.n_elements}")
+            self.h = (self.arc + self.lead + self.lead_low) / n_el
+
+    def _check_cost(self) -> None:
+        """The work, estimated before anything is allocated (a huge load or a tiny dt
+        otherwise asks for petabytes or days); a pull faster than the rod's axial wave is
+        refused as such first."""
+        ld, c = self.load, self.control
+        dt_est = None if c.dt is None else float(check_positive("dt", c.dt))
+        ramp_est = (
+            0.1 if ld.ramp_time is None else float(check_nonnegative("ramp_time", ld.ramp_time))
+        )
+        if not self.hold:
+            t_est = ramp_est + 0.05 + self.pull_distance / self.v
+            dt_est = dt_est or self.h / (4.0 * self.v)
+        else:
+            t_est = ramp_est + (2.0 if ld.hold_time is None else float(ld.hold_time))
+            dt_est = dt_est or 5e-3
+        length = self.arc + self.lead + self.lead_low
+        check_quasi_static(
+            length=length,
+            ea=self.ea,
+            mass_per_length=self.rho_rod * np.pi * self.radius**2,
+            times={},
+            speed=self.v if not self.hold else None,
+        )
+        check_run_size(
+            n_nodes=length / self.h + 1,
+            t_end=t_est,
+            dt=dt_est,
+            max_node_steps=c.max_node_steps,
+            hint="use a larger dt, fewer elements, a lower pull speed or a load "
+            "the rod can carry (T/EA well below 1)",
+        )
+
+    # -- build -----------------------------------------------------------------------
+    def build(self) -> SceneRun:
+        """The rod on its wrap, the post, the loads and grips; a :class:`SceneRun`."""
+        o, ld, d = self.opts, self.load, self.d
+        pts, t_end_dir = _centreline(
+            self.theta, self.R, self.rise, self.lead, self.lead_low, self.h
+        )
+        self.rod = Rod(
+            positions=pts,
+            radius=self.radius,
+            youngs_modulus=self.e_rod,
+            density=self.rho_rod,
+            natural="straight",
+        )
+        self.system = RodSystem((self.rod,))
+        K = (
+            200.0 * self.t_max / (self.R * d)
+            if o.contact_stiffness is None
+            else float(o.contact_stiffness)
+        )
+        contact = post_contact(
+            post_diameter=self.D,
+            rod_diameter=d,
+            force_scale=self.t_max,
+            mu_static=self.mu,
+            mu_kinetic=o.mu_kinetic,
+            stiffness=K,
+            surface_friction=o.surface_friction,
+        )
+        self.ramp = (
+            0.1 if ld.ramp_time is None else float(check_nonnegative("ramp_time", ld.ramp_time))
+        )
+        low_load = NodeForce(nodes=-1, force=self.t_low * t_end_dir, ramp_time=self.ramp)
+        self.x0 = pts[0].copy()
+        self.mass_per_length = self.rho_rod * np.pi * self.radius**2
+        self.total_len = float(np.sum(self.system.rest_length))
+        if self.hold:
+            loads = self._hold_loads(low_load)
+        else:
+            loads = self._pull_loads(low_load)
+        self.loads = (*loads, ViscousDamping(coefficient=self.damping))
+        self._quasi_static()
+        c = self.control
+        self.solver_opts = c.options or SolverOptions(
+            throw=False, save_every=max(self.step, (self.t_final) / 400.0)
+        )
+        # one phase (the ramps and the pull's start delay are in the loads and the grip path)
+        return SceneRun(
+            self.system, interactions=(contact,), options=self.solver_opts, progress=c.progress
+        )
+
+    def _pull_loads(self, low_load) -> list:
+        """End 0 gripped and pulled after the ramp (and 50 ms), a light drag."""
+        v, x0 = self.v, self.x0
+        t_start = self.ramp + 0.05
+        self.t_final = t_start + self.pull_distance / v
 
         def path(t, x0=x0, v=v, t_start=t_start):
-            return x0 + pull_dir * v * max(0.0, t - t_start)
+            return x0 + _PULL_DIR * v * max(0.0, t - t_start)
 
-        constraints = (MovingNodes(nodes=[0], path=path), Clamp(edges=[0]))
-        loads = [low_load]
-        damping = 1e-3 * t_low / (total_len * v)
-        step = h_mean / (4.0 * v) if dt is None else float(check_positive("dt", dt))
-    else:
-        hold = 2.0 if hold_time is None else float(check_positive("hold_time", hold_time))
-        t_final = ramp + hold
-        high_load = NodeForce(nodes=0, force=t_high * pull_dir, ramp_time=ramp)
-        constraints = (Clamp(edges=[0]),)
-        loads = [low_load, high_load]
-        # critical-ish damping of the slowest axial mode (time scale ~ the ramp)
-        damping = 2.0 * mass_per_length / max(ramp, 1e-3)
-        step = 5e-3 if dt is None else float(check_positive("dt", dt))
-    loads.append(ViscousDamping(coefficient=damping))
-    if mode == "pull":
-        check_pull_step(step, speed=v, edge_length=h_mean)
-    warnings += check_quasi_static(
-        length=total_len,
-        ea=ea,
-        mass_per_length=mass_per_length,
-        times={"ramp_time": ramp, "pull": pull_distance / v} if mode == "pull" else
-              {"ramp_time": ramp, "hold_time": t_final - ramp},
-        speed=v if mode == "pull" else None,
-    )  # fmt: skip
-    opts = options or SolverOptions(throw=False, save_every=max(step, (t_final) / 400.0))
-    stop = None
-    if mode == "hold":
-        # stop once the rod has clearly slipped off (0.5 lead lengths): the run has decided
-        def stop(x, x0=x0, lim=0.5 * lead):
-            return float((x[0] - x0) @ pull_dir) > lim
+        self.constraints = (MovingNodes(nodes=[0], path=path), Clamp(edges=[0]))
+        self.damping = 1e-3 * self.t_low / (self.total_len * v)
+        h_mean = float(np.mean(self.system.rest_length))
+        dt = self.control.dt
+        self.step = h_mean / (4.0 * v) if dt is None else float(check_positive("dt", dt))
+        check_pull_step(self.step, speed=v, edge_length=h_mean)
+        return [low_load]
 
-    # one phase (the ramps and the pull's start delay are in the loads and the grip path)
-    run = SceneRun(system, interactions=(contact,), options=opts, progress=progress)
-    run.phase(mode, t_final, dt=step, loads=tuple(loads), constraints=constraints,
-              save_every=step if opts.save_every is None else opts.save_every,
-              stop=stop)  # fmt: skip
-    times, pos = run.frames()
-    tension = run.tension_frames()
-    disp = (pos[:, 0, :] - x0) @ pull_dir
-    t_hi = tension[:, 0]
-    ratio = float("nan")
-    creep = float("nan")
-    if mode == "pull":
-        sel = disp >= (1.0 - plateau) * pull_distance
-        if np.any(sel) and run.status == "success":
-            ratio = float(np.mean(t_hi[sel]) / t_low)
-    else:
-        sel = times >= ramp + 0.5 * (t_final - ramp)
-        if np.any(sel):
-            creep = float(abs(disp[-1] - disp[sel][0]))
-    # final contact region and tension profile
-    last = pos[-1]
-    rad = np.hypot(last[:, 0], last[:, 1])
-    in_contact = rad < R + 0.02 * d
-    ang = np.unwrap(np.arctan2(last[in_contact, 1], last[in_contact, 0]))
-    contact_angle = float(ang.max() - ang.min()) if ang.size > 1 else 0.0
-    s_mid = np.cumsum(system.rest_length) - 0.5 * system.rest_length
-    # the result checked against what a capstan is: a failure reason or warnings
-    reason, more = measured_strain(tension, ea, warned=bool(warnings))
-    warnings += more
-    if reason is None and mode == "pull" and contact_angle < 0.5 * theta:
-        # the solver converged, but the rod is no longer wrapped: no capstan ratio to report
-        reason = (
-            f"the rod left the post: its contact spans {contact_angle:.2f} rad of the "
-            f"{theta:.2f} rad wrap at the end (an unstable set-up, e.g. a thick rod wrapped "
-            "more than once round a thin post); no sliding ratio"
+    def _hold_loads(self, low_load) -> list:
+        """End 0's edge clamped in direction, a dead load T_high on it; critical-ish
+        damping of the slowest axial mode (time scale ~ the ramp)."""
+        ld = self.load
+        hold = 2.0 if ld.hold_time is None else float(check_positive("hold_time", ld.hold_time))
+        self.t_final = self.ramp + hold
+        high_load = NodeForce(nodes=0, force=self.t_high * _PULL_DIR, ramp_time=self.ramp)
+        self.constraints = (Clamp(edges=[0]),)
+        self.damping = 2.0 * self.mass_per_length / max(self.ramp, 1e-3)
+        dt = self.control.dt
+        self.step = 5e-3 if dt is None else float(check_positive("dt", dt))
+        return [low_load, high_load]
+
+    def _quasi_static(self) -> None:
+        if self.hold:
+            times = {"ramp_time": self.ramp, "hold_time": self.t_final - self.ramp}
+        else:
+            times = {"ramp_time": self.ramp, "pull": self.pull_distance / self.v}
+        self.warnings += check_quasi_static(
+            length=self.total_len,
+            ea=self.ea,
+            mass_per_length=self.mass_per_length,
+            times=times,
+            speed=self.v if not self.hold else None,
         )
-    if reason is None and mode == "pull":
-        reason = _ratio_reason(ratio, exp_mu)
-    if reason is not None:
-        ratio = float("nan")
-    status, message = fail(run.status, _plain(run.phases[-1].message), reason)
-    mu_slide = (mu if mu_kinetic is None else float(mu_kinetic)) if mode == "pull" else mu
-    mu_slide = float(_mu_eff(mu_slide, D / d)) if surface_friction else mu_slide
-    ei = float(rod.bending_stiffness)
-    eps2, ratio_b, why = _bending_check(
-        mu=mu_slide, theta=theta, bending_stiffness=ei, t_low=t_low, radius=R
-    )
-    note = _bending_note(eps2=eps2, ratio_bending=ratio_b, why=why,
-                         closed_form=float(np.exp(mu_slide * theta)),
-                         contact_angle=contact_angle, theta=theta, measured=ratio,
-                         mu_name="mu_eff" if surface_friction else "mu")  # fmt: skip
-    if note is not None:
-        warnings.append(note)
-    return CapstanResult(
-        mode=mode,
-        wrap_angle=theta,
-        mu=mu,
-        rod_diameter=d,
-        post_diameter=D,
-        times=times,
-        displacement=disp,
-        t_high=t_hi,
-        t_low=t_low,
-        ratio=ratio,
-        creep=creep,
-        s=s_mid,
-        tension=tension[-1],
-        contact=in_contact,
-        contact_angle=contact_angle,
-        mu_eff=me,
-        exp_mu_theta=exp_mu,
-        exp_mu_eff_theta=exp_mue,
-        status=status,
-        message=message,
-        stats=dict(run.stats),
-        positions=pos,
-        bending_group=float(eps2),
-        ratio_bending=float(ratio_b),
-        warnings=warnings,
-    )
+
+    def _slid_off(self, x) -> bool:
+        """Hold mode: the rod has clearly slipped off (0.5 lead lengths)."""
+        return float((x[0] - self.x0) @ _PULL_DIR) > 0.5 * self.lead
+
+    # -- phases ----------------------------------------------------------------------
+    def run_phases(self, run: SceneRun) -> None:
+        """One phase, ``"pull"`` or ``"hold"``."""
+        opts = self.solver_opts
+        run.phase(
+            self.load.mode,
+            self.t_final,
+            dt=self.step,
+            loads=self.loads,
+            constraints=self.constraints,
+            save_every=self.step if opts.save_every is None else opts.save_every,
+            stop=self._slid_off if self.hold else None,
+        )
+
+    # -- measure ---------------------------------------------------------------------
+    def measure(self, run: SceneRun) -> CapstanResult:
+        """Ratio or creep, contact, tension; checked against what a capstan is."""
+        times, pos = run.frames()
+        tension = run.tension_frames()
+        disp = (pos[:, 0, :] - self.x0) @ _PULL_DIR
+        t_hi = tension[:, 0]
+        ratio, creep = self._ratio_creep(run, times, disp, t_hi)
+        in_contact, contact_angle = self._contact(pos[-1])
+        reason = self._reason(tension, contact_angle, ratio)
+        if reason is not None:
+            ratio = float("nan")
+        status, message = fail(run.status, _plain(run.phases[-1].message), reason)
+        status, message = fail(status, message, self._nan_reason(ratio, creep, times))
+        eps2, ratio_b = self._bending(contact_angle, ratio)
+        s_mid = np.cumsum(self.system.rest_length) - 0.5 * self.system.rest_length
+        return CapstanResult(
+            mode=self.load.mode,
+            wrap_angle=self.theta,
+            mu=self.mu,
+            rod_diameter=self.d,
+            post_diameter=self.D,
+            times=times,
+            displacement=disp,
+            t_high=t_hi,
+            t_low=self.t_low,
+            ratio=ratio,
+            creep=creep,
+            s=s_mid,
+            tension=tension[-1],
+            contact=in_contact,
+            contact_angle=contact_angle,
+            mu_eff=self.me,
+            exp_mu_theta=self.exp_mu,
+            exp_mu_eff_theta=self.exp_mue,
+            status=status,
+            message=message,
+            stats=dict(run.stats),
+            positions=pos,
+            bending_group=float(eps2),
+            ratio_bending=float(ratio_b),
+            warnings=self.warnings,
+        )
+
+    def _ratio_creep(self, run, times, disp, t_hi) -> tuple[float, float]:
+        """Pull: mean T_high/T_low over the plateau; hold: creep over the hold's last half."""
+        ratio = creep = float("nan")
+        if not self.hold:
+            sel = disp >= (1.0 - self.plateau) * self.pull_distance
+            if np.any(sel) and run.status == "success":
+                ratio = float(np.mean(t_hi[sel]) / self.t_low)
+        else:
+            sel = times >= self.ramp + 0.5 * (self.t_final - self.ramp)
+            if np.any(sel):
+                creep = float(abs(disp[-1] - disp[sel][0]))
+        return ratio, creep
+
+    def _contact(self, last):
+        """Nodes on the post at the end and the angle they sweep [rad]."""
+        in_contact = np.hypot(last[:, 0], last[:, 1]) < self.R + 0.02 * self.d
+        ang = np.unwrap(np.arctan2(last[in_contact, 1], last[in_contact, 0]))
+        return in_contact, float(ang.max() - ang.min()) if ang.size > 1 else 0.0
+
+    def _reason(self, tension, contact_angle, ratio) -> str | None:
+        """Why the result is not a capstan's (strain, the rod off the post, the ratio);
+        adds the strain warnings."""
+        reason, more = measured_strain(tension, self.ea, warned=bool(self.warnings))
+        self.warnings += more
+        theta = self.theta
+        if reason is None and not self.hold and contact_angle < 0.5 * theta:
+            # the solver converged, but the rod is no longer wrapped: no capstan ratio
+            reason = (
+                f"the rod left the post: its contact spans {contact_angle:.2f} rad of the "
+                f"{theta:.2f} rad wrap at the end (an unstable set-up, e.g. a thick rod "
+                "wrapped more than once round a thin post); no sliding ratio"
+            )
+        if reason is None and not self.hold:
+            reason = _ratio_reason(ratio, self.exp_mu)
+        return reason
+
+    def _nan_reason(self, ratio, creep, times) -> str | None:
+        """``success`` only with a number for what was asked: the ratio or the creep."""
+        if self.hold and not np.isfinite(creep):
+            if times[-1] < self.t_final - 1e-9:
+                return (
+                    "the high end slid more than half a lead off before the hold's second "
+                    "half: the rod slips; no creep"
+                )
+            return check_numbers(creep=creep)
+        return None if self.hold else check_numbers(ratio=ratio)
+
+    def _bending(self, contact_angle, ratio):
+        """(EI/(T_low R^2), capstan_ratio_bending); the bending note added when due."""
+        o, theta = self.opts, self.theta
+        mu_slide = self.mu
+        if not self.hold:
+            mu_slide = self.mu if o.mu_kinetic is None else float(o.mu_kinetic)
+        mu_slide = float(_mu_eff(mu_slide, self.D / self.d)) if o.surface_friction else mu_slide
+        eps2, ratio_b, why = _bending_check(
+            mu=mu_slide,
+            theta=theta,
+            bending_stiffness=float(self.rod.bending_stiffness),
+            t_low=self.t_low,
+            radius=self.R,
+        )
+        note = _bending_note(
+            eps2=eps2,
+            ratio_bending=ratio_b,
+            why=why,
+            closed_form=float(np.exp(mu_slide * theta)),
+            contact_angle=contact_angle,
+            theta=theta,
+            measured=ratio,
+            mu_name="mu_eff" if o.surface_friction else "mu",
+        )
+        if note is not None:
+            self.warnings.append(note)
+        return eps2, ratio_b
 
 
 def _plain(message: str) -> str:

@@ -32,14 +32,34 @@ import numpy as np
 from knotmech import rod
 from knotmech.errors import InputError, check_nonnegative, check_positive
 from knotmech.rod.constraints import Clamp, MovingNodes
-from knotmech.scenes._scene import SceneRun, grip_path, post_contact, rod_contact
+from knotmech.scenes._common import check_memory, check_run_size, frames_bytes, pair_check_bytes
+from knotmech.scenes._scene import (
+    RunControl,
+    Scene,
+    SceneRun,
+    grip_path,
+    post_contact,
+    rod_contact,
+)
 from knotmech.scenes.curves import _edge_distances, resample_polyline
 from knotmech.scenes.topology import close_curve, knot_invariant
 
-__all__ = ["CentrelineResult", "read_centreline", "centreline"]
+__all__ = [
+    "CentrelineResult",
+    "CentrelineScene",
+    "CentrelineRod",
+    "CentrelinePull",
+    "read_centreline",
+    "centreline",
+]
 
 _UNITS = {"m": 1.0, "cm": 1e-2, "mm": 1e-3}
 _END_KINDS = ("pull", "fixed", "free")
+
+
+#: largest |coordinate| of a centreline point [m]: a knot larger than a kilometre is not a
+#: rod this scene can simulate (and squared lengths of 1e300 overflow)
+MAX_COORDINATE = 1e3
 
 
 def read_centreline(source, *, unit: str = "m") -> list[np.ndarray]:
@@ -60,52 +80,89 @@ def read_centreline(source, *, unit: str = "m") -> list[np.ndarray]:
     Raises
     ------
     InputError
-        One line naming the file and the line at fault.
+        One line naming the file and the line at fault (also for a field too long for
+        CSV, a coordinate beyond :data:`MAX_COORDINATE` metres, a file that is not text).
     """
-    if unit not in _UNITS:
-        raise InputError(f"unit must be one of {', '.join(_UNITS)}, got {unit!r}")
-    text_given = isinstance(source, str) and "\n" in source
-    name = "centreline" if text_given else str(source)
-    if text_given:
-        text = source
-    else:
-        try:
-            text = Path(source).read_text()
-        except (OSError, UnicodeDecodeError) as exc:
-            raise InputError(f"{name}: cannot read the centreline file ({exc})") from None
-    rows = [r for r in csv.reader(io.StringIO(text)) if r and any(c.strip() for c in r)]
-    if rows and not _numeric(rows[0][0]):
-        rows = rows[1:]  # header
-    if not rows:
-        raise InputError(f"{name}: no points (expected lines 'x, y, z' or 'rod, x, y, z')")
+    _check_unit(unit)
+    name, text = _source_text(source)
+    rows = _csv_rows(text, name)
     width = len(rows[0])
     if width not in (3, 4):
         raise InputError(f"{name}: expected 3 columns (x, y, z) or 4 (rod, x, y, z), got {width}")
     pts: dict[int, list] = {}
     for k, r in enumerate(rows, start=1):
-        if len(r) != width:
-            raise InputError(f"{name}: point {k} has {len(r)} columns, expected {width}")
-        try:
-            vals = [float(c) for c in r]
-        except ValueError:
-            raise InputError(f"{name}: point {k} is not numbers: {', '.join(r)}") from None
-        if not np.all(np.isfinite(vals)):
-            raise InputError(f"{name}: point {k} is not finite (NaN or infinity)")
-        rid = 0 if width == 3 else vals[0]
-        if rid not in (0, 1):
-            raise InputError(f"{name}: point {k}: rod must be 0 or 1, got {r[0].strip()}")
-        pts.setdefault(int(rid), []).append(vals[-3:])
+        rid, xyz = _parse_row(r, k, width, name)
+        pts.setdefault(rid, []).append(xyz)
     if set(pts) == {1}:
         raise InputError(f"{name}: rod 1 given without rod 0")
-    out = []
-    for rid in sorted(pts):
-        x = np.array(pts[rid]) * _UNITS[unit]
-        if len(x) < 10:
-            raise InputError(f"{name}: rod {rid} has {len(x)} points, at least 10 are needed")
-        if np.any(np.linalg.norm(np.diff(x, axis=0), axis=1) == 0):
-            raise InputError(f"{name}: rod {rid} repeats a point")
-        out.append(x)
-    return out
+    return [
+        _rod_points(np.array(pts[rid]) * _UNITS[unit], f"{name}: rod {rid}") for rid in sorted(pts)
+    ]
+
+
+def _check_unit(unit) -> None:
+    if unit not in _UNITS:
+        raise InputError(f"unit must be one of {', '.join(_UNITS)}, got {unit!r}")
+
+
+def _source_text(source) -> tuple[str, str]:
+    """(name for messages, CSV text) of a path or of the text itself."""
+    if isinstance(source, str) and "\n" in source:
+        return "centreline", source
+    name = str(source)
+    try:
+        return name, Path(source).read_text()
+    except (OSError, UnicodeDecodeError, ValueError) as exc:
+        raise InputError(f"{name}: cannot read the centreline file ({exc})") from None
+
+
+def _csv_rows(text: str, name: str) -> list[list[str]]:
+    """The non-empty CSV rows, the header dropped; InputError if there are none or a field
+    is too long for the CSV reader."""
+    try:
+        rows = [r for r in csv.reader(io.StringIO(text)) if r and any(c.strip() for c in r)]
+    except csv.Error as exc:
+        raise InputError(f"{name}: not a CSV of points ({exc})") from None
+    if rows and not _numeric(rows[0][0]):
+        rows = rows[1:]  # header
+    if not rows:
+        raise InputError(f"{name}: no points (expected lines 'x, y, z' or 'rod, x, y, z')")
+    return rows
+
+
+def _parse_row(r, k: int, width: int, name: str) -> tuple[int, list[float]]:
+    """(rod id, [x, y, z]) of row ``k`` (1-based), checked."""
+    if len(r) != width:
+        raise InputError(f"{name}: point {k} has {len(r)} columns, expected {width}")
+    try:
+        vals = [float(c) for c in r]
+    except ValueError:
+        shown = ", ".join(r)
+        shown = shown if len(shown) <= 60 else shown[:57] + "..."
+        raise InputError(f"{name}: point {k} is not numbers: {shown}") from None
+    if not np.all(np.isfinite(vals)):
+        raise InputError(f"{name}: point {k} is not finite (NaN or infinity)")
+    rid = 0 if width == 3 else vals[0]
+    if rid not in (0, 1):
+        raise InputError(f"{name}: point {k}: rod must be 0 or 1, got {r[0].strip()[:20]}")
+    return int(rid), vals[-3:]
+
+
+def _rod_points(x: np.ndarray, what: str) -> np.ndarray:
+    """One rod's (n, 3) points [m], checked: finite, within :data:`MAX_COORDINATE`, at
+    least 10, no point repeated."""
+    with np.errstate(over="ignore", invalid="ignore"):
+        big = float(np.max(np.abs(x))) if x.size else 0.0
+    if not np.isfinite(big) or big > MAX_COORDINATE:
+        raise InputError(
+            f"{what}: a coordinate is {big:.3g} m from the origin, beyond the "
+            f"{MAX_COORDINATE:g} m a centreline may span (check the unit)"
+        )
+    if len(x) < 10:
+        raise InputError(f"{what} has {len(x)} points, at least 10 are needed")
+    if np.any(np.linalg.norm(np.diff(x, axis=0), axis=1) == 0):
+        raise InputError(f"{what} repeats a point")
+    return x
 
 
 def _numeric(s: str) -> bool:
@@ -185,6 +242,31 @@ def _min_gap(x, exclude):
     return float(ed.min())
 
 
+@dataclass(frozen=True)
+class CentrelineRod:
+    """The rods' material, contacts and resolution (SI units; :func:`centreline` documents
+    them)."""
+
+    rod_diameter: float
+    youngs_modulus: float
+    density: float
+    mu_rod_rod: float
+    post_diameter: float | None = None
+    mu_rod_post: float | None = None
+    n_nodes: int = 100
+    force_scale: float | None = None
+
+
+@dataclass(frozen=True)
+class CentrelinePull:
+    """The settling and the pull [s], [m/s], [m] (:func:`centreline` documents them)."""
+
+    pull_speed: float = 0.02
+    pull_distance: float | None = None
+    settle_time: float = 0.2
+    slip_draw_in: float | None = None
+
+
 def centreline(
     points,
     *,
@@ -232,7 +314,9 @@ def centreline(
         Travel of each pulled end (default 12 d).
     settle_time : float [s]
     n_nodes : int
-        Nodes per rod after resampling (>= 10).
+        Nodes per rod after resampling (>= 10). Edges of one rod closer along it than
+        about 1.25 d never touch (the contact skips them), so that a finely resampled
+        smooth curve does not push against itself.
     dt : float [s]
     slip_draw_in : float [m], optional
         Free-end draw-in after the force peak that counts as a slip (default 4 d).
@@ -245,196 +329,350 @@ def centreline(
     Returns
     -------
     CentrelineResult
+        ``status`` "failed" with the phase and the reason when the settling or the pull
+        stopped (the verdict is then ""), or when the topology changed.
 
     Raises
     ------
     InputError
         Bad points (see the module docstring), an ``ends`` entry per rod missing or not one
-        of pull/fixed/free, no pulled end, or a physical argument out of range.
+        of pull/fixed/free, no pulled end, a physical argument out of range, or a run whose
+        steps x nodes or memory is above the bound
+        (:func:`knotmech.scenes._common.check_run_size`, :func:`~knotmech.scenes._common.
+        check_memory`).
     """
-    if unit not in _UNITS:
-        raise InputError(f"unit must be one of {', '.join(_UNITS)}, got {unit!r}")
-    if isinstance(points, (str, Path)):
-        raw = read_centreline(points, unit=unit)
-    else:
-        arrs = [points] if np.ndim(points) == 2 else list(points)
-        if not 1 <= len(arrs) <= 2:
-            raise InputError(f"points must give one or two rods, got {len(arrs)}")
-        raw = []
-        for k, a in enumerate(arrs):
-            try:
-                x = np.asarray(a, dtype=float) * _UNITS[unit]
-            except (TypeError, ValueError):
-                raise InputError(f"points of rod {k} must be numbers") from None
-            if x.ndim != 2 or x.shape[1] != 3:
-                raise InputError(f"points of rod {k} must be an (n, 3) array, got {x.shape}")
-            if not np.all(np.isfinite(x)):
-                raise InputError(f"points of rod {k} are not finite (NaN or infinity)")
-            if len(x) < 10:
-                raise InputError(f"rod {k} has {len(x)} points, at least 10 are needed")
-            raw.append(x)
-    d = float(check_positive("rod_diameter", rod_diameter))
-    E = float(check_positive("youngs_modulus", youngs_modulus))
-    rho = float(check_positive("density", density))
-    mu = float(check_nonnegative("mu_rod_rod", mu_rod_rod))
-    v = float(check_positive("pull_speed", pull_speed))
-    dist = (
-        12 * d if pull_distance is None else float(check_positive("pull_distance", pull_distance))
-    )
-    slip = 4 * d if slip_draw_in is None else float(check_positive("slip_draw_in", slip_draw_in))
-    N = int(n_nodes)
-    if N != n_nodes or N < 10:
-        raise InputError(f"n_nodes must be an integer >= 10, got {n_nodes!r}")
+    return CentrelineScene(
+        points,
+        ends=ends,
+        unit=unit,
+        rod=CentrelineRod(
+            rod_diameter=rod_diameter,
+            youngs_modulus=youngs_modulus,
+            density=density,
+            mu_rod_rod=mu_rod_rod,
+            post_diameter=post_diameter,
+            mu_rod_post=mu_rod_post,
+            n_nodes=n_nodes,
+            force_scale=force_scale,
+        ),
+        pull=CentrelinePull(
+            pull_speed=pull_speed,
+            pull_distance=pull_distance,
+            settle_time=settle_time,
+            slip_draw_in=slip_draw_in,
+        ),
+        control=RunControl(dt=dt, n_frames=n_frames, options=options, progress=progress),
+    ).run()
+
+
+def _array_points(points, unit: str) -> list[np.ndarray]:
+    """One or two rods' (n, 3) points [m] from arrays, checked."""
+    arrs = [points] if np.ndim(points) == 2 else list(points)
+    if not 1 <= len(arrs) <= 2:
+        raise InputError(f"points must give one or two rods, got {len(arrs)}")
+    raw = []
+    for k, a in enumerate(arrs):
+        try:
+            x = np.asarray(a, dtype=float) * _UNITS[unit]
+        except (TypeError, ValueError):
+            raise InputError(f"points of rod {k} must be numbers") from None
+        if x.ndim != 2 or x.shape[1] != 3:
+            raise InputError(f"points of rod {k} must be an (n, 3) array, got {x.shape}")
+        if not np.all(np.isfinite(x)):
+            raise InputError(f"points of rod {k} are not finite (NaN or infinity)")
+        big = float(np.max(np.abs(x))) if x.size else 0.0
+        if big > MAX_COORDINATE:
+            raise InputError(
+                f"rod {k}: a coordinate is {big:.3g} m from the origin, beyond the "
+                f"{MAX_COORDINATE:g} m a centreline may span (check the unit)"
+            )
+        if len(x) < 10:
+            raise InputError(f"rod {k} has {len(x)} points, at least 10 are needed")
+        raw.append(x)
+    return raw
+
+
+def _check_ends(ends, n_rods: int) -> list[tuple]:
     ends = [tuple(e) for e in ends]
-    if len(ends) != len(raw) or any(len(e) != 2 for e in ends):
-        raise InputError(f"ends must give (first, last) for each of the {len(raw)} rod(s)")
+    if len(ends) != n_rods or any(len(e) != 2 for e in ends):
+        raise InputError(f"ends must give (first, last) for each of the {n_rods} rod(s)")
     for e in ends:
         for k in e:
             if k not in _END_KINDS:
                 raise InputError(f"ends must be 'pull', 'fixed' or 'free', got {k!r}")
     if not any("pull" in e for e in ends):
         raise InputError("ends: at least one end must be 'pull'")
-    rods_x = [resample_polyline(x, N) for x in raw]
-    edge = [float(np.linalg.norm(x[1] - x[0])) for x in rods_x]
-    for k, x in enumerate(rods_x):
-        exclude = max(3, int(np.ceil(2.0 * d / edge[k])) + 1)
-        gap = _min_gap(x, exclude)
-        if gap < 0.5 * d:
-            raise InputError(
-                f"rod {k}: strands come {gap / d:.2f} d apart (< 0.5 d): the centreline "
-                "intersects itself (or give a smaller rod_diameter)"
+    return ends
+
+
+class CentrelineScene(Scene):
+    """A user's centreline relaxed and pulled: the phases of :func:`centreline`."""
+
+    def __init__(self, points, *, ends, unit, rod, pull, control):
+        self.points, self.ends_arg, self.unit = points, ends, unit
+        self.rod_opts, self.pull_opts, self.control = rod, pull, control
+
+    # -- setup -----------------------------------------------------------------------
+    def setup(self) -> None:
+        """Points, numbers, ends and cost checked; the rods resampled and checked clear."""
+        _check_unit(self.unit)
+        if isinstance(self.points, (str, Path)):
+            raw = read_centreline(self.points, unit=self.unit)
+        else:
+            raw = _array_points(self.points, self.unit)
+        self._check_numbers()
+        self.ends = _check_ends(self.ends_arg, len(raw))
+        self._check_cost(len(raw))
+        self.rods_x = [resample_polyline(x, self.N) for x in raw]
+        self._check_clear()
+
+    def _check_numbers(self) -> None:
+        o, p = self.rod_opts, self.pull_opts
+        self.d = d = float(check_positive("rod_diameter", o.rod_diameter))
+        self.E = float(check_positive("youngs_modulus", o.youngs_modulus))
+        self.rho = float(check_positive("density", o.density))
+        self.mu = float(check_nonnegative("mu_rod_rod", o.mu_rod_rod))
+        self.v = float(check_positive("pull_speed", p.pull_speed))
+        self.dist = (
+            12 * d
+            if p.pull_distance is None
+            else float(check_positive("pull_distance", p.pull_distance))
+        )
+        self.slip = (
+            4 * d
+            if p.slip_draw_in is None
+            else float(check_positive("slip_draw_in", p.slip_draw_in))
+        )
+        self.settle_time = float(check_positive("settle_time", p.settle_time))
+        self.dt = float(check_positive("dt", self.control.dt))
+        n = o.n_nodes
+        try:
+            self.N = int(n)
+        except (TypeError, ValueError, OverflowError):
+            raise InputError(f"n_nodes must be an integer >= 10, got {n!r}") from None
+        if self.N != n or self.N < 10:
+            raise InputError(f"n_nodes must be an integer >= 10, got {n!r}")
+        n_frames = self.control.n_frames
+        if int(n_frames) != n_frames or n_frames < 2:
+            raise InputError(f"n_frames must be an integer >= 2, got {n_frames!r}")
+
+    def _check_cost(self, n_rods: int) -> None:
+        """Steps x nodes and the memory of the all-pairs checks, before any allocation."""
+        n = n_rods * self.N
+        hint = "use fewer nodes (n_nodes), a larger dt or a shorter pull (pull_distance)"
+        check_run_size(
+            n_nodes=n, t_end=self.settle_time + self.dist / self.v, dt=self.dt, hint=hint
+        )
+        check_memory(
+            pair_check_bytes(n) + frames_bytes(self.control.n_frames + 50, n),
+            what=f"the strands' pair-distance checks on {n} nodes",
+            hint="use fewer nodes (n_nodes)",
+        )
+
+    def _check_clear(self) -> None:
+        """No strand within half a diameter of another (a self-intersecting centreline)."""
+        d, N = self.d, self.N
+        self.edge = [float(np.linalg.norm(x[1] - x[0])) for x in self.rods_x]
+        for k, x in enumerate(self.rods_x):
+            exclude = max(3, int(np.ceil(2.0 * d / self.edge[k])) + 1)
+            gap = _min_gap(x, exclude)
+            if gap < 0.5 * d:
+                raise InputError(
+                    f"rod {k}: strands come {gap / d:.2f} d apart (< 0.5 d): the centreline "
+                    "intersects itself (or give a smaller rod_diameter)"
+                )
+        if len(self.rods_x) == 2:
+            both = np.vstack(self.rods_x)
+            gap = float(_edge_distances(both)[: N - 1, N:].min())
+            if gap < 0.5 * d:
+                raise InputError(
+                    f"the two rods come {gap / d:.2f} d apart (< 0.5 d): they intersect"
+                )
+
+    # -- build -----------------------------------------------------------------------
+    def build(self) -> SceneRun:
+        """The rods, rod-rod contact (and the post), the grips; a :class:`SceneRun`."""
+        d, E, o = self.d, self.E, self.rod_opts
+        self.B = E * np.pi * d**4 / 64
+        fs = (
+            20 * self.B / d**2
+            if o.force_scale is None
+            else float(check_positive("force_scale", o.force_scale))
+        )
+        interactions = [rod_contact(rod_diameter=d, force_scale=fs, mu_static=self.mu)]
+        if o.post_diameter is not None:
+            interactions.append(self._post(fs))
+        rods = [
+            rod.Rod(
+                positions=x, radius=0.5 * d, youngs_modulus=E, density=self.rho, natural="straight"
             )
-    if len(rods_x) == 2:
-        both = np.vstack(rods_x)
-        gap = float(_edge_distances(both)[: N - 1, N:].min())
-        if gap < 0.5 * d:
-            raise InputError(f"the two rods come {gap / d:.2f} d apart (< 0.5 d): they intersect")
-    B = E * np.pi * d**4 / 64
-    fs = 20 * B / d**2 if force_scale is None else float(check_positive("force_scale", force_scale))
-    interactions = [rod_contact(rod_diameter=d, force_scale=fs, mu_static=mu)]
-    if post_diameter is not None:
-        D = float(check_positive("post_diameter", post_diameter))
-        for k, x in enumerate(rods_x):
+            for x in self.rods_x
+        ]
+        self.system = rod.RodSystem(rods, contact_exclusion=_exclusion(d, min(self.edge)))
+        self._grips()
+        self.x0 = self.system.positions(self.system.initial_state().q)
+        c = self.control
+        self.t_wall = time.perf_counter()
+        return SceneRun(
+            self.system, interactions=interactions, options=c.options, progress=c.progress
+        )
+
+    def _post(self, fs):
+        d, o = self.d, self.rod_opts
+        D = float(check_positive("post_diameter", o.post_diameter))
+        for k, x in enumerate(self.rods_x):
             rmin = float(np.min(np.hypot(x[:, 0], x[:, 1])))
             if rmin < 0.5 * D + 0.25 * d:
                 raise InputError(
                     f"rod {k} cuts the post: it comes {rmin:.4g} m from the axis, inside "
                     f"D/2 + d/4 = {0.5 * D + 0.25 * d:.4g} m"
                 )
-        mrp = mu if mu_rod_post is None else float(check_nonnegative("mu_rod_post", mu_rod_post))
-        interactions.append(
-            post_contact(post_diameter=D, rod_diameter=d, force_scale=fs, mu_static=mrp)
+        mrp = (
+            self.mu
+            if o.mu_rod_post is None
+            else float(check_nonnegative("mu_rod_post", o.mu_rod_post))
         )
-    system = rod.RodSystem(
-        [
-            rod.Rod(positions=x, radius=0.5 * d, youngs_modulus=E, density=rho, natural="straight")
-            for x in rods_x
-        ]
-    )
-    held_nodes, held_edges, pulls, free = [], [], [], []
-    for r_id, e in enumerate(ends):
-        nodes, edges = system.rod_nodes(r_id), system.rod_edges(r_id)
-        for side, kind in zip(("start", "end"), e, strict=True):
-            pair = (
-                [int(nodes[0]), int(nodes[1])]
-                if side == "start"
-                else [
-                    int(nodes[-1]),
-                    int(nodes[-2]),
-                ]
-            )
-            ed = int(edges[0] if side == "start" else edges[-1])
-            if kind == "free":
-                free.append(pair[0])
-                continue
-            held_nodes += pair
-            held_edges.append(ed)
-            if kind == "pull":
-                pulls.append((pair, ed))
-    x0 = system.positions(system.initial_state().q)
-    mass = rho * np.pi * d * d / 4
-    run = SceneRun(system, interactions=interactions, options=options, progress=progress)
-    t_wall = time.perf_counter()
-    run.phase(
-        "settle",
-        float(check_positive("settle_time", settle_time)),
-        dt=dt,
-        loads=[rod.ViscousDamping(coefficient=20.0 * mass / settle_time)],
-        constraints=[Clamp(nodes=held_nodes, edges=held_edges)],
-    )
-    xs = system.positions(run.state.q)
-    t0 = run.t
-    cons, dirs = [], []
-    fixed_nodes = [n for n in held_nodes if n not in {p for pr, _ in pulls for p in pr}]
-    if fixed_nodes:
-        cons.append(Clamp(nodes=fixed_nodes))
-    for pair, _ed in pulls:
-        u = xs[pair[0]] - xs[pair[1]]
-        u /= np.linalg.norm(u)
-        dirs.append(u)
-        cons.append(MovingNodes(nodes=pair, path=grip_path(xs[pair], u, v, t0)))
-    cons.append(Clamp(edges=held_edges))
-    # drag of the whole length moving at v: 1 % of B/d^2 (quasi-static pull)
-    drag = rod.ViscousDamping(coefficient=0.01 * B / d**2 / (float(system.rest_length.sum()) * v))
-    if run.ok:
+        return post_contact(post_diameter=D, rod_diameter=d, force_scale=fs, mu_static=mrp)
+
+    def _grips(self) -> None:
+        """Held nodes and edges, pulled (node pair, edge) and free end nodes."""
+        system = self.system
+        self.held_nodes, self.held_edges, self.pulls, self.free = [], [], [], []
+        for r_id, e in enumerate(self.ends):
+            nodes, edges = system.rod_nodes(r_id), system.rod_edges(r_id)
+            for side, kind in zip(("start", "end"), e, strict=True):
+                if side == "start":
+                    pair, ed = [int(nodes[0]), int(nodes[1])], int(edges[0])
+                else:
+                    pair, ed = [int(nodes[-1]), int(nodes[-2])], int(edges[-1])
+                if kind == "free":
+                    self.free.append(pair[0])
+                    continue
+                self.held_nodes += pair
+                self.held_edges.append(ed)
+                if kind == "pull":
+                    self.pulls.append((pair, ed))
+
+    # -- phases ----------------------------------------------------------------------
+    def run_phases(self, run: SceneRun) -> None:
+        """Settle with the pulled and fixed ends held, then pull."""
+        mass = self.rho * np.pi * self.d * self.d / 4
         run.phase(
-            "pull", dist / v, dt=dt, loads=[drag], constraints=cons, save_every=dist / v / n_frames
+            "settle",
+            self.settle_time,
+            dt=self.dt,
+            loads=[rod.ViscousDamping(coefficient=20.0 * mass / self.pull_opts.settle_time)],
+            constraints=[Clamp(nodes=self.held_nodes, edges=self.held_edges)],
         )
-    times, pos = run.frames()
-    m = run.phase_mask("pull")
-    tp, pm = times[m], pos[m]
-    force = np.zeros(tp.size)
-    for (pair, _ed), u in zip(pulls, dirs, strict=True):
-        force += run.reaction(pair, tp) @ u
-    force /= max(len(pulls), 1)
-    draw = np.zeros((tp.size, len(free)))
-    for j, node in enumerate(free):
-        # towards the centroid of the start shape
-        c = x0.mean(axis=0)
-        draw[:, j] = np.linalg.norm(x0[node] - c) - np.linalg.norm(pm[:, node] - c, axis=1)
-    verdict, slip_load, k_check = "", float("nan"), tp.size - 1
-    max_force = float(np.nanmax(force)) if force.size else float("nan")
-    if force.size:
-        verdict = "holds"
-        if free:
-            k_peak = int(np.nanargmax(force))
-            beyond = draw.max(axis=1) - draw[: k_peak + 1].max()
-            hit = np.nonzero(beyond > slip)[0]
-            if hit.size:
-                k = int(hit[0])
-                slip_load = float(np.nanmax(force[: k + 1]))
-                verdict, k_check = "slips", int(np.nanargmax(force[: k + 1]))
-    split = np.cumsum([len(x) for x in rods_x])[:-1]
-    top0 = _topology(rods_x)
-    top1 = top0
-    status, message = run.status, run.message
-    if force.size:
-        try:
-            top1 = _topology(np.split(pm[k_check], split))
-        except InputError:
-            top1 = ((), None)
-        if top1 != top0:
-            status, message = "failed", "topology changed: a strand passed through another"
-    elif status == "success":
-        status, message = "failed", "no pull frames recorded"
-    if status != "success":
-        verdict = ""
-    stats = dict(run.stats)
-    stats["wall_s"] = time.perf_counter() - t_wall
-    return CentrelineResult(
-        verdict=verdict,
-        slip_load=slip_load,
-        max_force=max_force,
-        times=tp,
-        pull_displacement=v * (tp - t0),
-        pull_force=force,
-        draw_in=draw,
-        knots_start=top0[0],
-        knots_checked=top1[0],
-        linking_start=top0[1],
-        linking_checked=top1[1],
-        positions=pos,
-        status=status,
-        message=message,
-        stats=stats,
-    )
+        self.t0 = run.t
+        cons = self._pull_constraints(self.system.positions(run.state.q))
+        # drag of the whole length moving at v: 1 % of B/d^2 (quasi-static pull)
+        c = 0.01 * self.B / self.d**2 / (float(self.system.rest_length.sum()) * self.v)
+        if run.ok:
+            t = self.dist / self.v
+            run.phase(
+                "pull",
+                t,
+                dt=self.dt,
+                loads=[rod.ViscousDamping(coefficient=c)],
+                constraints=cons,
+                save_every=t / self.control.n_frames,
+            )
+
+    def _pull_constraints(self, xs) -> list:
+        cons, self.dirs = [], []
+        pulled = {p for pr, _ in self.pulls for p in pr}
+        fixed_nodes = [n for n in self.held_nodes if n not in pulled]
+        if fixed_nodes:
+            cons.append(Clamp(nodes=fixed_nodes))
+        for pair, _ed in self.pulls:
+            u = xs[pair[0]] - xs[pair[1]]
+            u /= np.linalg.norm(u)
+            self.dirs.append(u)
+            cons.append(MovingNodes(nodes=pair, path=grip_path(xs[pair], u, self.v, self.t0)))
+        cons.append(Clamp(edges=self.held_edges))
+        return cons
+
+    # -- measure ---------------------------------------------------------------------
+    def measure(self, run: SceneRun) -> CentrelineResult:
+        """Pull force, draw-in, verdict and topology; the status checked."""
+        times, pos = run.frames()
+        m = run.phase_mask("pull")
+        tp, pm = times[m], pos[m]
+        force = self._force(run, tp)
+        draw = self._draw_in(pm)
+        verdict, slip_load, k_check = _verdict(force, draw, self.slip, bool(self.free))
+        max_force = float(np.nanmax(force)) if force.size else float("nan")
+        top0 = _topology(self.rods_x)
+        status, message, top1 = self._check_topology(run, pm, force, k_check, top0)
+        if status != "success":
+            verdict = ""
+        stats = dict(run.stats)
+        stats["wall_s"] = time.perf_counter() - self.t_wall
+        return CentrelineResult(
+            verdict=verdict,
+            slip_load=slip_load,
+            max_force=max_force,
+            times=tp,
+            pull_displacement=self.v * (tp - self.t0),
+            pull_force=force,
+            draw_in=draw,
+            knots_start=top0[0],
+            knots_checked=top1[0],
+            linking_start=top0[1],
+            linking_checked=top1[1],
+            positions=pos,
+            status=status,
+            message=message,
+            stats=stats,
+        )
+
+    def _force(self, run, tp) -> np.ndarray:
+        force = np.zeros(tp.size)
+        for (pair, _ed), u in zip(self.pulls, self.dirs, strict=True):
+            force += run.reaction(pair, tp) @ u
+        return force / max(len(self.pulls), 1)
+
+    def _draw_in(self, pm) -> np.ndarray:
+        """Draw-in [m] of each free end towards the centroid of the start shape."""
+        x0 = self.x0
+        draw = np.zeros((len(pm), len(self.free)))
+        for j, node in enumerate(self.free):
+            c = x0.mean(axis=0)
+            draw[:, j] = np.linalg.norm(x0[node] - c) - np.linalg.norm(pm[:, node] - c, axis=1)
+        return draw
+
+    def _check_topology(self, run, pm, force, k_check, top0):
+        status, message, top1 = run.status, run.message, top0
+        if force.size:
+            split = np.cumsum([len(x) for x in self.rods_x])[:-1]
+            try:
+                top1 = _topology(np.split(pm[k_check], split))
+            except InputError:
+                top1 = ((), None)
+            if top1 != top0:
+                status, message = "failed", "topology changed: a strand passed through another"
+        elif status == "success":
+            status, message = "failed", "no pull frames recorded"
+        return status, message, top1
+
+
+def _exclusion(d: float, edge: float) -> int:
+    """Contact exclusion of the resampled rods: edges of one rod within about 1.25 d of
+    each other along it are never paired (at least the solver's default of 2 edges)."""
+    return max(2, int(np.ceil(1.25 * d / edge)))
+
+
+def _verdict(force, draw, slip: float, has_free: bool) -> tuple[str, float, int]:
+    """(verdict, slip load [N], frame whose topology is checked) of a pull."""
+    verdict, slip_load, k_check = "", float("nan"), force.size - 1
+    if not force.size:
+        return verdict, slip_load, k_check
+    if has_free:
+        k_peak = int(np.nanargmax(force))
+        beyond = draw.max(axis=1) - draw[: k_peak + 1].max()
+        hit = np.nonzero(beyond > slip)[0]
+        if hit.size:
+            k = int(hit[0])
+            return "slips", float(np.nanmax(force[: k + 1])), int(np.nanargmax(force[: k + 1]))
+    return "holds", slip_load, k_check

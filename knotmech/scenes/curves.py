@@ -484,48 +484,8 @@ def overhand_knot(
     N = int(n_nodes)
     if N != n_nodes or N < 20:
         raise InputError(f"n_nodes must be an integer >= 20, got {n_nodes!r}")
-    a = h * (1.0 + c)
-    Phi = (2 * n + 1) * np.pi
-    if b <= 1.05 * Phi * a:
-        raise InputError(
-            f"braid_length must exceed (2n+1) pi h (1+c) = {Phi * a:.4g} m for {n} turns, got {b:g}"
-        )
-    bx = np.sqrt(b * b - (Phi * a) ** 2)
-    if E <= bx + 4 * h:
-        raise InputError(
-            f"end_to_end_length must exceed the braid's axial length + 4h = {bx + 4 * h:.4g} m,"
-            f" got {E:g}"
-        )
-    t = 0.5 * (E - bx)
-    loop_len = L - 2 * t - 2 * b
-    if loop_len <= 1.2 * bx or loop_len < 10 * np.pi * h:
-        raise InputError(
-            f"rod_length {L:g} m leaves a loop of {loop_len:.4g} m, too short for a braid of"
-            f" axial length {bx:.4g} m; give a longer rod or a shorter braid"
-        )
-    pitch = 2 * np.pi * bx / Phi
-    edge = L / (N - 1)
-    if edge > pitch / 6:
-        raise InputError(
-            f"n_nodes = {N} is too coarse: the edge {edge:.3g} m must not exceed a sixth of"
-            f" the braid's helix pitch {pitch:.3g} m"
-        )
-    idx_e = np.arange(N - 1)
-    far = np.abs(idx_e[:, None] - idx_e[None, :]) >= 3
-    for _attempt in range(8):
-        nodes, sj, geo, design = _overhand_nodes(n, L, h, E, b, a, loop_len, edge, N)
-        # edge-edge clearance: chords of the helices cut inside it on coarse meshes
-        d_min = float(_edge_distances(nodes)[far].min())
-        if d_min >= 2.0 * h:
-            break
-        a *= 1.02 * 2.0 * h / d_min
-        if b <= 1.05 * Phi * a:
-            raise InputError(
-                f"n_nodes = {N} is too coarse for braid_length {b:g} m: the strands would"
-                " have to be spread beyond the braid length to stay a diameter apart"
-            )
-    else:
-        raise InputError(f"n_nodes = {N}: could not keep the strands a rod diameter apart")
+    a, loop_len, edge = _overhand_design(n, L, h, E, b, h * (1.0 + c), N)
+    nodes, sj, geo, design, a = _overhand_clear(n, L, h, E, b, a, loop_len, edge, N)
     bx, t = geo["bx"], geo["tail"]
     # place the ends on the x axis, centred
     nodes = nodes - np.array([0.5 * (nodes[0, 0] + nodes[-1, 0]), 0.0, nodes[0, 2]])
@@ -554,6 +514,60 @@ def overhand_knot(
         "pull_axis": (1.0, 0.0, 0.0),
     }
     return KnotCurve(nodes=nodes, rod_radius=h, parts=parts, info=info)
+
+
+def _overhand_design(n, L, h, E, b, a, N):
+    """(helix radius a [m], loop length [m], edge [m]) of an overhand design, checked:
+    the braid longer than its turns, the ends farther apart than the braid's axis, a loop
+    long enough, edges of at most a sixth of the helix pitch."""
+    Phi = (2 * n + 1) * np.pi
+    if b <= 1.05 * Phi * a:
+        raise InputError(
+            f"braid_length must exceed (2n+1) pi h (1+c) = {Phi * a:.4g} m for {n} turns, got {b:g}"
+        )
+    bx = np.sqrt(b * b - (Phi * a) ** 2)
+    if E <= bx + 4 * h:
+        raise InputError(
+            f"end_to_end_length must exceed the braid's axial length + 4h = {bx + 4 * h:.4g} m,"
+            f" got {E:g}"
+        )
+    t = 0.5 * (E - bx)
+    loop_len = L - 2 * t - 2 * b
+    if loop_len <= 1.2 * bx or loop_len < 10 * np.pi * h:
+        raise InputError(
+            f"rod_length {L:g} m leaves a loop of {loop_len:.4g} m, too short for a braid of"
+            f" axial length {bx:.4g} m; give a longer rod or a shorter braid"
+        )
+    pitch = 2 * np.pi * bx / Phi
+    edge = L / (N - 1)
+    if edge > pitch / 6:
+        raise InputError(
+            f"n_nodes = {N} is too coarse: the edge {edge:.3g} m must not exceed a sixth of"
+            f" the braid's helix pitch {pitch:.3g} m"
+        )
+    return a, loop_len, edge
+
+
+def _overhand_clear(n, L, h, E, b, a, loop_len, edge, N):
+    """The overhand's nodes with every pair of non-neighbouring edges at least 2h apart:
+    the helix radius a is spread (up to 8 times) where chords of the helices cut inside
+    the clearance on coarse meshes. Returns (nodes, part ends, geometry, design loop
+    length, a)."""
+    Phi = (2 * n + 1) * np.pi
+    idx_e = np.arange(N - 1)
+    far = np.abs(idx_e[:, None] - idx_e[None, :]) >= 3
+    for _attempt in range(8):
+        nodes, sj, geo, design = _overhand_nodes(n, L, h, E, b, a, loop_len, edge, N)
+        d_min = float(_edge_distances(nodes)[far].min())
+        if d_min >= 2.0 * h:
+            return nodes, sj, geo, design, a
+        a *= 1.02 * 2.0 * h / d_min
+        if b <= 1.05 * Phi * a:
+            raise InputError(
+                f"n_nodes = {N} is too coarse for braid_length {b:g} m: the strands would"
+                " have to be spread beyond the braid length to stay a diameter apart"
+            )
+    raise InputError(f"n_nodes = {N}: could not keep the strands a rod diameter apart")
 
 
 def overhand_coated(turns: int, *, n_nodes: int | None = None, clearance: float = 0.05):

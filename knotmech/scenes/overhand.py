@@ -34,7 +34,15 @@ from knotmech import rod
 from knotmech.errors import InputError, check_nonnegative, check_positive
 from knotmech.rod.contact import RodContact
 from knotmech.rod.friction import AnchorFriction, SmoothFriction
-from knotmech.scenes._common import check_pull_step, check_run_size, fail, measured_strain
+from knotmech.scenes._common import (
+    check_memory,
+    check_pull_step,
+    check_run_size,
+    fail,
+    frames_bytes,
+    measured_strain,
+)
+from knotmech.scenes._scene import RunControl, Scene
 from knotmech.scenes.curves import (
     OVERHAND_COATED_TABLE1,
     OVERHAND_IMC,
@@ -47,6 +55,7 @@ from knotmech.scenes.topology import knot_invariant
 __all__ = [
     "OverhandSetup",
     "OverhandResult",
+    "OverhandScene",
     "imc_setup",
     "coated_setup",
     "overhand",
@@ -317,10 +326,25 @@ def overhand(
     (``benchmarks/overhand.py`` measures it). Quick runs: 151 nodes, 5 ms,
     30 mm/s reproduce the Jawed law within 20 % (see the slow tests).
     """
-    n = int(turns)
-    if n != turns or not 1 <= n <= 4:
-        raise InputError(f"turns must be an integer in [1, 4], got {turns!r}")
-    mu = float(check_nonnegative("mu", mu))
+    return OverhandScene(
+        turns,
+        mu,
+        params=params,
+        overrides=overrides,
+        friction=friction,
+        n_snapshots=n_snapshots,
+        control=RunControl(
+            dt=None,
+            n_frames=n_frames,
+            options=options,
+            progress=progress,
+            max_node_steps=max_node_steps,
+        ),
+    ).run()
+
+
+def _overhand_setup(n: int, params, overrides) -> OverhandSetup:
+    """The parameter set ``params`` with ``overrides``, checked."""
     if isinstance(params, OverhandSetup):
         setup = replace(params, **overrides)
     elif params == "imc":
@@ -333,112 +357,169 @@ def overhand(
         check_positive(name, getattr(setup, name))
     for name in ("wait_time", "pull_time"):
         check_nonnegative(name, getattr(setup, name))
-    if int(n_frames) < 2 or int(n_snapshots) < 1:
-        raise InputError("n_frames must be >= 2 and n_snapshots >= 1")
-    check_run_size(n_nodes=setup.n_nodes, t_end=setup.wait_time + setup.pull_time,
-                   dt=setup.dt, max_node_steps=max_node_steps,
-                   hint="use a larger dt, fewer nodes or a shorter pull")  # fmt: skip
+    return setup
 
-    check_pull_step(setup.dt, speed=setup.pull_speed,
-                    edge_length=setup.rod_length / (int(setup.n_nodes) - 1))  # fmt: skip
-    curve = _start_curve(setup, n)
-    x0 = curve.nodes
-    N = len(x0)
-    h = setup.rod_radius
-    B = setup.bending_stiffness
-    r = rod.Rod(
-        positions=x0,
-        radius=h,
-        youngs_modulus=setup.youngs_modulus,
-        density=setup.density,
-        poisson_ratio=setup.poisson_ratio,
-        natural="straight",
-    )
-    system = rod.RodSystem([r])
-    axis = (x0[-1] - x0[0]) / np.linalg.norm(x0[-1] - x0[0])
-    left0, right0 = x0[:2].copy(), x0[-2:].copy()
-    v, tw = setup.pull_speed, setup.wait_time
 
-    def shift(t):
-        return v * max(t - tw, 0.0) * axis
-
-    constraints = [
-        rod.MovingNodes([N - 2, N - 1], path=lambda t: right0 + shift(t)),
-        rod.Clamp(edges=[0, N - 2]),
-    ]
-    if setup.pull_both_ends:
-        constraints.append(rod.MovingNodes([0, 1], path=lambda t: left0 - shift(t)))
-    else:
-        constraints.append(rod.Clamp(nodes=[0, 1]))
+def _friction_law(friction: str, mu: float, setup: OverhandSetup):
+    """The rod-rod friction object of ``friction`` ("imc" or "anchor")."""
     if friction not in ("imc", "anchor"):
         raise InputError(f"friction must be 'imc' or 'anchor', got {friction!r}")
-    law = friction
-    if law == "anchor":
-        friction = AnchorFriction(mu_static=mu)
-    elif setup.slip_speed is None:
-        friction = SmoothFriction(mu)
-    else:
-        nu = float(check_positive("slip_speed", setup.slip_speed))
-        friction = SmoothFriction(mu, sharpness=10.0 / nu, threshold=0.5 * nu)
-    kc = setup.contact_stiffness if setup.contact_stiffness is not None else 2.5 * B / h**3
-    contact = RodContact(
-        stiffness=kc,
-        sharpness=15.0 / setup.contact_distance,
-        friction=friction if mu > 0 else None,
-    )
-    t_end = setup.wait_time + setup.pull_time
-    base = options if options is not None else rod.SolverOptions(throw=False, rtol=1e-6)
-    opts = replace(base, save_every=t_end / (int(n_frames) - 1))
-    res = rod.simulate(
-        system,
-        t_end=t_end,
-        dt=setup.dt,
-        constraints=constraints,
-        interactions=[contact],
-        options=opts,
-        progress=progress,
-    )
-    pos = np.asarray(res.positions)
-    times = np.asarray(res.times)
-    rn = list(np.asarray(res.reaction_nodes))
-    react = np.asarray(res.reactions)
-    right = react[:, [rn.index(N - 2), rn.index(N - 1)], :].sum(axis=1) @ axis
-    left = -(react[:, [rn.index(0), rn.index(1)], :].sum(axis=1) @ axis)
-    force = 0.5 * (right + left)
-    e2e = np.linalg.norm(pos[:, -1] - pos[:, 0], axis=1)
-    metrics = [loop_metrics(p, rod_radius=h) for p in pos]
-    k_snap = np.unique(np.linspace(0, len(times) - 1, int(n_snapshots)).round().astype(int))
-    reason, warnings = measured_strain(
-        res.tension, setup.youngs_modulus * np.pi * h * h, warned=False
-    )
-    status, message = fail(res.status, res.message, reason)
-    inv0 = knot_invariant(x0)
-    try:
-        inv1 = knot_invariant(pos[-1])
-    except InputError:  # projections disagree: strands overlap in 3-D
-        inv1 = None
-    return OverhandResult(
-        turns=n,
-        mu=mu,
-        setup=setup,
-        times=times,
-        end_to_end=e2e,
-        pull_force=force,
-        loop_diameter=np.array([m["loop_diameter"] for m in metrics]),
-        loop_length=np.array([m["loop_length"] for m in metrics]),
-        braid_length=np.array([m["braid_length"] for m in metrics]),
-        snapshot_times=times[k_snap],
-        snapshots=pos[k_snap],
-        knot_start=inv0.name,
-        knot_end=inv1.name if inv1 is not None else "?",
-        alexander_start=inv0.alexander,
-        alexander_end=inv1.alexander if inv1 is not None else (),
-        status=status,
-        message=message,
-        stats=dict(res.stats),
-        warnings=warnings,
-        friction=law,
-    )
+    if friction == "anchor":
+        return AnchorFriction(mu_static=mu)
+    if setup.slip_speed is None:
+        return SmoothFriction(mu)
+    nu = float(check_positive("slip_speed", setup.slip_speed))
+    return SmoothFriction(mu, sharpness=10.0 / nu, threshold=0.5 * nu)
+
+
+class OverhandScene(Scene):
+    """An overhand knot pulled tight: the phases of :func:`overhand` (one solver call: the
+    wait and the pull are in the grips' path)."""
+
+    def __init__(self, turns, mu, *, params, overrides, friction, n_snapshots, control):
+        self.turns, self.mu_arg, self.params, self.overrides = turns, mu, params, overrides
+        self.friction, self.n_snapshots, self.control = friction, n_snapshots, control
+
+    def setup(self) -> None:
+        """Turns, mu, the parameter set, frames and the cost checked."""
+        n = int(self.turns)
+        if n != self.turns or not 1 <= n <= 4:
+            raise InputError(f"turns must be an integer in [1, 4], got {self.turns!r}")
+        self.n = n
+        self.mu = float(check_nonnegative("mu", self.mu_arg))
+        self.s = s = _overhand_setup(n, self.params, self.overrides)
+        c = self.control
+        if int(c.n_frames) < 2 or int(self.n_snapshots) < 1:
+            raise InputError("n_frames must be >= 2 and n_snapshots >= 1")
+        check_run_size(
+            n_nodes=s.n_nodes,
+            t_end=s.wait_time + s.pull_time,
+            dt=s.dt,
+            max_node_steps=c.max_node_steps,
+            hint="use a larger dt, fewer nodes or a shorter pull",
+        )
+        check_memory(
+            frames_bytes(c.n_frames, s.n_nodes),
+            what=f"{int(c.n_frames)} recorded frames of {s.n_nodes} nodes",
+            hint="use fewer nodes or frames (n_frames)",
+        )
+        check_pull_step(s.dt, speed=s.pull_speed, edge_length=s.rod_length / (int(s.n_nodes) - 1))
+
+    def build(self):
+        """The rod on the start curve, the grips and the rod-rod contact."""
+        s = self.s
+        self.x0 = x0 = _start_curve(s, self.n).nodes
+        N = len(x0)
+        self.h = h = s.rod_radius
+        r = rod.Rod(
+            positions=x0,
+            radius=h,
+            youngs_modulus=s.youngs_modulus,
+            density=s.density,
+            poisson_ratio=s.poisson_ratio,
+            natural="straight",
+        )
+        self.system = rod.RodSystem([r])
+        self.axis = (x0[-1] - x0[0]) / np.linalg.norm(x0[-1] - x0[0])
+        self.constraints = self._grips(x0, N)
+        friction = _friction_law(self.friction, self.mu, s)
+        kc = (
+            s.contact_stiffness
+            if s.contact_stiffness is not None
+            else 2.5 * s.bending_stiffness / h**3
+        )
+        self.contact = RodContact(
+            stiffness=kc,
+            sharpness=15.0 / s.contact_distance,
+            friction=friction if self.mu > 0 else None,
+        )
+        return self.system
+
+    def _grips(self, x0, N) -> list:
+        """The right end pulled along the end-to-end axis after the wait; the left end
+        pulled the other way or clamped."""
+        left0, right0 = x0[:2].copy(), x0[-2:].copy()
+        v, tw, axis = self.s.pull_speed, self.s.wait_time, self.axis
+
+        def shift(t):
+            return v * max(t - tw, 0.0) * axis
+
+        constraints = [
+            rod.MovingNodes([N - 2, N - 1], path=lambda t: right0 + shift(t)),
+            rod.Clamp(edges=[0, N - 2]),
+        ]
+        if self.s.pull_both_ends:
+            constraints.append(rod.MovingNodes([0, 1], path=lambda t: left0 - shift(t)))
+        else:
+            constraints.append(rod.Clamp(nodes=[0, 1]))
+        return constraints
+
+    def run_phases(self, system) -> None:
+        """One solver call: wait, then pull."""
+        s, c = self.s, self.control
+        t_end = s.wait_time + s.pull_time
+        base = c.options if c.options is not None else rod.SolverOptions(throw=False, rtol=1e-6)
+        opts = replace(base, save_every=t_end / (int(c.n_frames) - 1))
+        self.res = rod.simulate(
+            system,
+            t_end=t_end,
+            dt=s.dt,
+            constraints=self.constraints,
+            interactions=[self.contact],
+            options=opts,
+            progress=c.progress,
+        )
+
+    def measure(self, system) -> OverhandResult:
+        """Pull force, end-to-end distance, loop metrics, snapshots and knot type."""
+        res, s, h = self.res, self.s, self.h
+        pos = np.asarray(res.positions)
+        times = np.asarray(res.times)
+        force = self._force(res, len(self.x0))
+        metrics = [loop_metrics(p, rod_radius=h) for p in pos]
+        k_snap = np.unique(
+            np.linspace(0, len(times) - 1, int(self.n_snapshots)).round().astype(int)
+        )
+        reason, warnings = measured_strain(
+            res.tension, s.youngs_modulus * np.pi * h * h, warned=False
+        )
+        status, message = fail(res.status, res.message, reason)
+        inv0 = knot_invariant(self.x0)
+        try:
+            inv1 = knot_invariant(pos[-1])
+        except InputError:  # projections disagree: strands overlap in 3-D
+            inv1 = None
+        return OverhandResult(
+            turns=self.n,
+            mu=self.mu,
+            setup=s,
+            times=times,
+            end_to_end=np.linalg.norm(pos[:, -1] - pos[:, 0], axis=1),
+            pull_force=force,
+            loop_diameter=np.array([m["loop_diameter"] for m in metrics]),
+            loop_length=np.array([m["loop_length"] for m in metrics]),
+            braid_length=np.array([m["braid_length"] for m in metrics]),
+            snapshot_times=times[k_snap],
+            snapshots=pos[k_snap],
+            knot_start=inv0.name,
+            knot_end=inv1.name if inv1 is not None else "?",
+            alexander_start=inv0.alexander,
+            alexander_end=inv1.alexander if inv1 is not None else (),
+            status=status,
+            message=message,
+            stats=dict(res.stats),
+            warnings=warnings,
+            friction=self.friction,
+        )
+
+    def _force(self, res, N) -> np.ndarray:
+        """Mean of the two grips' reactions along the end-to-end axis [N]."""
+        rn = list(np.asarray(res.reaction_nodes))
+        react = np.asarray(res.reactions)
+        axis = self.axis
+        right = react[:, [rn.index(N - 2), rn.index(N - 1)], :].sum(axis=1) @ axis
+        left = -(react[:, [rn.index(0), rn.index(1)], :].sum(axis=1) @ axis)
+        return 0.5 * (right + left)
 
 
 def inversion_points(end_to_end, force, *, window: int = 9, drop: float = 0.2, span: float = 0.02):

@@ -37,8 +37,18 @@ from knotmech.scenes._common import (
     fail,
     measured_strain,
 )
+from knotmech.scenes._scene import RunControl, Scene
 
-__all__ = ["LoadedCylinderContact", "PinchResult", "PinchSweep", "pinch", "pinch_sweep"]
+__all__ = [
+    "LoadedCylinderContact",
+    "PinchResult",
+    "PinchScene",
+    "PinchRod",
+    "PinchLoading",
+    "PinchSweep",
+    "pinch",
+    "pinch_sweep",
+]
 
 
 #: F_t*/(2 mu F_n) further than this from 1 gets a warning (the rigid-section model gives 1
@@ -157,8 +167,15 @@ class PinchResult:
     warnings: list = field(default_factory=list)
 
     def summary(self) -> dict:
-        keys = ("normal_load", "mu", "load_parameter", "sliding_force", "ratio", "status",
-                "message")  # fmt: skip
+        keys = (
+            "normal_load",
+            "mu",
+            "load_parameter",
+            "sliding_force",
+            "ratio",
+            "status",
+            "message",
+        )
         out = {k: getattr(self, k) for k in keys}
         out["warnings"] = list(self.warnings)
         out["stats"] = dict(self.stats)
@@ -214,108 +231,227 @@ def pinch(
     -------
     PinchResult
     """
-    fn = float(check_positive("normal_load", normal_load))
-    mu = float(check_nonnegative("mu", mu))
-    d = float(check_positive("rod_diameter", rod_diameter))
-    D = float(check_positive("cylinder_diameter", cylinder_diameter))
-    E = float(check_positive("youngs_modulus", youngs_modulus))
-    L = float(check_positive("rod_length", rod_length))
-    v = float(check_positive("pull_speed", pull_speed))
-    ea = E * np.pi * d**2 / 4
-    stretch = 2 * mu * fn * 0.3 * L / ea  # free length between the pulled end and the pinch
-    if pull_distance is None:
-        dist = 1.5 * stretch + 2 * d
-    else:
-        dist = float(check_positive("pull_distance", pull_distance))
-    if dist > 0.4 * L:
-        raise InputError(f"pull_distance must be <= 0.4 rod_length ({0.4 * L:g} m), got {dist}")
-    n_el = int(round(L / (d / 8))) if n_elements is None else int(n_elements)
-    if n_el < 8:
-        raise InputError(f"n_elements must be >= 8, got {n_elements}")
-    t_start = ramp_time + 0.05
-    t_final = t_start + dist / v
-    step = (L / n_el) / (4.0 * v) if dt is None else float(check_positive("dt", dt))
-    check_run_size(n_nodes=n_el + 1, t_end=t_final, dt=step, max_node_steps=max_node_steps,
-                   hint="use a larger dt, fewer elements or a lower pull speed")  # fmt: skip
-    radius, e_rod, rho_rod = equivalent_section(diameter=d, youngs_modulus=E, density=density)
-    # the pinch sits at x = 0, a quarter of the length from the pulled end (x = -L/4 ... )
-    x = np.linspace(-0.3 * L, 0.7 * L, n_el + 1)
-    x += 0.5 * (x[1] - x[0]) * 0.37  # contact not exactly on a node
-    pts = np.stack([x, np.zeros_like(x), np.zeros_like(x)], 1)
-    system = RodSystem((Rod(positions=pts, radius=radius, youngs_modulus=e_rod,
-                            density=rho_rod, natural="straight"),))  # fmt: skip
-    h = float(np.mean(system.rest_length))
-    zc = 0.5 * (D + d)
-    K = 50.0 * fn / (d * h)
-    lower = Cylinder(point=(0.0, 0.0, -zc), axis=(0.0, 1.0, 0.0), radius=0.5 * D)
-    upper = Cylinder(point=(0.0, 0.0, zc), axis=(0.0, 1.0, 0.0), radius=0.5 * D)
-    contact = LoadedCylinderContact(
-        (lower, upper),
-        loaded=1,
-        load=fn,
-        load_direction=(0.0, 0.0, -1.0),
-        ramp_time=ramp_time,
-        stiffness=K,
-        sharpness=400.0 / d,
-        friction=AnchorFriction(mu_static=mu, mu_kinetic=mu_kinetic, tangential_stiffness=K),
-    )
-    pull_dir = np.array([-1.0, 0.0, 0.0])
-    x0 = pts[0].copy()
+    return PinchScene(
+        rod=PinchRod(
+            rod_diameter=rod_diameter,
+            cylinder_diameter=cylinder_diameter,
+            youngs_modulus=youngs_modulus,
+            density=density,
+            rod_length=rod_length,
+            n_elements=n_elements,
+        ),
+        load=PinchLoading(
+            normal_load=normal_load,
+            mu=mu,
+            mu_kinetic=mu_kinetic,
+            pull_speed=pull_speed,
+            pull_distance=pull_distance,
+            ramp_time=ramp_time,
+            plateau=plateau,
+        ),
+        control=RunControl(
+            dt=dt, options=options, progress=progress, max_node_steps=max_node_steps
+        ),
+    ).run()
 
-    def path(t):
-        return x0 + pull_dir * v * max(0.0, t - t_start)
 
-    if dt is None:
-        step = h / (4.0 * v)
-    mpl = rho_rod * np.pi * radius**2
-    mu_top = mu if mu_kinetic is None else max(mu, float(mu_kinetic))
-    warnings = check_strain(2 * mu_top * fn, ea, what="the sliding force 2 mu F_n")
-    check_pull_step(step, speed=v, edge_length=h)
-    warnings += check_quasi_static(
-        length=L,
-        ea=ea,
-        mass_per_length=mpl,
-        times={"ramp_time": ramp_time, "pull": dist / v},
-        speed=v,
-    )
-    damping = 1e-3 * 2 * mu * fn / (L * v)
-    res = simulate(
-        system,
-        t_end=t_final,
-        dt=step,
-        loads=(ViscousDamping(coefficient=max(damping, 0.0 * mpl)),),
-        constraints=(MovingNodes(nodes=[0], path=path), Clamp(edges=[0])),
-        interactions=(contact,),
-        options=options or SolverOptions(throw=False, save_every=max(step, t_final / 400)),
-        progress=progress,
-    )
-    disp = (res.positions[:, 0, :] - x0) @ pull_dir
-    force = res.tension[:, 0]
-    sel = disp >= max((1.0 - plateau) * dist, 1.2 * stretch)
-    ft = float(np.mean(force[sel])) if (np.any(sel) and res.status == "success") else np.nan
-    ratio = ft / (2 * mu * fn) if mu > 0 else np.nan
-    reason, more = measured_strain(res.tension, ea, warned=bool(warnings))
-    warnings += more
-    if reason is None:
-        reason, more = _ratio_check(ratio)
-        warnings += more
-    if reason is not None:
-        ft = ratio = float("nan")
-    status, message = fail(res.status, res.message, reason)
-    return PinchResult(
-        normal_load=fn,
-        mu=mu,
-        load_parameter=4 * fn / (np.pi * E * d * D),
-        times=res.times,
-        displacement=disp,
-        pull_force=force,
-        sliding_force=ft,
-        ratio=ratio,
-        status=status,
-        message=message,
-        stats=dict(res.stats),
-        warnings=warnings,
-    )
+@dataclass(frozen=True)
+class PinchRod:
+    """The rod and the cylinders (SI units; :func:`pinch` documents them)."""
+
+    rod_diameter: float = 4e-3
+    cylinder_diameter: float = 8e-3
+    youngs_modulus: float = 1.26e6
+    density: float = 1160.0
+    rod_length: float = 0.09
+    n_elements: int | None = None
+
+
+@dataclass(frozen=True)
+class PinchLoading:
+    """The normal load [N], friction and the pull [m/s], [m], [s]."""
+
+    normal_load: float
+    mu: float
+    mu_kinetic: float | None = None
+    pull_speed: float = 0.01
+    pull_distance: float | None = None
+    ramp_time: float = 0.1
+    plateau: float = 0.5
+
+
+class PinchScene(Scene):
+    """A rod pulled out of a pinch: the phases of :func:`pinch` (one solver call: the load
+    ramp and the pull's start delay are in the contact and the grip path)."""
+
+    def __init__(self, *, rod, load, control):
+        self.opts, self.load, self.control = rod, load, control
+
+    def setup(self) -> None:
+        """Inputs, pull distance, mesh and the cost, before anything is allocated."""
+        o, ld = self.opts, self.load
+        self.fn = fn = float(check_positive("normal_load", ld.normal_load))
+        self.mu = mu = float(check_nonnegative("mu", ld.mu))
+        self.d = d = float(check_positive("rod_diameter", o.rod_diameter))
+        self.D = float(check_positive("cylinder_diameter", o.cylinder_diameter))
+        self.E = float(check_positive("youngs_modulus", o.youngs_modulus))
+        self.L = L = float(check_positive("rod_length", o.rod_length))
+        self.v = float(check_positive("pull_speed", ld.pull_speed))
+        self.ea = self.E * np.pi * d**2 / 4
+        # free length between the pulled end and the pinch
+        self.stretch = 2 * mu * fn * 0.3 * L / self.ea
+        self.dist = self._pull_distance()
+        self.n_el = int(round(L / (d / 8))) if o.n_elements is None else int(o.n_elements)
+        if self.n_el < 8:
+            raise InputError(f"n_elements must be >= 8, got {o.n_elements}")
+        self.t_start = ld.ramp_time + 0.05
+        self.t_final = self.t_start + self.dist / self.v
+        dt = self.control.dt
+        step = (L / self.n_el) / (4.0 * self.v) if dt is None else float(check_positive("dt", dt))
+        check_run_size(
+            n_nodes=self.n_el + 1,
+            t_end=self.t_final,
+            dt=step,
+            max_node_steps=self.control.max_node_steps,
+            hint="use a larger dt, fewer elements or a lower pull speed",
+        )
+        self.step = step
+
+    def _pull_distance(self) -> float:
+        """The pull's travel [m]; at most 0.4 L (the rod must stay in the pinch)."""
+        ld, L = self.load, self.L
+        if ld.pull_distance is not None:
+            dist = float(check_positive("pull_distance", ld.pull_distance))
+            if dist > 0.4 * L:
+                raise InputError(
+                    f"pull_distance must be <= 0.4 rod_length ({0.4 * L:g} m), got {dist}"
+                )
+            return dist
+        dist = 1.5 * self.stretch + 2 * self.d
+        if dist > 0.4 * L:
+            raise InputError(
+                f"normal_load = {self.fn:g} N stretches the pulled part by "
+                f"{self.stretch:.3g} m at the sliding force 2 mu F_n, so the pull would need "
+                f"{dist:.3g} m, more than 0.4 rod_length ({0.4 * L:g} m): lower normal_load "
+                "or mu, or use a stiffer (youngs_modulus) or longer (rod_length) rod"
+            )
+        return dist
+
+    def build(self):
+        """The rod through the pinch, the two cylinders (the upper one loaded), the grip."""
+        o, ld, d, L = self.opts, self.load, self.d, self.L
+        radius, e_rod, rho_rod = equivalent_section(
+            diameter=d, youngs_modulus=self.E, density=o.density
+        )
+        # the pinch sits at x = 0, a quarter of the length from the pulled end (x = -L/4 ... )
+        x = np.linspace(-0.3 * L, 0.7 * L, self.n_el + 1)
+        x += 0.5 * (x[1] - x[0]) * 0.37  # contact not exactly on a node
+        pts = np.stack([x, np.zeros_like(x), np.zeros_like(x)], 1)
+        self.system = RodSystem(
+            (
+                Rod(
+                    positions=pts,
+                    radius=radius,
+                    youngs_modulus=e_rod,
+                    density=rho_rod,
+                    natural="straight",
+                ),
+            )
+        )
+        self.h = h = float(np.mean(self.system.rest_length))
+        zc = 0.5 * (self.D + d)
+        K = 50.0 * self.fn / (d * h)
+        lower = Cylinder(point=(0.0, 0.0, -zc), axis=(0.0, 1.0, 0.0), radius=0.5 * self.D)
+        upper = Cylinder(point=(0.0, 0.0, zc), axis=(0.0, 1.0, 0.0), radius=0.5 * self.D)
+        self.contact = LoadedCylinderContact(
+            (lower, upper),
+            loaded=1,
+            load=self.fn,
+            load_direction=(0.0, 0.0, -1.0),
+            ramp_time=ld.ramp_time,
+            stiffness=K,
+            sharpness=400.0 / d,
+            friction=AnchorFriction(
+                mu_static=self.mu, mu_kinetic=ld.mu_kinetic, tangential_stiffness=K
+            ),
+        )
+        self.x0 = pts[0].copy()
+        self.mpl = rho_rod * np.pi * radius**2
+        return self.system
+
+    def _checks(self) -> None:
+        """Strain, pull step and quasi-static loading, with the element length known."""
+        ld = self.load
+        if self.control.dt is None:
+            self.step = self.h / (4.0 * self.v)
+        mu_top = self.mu if ld.mu_kinetic is None else max(self.mu, float(ld.mu_kinetic))
+        self.warnings = check_strain(
+            2 * mu_top * self.fn, self.ea, what="the sliding force 2 mu F_n"
+        )
+        check_pull_step(self.step, speed=self.v, edge_length=self.h)
+        self.warnings += check_quasi_static(
+            length=self.L,
+            ea=self.ea,
+            mass_per_length=self.mpl,
+            times={"ramp_time": ld.ramp_time, "pull": self.dist / self.v},
+            speed=self.v,
+        )
+
+    def run_phases(self, system) -> None:
+        """One solver call: the load ramp, then the pull."""
+        self._checks()
+        x0, v, t_start = self.x0, self.v, self.t_start
+
+        def path(t):
+            return x0 + _PULL_DIR * v * max(0.0, t - t_start)
+
+        damping = 1e-3 * 2 * self.mu * self.fn / (self.L * v)
+        step, t_final = self.step, self.t_final
+        self.res = simulate(
+            system,
+            t_end=t_final,
+            dt=step,
+            loads=(ViscousDamping(coefficient=max(damping, 0.0 * self.mpl)),),
+            constraints=(MovingNodes(nodes=[0], path=path), Clamp(edges=[0])),
+            interactions=(self.contact,),
+            options=self.control.options
+            or SolverOptions(throw=False, save_every=max(step, t_final / 400)),
+            progress=self.control.progress,
+        )
+
+    def measure(self, system) -> PinchResult:
+        """F_t* over the plateau, checked (strain, Amontons ratio)."""
+        res, mu, fn = self.res, self.mu, self.fn
+        disp = (res.positions[:, 0, :] - self.x0) @ _PULL_DIR
+        force = res.tension[:, 0]
+        sel = disp >= max((1.0 - self.load.plateau) * self.dist, 1.2 * self.stretch)
+        ft = float(np.mean(force[sel])) if (np.any(sel) and res.status == "success") else np.nan
+        ratio = ft / (2 * mu * fn) if mu > 0 else np.nan
+        reason, more = measured_strain(res.tension, self.ea, warned=bool(self.warnings))
+        self.warnings += more
+        if reason is None:
+            reason, more = _ratio_check(ratio)
+            self.warnings += more
+        if reason is not None:
+            ft = ratio = float("nan")
+        status, message = fail(res.status, res.message, reason)
+        return PinchResult(
+            normal_load=fn,
+            mu=mu,
+            load_parameter=4 * fn / (np.pi * self.E * self.d * self.D),
+            times=res.times,
+            displacement=disp,
+            pull_force=force,
+            sliding_force=ft,
+            ratio=ratio,
+            status=status,
+            message=message,
+            stats=dict(res.stats),
+            warnings=self.warnings,
+        )
+
+
+_PULL_DIR = np.array([-1.0, 0.0, 0.0])
 
 
 @dataclass
