@@ -68,6 +68,11 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
+from knotmech.analytic.knots import overhand_knot
+from knotmech.diagnose.effects import PlantContext, get_effect
+from knotmech.diagnose.experiments import get_experiment
+from knotmech.diagnose.experiments.knot_pull import KnotPull
+from knotmech.diagnose.fitting import fit_baseline
 from knotmech.diagnose.recording import Recording
 from knotmech.errors import InputError, SolverError
 
@@ -127,8 +132,6 @@ class DERKnotLaw:
         self.d0 = float(np.min(rec.x)) - 0.03 * self.L
         self.d1 = float(np.max(rec.x)) + 0.01 * self.L
         self.B = self.E * np.pi * self.h**4 / 4.0
-        from knotmech.analytic.knots import overhand_knot
-
         self.braid = float(
             overhand_knot(
                 end_to_end_shortening=self.L - self.d0,
@@ -146,6 +149,7 @@ class DERKnotLaw:
         self.correction = None
 
     def _mesh(self) -> int:
+        # imported here for start-up speed: knotmech.scenes loads the numba solver
         from knotmech.scenes.curves import overhand_knot as knot_curve
 
         n = max(int(round(self.L / (8.0 * self.h))) + 1, 41)
@@ -188,6 +192,7 @@ class DERKnotLaw:
         mu = round(float(mu), 6)
         if mu in self._raw:
             return self._raw[mu]
+        # imported here for start-up speed: the solver compiles numba kernels
         from knotmech.rod.solver import SolverOptions
         from knotmech.scenes.overhand import overhand
 
@@ -474,8 +479,6 @@ def fit_knot_der_baseline(rec, data, starts, gs):
         The recording with the DER law attached (use it for everything that follows).
     fit : Fit
     """
-    from knotmech.diagnose.fitting import fit_baseline
-
     if getattr(rec, "force_law", None) is not None:  # the law is already run
         drec = rec
     else:
@@ -536,10 +539,6 @@ def der_made_recording(
         ``effect``, ``mu``, the planted parameters, ``noise_sd`` and ``law`` (the
         :class:`DERKnotLaw` holding the run at ``mu``).
     """
-    from knotmech.diagnose.effects import PlantContext, get_effect
-    from knotmech.diagnose.experiments import get_experiment
-    from knotmech.diagnose.experiments.knot_pull import KnotPull
-
     rng = np.random.default_rng(seed)
     exp = get_experiment("knot_pull")
     meta = {

@@ -44,13 +44,13 @@ from __future__ import annotations
 
 import functools
 import math
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
 
 from knotmech.diagnose.baselines import get_baseline
-from knotmech.diagnose.der import fit_der_baseline, select_der
-from knotmech.diagnose.der_knot import fit_knot_der_baseline
+from knotmech.diagnose.der import select_der
 from knotmech.diagnose.effects import CATALOGUE, applicable_effects, get_effect
 from knotmech.diagnose.experiments import get_experiment
 from knotmech.diagnose.fitting import (
@@ -64,8 +64,10 @@ from knotmech.diagnose.fitting import (
 )
 from knotmech.diagnose.locate import flexible_mismatch, regions_from_mask, smooth_mismatch
 from knotmech.diagnose.noisefloor import (
+    NONE_LEVEL_MAX,
     SHORT_ROWS,
     find_outliers,
+    hf_sigma,
     noise_floor,
     noise_floor_verdict,
     outlier_threshold,
@@ -73,6 +75,7 @@ from knotmech.diagnose.noisefloor import (
     short_recording_verdict,
     without_rows,
 )
+from knotmech.diagnose.powerlaw import F_HIGH, PowerLawNoise, fit_power_law
 from knotmech.diagnose.recording import Recording, read_recording, recording_from_arrays
 from knotmech.diagnose.report import Report, effect_parameters, public_parameters
 from knotmech.diagnose.stats import NoiseModel, monte_carlo_pvalue, trial_starts
@@ -210,7 +213,8 @@ def diagnose(
     rec = _as_recording(
         recording, experiment, x, y, metadata, sigma=sigma, trial=trial, speed=speed
     )
-    get_baseline(baseline).check(rec)
+    family = get_baseline(baseline, rec.experiment)
+    family.check(rec)
     rec, reduced = get_experiment(rec.experiment).reduce(rec)
     rec_all = rec
     rec, outliers = _drop_outliers(rec)
@@ -223,14 +227,10 @@ def diagnose(
     starts = trial_starts(rec.trial)
     gs = rec.sigma
     data = Data(rec.y, rec.mu_nominal, rec.mu_nominal_sigma)
-    der = None
-    if baseline == "der" and rec.experiment == "knot_pull":
-        # the DER knot law is attached to the recording; the closed-form engine follows
-        rec, base = fit_knot_der_baseline(rec, data, starts, gs)
-    elif baseline == "der":
-        der, base = fit_der_baseline(rec, data, starts, gs)
-    else:
-        base = fit_baseline(rec, data, starts, given_sigma=gs)
+    fitted = family.fit(rec, data, starts, gs)
+    # the DER knot attaches its law to the recording; the closed-form engine follows
+    rec, base, der = fitted.rec, fitted.fit, fitted.der
+    if family.refits_outliers:
         # the outliers again, on the remainder of this baseline (kinks and curvature of
         # the signal no longer hide any); refit when more are found
         rec2, outliers2 = _outliers_of_remainder(rec_all, rec, outliers, base.mean)
@@ -520,11 +520,6 @@ def _power_law_check(rec, base, final, accepted, unexplained, fin_mis, data, sta
     Returns None when not tried, else a dict for the report (``explains``: the
     power-law null explains it, so the verdict is ``undetermined``; ``reason``).
     """
-    from dataclasses import replace
-
-    from knotmech.diagnose.noisefloor import NONE_LEVEL_MAX, hf_sigma
-    from knotmech.diagnose.powerlaw import F_HIGH, PowerLawNoise, fit_power_law
-
     resid = rec.y - final.mean
     sd_hf = hf_sigma(resid, rec.x, rec.trial)
     level = float(np.sqrt(np.mean(resid**2)) / sd_hf) if sd_hf > 0 else math.inf

@@ -37,6 +37,7 @@ import functools
 
 import numpy as np
 
+from knotmech.analytic import knots
 from knotmech.analytic.knots import JAWED_C
 from knotmech.diagnose.experiments.base import Experiment, Stages
 
@@ -54,8 +55,6 @@ KNOTS = ("overhand",)
 
 def closure_limits() -> tuple[float, float]:
     """(smallest, largest) :math:`e/(n^2h)` the Jawed et al. closure represents [-]."""
-    from knotmech.analytic import knots
-
     lo, hi = knots._shortening_bounds()
     return float(lo), float(hi)
 
