@@ -680,26 +680,37 @@ def recording_from_arrays(
         words as strings), name -> array.
     """
     lines = ["# knotmech-recording: 1", f"# experiment: {experiment}"]
-    for k, v in metadata.items():
-        if k in ("experiment", "knotmech-recording"):
-            continue
-        if isinstance(v, (int, float, np.number)) and not isinstance(v, bool):
-            lines.append(f"# {k}: {float(v)!r}")
-        else:
-            lines.append(f"# {k}: {v}")
+    lines += [_metadata_line(k, v) for k, v in metadata.items()]
+    lines = [line for line in lines if line is not None]
     if experiment not in EXPERIMENTS:
         raise RecordingError(
             f"<arrays>: unknown experiment {experiment!r} (allowed: {', '.join(EXPERIMENTS)})"
         )
     xcol, ycol, _ = EXPERIMENTS[experiment]
-    cols = {xcol: x, ycol: y}
-    if sigma is not None:
-        cols["sigma"] = sigma
-    if trial is not None:
-        cols["trial"] = trial
-    if speed is not None:
-        cols["speed_m_per_s"] = speed
+    optional = {"sigma": sigma, "trial": trial, "speed_m_per_s": speed}
+    cols = {xcol: x, ycol: y, **{k: v for k, v in optional.items() if v is not None}}
     cols.update(columns or {})
+    arrays = _column_arrays(cols, xcol)
+    lines.append(",".join(arrays))
+    for i in range(arrays[xcol].size):
+        cells = (
+            arr[i] if arr.dtype.kind in "USO" else repr(float(arr[i])) for arr in arrays.values()
+        )
+        lines.append(",".join(str(c) for c in cells))
+    return parse_recording("\n".join(lines) + "\n", source="<arrays>")
+
+
+def _metadata_line(key: str, value) -> str | None:
+    """``# key: value`` (numbers written in full), None for the keys the caller writes."""
+    if key in ("experiment", "knotmech-recording"):
+        return None
+    if isinstance(value, (int, float, np.number)) and not isinstance(value, bool):
+        return f"# {key}: {float(value)!r}"
+    return f"# {key}: {value}"
+
+
+def _column_arrays(cols: dict, xcol: str) -> dict:
+    """Each column as a flat array (numbers as float, words kept), all of one length."""
     arrays = {}
     for k, v in cols.items():
         arr = np.atleast_1d(np.asarray(v)).ravel()
@@ -708,10 +719,4 @@ def recording_from_arrays(
     for k, arr in arrays.items():
         if arr.size != n:
             raise RecordingError(f"<arrays>: column {k} has {arr.size} values, {xcol} has {n}")
-    lines.append(",".join(arrays))
-    for i in range(n):
-        cells = (
-            arr[i] if arr.dtype.kind in "USO" else repr(float(arr[i])) for arr in arrays.values()
-        )
-        lines.append(",".join(str(c) for c in cells))
-    return parse_recording("\n".join(lines) + "\n", source="<arrays>")
+    return arrays
