@@ -19,6 +19,8 @@ from __future__ import annotations
 from collections.abc import Mapping
 from dataclasses import dataclass
 
+import numpy as np
+
 from knotmech.analytic.pinch import pinch_load_parameter
 from knotmech.diagnose.der import check_der_recording, fit_der_baseline
 from knotmech.diagnose.der_knot import fit_knot_der_baseline
@@ -26,6 +28,7 @@ from knotmech.diagnose.effects import get_effect
 from knotmech.diagnose.experiments import EXPERIMENT_KINDS, get_experiment
 from knotmech.diagnose.fitting import Fit, fit_baseline
 from knotmech.diagnose.model import Model, build_model, canonical_effects
+from knotmech.diagnose.noisefloor import without_rows
 from knotmech.diagnose.recording import Recording
 from knotmech.errors import InputError
 
@@ -107,6 +110,10 @@ class Baseline:
     def check(self, rec: Recording) -> None:
         """Refuse, before any simulation, a recording this baseline cannot run on."""
 
+    def restrict(self, rec: Recording):
+        """The rows this baseline judges, and a note for the report (None: every row)."""
+        return rec, None
+
     def fit(self, rec: Recording, data, starts, given_sigma) -> BaselineFit:
         """The baseline fitted to ``rec`` (``data``: :class:`~knotmech.diagnose.fitting.Data`)."""
         raise NotImplementedError
@@ -121,6 +128,34 @@ class ClosedFormBaseline(Baseline):
     family = "closed-form"
     experiments = tuple(EXPERIMENT_KINDS)
     refits_outliers = True
+
+    def restrict(self, rec):
+        """The rows inside the closed form's validity (:meth:`Experiment.validity`).
+
+        A recording is not refused because part of it lies beyond the closed form (a
+        knot pulled to tight): the rows inside are judged, and the note says which and
+        how many; ``--baseline der`` judges every row. Refused only when fewer than the
+        kind's ``min_rows`` rows remain.
+        """
+        kind = get_experiment(rec.experiment)
+        valid = kind.validity(rec)
+        if valid is None:
+            return rec, None
+        ok, reason = valid
+        k = int(np.sum(ok))
+        if k < kind.min_rows:
+            raise InputError(
+                f"{rec.source}: {k} of {rec.n} rows lie inside the closed form's validity "
+                f"({reason}); the closed form needs {kind.min_rows}: use --baseline der"
+            )
+        kept = without_rows(rec, np.flatnonzero(~ok))
+        note = {
+            "rows_judged": k,
+            "rows": int(rec.n),
+            "judged_range": [float(np.min(kept.x)), float(np.max(kept.x))],
+            "reason": f"{rec.n - k} rows left out: {reason}; --baseline der judges every row",
+        }
+        return kept, note
 
     def fit(self, rec, data, starts, given_sigma):
         return BaselineFit(rec, fit_baseline(rec, data, starts, given_sigma=given_sigma))

@@ -215,6 +215,7 @@ def diagnose(
     )
     family = get_baseline(baseline, rec.experiment)
     family.check(rec)
+    rec, validity = family.restrict(rec)
     rec, reduced = get_experiment(rec.experiment).reduce(rec)
     rec_all = rec
     rec, outliers = _drop_outliers(rec)
@@ -254,7 +255,7 @@ def diagnose(
     verdict, checks["short_recording"] = _short_recording_check(rec, verdict)
     if accepted and verdict != "unexplained":
         checks["leftover"] = _leftover_check(rec, final, starts, seed, alpha)
-    checks.update(reduced=reduced, outliers=outliers)
+    checks.update(validity=validity, reduced=reduced, outliers=outliers)
     report = _report(rec, base, final, sel, verdict, regions, (base_mis, fin_mis))
     report.details = _details(baseline, rec, base, final, sel, (base_mis, fin_mis), checks)
     report.details.update(alpha=alpha, seed=seed)
@@ -398,6 +399,7 @@ def _located(mis) -> dict:
 
 #: the optional checks of the report's details, in the order they are written
 _CHECK_KEYS = (
+    "validity",
     "noise_floor",
     "reduced",
     "outliers",
@@ -833,6 +835,12 @@ def _summary(report: Report, rec, fin_mis, base_mis, effect) -> str:
         )
     for name, why in report.details["skipped_effects"].items():
         lines.append(f"  skipped {name}: {why}")
+    valid = report.details.get("validity")
+    if valid:
+        lines.append(
+            f"  closed form judged {valid['rows_judged']} of {valid['rows']} rows "
+            f"({valid['reason']})"
+        )
     out = report.details.get("outliers")
     if out:
         shown = ", ".join(

@@ -133,14 +133,22 @@ class KnotPull(Experiment):
                 f"end_to_end_m must be below rod_length_m = {length:g} (the knot holds rod), "
                 f"got {np.max(rec.x):g}"
             )
+        return None
+
+    def validity(self, rec):
+        """Rows with more rod in the knot than the Jawed et al. closure's long-braid limit,
+        :math:`L - D > t_{min} n^2 h` (a pull to tight ends beyond it)."""
+        n = int(rec.meta("turns"))
+        length = rec.meta("rod_length_m")
         lo, _ = closure_limits()
         e_min = lo * n**2 * rec.meta("rod_radius_m")
-        if np.min(length - rec.x) <= e_min:
-            return (
-                f"end_to_end_m up to {np.max(rec.x):g} leaves less rod in the knot than the "
-                f"Jawed et al. closure allows (L - D must exceed {e_min:.4g} m for {int(n)} turns)"
-            )
-        return None
+        ok = length - rec.x > e_min
+        if np.all(ok):
+            return None
+        return ok, (
+            f"end_to_end_m above {length - e_min:.6g} m leaves less rod in the knot than the "
+            f"Jawed et al. closure allows (L - D must exceed {e_min:.4g} m for {n} turns)"
+        )
 
     # --- baseline ----------------------------------------------------------------------
     def bending_stiffness(self, rec) -> float:
