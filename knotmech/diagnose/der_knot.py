@@ -26,7 +26,8 @@ Settings (chosen for speed; the pull is quasi-static):
   (an edge of at most a sixth of the braid's helix pitch);
 - the start shape: the generator's knot at :math:`D_0 = \min D - 0.03L` with the
   braid strand length of the closed form at :math:`e_0 = L - D_0`; held 0.2 s, then both
-  ends pulled apart to :math:`\max D + 0.01L`;
+  ends pulled apart to :math:`\max D + 0.01L` (half-way from :math:`\max D` to L when
+  that is closer: a pull to tight);
 - separation speed 0.06 m/s (0.03 m/s each end, the quick setting of the overhand tests)
   or the recording's ``pull_speed_m_per_s`` if larger; time step 10 ms;
 - contact range 0.3125 h, slip-speed tolerance 1e-4 m/s (implicit-contact-model paper);
@@ -130,7 +131,10 @@ class DERKnotLaw:
         v = md.get("pull_speed_m_per_s")
         self.v = max(float(v), DER_KNOT_SEPARATION_SPEED) if v else DER_KNOT_SEPARATION_SPEED
         self.d0 = float(np.min(rec.x)) - 0.03 * self.L
-        self.d1 = float(np.max(rec.x)) + 0.01 * self.L
+        #: the end-to-end distance the runs must reach (the recording's last)
+        self.d_need = float(np.max(rec.x))
+        # pulled 1 % of L beyond it, or half-way to L when it is closer (a pull to tight)
+        self.d1 = min(self.d_need + 0.01 * self.L, self.d_need + 0.5 * (self.L - self.d_need))
         self.B = self.E * np.pi * self.h**4 / 4.0
         self.braid = float(
             overhand_knot(
@@ -233,7 +237,7 @@ class DERKnotLaw:
         if np.any(bad):
             cut = int(np.argmax(bad))
             d, f = d[:cut], f[:cut]
-        need = self.d1 - 0.01 * self.L
+        need = self.d_need
         if d.size < 2 * (_DEGREE + 3) or d[-1] < need - 1e-9:
             reached = d[-1] if d.size else self.d0
             raise SolverError(
