@@ -73,8 +73,10 @@ from knotmech.analytic.knots import overhand_knot
 from knotmech.diagnose.effects import PlantContext, get_effect
 from knotmech.diagnose.experiments import get_experiment
 from knotmech.diagnose.experiments.knot_pull import KnotPull
-from knotmech.diagnose.fitting import fit_baseline
+from knotmech.diagnose.fitting import Data, fit_baseline
+from knotmech.diagnose.noisefloor import without_rows
 from knotmech.diagnose.recording import Recording
+from knotmech.diagnose.stats import trial_starts
 from knotmech.errors import InputError, SolverError
 
 __all__ = [
@@ -486,8 +488,7 @@ def fit_knot_der_baseline(rec, data, starts, gs):
     if getattr(rec, "force_law", None) is not None:  # the law is already run
         drec = rec
     else:
-        closed = fit_baseline(rec, data, starts, given_sigma=gs)
-        drec = der_recording(rec, float(closed.params["mu"]))
+        drec = der_recording(rec, _closed_form_mu(rec, gs))
     for _ in range(DER_KNOT_MAX_RUNS):
         fit = fit_baseline(drec, data, starts, given_sigma=gs)
         if not extend_grid(drec, float(fit.params["mu"])):
@@ -499,6 +500,19 @@ def fit_knot_der_baseline(rec, data, starts, gs):
             law.set_correction(corr)
             fit = fit_baseline(drec, data, starts, given_sigma=gs)
     return drec, fit
+
+
+def _closed_form_mu(rec, given_sigma) -> float:
+    """The closed form's mu, the first of the DER grid: fitted to the rows inside the
+    closure's validity (a pull to tight ends beyond it, where the clipped closure's force
+    is far too large and would drag mu towards 0)."""
+    valid = get_experiment("knot_pull").validity(rec)
+    if valid is not None and np.sum(valid[0]) >= get_experiment("knot_pull").min_rows:
+        rec = without_rows(rec, np.flatnonzero(~valid[0]))
+        given_sigma = rec.sigma
+    data = Data(rec.y, rec.mu_nominal, rec.mu_nominal_sigma)
+    closed = fit_baseline(rec, data, trial_starts(rec.trial), given_sigma=given_sigma)
+    return float(closed.params["mu"])
 
 
 #: speeds of the DER-made recordings with rate-dependent friction [m/s]
