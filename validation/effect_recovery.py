@@ -44,6 +44,7 @@ from concurrent.futures import ProcessPoolExecutor
 
 import numpy as np
 from scipy.signal import lfilter
+from scipy.stats import binomtest
 
 from knotmech.diagnose.engine import diagnose
 from knotmech.diagnose.recording import recording_from_arrays
@@ -482,6 +483,29 @@ def summarise(results: list) -> dict:
     return out
 
 
+#: nominal size of the engine on nulls (its alpha) and the level of the quick run's test
+NOMINAL_SIZE = 0.01
+QUICK_TEST_LEVEL = 0.05
+
+
+def _size_ok(rate: dict, quick: bool) -> bool:
+    """The nulls' rate of verdicts other than ``none`` is not significantly above 1 %.
+
+    Full run: the lower 95 % Wilson bound at or below :data:`NOMINAL_SIZE`. Quick run
+    (6 nulls): the exact one-sided binomial test at :data:`QUICK_TEST_LEVEL`, because on
+    so few draws the Wilson bound is far too narrow near 0: one flag in 6 gives a lower
+    bound of 0.030, though an engine of exactly 1 % size flags at least one of 6 with
+    probability 1 - 0.99^6 = 0.059 (the quick check then failed 6 % of the time with a
+    correct engine). The exact test fails on 2 or more of 6 (p = 0.0015). Measured on 150
+    fresh white pinch nulls of the held-out generator (seeds 60000-60029, 70000-70119):
+    3 flagged, 2.0 % (Wilson 0.7-5.7 %).
+    """
+    if not quick:
+        return rate["wilson95"][0] <= NOMINAL_SIZE
+    k, n = rate["k"], rate["n"]
+    return binomtest(k, n, NOMINAL_SIZE, alternative="greater").pvalue >= QUICK_TEST_LEVEL
+
+
 def _plot(summary):
     from knotmech.plotting import new_axes
 
@@ -524,10 +548,10 @@ def run(quick=True, out_dir=".", workers=None, generators=None) -> dict:
             checks[f"{g}: found effects not below 90 %"] = found["wilson95"][1] >= 0.9
         else:
             checks[f"{g}: found effects >= 90 %"] = found["rate"] >= 0.9
-        # nominal size 1 %: not significantly above it (lower Wilson bound)
+        # nominal size 1 %: not significantly above it
         for noise, v in sm["nulls"].items():
-            checks[f"{g}: {noise} nulls not above the nominal size"] = (
-                v["not_none"]["wilson95"][0] <= 0.01
+            checks[f"{g}: {noise} nulls not above the nominal size"] = _size_ok(
+                v["not_none"], quick
             )
     numbers = {"recordings": len(results), "wall_seconds": round(wall, 1), **summary}
     return finish(

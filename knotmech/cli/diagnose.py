@@ -111,17 +111,9 @@ def run(args) -> int:
             f"missing {' and '.join(missing)}: knotmech diagnose REC.csv [REC2.csv ...] "
             "--json OUT.json (or --template KIND for an example recording)"
         )
-    # every output is checked before any work starts
-    json_path = check_output_path(args.json, option="--json")
-    plot_path = None
-    if args.plot is not None:
-        plot_path = check_output_path(args.plot, formats=plot_formats(), option="--plot")
-    for source in map(Path, args.recording):
-        for option, out in (("--json", json_path), ("--plot", plot_path)):
-            if out is not None and source.exists() and out.resolve() == source.resolve():
-                raise InputError(
-                    f"{option} {out}: is the recording itself ({source}); give another file name"
-                )
+    json_path, plot_path = _output_paths(args)
+    # imported here, not at the top, for start-up speed: `knotmech --help` and the other
+    # commands do not load SciPy and the engine
     from knotmech.diagnose import diagnose_many, plot_report, read_recording
 
     recs = [read_recording(path) for path in args.recording]
@@ -134,3 +126,19 @@ def run(args) -> int:
     print(report.summary)
     print(f"  report: {args.json}" + (f", plot: {args.plot}" if args.plot else ""))
     return 0
+
+
+def _output_paths(args):
+    """``--json`` and ``--plot`` (None when not given), checked before any work starts:
+    writable, a known plot format, and not one of the recordings."""
+    json_path = check_output_path(args.json, option="--json")
+    plot_path = None
+    if args.plot is not None:
+        plot_path = check_output_path(args.plot, formats=plot_formats(), option="--plot")
+    for source in map(Path, args.recording):
+        for option, out in (("--json", json_path), ("--plot", plot_path)):
+            if out is not None and source.exists() and out.resolve() == source.resolve():
+                raise InputError(
+                    f"{option} {out}: is the recording itself ({source}); give another file name"
+                )
+    return json_path, plot_path

@@ -1,30 +1,40 @@
-r"""A baseline plus effects as one model, and the baseline families.
+r"""The baseline families, registered like the experiment kinds and the effects.
 
-A :class:`Model` is one experiment kind's baseline
-(:mod:`knotmech.diagnose.experiments`) plus a tuple of catalogue effects
-(:mod:`knotmech.diagnose.effects`): its free parameters are the baseline's, then
-each effect's (in registry order), with bounds from the recording; its mean is the
-experiment's, each effect acting at the stages it implements, so effects compose
-freely. Baselines and augmentations are documented in the experiment and effect
-modules.
+A baseline is what a recording is compared with before any effect is added: the
+closed form of its experiment kind (:mod:`knotmech.diagnose.experiments`, every kind),
+the DER capstan (:mod:`knotmech.diagnose.der`, ``capstan_pull``) or the DER overhand
+knot (:mod:`knotmech.diagnose.der_knot`, ``knot_pull``). Each is one object with a
+family name (what ``--baseline`` takes), the kinds it runs on, a :meth:`~Baseline.check`
+that refuses a recording before any simulation and a :meth:`~Baseline.fit`.
+:func:`get_baseline` is the one lookup, by family and kind. A new baseline is one class
+and one :func:`_register` line below.
 
-The baseline family is chosen with :func:`get_baseline`: ``closed-form`` (every
-kind) or ``der`` (``capstan_pull``; :mod:`knotmech.diagnose.der`).
+:class:`~knotmech.diagnose.model.Model` and :func:`~knotmech.diagnose.model.build_model`
+live in the leaf module :mod:`knotmech.diagnose.model` (re-exported here);
+:data:`MEANS` gives the mean of a kind with effects named.
 """
 
 from __future__ import annotations
 
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 
 import numpy as np
 
 from knotmech.analytic.pinch import pinch_load_parameter
-from knotmech.diagnose.experiments import Experiment, get_experiment
+from knotmech.diagnose.der import check_der_recording, fit_der_baseline
+from knotmech.diagnose.der_knot import fit_knot_der_baseline
+from knotmech.diagnose.effects import get_effect
+from knotmech.diagnose.experiments import EXPERIMENT_KINDS, get_experiment
+from knotmech.diagnose.fitting import Fit, fit_baseline
+from knotmech.diagnose.model import Model, build_model, canonical_effects
+from knotmech.diagnose.noisefloor import without_rows
 from knotmech.diagnose.recording import Recording
 from knotmech.errors import InputError
 
 __all__ = [
+    "Baseline",
+    "BaselineFit",
     "Model",
     "build_model",
     "canonical_effects",
@@ -35,80 +45,6 @@ __all__ = [
 ]
 
 
-def canonical_effects(added) -> tuple:
-    """``added`` (Effect objects, repeats allowed), each once, in registry order."""
-    out = {}
-    for e in added:
-        out.setdefault(e.name, e)
-    return tuple(sorted(out.values(), key=lambda e: e.rank))
-
-
-@dataclass
-class Model:
-    """A baseline plus effects, with free and fixed parameters.
-
-    Attributes
-    ----------
-    rec : Recording
-    effects : tuple of str
-        Effect names in the order they were added (``self_contact_nip`` may repeat).
-    names : list of str
-        Free parameter names (the order of parameter vectors).
-    lower, upper : arrays
-        Bounds of the free parameters.
-    fixed : dict
-        Parameters held fixed (nip positions).
-    experiment : Experiment
-    effect_objects_added : tuple of Effect
-        The effects as added (``effects`` are their names).
-    """
-
-    rec: Recording
-    effects: tuple
-    names: list
-    lower: np.ndarray
-    upper: np.ndarray
-    fixed: dict = field(default_factory=dict)
-    experiment: Experiment | None = None
-    effect_objects_added: tuple = ()
-
-    @property
-    def effect_objects(self) -> tuple:
-        """Each effect once, in registry order (the order they act in)."""
-        return canonical_effects(self.effect_objects_added)
-
-    def params(self, p: np.ndarray) -> dict:
-        d = dict(self.fixed)
-        d.update(zip(self.names, (float(v) for v in p), strict=True))
-        return d
-
-    def mean(self, p: np.ndarray) -> np.ndarray:
-        return self.experiment.mean(self.rec, self.params(p), self.effect_objects)
-
-    @property
-    def n_free(self) -> int:
-        return len(self.names)
-
-
-def build_model(rec: Recording, effects: tuple = (), fixed: dict | None = None) -> Model:
-    """Model of ``rec``'s experiment with ``effects`` (Effect objects, in the order added)."""
-    exp = get_experiment(rec.experiment)
-    fixed = dict(fixed or {})
-    names, lo, hi = (list(v) for v in exp.parameters(rec))
-    for e in canonical_effects(effects):
-        e.add_parameters(rec, names, lo, hi, fixed)
-    return Model(
-        rec,
-        tuple(e.name for e in effects),
-        names,
-        np.array(lo, float),
-        np.array(hi, float),
-        fixed,
-        exp,
-        tuple(effects),
-    )
-
-
 class _Means(Mapping):
     """``MEANS[kind](rec, p, effect_names)``: the mean of a kind with effects named."""
 
@@ -116,71 +52,181 @@ class _Means(Mapping):
         exp = get_experiment(kind)
 
         def mean(rec, p, effects=()):
-            from knotmech.diagnose.effects import get_effect
-
             return exp.mean(rec, p, canonical_effects([get_effect(n) for n in effects]))
 
         return mean
 
     def __iter__(self):
-        from knotmech.diagnose.experiments import EXPERIMENT_KINDS
-
         return iter(EXPERIMENT_KINDS)
 
     def __len__(self):
-        from knotmech.diagnose.experiments import EXPERIMENT_KINDS
-
         return len(EXPERIMENT_KINDS)
 
 
 MEANS = _Means()
 
 
-# --- baseline families: closed-form (default) and DER ---------------------------------
+# --- the baselines ---------------------------------------------------------------------
 
 
-@dataclass(frozen=True)
-class ClosedFormBaseline:
-    """The closed-form baselines of the experiment kinds, for every kind."""
+@dataclass
+class BaselineFit:
+    """A fitted baseline.
 
-    name: str = "closed-form"
+    Attributes
+    ----------
+    rec : Recording
+        The recording to diagnose from here on (the DER knot attaches its force law).
+    fit : Fit
+        The baseline's fit.
+    der : tuple or None
+        The DER capstan's curves and mu grid, for its own selection
+        (:func:`knotmech.diagnose.der.select_der`); None for the other baselines, whose
+        effects are selected by the closed-form engine.
+    """
+
+    rec: Recording
+    fit: Fit
+    der: tuple | None = None
+
+
+class Baseline:
+    """Base class of a baseline.
+
+    Class attributes
+    ----------------
+    family : str
+        The name ``--baseline`` takes (``closed-form``, ``der``).
+    experiments : tuple of str
+        Kinds it runs on.
+    refits_outliers : bool
+        The engine looks for outliers again on this baseline's remainder and refits.
+    """
+
+    family = ""
+    experiments: tuple = ()
+    refits_outliers = False
 
     def check(self, rec: Recording) -> None:
-        return None
+        """Refuse, before any simulation, a recording this baseline cannot run on."""
+
+    def restrict(self, rec: Recording):
+        """The rows this baseline judges, and a note for the report (None: every row)."""
+        return rec, None
+
+    def fit(self, rec: Recording, data, starts, given_sigma) -> BaselineFit:
+        """The baseline fitted to ``rec`` (``data``: :class:`~knotmech.diagnose.fitting.Data`)."""
+        raise NotImplementedError
+
+    def __repr__(self) -> str:
+        return f"<baseline {self.family} ({', '.join(self.experiments)})>"
 
 
-@dataclass(frozen=True)
-class DERBaseline:
-    """DER-simulated capstan baseline (kinetic friction only), ``capstan_pull`` only.
+class ClosedFormBaseline(Baseline):
+    """The closed-form baselines of the experiment kinds, for every kind."""
+
+    family = "closed-form"
+    experiments = tuple(EXPERIMENT_KINDS)
+    refits_outliers = True
+
+    def restrict(self, rec):
+        """The rows inside the closed form's validity (:meth:`Experiment.validity`).
+
+        A recording is not refused because part of it lies beyond the closed form (a
+        knot pulled to tight): the rows inside are judged, and the note says which and
+        how many; ``--baseline der`` judges every row. Refused only when fewer than the
+        kind's ``min_rows`` rows remain.
+        """
+        kind = get_experiment(rec.experiment)
+        valid = kind.validity(rec)
+        if valid is None:
+            return rec, None
+        ok, reason = valid
+        k = int(np.sum(ok))
+        if k < kind.min_rows:
+            raise InputError(
+                f"{rec.source}: {k} of {rec.n} rows lie inside the closed form's validity "
+                f"({reason}); the closed form needs {kind.min_rows}: use --baseline der"
+            )
+        kept = without_rows(rec, np.flatnonzero(~ok))
+        note = {
+            "rows_judged": k,
+            "rows": int(rec.n),
+            "judged_range": [float(np.min(kept.x)), float(np.max(kept.x))],
+            "reason": f"{rec.n - k} rows left out: {reason}; --baseline der judges every row",
+        }
+        return kept, note
+
+    def fit(self, rec, data, starts, given_sigma):
+        return BaselineFit(rec, fit_baseline(rec, data, starts, given_sigma=given_sigma))
+
+
+class DERCapstanBaseline(Baseline):
+    """DER-simulated capstan baseline (kinetic friction only).
 
     The clove-hitch paper's FEM used kinetic friction only, so its two-loops curve had
     no peak; ``static_friction`` re-runs the scene with ``mu_s > mu_k``
     (:mod:`knotmech.diagnose.der`).
     """
 
-    name: str = "der"
+    family = "der"
+    experiments = ("capstan_pull",)
 
-    def check(self, rec: Recording) -> None:
-        """Refuse, before any simulation, a recording this baseline cannot run on.
-
-        See :func:`knotmech.diagnose.der.check_der_recording`.
-        """
-        from knotmech.diagnose.der import check_der_recording
-
+    def check(self, rec):
+        """See :func:`knotmech.diagnose.der.check_der_recording`."""
         check_der_recording(rec)
 
+    def fit(self, rec, data, starts, given_sigma):
+        der, fit = fit_der_baseline(rec, data, starts, given_sigma)
+        return BaselineFit(rec, fit, der)
 
-BASELINES = {"closed-form": ClosedFormBaseline(), "der": DERBaseline()}
+
+class DERKnotBaseline(Baseline):
+    """DER overhand-knot baseline: its interpolated force law replaces the closed form.
+
+    The selection, its parametric bootstrap included, is the closed-form one on that
+    surrogate (:mod:`knotmech.diagnose.der_knot`, whose set-up checks the recording).
+    """
+
+    family = "der"
+    experiments = ("knot_pull",)
+
+    def fit(self, rec, data, starts, given_sigma):
+        drec, fit = fit_knot_der_baseline(rec, data, starts, given_sigma)
+        return BaselineFit(drec, fit)
 
 
-def get_baseline(name: str):
-    """Baseline by name: ``closed-form`` or ``der``.
+#: family -> experiment kind -> Baseline, in registration order
+BASELINES: dict[str, dict[str, Baseline]] = {}
+
+
+def _register(baseline: Baseline) -> None:
+    kinds = BASELINES.setdefault(baseline.family, {})
+    for kind in baseline.experiments:
+        if kind in kinds:  # pragma: no cover - a programming error
+            raise ValueError(f"baseline {baseline.family!r} registered twice for {kind}")
+        kinds[kind] = baseline
+
+
+_register(ClosedFormBaseline())
+_register(DERCapstanBaseline())
+_register(DERKnotBaseline())
+
+
+def get_baseline(name: str, experiment: str) -> Baseline:
+    """The baseline of family ``name`` (``closed-form`` or ``der``) for ``experiment``.
 
     Raises
     ------
     InputError
-        Unknown name.
+        Unknown family, or a family that does not run on this kind.
     """
     if name not in BASELINES:
         raise InputError(f"baseline must be one of {', '.join(BASELINES)}, got {name!r}")
-    return BASELINES[name]
+    kinds = BASELINES[name]
+    if experiment not in kinds:
+        raise InputError(
+            f"baseline {name!r} is not available for {experiment} recordings "
+            f"({' and '.join(kinds)} only); use closed-form"
+        )
+    return kinds[experiment]

@@ -16,10 +16,10 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.stats import chi2
 
-from knotmech.diagnose.baselines import Model
 from knotmech.diagnose.effects import applicable_effects, get_effect
 from knotmech.diagnose.experiments import get_experiment
 from knotmech.diagnose.fitting import fit_model, heldout_rms
+from knotmech.diagnose.model import Model
 from knotmech.diagnose.recording import Recording
 from knotmech.diagnose.stats import estimate_noise
 from knotmech.errors import InputError, SolverError
@@ -159,6 +159,8 @@ class DERCurves:
             return self._cache[key]
         import time
 
+        # imported here, not at the top, for start-up speed: the solver compiles numba
+        # kernels, and only --baseline der needs them
         from knotmech.rod.solver import SolverOptions
         from knotmech.scenes.capstan import capstan
 

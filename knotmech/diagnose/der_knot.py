@@ -26,7 +26,8 @@ Settings (chosen for speed; the pull is quasi-static):
   (an edge of at most a sixth of the braid's helix pitch);
 - the start shape: the generator's knot at :math:`D_0 = \min D - 0.03L` with the
   braid strand length of the closed form at :math:`e_0 = L - D_0`; held 0.2 s, then both
-  ends pulled apart to :math:`\max D + 0.01L`;
+  ends pulled apart to :math:`\max D + 0.01L` (half-way from :math:`\max D` to L when
+  that is closer: a pull to tight);
 - separation speed 0.06 m/s (0.03 m/s each end, the quick setting of the overhand tests)
   or the recording's ``pull_speed_m_per_s`` if larger; time step 10 ms;
 - contact range 0.3125 h, slip-speed tolerance 1e-4 m/s (implicit-contact-model paper);
@@ -68,7 +69,14 @@ from dataclasses import dataclass, fields
 
 import numpy as np
 
+from knotmech.analytic.knots import overhand_knot
+from knotmech.diagnose.effects import PlantContext, get_effect
+from knotmech.diagnose.experiments import get_experiment
+from knotmech.diagnose.experiments.knot_pull import KnotPull
+from knotmech.diagnose.fitting import Data, fit_baseline
+from knotmech.diagnose.noisefloor import without_rows
 from knotmech.diagnose.recording import Recording
+from knotmech.diagnose.stats import trial_starts
 from knotmech.errors import InputError, SolverError
 
 __all__ = [
@@ -125,10 +133,11 @@ class DERKnotLaw:
         v = md.get("pull_speed_m_per_s")
         self.v = max(float(v), DER_KNOT_SEPARATION_SPEED) if v else DER_KNOT_SEPARATION_SPEED
         self.d0 = float(np.min(rec.x)) - 0.03 * self.L
-        self.d1 = float(np.max(rec.x)) + 0.01 * self.L
+        #: the end-to-end distance the runs must reach (the recording's last)
+        self.d_need = float(np.max(rec.x))
+        # pulled 1 % of L beyond it, or half-way to L when it is closer (a pull to tight)
+        self.d1 = min(self.d_need + 0.01 * self.L, self.d_need + 0.5 * (self.L - self.d_need))
         self.B = self.E * np.pi * self.h**4 / 4.0
-        from knotmech.analytic.knots import overhand_knot
-
         self.braid = float(
             overhand_knot(
                 end_to_end_shortening=self.L - self.d0,
@@ -146,6 +155,7 @@ class DERKnotLaw:
         self.correction = None
 
     def _mesh(self) -> int:
+        # imported here for start-up speed: knotmech.scenes loads the numba solver
         from knotmech.scenes.curves import overhand_knot as knot_curve
 
         n = max(int(round(self.L / (8.0 * self.h))) + 1, 41)
@@ -188,6 +198,7 @@ class DERKnotLaw:
         mu = round(float(mu), 6)
         if mu in self._raw:
             return self._raw[mu]
+        # imported here for start-up speed: the solver compiles numba kernels
         from knotmech.rod.solver import SolverOptions
         from knotmech.scenes.overhand import overhand
 
@@ -228,7 +239,7 @@ class DERKnotLaw:
         if np.any(bad):
             cut = int(np.argmax(bad))
             d, f = d[:cut], f[:cut]
-        need = self.d1 - 0.01 * self.L
+        need = self.d_need
         if d.size < 2 * (_DEGREE + 3) or d[-1] < need - 1e-9:
             reached = d[-1] if d.size else self.d0
             raise SolverError(
@@ -474,13 +485,10 @@ def fit_knot_der_baseline(rec, data, starts, gs):
         The recording with the DER law attached (use it for everything that follows).
     fit : Fit
     """
-    from knotmech.diagnose.fitting import fit_baseline
-
     if getattr(rec, "force_law", None) is not None:  # the law is already run
         drec = rec
     else:
-        closed = fit_baseline(rec, data, starts, given_sigma=gs)
-        drec = der_recording(rec, float(closed.params["mu"]))
+        drec = der_recording(rec, _closed_form_mu(rec, gs))
     for _ in range(DER_KNOT_MAX_RUNS):
         fit = fit_baseline(drec, data, starts, given_sigma=gs)
         if not extend_grid(drec, float(fit.params["mu"])):
@@ -492,6 +500,19 @@ def fit_knot_der_baseline(rec, data, starts, gs):
             law.set_correction(corr)
             fit = fit_baseline(drec, data, starts, given_sigma=gs)
     return drec, fit
+
+
+def _closed_form_mu(rec, given_sigma) -> float:
+    """The closed form's mu, the first of the DER grid: fitted to the rows inside the
+    closure's validity (a pull to tight ends beyond it, where the clipped closure's force
+    is far too large and would drag mu towards 0)."""
+    valid = get_experiment("knot_pull").validity(rec)
+    if valid is not None and np.sum(valid[0]) >= get_experiment("knot_pull").min_rows:
+        rec = without_rows(rec, np.flatnonzero(~valid[0]))
+        given_sigma = rec.sigma
+    data = Data(rec.y, rec.mu_nominal, rec.mu_nominal_sigma)
+    closed = fit_baseline(rec, data, trial_starts(rec.trial), given_sigma=given_sigma)
+    return float(closed.params["mu"])
 
 
 #: speeds of the DER-made recordings with rate-dependent friction [m/s]
@@ -536,10 +557,6 @@ def der_made_recording(
         ``effect``, ``mu``, the planted parameters, ``noise_sd`` and ``law`` (the
         :class:`DERKnotLaw` holding the run at ``mu``).
     """
-    from knotmech.diagnose.effects import PlantContext, get_effect
-    from knotmech.diagnose.experiments import get_experiment
-    from knotmech.diagnose.experiments.knot_pull import KnotPull
-
     rng = np.random.default_rng(seed)
     exp = get_experiment("knot_pull")
     meta = {

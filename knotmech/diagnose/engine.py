@@ -44,13 +44,13 @@ from __future__ import annotations
 
 import functools
 import math
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
 
 from knotmech.diagnose.baselines import get_baseline
-from knotmech.diagnose.der import fit_der_baseline, select_der
-from knotmech.diagnose.der_knot import fit_knot_der_baseline
+from knotmech.diagnose.der import select_der
 from knotmech.diagnose.effects import CATALOGUE, applicable_effects, get_effect
 from knotmech.diagnose.experiments import get_experiment
 from knotmech.diagnose.fitting import (
@@ -64,8 +64,10 @@ from knotmech.diagnose.fitting import (
 )
 from knotmech.diagnose.locate import flexible_mismatch, regions_from_mask, smooth_mismatch
 from knotmech.diagnose.noisefloor import (
+    NONE_LEVEL_MAX,
     SHORT_ROWS,
     find_outliers,
+    hf_sigma,
     noise_floor,
     noise_floor_verdict,
     outlier_threshold,
@@ -73,6 +75,7 @@ from knotmech.diagnose.noisefloor import (
     short_recording_verdict,
     without_rows,
 )
+from knotmech.diagnose.powerlaw import F_HIGH, PowerLawNoise, fit_power_law
 from knotmech.diagnose.recording import Recording, read_recording, recording_from_arrays
 from knotmech.diagnose.report import Report, effect_parameters, public_parameters
 from knotmech.diagnose.stats import NoiseModel, monte_carlo_pvalue, trial_starts
@@ -210,7 +213,9 @@ def diagnose(
     rec = _as_recording(
         recording, experiment, x, y, metadata, sigma=sigma, trial=trial, speed=speed
     )
-    get_baseline(baseline).check(rec)
+    family = get_baseline(baseline, rec.experiment)
+    family.check(rec)
+    rec, validity = family.restrict(rec)
     rec, reduced = get_experiment(rec.experiment).reduce(rec)
     rec_all = rec
     rec, outliers = _drop_outliers(rec)
@@ -220,171 +225,161 @@ def diagnose(
     if isinstance(seed, bool) or not isinstance(seed, (int, np.integer)) or seed < 0:
         raise InputError(f"seed must be an integer >= 0, got {seed!r}")
     rng = np.random.default_rng(seed)
-    starts = trial_starts(rec.trial)
-    gs = rec.sigma
-    data = Data(rec.y, rec.mu_nominal, rec.mu_nominal_sigma)
-    der = None
-    if baseline == "der" and rec.experiment == "knot_pull":
-        # the DER knot law is attached to the recording; the closed-form engine follows
-        rec, base = fit_knot_der_baseline(rec, data, starts, gs)
-    elif baseline == "der":
-        der, base = fit_der_baseline(rec, data, starts, gs)
-    else:
-        base = fit_baseline(rec, data, starts, given_sigma=gs)
-        # the outliers again, on the remainder of this baseline (kinks and curvature of
-        # the signal no longer hide any); refit when more are found
-        rec2, outliers2 = _outliers_of_remainder(rec_all, rec, outliers, base.mean)
-        if rec2 is not rec:
-            rec, outliers = rec2, outliers2
-            starts = trial_starts(rec.trial)
-            gs = rec.sigma
-            data = Data(rec.y, rec.mu_nominal, rec.mu_nominal_sigma)
-            base = fit_baseline(rec, data, starts, given_sigma=gs)
-    base_mis = flexible_mismatch(
-        rec.x,
-        rec.y - base.mean,
-        base.mean,
-        base.noise,
-        starts,
-        rec.trial,
-        given_sigma=gs,
-        rng=rng,
-        decide_at=alpha,
-    )
+    fitted = family.fit(rec, _data(rec), trial_starts(rec.trial), rec.sigma)
+    # the DER knot attaches its law to the recording; the closed-form engine follows
+    rec, base, der = fitted.rec, fitted.fit, fitted.der
+    if family.refits_outliers:
+        rec, outliers, base = _refit_without_outliers(rec_all, rec, outliers, base)
+    starts, gs, data = trial_starts(rec.trial), rec.sigma, _data(rec)
+    base_mis = _mismatch(rec, base, starts, rng, alpha)
     if der is not None:
         sel = select_der(der, base, rec, data, starts, gs, alpha, only)
     else:
         sel = _select_closed_form(base, rec, data, starts, gs, rng, alpha, only, max_effects)
-    current, accepted, tested, steps, skipped, held_before, held_cur = sel
-    final = current
-    if final is base:
-        fin_mis = base_mis
-    else:
-        fin_mis = flexible_mismatch(
-            rec.x,
-            rec.y - final.mean,
-            final.mean,
-            final.noise,
-            starts,
-            rec.trial,
-            given_sigma=gs,
-            rng=rng,
-            decide_at=alpha,
-        )
-    remaining = fin_mis.p_value < alpha and bool(fin_mis.regions)
-    if remaining:
-        verdict = "unexplained"
-        regions = fin_mis.regions
-    elif accepted:
-        gains = {}
-        for eff, _, g in accepted:
-            gains[eff.name] = gains.get(eff.name, 0.0) + g
-        verdict = max(gains, key=gains.get)
-        regions = _effect_regions(rec, base, final, [a[0] for a in accepted])
-    else:
-        verdict = "none"
-        regions = []
-    floor, floor_reason = None, ""
-    power_law = None
+    final, accepted = sel[0], sel[1]
+    fin_mis = base_mis if final is base else _mismatch(rec, final, starts, rng, alpha)
+    verdict, regions = _first_verdict(rec, base, final, accepted, fin_mis, alpha)
+    checks = {}
     if verdict != "none" and der is None:
         # structure under the AR(1) null: is it also structure under 1/f-type noise fitted
         # to the same high frequencies? (they cannot be told apart on few rows)
-        power_law = _power_law_check(rec, base, final, accepted, verdict == "unexplained",
-                                     fin_mis, data, starts, gs, seed, alpha, only)  # fmt: skip
+        unexplained = verdict == "unexplained"
+        power_law = _power_law_check(rec, base, final, accepted, unexplained, fin_mis, data,
+                                     starts, gs, seed, alpha, only)  # fmt: skip
+        checks["power_law"] = power_law
         if power_law is not None and power_law["explains"]:
             verdict = "undetermined"
     if verdict == "none":
-        floor, verdict, floor_reason, regions = _noise_floor_check(rec, final, starts, rng, alpha)
-    short = None
-    if verdict not in ("none", "undetermined") and _short_unreplicated(rec):
-        # as for a would-be none (noisefloor.short_recording_verdict): so few rows cannot
-        # tell correlated noise from a mismatch either way (AR(2) nulls of 8-20 rows were
-        # called unexplained or an effect 5 times in 24)
-        short = {
-            "rows": int(rec.n),
-            "was": verdict,
-            "reason": f"{rec.n} rows without a sigma column: the fit calls it {verdict}, but "
-            "so few rows cannot tell correlated noise from a mismatch; record at least "
-            f"{SHORT_ROWS} rows or give the sensor's sigma",
-        }
-        verdict = "undetermined"
-    leftover = None
+        floor, verdict, reason, regions = _noise_floor_check(rec, final, starts, rng, alpha)
+        checks["noise_floor"] = {**floor.describe(), "reason": reason}
+    verdict, checks["short_recording"] = _short_recording_check(rec, verdict)
     if accepted and verdict != "unexplained":
-        leftover = _leftover_check(rec, final, starts, seed, alpha)
-    fin_public = public_parameters(final.params, final.model.effect_objects, rec)
-    base_public = public_parameters(base.params, (), rec)
-    effects_out = []
+        checks["leftover"] = _leftover_check(rec, final, starts, seed, alpha)
+    checks.update(validity=validity, reduced=reduced, outliers=outliers)
+    report = _report(rec, base, final, sel, verdict, regions, (base_mis, fin_mis))
+    report.details = _details(baseline, rec, base, final, sel, (base_mis, fin_mis), checks)
+    report.details.update(alpha=alpha, seed=seed)
+    if der is not None:
+        report.details["der"] = der[0].settings()
+    if getattr(rec, "force_law", None) is not None:
+        report.details["der"] = rec.force_law.settings()
+    report.summary = _summary(report, rec, fin_mis, base_mis, CATALOGUE.get(verdict))
+    # the fits behind the report (not written to JSON; diagnose_many refits them jointly)
+    report.fits = {"recording": rec, "baseline": base, "final": final}
+    return report
+
+
+def _data(rec) -> Data:
+    """The random part of ``rec``: its values and its ``mu_nominal`` prior."""
+    return Data(rec.y, rec.mu_nominal, rec.mu_nominal_sigma)
+
+
+def _refit_without_outliers(rec_all, rec, outliers, base):
+    """The outliers again, on the remainder of the baseline ``base`` (kinks and curvature
+    of the signal no longer hide any); the baseline refitted when more are found.
+
+    Returns the recording, its outliers' report and the baseline fit.
+    """
+    rec2, outliers2 = _outliers_of_remainder(rec_all, rec, outliers, base.mean)
+    if rec2 is rec:
+        return rec, outliers, base
+    base = fit_baseline(rec2, _data(rec2), trial_starts(rec2.trial), given_sigma=rec2.sigma)
+    return rec2, outliers2, base
+
+
+def _mismatch(rec, fit, starts, rng, alpha):
+    """The located mismatch of ``fit``'s remainder (:func:`flexible_mismatch`)."""
+    return flexible_mismatch(
+        rec.x,
+        rec.y - fit.mean,
+        fit.mean,
+        fit.noise,
+        starts,
+        rec.trial,
+        given_sigma=rec.sigma,
+        rng=rng,
+        decide_at=alpha,
+    )
+
+
+def _first_verdict(rec, base, final, accepted, fin_mis, alpha):
+    """The verdict before the noise checks: ``unexplained`` (a remainder located), the
+    effect of the largest gain, or ``none``; and its regions."""
+    if fin_mis.p_value < alpha and bool(fin_mis.regions):
+        return "unexplained", fin_mis.regions
+    if not accepted:
+        return "none", []
+    gains = {}
+    for eff, _, g in accepted:
+        gains[eff.name] = gains.get(eff.name, 0.0) + g
+    verdict = max(gains, key=gains.get)
+    return verdict, _effect_regions(rec, base, final, [a[0] for a in accepted])
+
+
+def _short_recording_check(rec, verdict):
+    """``undetermined`` in place of a named verdict on a short unreplicated recording.
+
+    As for a would-be none (noisefloor.short_recording_verdict): so few rows cannot tell
+    correlated noise from a mismatch either way (AR(2) nulls of 8-20 rows were called
+    unexplained or an effect 5 times in 24). Returns the verdict and the report's note
+    (None when unchanged).
+    """
+    if verdict in ("none", "undetermined") or not _short_unreplicated(rec):
+        return verdict, None
+    short = {
+        "rows": int(rec.n),
+        "was": verdict,
+        "reason": f"{rec.n} rows without a sigma column: the fit calls it {verdict}, but "
+        "so few rows cannot tell correlated noise from a mismatch; record at least "
+        f"{SHORT_ROWS} rows or give the sensor's sigma",
+    }
+    return "undetermined", short
+
+
+#: the evidence keys of an accepted effect the report carries
+_EVIDENCE_KEYS = (
+    "delta_bic",
+    "p_value",
+    "likelihood_ratio",
+    "p_value_method",
+    "p_value_counted_bound",
+    "bootstrap_draws",
+)
+
+
+def _effects_out(accepted, fin_public) -> list:
+    """The report's ``effects``: each accepted effect once, its parameters and evidence."""
+    out = []
     for eff, ev, _ in accepted:
-        if eff.name in [e["name"] for e in effects_out]:
+        if eff.name in [e["name"] for e in out]:
             continue
-        effects_out.append(
+        out.append(
             {
                 "name": eff.name,
                 "parameters": effect_parameters(eff, fin_public),
-                "evidence": {
-                    k: ev[k]
-                    for k in (
-                        "delta_bic",
-                        "p_value",
-                        "likelihood_ratio",
-                        "p_value_method",
-                        "p_value_counted_bound",
-                        "bootstrap_draws",
-                    )
-                    if k in ev
-                },
+                "evidence": {k: ev[k] for k in _EVIDENCE_KEYS if k in ev},
             }
         )
+    return out
+
+
+def _report(rec, base, final, sel, verdict, regions, mis) -> Report:
+    """The report of a diagnosis (``details`` and ``summary`` filled in by the caller)."""
+    accepted, held_before, held_cur = sel[1], sel[5], sel[6]
+    fin_public = public_parameters(final.params, final.model.effect_objects, rec)
+    base_public = public_parameters(base.params, (), rec)
     rms_base = float(np.sqrt(np.mean((rec.y - base.mean) ** 2)))
     rms_final = float(np.sqrt(np.mean((rec.y - final.mean) ** 2)))
-    details = {
-        "baseline_model": baseline,
-        "noise": {"baseline": base.noise.describe(), "final": final.noise.describe()},
-        "located": {
-            "baseline_residuals": {
-                "p_value": float(f"{base_mis.p_value:.3g}"),
-                "regions": [{"start": a, "end": b} for a, b in base_mis.regions],
-                "shape": base_mis.shape,
-            },
-            "final_residuals": {
-                "p_value": float(f"{fin_mis.p_value:.3g}"),
-                "regions": [{"start": a, "end": b} for a, b in fin_mis.regions],
-                "shape": fin_mis.shape,
-            },
-        },
-        "candidates": tested,
-        # delta BIC of every applicable effect at each forward step (confusable ones
-        # show here next to the accepted one)
-        "selection_steps": steps,
-        "confusable_with": {a[0].name: list(a[0].confusable_with) for a in accepted},
-        "skipped_effects": skipped,
-        **(
-            {"noise_floor": {**floor.describe(), "reason": floor_reason}}
-            if floor is not None
-            else {}
-        ),
-        **({"reduced": reduced} if reduced else {}),
-        **({"outliers": outliers} if outliers else {}),
-        **({"leftover": leftover} if leftover else {}),
-        **({"power_law": power_law} if power_law else {}),
-        **({"short_recording": short} if short else {}),
-        "alpha": alpha,
-        "seed": seed,
-        **({"der": der[0].settings()} if der is not None else {}),
-    }
-    if getattr(rec, "force_law", None) is not None:
-        details["der"] = rec.force_law.settings()
-    report = Report(
+    return Report(
         experiment=rec.experiment,
         verdict=verdict,
-        effects=effects_out,
+        effects=_effects_out(accepted, fin_public),
         regions=regions,
         baseline={"parameters": base_public, "rms": float(f"{rms_base:.6g}")},
         final={"parameters": fin_public, "rms": float(f"{rms_final:.6g}")},
         heldout_rms_before=held_before,
         heldout_rms_after=held_cur,
         summary="",
-        details=details,
         x=rec.x,
         y=rec.y,
         baseline_mean=base.mean,
@@ -392,11 +387,46 @@ def diagnose(
         columns=rec.columns,
         row_trial=_line_ids(rec),
     )
-    verdict_effect = CATALOGUE.get(verdict)
-    report.summary = _summary(report, rec, fin_mis, base_mis, verdict_effect)
-    # the fits behind the report (not written to JSON; diagnose_many refits them jointly)
-    report.fits = {"recording": rec, "baseline": base, "final": final}
-    return report
+
+
+def _located(mis) -> dict:
+    return {
+        "p_value": float(f"{mis.p_value:.3g}"),
+        "regions": [{"start": a, "end": b} for a, b in mis.regions],
+        "shape": mis.shape,
+    }
+
+
+#: the optional checks of the report's details, in the order they are written
+_CHECK_KEYS = (
+    "validity",
+    "noise_floor",
+    "reduced",
+    "outliers",
+    "leftover",
+    "power_law",
+    "short_recording",
+)
+
+
+def _details(baseline, rec, base, final, sel, mis, checks) -> dict:
+    """The report's ``details``: noise, located mismatches, the selection and the checks
+    that ran (``checks``: name -> its note, left out when None or empty)."""
+    accepted, tested, steps, skipped = sel[1], sel[2], sel[3], sel[4]
+    base_mis, fin_mis = mis
+    details = {
+        "baseline_model": baseline,
+        "noise": {"baseline": base.noise.describe(), "final": final.noise.describe()},
+        "located": {"baseline_residuals": _located(base_mis), "final_residuals": _located(fin_mis)},
+        "candidates": tested,
+        # delta BIC of every applicable effect at each forward step (confusable ones
+        # show here next to the accepted one)
+        "selection_steps": steps,
+        "confusable_with": {a[0].name: list(a[0].confusable_with) for a in accepted},
+        "skipped_effects": skipped,
+    }
+    details.update({k: checks[k] for k in _CHECK_KEYS if checks.get(k)})
+    return details
 
 
 def _line_ids(rec) -> np.ndarray:
@@ -520,11 +550,6 @@ def _power_law_check(rec, base, final, accepted, unexplained, fin_mis, data, sta
     Returns None when not tried, else a dict for the report (``explains``: the
     power-law null explains it, so the verdict is ``undetermined``; ``reason``).
     """
-    from dataclasses import replace
-
-    from knotmech.diagnose.noisefloor import NONE_LEVEL_MAX, hf_sigma
-    from knotmech.diagnose.powerlaw import F_HIGH, PowerLawNoise, fit_power_law
-
     resid = rec.y - final.mean
     sd_hf = hf_sigma(resid, rec.x, rec.trial)
     level = float(np.sqrt(np.mean(resid**2)) / sd_hf) if sd_hf > 0 else math.inf
@@ -810,6 +835,12 @@ def _summary(report: Report, rec, fin_mis, base_mis, effect) -> str:
         )
     for name, why in report.details["skipped_effects"].items():
         lines.append(f"  skipped {name}: {why}")
+    valid = report.details.get("validity")
+    if valid:
+        lines.append(
+            f"  closed form judged {valid['rows_judged']} of {valid['rows']} rows "
+            f"({valid['reason']})"
+        )
     out = report.details.get("outliers")
     if out:
         shown = ", ".join(

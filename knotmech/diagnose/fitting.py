@@ -14,8 +14,8 @@ from dataclasses import dataclass, replace
 import numpy as np
 from scipy.optimize import least_squares
 
-from knotmech.diagnose.baselines import Model, build_model
 from knotmech.diagnose.experiments import get_experiment
+from knotmech.diagnose.model import Model, build_model, fit_step_name, param_vector
 from knotmech.diagnose.noisefloor import without_rows
 from knotmech.diagnose.stats import NoiseModel, estimate_noise, require_finite
 from knotmech.errors import DiagnoseError
@@ -123,12 +123,6 @@ def _ls(model, data, p0, noise, starts):
     return res.x, float(res.cost)
 
 
-def fit_step_name(model) -> str:
-    """What fitting ``model`` is called in error messages (``fitting the pinch model with ...``)."""
-    effects = " + ".join(model.effects)
-    return f"fitting the {model.rec.experiment} model" + (f" with {effects}" if effects else "")
-
-
 def _least_squares(fun, p0, model, step, **kw):
     """``scipy.optimize.least_squares`` within ``model``'s bounds, after checking its inputs.
 
@@ -202,12 +196,6 @@ def refit_all_rows(model, data, p, starts, *, given_sigma=None) -> Fit:
     mean = model.mean(p)
     noise = estimate_noise(data.y - mean, mean, starts, given_sigma=given_sigma)
     return fit_model(model, data, [p], noise, starts, given_sigma=given_sigma, rounds=1)
-
-
-def param_vector(model: Model, values: dict, defaults: dict | None = None) -> np.ndarray:
-    """Parameter vector of ``model`` from ``values`` by name (else ``defaults``, else 0)."""
-    defaults = defaults or {}
-    return np.array([values.get(n, defaults.get(n, 0.0)) for n in model.names], dtype=float)
 
 
 def baseline_start(rec, y) -> dict:

@@ -206,67 +206,29 @@ def diagnose_many(
     InputError
         No recordings, recordings of different kinds, or a combination not supported.
     """
-    recs = []
-    for r in recordings:
-        if isinstance(r, Recording):
-            recs.append(r)
-        elif isinstance(r, (str, Path)):
-            recs.append(read_recording(r))
-        else:
-            raise InputError(f"a recording must be a Recording or a path, got {type(r).__name__}")
-    if not recs:
-        raise InputError("diagnose_many needs at least one recording")
+    recs = _as_recordings(recordings)
     opts = {"seed": seed, "alpha": alpha, "max_effects": max_effects, "effects": effects}
     if len(recs) == 1:
         return diagnose(recs[0], baseline=baseline, **opts)
-    kinds = sorted({r.experiment for r in recs})
-    if len(kinds) > 1:
-        raise InputError(
-            f"recordings diagnosed together must be of one experiment kind, got {', '.join(kinds)}"
-        )
-    if baseline == "der" and kinds[0] != "knot_pull":
-        raise InputError(
-            "several recordings with baseline 'der' are supported for knot_pull only; "
-            "use closed-form, or diagnose them one at a time"
-        )
+    kind = _one_kind(recs, baseline)
     singles = [
         diagnose(r, baseline=baseline, **dict(opts, seed=seed + i)) for i, r in enumerate(recs)
     ]
     names = _file_names(recs)
-    datas = [
-        Data(
-            s.fits["recording"].y,
-            s.fits["recording"].mu_nominal,
-            s.fits["recording"].mu_nominal_sigma,
-        )
-        for s in singles
-    ]
+    datas = [_data(s.fits["recording"]) for s in singles]
     base_fits = [s.fits["baseline"] for s in singles]
     final_fits = [s.fits["final"] for s in singles]
-    b_shared, b_params, b_means = _joint_fit(base_fits, datas)
+    b_shared, _, b_means = _joint_fit(base_fits, datas)
     f_shared, f_params, f_means = _joint_fit(final_fits, datas)
     held_b = _leave_one_out(base_fits, datas)
     held_f = _leave_one_out(final_fits, datas)
-
     per, held = [], []
     gains: dict = {}
     effects_out: dict = {}
     for i, s in enumerate(singles):
         rec = s.fits["recording"]
-        model = final_fits[i].model
-        public = public_parameters(f_params[i], model.effect_objects, rec)
-        for ev in s.effects:
-            eff = next(e for e in model.effect_objects if e.name == ev["name"])
-            entry = effects_out.setdefault(
-                ev["name"],
-                {"name": ev["name"], "parameters": {}, "evidence": {}, "recordings": []},
-            )
-            entry["recordings"].append(names[i])
-            entry["parameters"][names[i]] = effect_parameters(eff, public)
-            entry["evidence"][names[i]] = ev["evidence"]
-            gains[ev["name"]] = gains.get(ev["name"], 0.0) + float(
-                ev["evidence"].get("likelihood_ratio", ev["evidence"].get("delta_bic", 0.0))
-            )
+        public = public_parameters(f_params[i], final_fits[i].model.effect_objects, rec)
+        _gather_effects(s, final_fits[i].model, public, names[i], effects_out, gains)
         per.append(
             {
                 "file": names[i],
@@ -281,19 +243,7 @@ def diagnose_many(
         held.append(
             {"file": names[i], "rms_before": _g(_rms(held_b[i])), "rms_after": _g(_rms(held_f[i]))}
         )
-    if gains:
-        verdict = max(gains, key=gains.get)
-    elif any(s.verdict == "unexplained" for s in singles):
-        verdict = "unexplained"
-    elif all(s.verdict == "undetermined" for s in singles):
-        verdict = "undetermined"
-    else:
-        verdict = "none"
-    # an effect whose parameters are shared shows one value: that of the joint fit
-    for entry in effects_out.values():
-        first = entry["parameters"][entry["recordings"][0]]
-        if all(entry["parameters"][r] == first for r in entry["recordings"]):
-            entry["parameters"] = first
+    _shared_values(effects_out)
     y_all = np.concatenate([d.y for d in datas])
     details = {
         "baseline_model": baseline,
@@ -305,8 +255,8 @@ def diagnose_many(
         "seed": seed,
     }
     report = Report(
-        experiment=kinds[0],
-        verdict=verdict,
+        experiment=kind,
+        verdict=_joint_verdict(gains, singles),
         effects=list(effects_out.values()),
         regions=_merge([tuple(r) for s in singles for r in s.regions]),
         baseline={
@@ -334,6 +284,77 @@ def diagnose_many(
     )
     report.row_trial = np.concatenate([s.row_trial for s in singles])
     return report
+
+
+def _as_recordings(recordings) -> list:
+    """Recordings and paths as Recording objects (at least one)."""
+    recs = []
+    for r in recordings:
+        if isinstance(r, Recording):
+            recs.append(r)
+        elif isinstance(r, (str, Path)):
+            recs.append(read_recording(r))
+        else:
+            raise InputError(f"a recording must be a Recording or a path, got {type(r).__name__}")
+    if not recs:
+        raise InputError("diagnose_many needs at least one recording")
+    return recs
+
+
+def _one_kind(recs, baseline: str) -> str:
+    """The one experiment kind of ``recs``, refused with the baselines it cannot take."""
+    kinds = sorted({r.experiment for r in recs})
+    if len(kinds) > 1:
+        raise InputError(
+            f"recordings diagnosed together must be of one experiment kind, got {', '.join(kinds)}"
+        )
+    if baseline == "der" and kinds[0] != "knot_pull":
+        raise InputError(
+            "several recordings with baseline 'der' are supported for knot_pull only; "
+            "use closed-form, or diagnose them one at a time"
+        )
+    return kinds[0]
+
+
+def _data(rec) -> Data:
+    return Data(rec.y, rec.mu_nominal, rec.mu_nominal_sigma)
+
+
+def _gather_effects(single, model, public, name, effects_out, gains) -> None:
+    """Add one recording's accepted effects to ``effects_out`` (name -> entry with
+    per-recording parameters and evidence) and their likelihood ratios to ``gains``."""
+    for ev in single.effects:
+        eff = next(e for e in model.effect_objects if e.name == ev["name"])
+        entry = effects_out.setdefault(
+            ev["name"],
+            {"name": ev["name"], "parameters": {}, "evidence": {}, "recordings": []},
+        )
+        entry["recordings"].append(name)
+        entry["parameters"][name] = effect_parameters(eff, public)
+        entry["evidence"][name] = ev["evidence"]
+        gains[ev["name"]] = gains.get(ev["name"], 0.0) + float(
+            ev["evidence"].get("likelihood_ratio", ev["evidence"].get("delta_bic", 0.0))
+        )
+
+
+def _joint_verdict(gains: dict, singles) -> str:
+    """The effect of the largest summed gain; else ``unexplained`` if any recording is,
+    ``undetermined`` if all are, else ``none``."""
+    if gains:
+        return max(gains, key=gains.get)
+    if any(s.verdict == "unexplained" for s in singles):
+        return "unexplained"
+    if all(s.verdict == "undetermined" for s in singles):
+        return "undetermined"
+    return "none"
+
+
+def _shared_values(effects_out: dict) -> None:
+    """An effect whose parameters are shared shows one value: that of the joint fit."""
+    for entry in effects_out.values():
+        first = entry["parameters"][entry["recordings"][0]]
+        if all(entry["parameters"][r] == first for r in entry["recordings"]):
+            entry["parameters"] = first
 
 
 def _file_names(recs) -> list:

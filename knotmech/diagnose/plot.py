@@ -59,6 +59,7 @@ def plot_report(report, path=None):
     shaded in both (and named in the legend). Axes carry the columns' names and
     units. Returns the matplotlib Figure (pyplot-free, no display needed).
     """
+    # imported here for start-up speed: matplotlib is needed only when a plot is drawn
     from matplotlib.figure import Figure
 
     x, y = report.x, report.y
@@ -66,13 +67,9 @@ def plot_report(report, path=None):
     fig = Figure(figsize=(7.0, 6.0))
     ax, axr = fig.subplots(2, 1, sharex=True, gridspec_kw={"height_ratios": [3, 2]})
     for a in (ax, axr):
-        for k, (lo, hi) in enumerate(report.regions):
-            if hi <= lo:  # a located point: give it a visible width
-                pad = 0.004 * (float(np.ptp(x)) or 1.0)
-                lo, hi = lo - pad, hi + pad
-            label = "mismatch region" if (a is ax and k == 0) else None
-            a.axvspan(lo, hi, color="orange", alpha=0.18, lw=0, label=label)
-    ax.plot(x, y, ".", ms=2.5 if x.size > 60 else 5, color="0.35", label="recording")
+        _shade_regions(a, report.regions, x, label=a is ax)
+    ms = 2.5 if x.size > 60 else 5
+    ax.plot(x, y, ".", ms=ms, color="0.35", label="recording")
     final_label = "final: " + (", ".join(e["name"] for e in report.effects) or "baseline")
     for k, rows in enumerate(groups):
         ax.plot(
@@ -95,15 +92,31 @@ def plot_report(report, path=None):
     ax.set_ylabel(axis_label(ycol))
     ax.set_title(report.verdict_line, fontsize=7, wrap=True)
     ax.legend(fontsize=7)
-    ms = 2.5 if x.size > 60 else 5
     axr.plot(x, y - report.baseline_mean, ".", ms=ms, color="C0", label="baseline residuals")
     axr.plot(x, y - report.final_mean, ".", ms=ms, color="C3", label="final residuals")
     axr.axhline(0.0, color="k", lw=0.6)
     axr.set_xlabel(axis_label(report.columns[0]))
-    unit = axis_label(ycol).rpartition("[")[2].rstrip("]") if "[" in axis_label(ycol) else ""
-    axr.set_ylabel(f"residual [{unit}]" if unit else "residual")
+    axr.set_ylabel(_residual_label(ycol))
     axr.legend(fontsize=7)
     fig.tight_layout()
     if path is not None:
         fig.savefig(path, dpi=120)
     return fig
+
+
+def _shade_regions(ax, regions, x, *, label: bool) -> None:
+    """Shade the mismatch regions (a located point gets a visible width); the first one
+    labelled when ``label``."""
+    for k, (lo, hi) in enumerate(regions):
+        if hi <= lo:
+            pad = 0.004 * (float(np.ptp(x)) or 1.0)
+            lo, hi = lo - pad, hi + pad
+        name = "mismatch region" if (label and k == 0) else None
+        ax.axvspan(lo, hi, color="orange", alpha=0.18, lw=0, label=name)
+
+
+def _residual_label(ycol: str) -> str:
+    """``residual [unit]`` with the unit of the measured column (``residual`` without)."""
+    text = axis_label(ycol)
+    unit = text.rpartition("[")[2].rstrip("]") if "[" in text else ""
+    return f"residual [{unit}]" if unit else "residual"

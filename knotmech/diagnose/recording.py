@@ -254,104 +254,12 @@ def parse_recording(text: str, *, source: str = "<string>") -> Recording:
     if "\x00" in text:
         j = text.index("\x00")
         raise _err(source, text.count("\n", 0, j) + 1, "NUL byte: this is not a text file")
-    metadata: dict = {}
-    meta_lines: dict = {}
-    i = 0
-    while i < len(lines) and (lines[i].startswith("#") or not lines[i].strip()):
-        raw = lines[i]
-        if raw.startswith("#"):
-            body = raw[1:].strip()
-            if body:
-                if ":" not in body:
-                    raise _err(
-                        source, i + 1, f"metadata line must read '# key: value', got {raw!r}"
-                    )
-                key, value = body.split(":", 1)
-                key, value = key.strip(), value.strip()
-                if not key:
-                    raise _err(source, i + 1, f"empty metadata key in {raw!r}")
-                if key in metadata:
-                    raise _err(
-                        source,
-                        i + 1,
-                        f"metadata key {key!r} given twice (lines {meta_lines[key]} and {i + 1})",
-                    )
-                metadata[key] = _parse_value(value)
-                meta_lines[key] = i + 1
-        i += 1
-    version = metadata.get("knotmech-recording")
-    if version is not None and version != 1.0:
-        raise _err(
-            source, meta_lines["knotmech-recording"], f"unsupported format version {version!r}"
-        )
-    if "experiment" not in metadata:
-        raise _err(source, 1, "missing '# experiment: ...' metadata line")
-    experiment = str(metadata["experiment"])
-    if experiment not in EXPERIMENTS:
-        raise _err(
-            source,
-            meta_lines["experiment"],
-            f"unknown experiment {experiment!r} (allowed: {', '.join(EXPERIMENTS)})",
-        )
-    xcol, ycol, required = EXPERIMENTS[experiment]
-    for key in required:
-        if key not in metadata:
-            raise _err(
-                source, i + 1, f"missing metadata '# {key}: ...' for a {experiment} recording"
-            )
-    for key, value in metadata.items():
-        if (
-            key in _POSITIVE_KEYS
-            or key in METADATA_BOUNDS
-            or key == "mu_nominal"
-            or key.startswith("speed_m_per_s")
-        ):
-            if not isinstance(value, float) or not math.isfinite(value):
-                raise _err(
-                    source,
-                    meta_lines[key],
-                    f"metadata {key} must be a number, got {value!r}{_not_ascii(str(value))}",
-                )
-            if key == "mu_nominal" and value < 0:
-                raise _err(source, meta_lines[key], f"mu_nominal must be >= 0, got {value:g}")
-            if key in _POSITIVE_KEYS and value <= 0:
-                raise _err(source, meta_lines[key], f"metadata {key} must be > 0, got {value:g}")
-            _check_bounds(key, value, source, meta_lines[key])
-    if metadata.get("mu_nominal") == 0.0 and "mu_nominal_sigma" not in metadata:
-        raise _err(
-            source,
-            meta_lines["mu_nominal"],
-            "mu_nominal: 0 needs a mu_nominal_sigma (the default, 5 % of mu_nominal, is 0)",
-        )
-    if i >= len(lines):
-        raise _err(source, i, "no CSV header after the metadata")
-    header_line = i + 1
-    reader = csv.reader(io.StringIO("\n".join(lines[i:])))
-    try:
-        header = [h.strip() for h in next(reader)]
-    except StopIteration:
-        raise _err(source, header_line, "no CSV header after the metadata") from None
-    except csv.Error as exc:
-        raise _err(source, header_line, _csv_problem(exc)) from None
-    if header[:2] != [xcol, ycol]:
-        raise _err(
-            source,
-            header_line,
-            f"a {experiment} recording needs columns '{xcol},{ycol}' first, "
-            f"got {','.join(header)!r}",
-        )
+    metadata, meta_lines, i = _read_metadata(lines, source)
+    experiment = _check_metadata(metadata, meta_lines, i, source)
+    xcol, ycol, _ = EXPERIMENTS[experiment]
     kind = EXPERIMENT_KINDS[experiment]
-    allowed = OPTIONAL_COLUMNS + tuple(kind.optional_columns)
-    extra = header[2:]
-    for name in extra:
-        if name not in allowed:
-            raise _err(
-                source,
-                header_line,
-                f"unknown column {name!r} (optional columns: {', '.join(allowed)})",
-            )
-    if len(set(header)) != len(header):
-        raise _err(source, header_line, "repeated column name in the header")
+    header, reader = _read_header(lines, i, experiment, kind, source)
+    header_line = i + 1
     fast = _numeric_rows(lines, i + 1, header, kind, header_line)
     if fast is not None:
         table, lines_arr = fast
@@ -365,30 +273,15 @@ def parse_recording(text: str, *, source: str = "<string>") -> Recording:
         )
     cols = {name: table[:, j] for j, name in enumerate(header)}
     sigma = cols.get("sigma")
-    if sigma is not None and np.any(sigma <= 0):
-        j = int(np.argmax(sigma <= 0))
-        raise _err(source, int(lines_arr[j]), f"sigma must be > 0, got {sigma[j]:g}")
-    trial = cols.get("trial")
-    if trial is not None and np.any(np.abs(trial) > 1e9):
-        j = int(np.argmax(np.abs(trial) > 1e9))
-        raise _err(source, int(lines_arr[j]), f"trial id {trial[j]:g} is beyond |id| <= 1e9")
-    if trial is not None:
-        if np.any(trial != np.round(trial)):
-            j = int(np.argmax(trial != np.round(trial)))
-            raise _err(source, int(lines_arr[j]), f"trial must be an integer, got {trial[j]:g}")
-        trial = trial.astype(int)
-    else:
-        trial = np.zeros(table.shape[0], dtype=int)
+    _first_bad(source, lines_arr, sigma, sigma is not None and sigma <= 0, "sigma must be > 0")
+    trial = _trial_column(cols.get("trial"), table.shape[0], source, lines_arr)
     speed = cols.get("speed_m_per_s")
-    if speed is not None and np.any(speed <= 0):
-        j = int(np.argmax(speed <= 0))
-        raise _err(source, int(lines_arr[j]), f"speed_m_per_s must be > 0, got {speed[j]:g}")
+    bad_speed = speed is not None and speed <= 0
+    _first_bad(source, lines_arr, speed, bad_speed, "speed_m_per_s must be > 0")
     if speed is None:
         speed = _speed_from_metadata(metadata, trial, source, meta_lines)
     x = cols[xcol]
-    if kind.control_nonnegative and np.any(x < 0):
-        j = int(np.argmax(x < 0))
-        raise _err(source, int(lines_arr[j]), f"{xcol} must be >= 0, got {x[j]:g}")
+    _first_bad(source, lines_arr, x, kind.control_nonnegative and x < 0, f"{xcol} must be >= 0")
     _check_columns(cols, header, xcol, ycol, trial, source, lines_arr, header_line, kind.min_rows)
     rec = Recording(
         experiment=experiment,
@@ -406,6 +299,139 @@ def parse_recording(text: str, *, source: str = "<string>") -> Recording:
     if problem:
         raise _err(source, None, problem)
     return rec
+
+
+def _first_bad(source, lines_arr, values, bad, what: str) -> None:
+    """Refuse the first row where ``bad`` (a bool array, or False) holds: ``what, got v``."""
+    if np.any(bad):
+        j = int(np.argmax(bad))
+        raise _err(source, int(lines_arr[j]), f"{what}, got {values[j]:g}")
+
+
+def _trial_column(trial, n: int, source, lines_arr) -> np.ndarray:
+    """The ``trial`` column as integers (all zero when the file has none)."""
+    if trial is None:
+        return np.zeros(n, dtype=int)
+    if np.any(np.abs(trial) > 1e9):
+        j = int(np.argmax(np.abs(trial) > 1e9))
+        raise _err(source, int(lines_arr[j]), f"trial id {trial[j]:g} is beyond |id| <= 1e9")
+    _first_bad(source, lines_arr, trial, trial != np.round(trial), "trial must be an integer")
+    return trial.astype(int)
+
+
+def _read_metadata(lines: list, source: str) -> tuple[dict, dict, int]:
+    """The ``# key: value`` lines at the top: metadata, the line of each key (1-based),
+    and the index of the first other line."""
+    metadata: dict = {}
+    meta_lines: dict = {}
+    i = 0
+    while i < len(lines) and (lines[i].startswith("#") or not lines[i].strip()):
+        raw = lines[i]
+        body = raw[1:].strip() if raw.startswith("#") else ""
+        if body:
+            if ":" not in body:
+                raise _err(source, i + 1, f"metadata line must read '# key: value', got {raw!r}")
+            key, value = body.split(":", 1)
+            key, value = key.strip(), value.strip()
+            if not key:
+                raise _err(source, i + 1, f"empty metadata key in {raw!r}")
+            if key in metadata:
+                raise _err(
+                    source,
+                    i + 1,
+                    f"metadata key {key!r} given twice (lines {meta_lines[key]} and {i + 1})",
+                )
+            metadata[key] = _parse_value(value)
+            meta_lines[key] = i + 1
+        i += 1
+    return metadata, meta_lines, i
+
+
+def _check_metadata(metadata: dict, meta_lines: dict, i: int, source: str) -> str:
+    """Check the metadata (version, experiment, required keys, numbers); the experiment."""
+    version = metadata.get("knotmech-recording")
+    if version is not None and version != 1.0:
+        raise _err(
+            source, meta_lines["knotmech-recording"], f"unsupported format version {version!r}"
+        )
+    if "experiment" not in metadata:
+        raise _err(source, 1, "missing '# experiment: ...' metadata line")
+    experiment = str(metadata["experiment"])
+    if experiment not in EXPERIMENTS:
+        raise _err(
+            source,
+            meta_lines["experiment"],
+            f"unknown experiment {experiment!r} (allowed: {', '.join(EXPERIMENTS)})",
+        )
+    for key in EXPERIMENTS[experiment][2]:
+        if key not in metadata:
+            raise _err(
+                source, i + 1, f"missing metadata '# {key}: ...' for a {experiment} recording"
+            )
+    for key, value in metadata.items():
+        _check_metadata_number(key, value, source, meta_lines[key])
+    if metadata.get("mu_nominal") == 0.0 and "mu_nominal_sigma" not in metadata:
+        raise _err(
+            source,
+            meta_lines["mu_nominal"],
+            "mu_nominal: 0 needs a mu_nominal_sigma (the default, 5 % of mu_nominal, is 0)",
+        )
+    return experiment
+
+
+def _check_metadata_number(key: str, value, source: str, line: int) -> None:
+    """A numeric metadata key must hold a finite number in its range."""
+    numeric = (
+        key in _POSITIVE_KEYS
+        or key in METADATA_BOUNDS
+        or key == "mu_nominal"
+        or key.startswith("speed_m_per_s")
+    )
+    if not numeric:
+        return
+    if not isinstance(value, float) or not math.isfinite(value):
+        raise _err(
+            source, line, f"metadata {key} must be a number, got {value!r}{_not_ascii(str(value))}"
+        )
+    if key == "mu_nominal" and value < 0:
+        raise _err(source, line, f"mu_nominal must be >= 0, got {value:g}")
+    if key in _POSITIVE_KEYS and value <= 0:
+        raise _err(source, line, f"metadata {key} must be > 0, got {value:g}")
+    _check_bounds(key, value, source, line)
+
+
+def _read_header(lines: list, i: int, experiment: str, kind, source: str):
+    """The CSV header at line ``i`` (0-based), checked; the header and the CSV reader
+    positioned after it."""
+    xcol, ycol, _ = EXPERIMENTS[experiment]
+    if i >= len(lines):
+        raise _err(source, i, "no CSV header after the metadata")
+    header_line = i + 1
+    reader = csv.reader(io.StringIO("\n".join(lines[i:])))
+    try:
+        header = [h.strip() for h in next(reader)]
+    except StopIteration:
+        raise _err(source, header_line, "no CSV header after the metadata") from None
+    except csv.Error as exc:
+        raise _err(source, header_line, _csv_problem(exc)) from None
+    if header[:2] != [xcol, ycol]:
+        raise _err(
+            source,
+            header_line,
+            f"a {experiment} recording needs columns '{xcol},{ycol}' first, "
+            f"got {','.join(header)!r}",
+        )
+    allowed = OPTIONAL_COLUMNS + tuple(kind.optional_columns)
+    for name in header[2:]:
+        if name not in allowed:
+            raise _err(
+                source,
+                header_line,
+                f"unknown column {name!r} (optional columns: {', '.join(allowed)})",
+            )
+    if len(set(header)) != len(header):
+        raise _err(source, header_line, "repeated column name in the header")
+    return header, reader
 
 
 def _checked_rows(reader, header, kind, source, header_line):
@@ -654,26 +680,37 @@ def recording_from_arrays(
         words as strings), name -> array.
     """
     lines = ["# knotmech-recording: 1", f"# experiment: {experiment}"]
-    for k, v in metadata.items():
-        if k in ("experiment", "knotmech-recording"):
-            continue
-        if isinstance(v, (int, float, np.number)) and not isinstance(v, bool):
-            lines.append(f"# {k}: {float(v)!r}")
-        else:
-            lines.append(f"# {k}: {v}")
+    lines += [_metadata_line(k, v) for k, v in metadata.items()]
+    lines = [line for line in lines if line is not None]
     if experiment not in EXPERIMENTS:
         raise RecordingError(
             f"<arrays>: unknown experiment {experiment!r} (allowed: {', '.join(EXPERIMENTS)})"
         )
     xcol, ycol, _ = EXPERIMENTS[experiment]
-    cols = {xcol: x, ycol: y}
-    if sigma is not None:
-        cols["sigma"] = sigma
-    if trial is not None:
-        cols["trial"] = trial
-    if speed is not None:
-        cols["speed_m_per_s"] = speed
+    optional = {"sigma": sigma, "trial": trial, "speed_m_per_s": speed}
+    cols = {xcol: x, ycol: y, **{k: v for k, v in optional.items() if v is not None}}
     cols.update(columns or {})
+    arrays = _column_arrays(cols, xcol)
+    lines.append(",".join(arrays))
+    for i in range(arrays[xcol].size):
+        cells = (
+            arr[i] if arr.dtype.kind in "USO" else repr(float(arr[i])) for arr in arrays.values()
+        )
+        lines.append(",".join(str(c) for c in cells))
+    return parse_recording("\n".join(lines) + "\n", source="<arrays>")
+
+
+def _metadata_line(key: str, value) -> str | None:
+    """``# key: value`` (numbers written in full), None for the keys the caller writes."""
+    if key in ("experiment", "knotmech-recording"):
+        return None
+    if isinstance(value, (int, float, np.number)) and not isinstance(value, bool):
+        return f"# {key}: {float(value)!r}"
+    return f"# {key}: {value}"
+
+
+def _column_arrays(cols: dict, xcol: str) -> dict:
+    """Each column as a flat array (numbers as float, words kept), all of one length."""
     arrays = {}
     for k, v in cols.items():
         arr = np.atleast_1d(np.asarray(v)).ravel()
@@ -682,10 +719,4 @@ def recording_from_arrays(
     for k, arr in arrays.items():
         if arr.size != n:
             raise RecordingError(f"<arrays>: column {k} has {arr.size} values, {xcol} has {n}")
-    lines.append(",".join(arrays))
-    for i in range(n):
-        cells = (
-            arr[i] if arr.dtype.kind in "USO" else repr(float(arr[i])) for arr in arrays.values()
-        )
-        lines.append(",".join(str(c) for c in cells))
-    return parse_recording("\n".join(lines) + "\n", source="<arrays>")
+    return arrays

@@ -425,12 +425,14 @@ def test_least_squares_guard_names_the_step():
 
 
 def test_last_resort_names_the_function(monkeypatch):
+    import knotmech.diagnose.baselines as baselines
     import knotmech.diagnose.engine as engine
 
     def broken(*args, **kwargs):
         raise np.linalg.LinAlgError("SVD did not converge")
 
-    monkeypatch.setattr(engine, "fit_baseline", broken)
+    # the closed-form baseline's fit (knotmech.diagnose.baselines.ClosedFormBaseline)
+    monkeypatch.setattr(baselines, "fit_baseline", broken)
     with pytest.raises(DiagnoseError, match=r"failed numerically in .*\(LinAlgError: SVD did not"):
         engine.diagnose(parse_recording(template_text("pinch")))
 

@@ -134,7 +134,6 @@ def test_bad_knot_metadata_is_one_line():
         ("turns", 5, "turns must be a whole number 1-4"),
         ("knot", "bowline", "knot must be one of overhand"),
         ("rod_length_m", 0.5, "must be below rod_length_m"),
-        ("rod_length_m", 0.61, "leaves less rod in the knot"),
     ):
         with pytest.raises(RecordingError, match=words) as exc:
             parse_recording(_text(dict(good, **{key: value})), source="k.csv")
@@ -292,3 +291,28 @@ def test_der_null_with_a_surrogate_gap_is_none_with_the_surrogate_error(monkeypa
     off = diagnose(rec, baseline="der", seed=1022)
     assert off.verdict == "unexplained"
     assert "surrogate_error" not in off.details["der"]
+
+
+def test_a_whole_pull_to_tight_is_judged_on_the_closures_rows():
+    """Issue 26 (1): a pull to D = 0.998 L is not refused; the closed form judges the rows
+    with L - D above the closure's long-braid limit (0.006646 m for one turn of the IMC
+    paper's rod, D < 0.993354 m) and the report says which and how many."""
+    rng = np.random.default_rng(3)
+    x = np.concatenate([np.linspace(0.3, 0.99, 70), np.linspace(0.9937, 0.998, 10)])
+    r0 = recording_from_arrays("knot_pull", x, 1.0 + x, metadata=_meta(1))
+    y = KNOT.mean(r0, {"mu": 0.3})
+    y[70:] = y[69] * np.linspace(1.5, 20.0, 10)  # the tight end, steeper than the closure
+    y = y + 0.01 * np.median(y[:70]) * rng.standard_normal(x.size)
+    rec = recording_from_arrays("knot_pull", x, y, metadata=_meta(1))
+    report = diagnose(rec)
+    valid = report.details["validity"]
+    assert (valid["rows_judged"], valid["rows"]) == (70, 80)
+    assert valid["judged_range"] == [0.3, 0.99]
+    assert "L - D must exceed 0.006646 m for 1 turns" in valid["reason"]
+    assert report.verdict == "none"
+    assert report.final["parameters"]["mu"] == pytest.approx(0.3, rel=0.01)
+    assert "closed form judged 70 of 80 rows" in report.summary
+    # too few rows inside: refused in one line, pointing to the DER baseline
+    tight = recording_from_arrays("knot_pull", x[65:], y[65:], metadata=_meta(1))
+    with pytest.raises(InputError, match="5 of 15 rows lie inside .* use --baseline der"):
+        diagnose(tight)

@@ -41,3 +41,13 @@ def test_planted_sizes_and_grids():
     # a nip of 8 sd drops the tension by 8 sd (tune: a sharp step)
     rec, truth = case.make("tune", "tension_profile", "self_contact_nip", 8.0, "white", 5)
     assert 1 <= len(truth["positions_m"]) <= 2
+
+
+def test_size_check_of_the_quick_run_is_an_exact_test():
+    # 6 nulls: one flag is what an engine of exactly 1 % size shows 5.9 % of the time
+    # (1 - 0.99**6), so it passes; two (p = 0.0015) fail. The full run keeps Wilson's bound.
+    assert case._size_ok(case._rate(0, 6), quick=True)
+    assert case._size_ok(case._rate(1, 6), quick=True)
+    assert not case._size_ok(case._rate(2, 6), quick=True)
+    assert not case._size_ok(case._rate(1, 6), quick=False)  # Wilson lower bound 0.030
+    assert case._size_ok(case._rate(1, 36), quick=False)

@@ -13,6 +13,8 @@ from __future__ import annotations
 
 from types import SimpleNamespace
 
+from knotmech.diagnose.model import param_vector
+
 __all__ = ["Effect", "PlantContext"]
 
 
@@ -84,8 +86,6 @@ class Effect:
     # --- fitting -----------------------------------------------------------------------
     def starts(self, current, model, data, starts) -> list:
         """Starting parameter vectors of ``model`` (``current`` plus this effect)."""
-        from knotmech.diagnose.fitting import param_vector
-
         return [param_vector(model, current.params)]
 
     def fit(self, current, data, starts, *, given_sigma=None, known=None):

@@ -32,7 +32,7 @@ import numpy as np
 from knotmech.diagnose.effects._common import amplitude_beyond_mu, fmt
 from knotmech.diagnose.effects.base import Effect
 from knotmech.diagnose.experiments.capstan_hold import hold_load, hold_sign
-from knotmech.diagnose.fitting import fit_step_name, param_vector
+from knotmech.diagnose.model import fit_step_name, param_vector
 from knotmech.diagnose.stats import ls_solve
 
 __all__ = ["BendingResistance"]

@@ -14,7 +14,8 @@ import numpy as np
 from knotmech.analytic.pinch import pinch_load_parameter
 from knotmech.diagnose.effects._common import CLOVE, fmt
 from knotmech.diagnose.effects.base import Effect
-from knotmech.diagnose.fitting import fit_step_name, param_vector, whiten_columns
+from knotmech.diagnose.fitting import whiten_columns
+from knotmech.diagnose.model import fit_step_name, param_vector
 from knotmech.diagnose.stats import ls_solve
 
 __all__ = ["ContactFlattening"]

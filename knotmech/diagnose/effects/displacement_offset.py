@@ -17,7 +17,8 @@ import numpy as np
 
 from knotmech.diagnose.effects._common import amplitude_for_size, fmt
 from knotmech.diagnose.effects.base import Effect
-from knotmech.diagnose.fitting import param_vector
+from knotmech.diagnose.experiments import get_experiment
+from knotmech.diagnose.model import param_vector
 
 __all__ = ["DisplacementOffset"]
 
@@ -52,8 +53,6 @@ class DisplacementOffset(Effect):
         return rec.x + p["offset_m"]
 
     def starts(self, current, model, data, starts):
-        from knotmech.diagnose.experiments import get_experiment
-
         if "delta0_m" not in current.params:  # knot_pull: no shift, then either way
             span = float(np.ptp(model.rec.x)) or 1.0
             v = dict(current.params)

@@ -14,7 +14,7 @@ import numpy as np
 from knotmech.analytic.capstan import mu_eff, mu_from_mu_eff
 from knotmech.diagnose.effects._common import CLOVE, fmt
 from knotmech.diagnose.effects.base import Effect
-from knotmech.diagnose.fitting import param_vector
+from knotmech.diagnose.model import param_vector
 
 __all__ = ["FiniteThickness"]
 

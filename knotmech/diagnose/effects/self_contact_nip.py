@@ -11,18 +11,17 @@ from __future__ import annotations
 
 import numpy as np
 
-from knotmech.diagnose.baselines import build_model
 from knotmech.diagnose.effects._common import CLOVE
 from knotmech.diagnose.effects.base import Effect
 from knotmech.diagnose.fitting import (
     FIT_ROWS,
     Fit,
     fit_model,
-    param_vector,
     refit_all_rows,
     thinned_null,
     whiten_columns,
 )
+from knotmech.diagnose.model import build_model, param_vector
 from knotmech.diagnose.stats import estimate_noise
 
 __all__ = ["SelfContactNip"]

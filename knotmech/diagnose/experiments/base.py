@@ -80,6 +80,16 @@ class Experiment:
         """A problem with ``rec`` beyond the per-column checks (a message), or None."""
         return None
 
+    def validity(self, rec):
+        """The rows the closed-form baseline is valid on: a bool mask and the reason the
+        others are not (a sentence), or None when it is valid on every row.
+
+        A recording is never refused for its closed form's sake: the closed-form baseline
+        judges the valid rows (:class:`knotmech.diagnose.baselines.ClosedFormBaseline`)
+        and a simulated baseline (``--baseline der``) all of them.
+        """
+        return None
+
     def reduce(self, rec):
         """The recording the engine diagnoses, and a note of what was done (or None).
 

@@ -23,6 +23,8 @@ free parameter ``mu``. Stages: ``apparent(mu)`` (the mu the capstan sees),
 
 from __future__ import annotations
 
+from dataclasses import replace
+
 import numpy as np
 
 from knotmech.diagnose.experiments.base import Experiment, Stages
@@ -105,8 +107,6 @@ class CapstanHold(Experiment):
         InputError
             Fewer than ``min_rows`` holds.
         """
-        from knotmech.diagnose.recording import Recording
-
         y = rec.y
         keys = np.column_stack([rec.trial, rec.x, hold_sign(rec), hold_load(rec)])
         new = np.ones(rec.n, dtype=bool)
@@ -142,17 +142,15 @@ class CapstanHold(Experiment):
             )
         extra = {k: v[idx] for k, v in rec.extra.items()}
         speed = rec.speed[idx] if rec.speed is not None else None
-        out = Recording(
-            rec.experiment,
-            rec.x[idx],
-            vals,
-            dict(rec.metadata),
-            sigma,
-            rec.trial[idx],
-            speed,
-            rec.source,
-            rec.columns,
-            extra,
+        out = replace(
+            rec,
+            x=rec.x[idx],
+            y=vals,
+            metadata=dict(rec.metadata),
+            sigma=sigma,
+            trial=rec.trial[idx],
+            speed=speed,
+            extra=extra,
         )
         note = {
             "readings": rec.n,

@@ -37,6 +37,7 @@ import functools
 
 import numpy as np
 
+from knotmech.analytic import knots
 from knotmech.analytic.knots import JAWED_C
 from knotmech.diagnose.experiments.base import Experiment, Stages
 
@@ -54,8 +55,6 @@ KNOTS = ("overhand",)
 
 def closure_limits() -> tuple[float, float]:
     """(smallest, largest) :math:`e/(n^2h)` the Jawed et al. closure represents [-]."""
-    from knotmech.analytic import knots
-
     lo, hi = knots._shortening_bounds()
     return float(lo), float(hi)
 
@@ -134,14 +133,22 @@ class KnotPull(Experiment):
                 f"end_to_end_m must be below rod_length_m = {length:g} (the knot holds rod), "
                 f"got {np.max(rec.x):g}"
             )
+        return None
+
+    def validity(self, rec):
+        """Rows with more rod in the knot than the Jawed et al. closure's long-braid limit,
+        :math:`L - D > t_{min} n^2 h` (a pull to tight ends beyond it)."""
+        n = int(rec.meta("turns"))
+        length = rec.meta("rod_length_m")
         lo, _ = closure_limits()
         e_min = lo * n**2 * rec.meta("rod_radius_m")
-        if np.min(length - rec.x) <= e_min:
-            return (
-                f"end_to_end_m up to {np.max(rec.x):g} leaves less rod in the knot than the "
-                f"Jawed et al. closure allows (L - D must exceed {e_min:.4g} m for {int(n)} turns)"
-            )
-        return None
+        ok = length - rec.x > e_min
+        if np.all(ok):
+            return None
+        return ok, (
+            f"end_to_end_m above {length - e_min:.6g} m leaves less rod in the knot than the "
+            f"Jawed et al. closure allows (L - D must exceed {e_min:.4g} m for {n} turns)"
+        )
 
     # --- baseline ----------------------------------------------------------------------
     def bending_stiffness(self, rec) -> float:
