@@ -44,6 +44,7 @@ import numpy as np
 from knotmech.diagnose import diagnose
 from knotmech.diagnose.recording import recording_from_arrays
 from knotmech.diagnose.stats import wilson_interval
+from knotmech.materials import VPS32_YOUNGS_MODULUS
 
 from ._common import finish, output_dir, save_figure, to_jsonable
 
@@ -91,7 +92,11 @@ def _baseline(kind: str, n: int):
     """Control variable, noiseless baseline, noise sd and metadata of one kind."""
     if kind == "pinch":
         x = np.linspace(0.2, 10.0, n)
-        meta = {"rod_diameter_m": 0.004, "pinch_diameter_m": 0.008, "youngs_modulus_Pa": 1.26e6}
+        meta = {
+            "rod_diameter_m": 0.004,
+            "pinch_diameter_m": 0.008,
+            "youngs_modulus_Pa": VPS32_YOUNGS_MODULUS,
+        }
         return x, 2.0 * 0.3 * x, 0.01, meta
     if kind == "tension_profile":
         meta = {"T_high_N": 10.0, "rod_diameter_m": 0.004, "post_diameter_m": 0.03}
@@ -104,7 +109,7 @@ def _baseline(kind: str, n: int):
             "T_low_N": 1.0,
             "rod_diameter_m": 0.004,
             "post_diameter_m": 0.03,
-            "youngs_modulus_Pa": 1.26e6,
+            "youngs_modulus_Pa": VPS32_YOUNGS_MODULUS,
         }
         x = np.linspace(0.0, 0.05, n)
         plateau = np.exp(0.3 * 2 * np.pi)

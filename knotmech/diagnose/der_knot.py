@@ -78,6 +78,7 @@ from knotmech.diagnose.noisefloor import without_rows
 from knotmech.diagnose.recording import Recording
 from knotmech.diagnose.stats import trial_starts
 from knotmech.errors import InputError, SolverError
+from knotmech.materials import IMC_DENSITY
 
 __all__ = [
     "DERKnotLaw",
@@ -128,7 +129,7 @@ class DERKnotLaw:
         self.h = rec.meta("rod_radius_m")
         self.E = rec.meta("youngs_modulus_Pa")
         self.L = rec.meta("rod_length_m")
-        self.rho = float(md["density_kg_m3"]) if "density_kg_m3" in md else 1180.0
+        self.rho = float(md["density_kg_m3"]) if "density_kg_m3" in md else IMC_DENSITY
         self.nu = float(md["poisson_ratio"]) if "poisson_ratio" in md else 0.5
         v = md.get("pull_speed_m_per_s")
         self.v = max(float(v), DER_KNOT_SEPARATION_SPEED) if v else DER_KNOT_SEPARATION_SPEED

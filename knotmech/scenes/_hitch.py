@@ -55,6 +55,7 @@ import numpy as np
 from knotmech import rod
 from knotmech.analytic.capstan import mu_eff as _mu_eff
 from knotmech.errors import InputError, check_bending_scale, check_nonnegative, check_positive
+from knotmech.materials import PHASE_TABLE_DENSITY, VPS32_YOUNGS_MODULUS
 from knotmech.rod.constraints import Clamp, MovingNodes
 from knotmech.rod.contact import RodContact
 from knotmech.rod.friction import AnchorFriction, SmoothFriction
@@ -449,8 +450,8 @@ def run_hitch(
     rod_diameter: float = 4e-3,
     post_diameter: float = 30e-3,
     rod_length: float | None = 0.374,
-    youngs_modulus: float = 1.26e6,
-    density: float = 1150.0,
+    youngs_modulus: float = VPS32_YOUNGS_MODULUS,
+    density: float = PHASE_TABLE_DENSITY,
     bending_scale: float = 1.0,
     mu_rod_post: float = 0.3,
     mu_rod_rod: float = 0.3,
@@ -595,8 +596,8 @@ class HitchRod:
     rod_diameter: float = 4e-3
     post_diameter: float = 30e-3
     rod_length: float | None = 0.374
-    youngs_modulus: float = 1.26e6
-    density: float = 1150.0
+    youngs_modulus: float = VPS32_YOUNGS_MODULUS
+    density: float = PHASE_TABLE_DENSITY
     bending_scale: float = 1.0
     n_nodes: int | None = 150
 

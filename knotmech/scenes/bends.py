@@ -32,6 +32,7 @@ import numpy as np
 
 from knotmech import rod
 from knotmech.errors import InputError, check_nonnegative, check_positive
+from knotmech.materials import DEMO_ROD_DENSITY
 from knotmech.rod.constraints import Clamp, MovingNodes
 from knotmech.scenes._common import check_memory, check_run_size, frames_bytes, pair_check_bytes
 from knotmech.scenes._scene import RunControl, Scene, SceneRun, grip_path, rod_contact
@@ -140,7 +141,7 @@ class BendRopes:
 
     rod_diameter: float = 4e-3
     youngs_modulus: float = 1.0e6
-    density: float = 1100.0
+    density: float = DEMO_ROD_DENSITY
     bending_scale: float = 1.0
     mu_rod_rod: float = 0.3
     mu_kinetic: float | None = None
@@ -166,7 +167,7 @@ def bend(
     *,
     rod_diameter: float = 4e-3,
     youngs_modulus: float = 1.0e6,
-    density: float = 1100.0,
+    density: float = DEMO_ROD_DENSITY,
     bending_scale: float = 1.0,
     mu_rod_rod: float = 0.3,
     mu_kinetic: float | None = None,

@@ -35,6 +35,7 @@ import numpy as np
 from knotmech.analytic.capstan import capstan_ratio_bending
 from knotmech.analytic.capstan import mu_eff as _mu_eff
 from knotmech.errors import InputError, check_nonnegative, check_positive
+from knotmech.materials import VPS32_DENSITY, VPS32_YOUNGS_MODULUS
 from knotmech.rod.constraints import Clamp, MovingNodes
 from knotmech.rod.loads import NodeForce, ViscousDamping
 from knotmech.rod.solver import SolverOptions
@@ -745,8 +746,8 @@ def capstan_two_loops(**overrides) -> CapstanResult:
         mu=0.32,
         rod_diameter=4e-3,
         post_diameter=30e-3,
-        youngs_modulus=1.26e6,
-        density=1160.0,
+        youngs_modulus=VPS32_YOUNGS_MODULUS,
+        density=VPS32_DENSITY,
         t_low=0.069,
     )
     kw.update(overrides)

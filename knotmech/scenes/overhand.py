@@ -32,6 +32,7 @@ import numpy as np
 
 from knotmech import rod
 from knotmech.errors import InputError, check_nonnegative, check_positive
+from knotmech.materials import IMC_DENSITY
 from knotmech.rod.contact import RodContact
 from knotmech.rod.friction import AnchorFriction, SmoothFriction
 from knotmech.scenes._common import (
@@ -132,7 +133,7 @@ def imc_setup(turns: int = 1, **overrides) -> OverhandSetup:
         rod_length=1.0,
         rod_radius=1.6e-3,
         youngs_modulus=0.18e6,
-        density=1180.0,
+        density=IMC_DENSITY,
         poisson_ratio=0.5,
         end_to_end_length=e2e,
         braid_length=b,

@@ -22,6 +22,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from knotmech.errors import InputError, check_nonnegative, check_positive
+from knotmech.materials import VPS32_DENSITY, VPS32_YOUNGS_MODULUS
 from knotmech.rod.constraints import Clamp, MovingNodes
 from knotmech.rod.contact import Cylinder, CylinderContact
 from knotmech.rod.friction import AnchorFriction
@@ -188,8 +189,8 @@ def pinch(
     mu,
     rod_diameter=4e-3,
     cylinder_diameter=8e-3,
-    youngs_modulus=1.26e6,
-    density=1160.0,
+    youngs_modulus=VPS32_YOUNGS_MODULUS,
+    density=VPS32_DENSITY,
     rod_length=0.09,
     mu_kinetic=None,
     pull_speed=0.01,
@@ -261,8 +262,8 @@ class PinchRod:
 
     rod_diameter: float = 4e-3
     cylinder_diameter: float = 8e-3
-    youngs_modulus: float = 1.26e6
-    density: float = 1160.0
+    youngs_modulus: float = VPS32_YOUNGS_MODULUS
+    density: float = VPS32_DENSITY
     rod_length: float = 0.09
     n_elements: int | None = None
 

@@ -17,6 +17,7 @@ from __future__ import annotations
 import numpy as np
 
 from knotmech.diagnose.experiments.base import Experiment, Stages
+from knotmech.materials import VPS32_YOUNGS_MODULUS
 
 __all__ = ["CapstanPull"]
 
@@ -83,7 +84,7 @@ class CapstanPull(Experiment):
             "T_low_N": float(rng.uniform(0.5, 2.0)),
             "rod_diameter_m": 0.004,
             "post_diameter_m": float(rng.uniform(0.016, 0.04)),
-            "youngs_modulus_Pa": 1.26e6,
+            "youngs_modulus_Pa": VPS32_YOUNGS_MODULUS,
         }
         m = n // len(speeds)
         u1 = np.linspace(0.0, 0.05, m)

@@ -12,6 +12,7 @@ import numpy as np
 
 from knotmech.analytic.pinch import pinch_load_parameter
 from knotmech.diagnose.experiments.base import Experiment, Stages
+from knotmech.materials import VPS32_YOUNGS_MODULUS
 
 __all__ = ["Pinch"]
 
@@ -48,7 +49,7 @@ class Pinch(Experiment):
         meta = {
             "rod_diameter_m": float(rng.choice([0.004, 0.008])),
             "pinch_diameter_m": 0.008,
-            "youngs_modulus_Pa": 1.26e6,
+            "youngs_modulus_Pa": VPS32_YOUNGS_MODULUS,
         }
         scale = np.pi * meta["youngs_modulus_Pa"] * meta["rod_diameter_m"] * 0.008 / 4
         m = n // len(speeds)
