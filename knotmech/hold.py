@@ -62,6 +62,7 @@ import warnings
 from dataclasses import dataclass, field, replace
 from pathlib import Path
 
+from knotmech import knots
 from knotmech.errors import InputError
 
 __all__ = [
@@ -90,11 +91,6 @@ RULE = (
 STRAIN_LIMIT = 0.10  #: T_high/EA above this is implausible and outside the thick-nip model
 MU_PLAUSIBLE = 2.0  #: a friction coefficient above this is implausible for rope
 WRAP_TURNS_PLAUSIBLE = 20.0  #: a capstan wrap beyond this many turns is implausible
-#: the loading the cow hitch's DER scene, table and ``simulate`` model
-COW_LOADING = (
-    "cow hitch loaded on one leg (T_high on leg 0), the other leg free (T_low = 0): the "
-    "one-ended loading, not the girth hitch of a sling whose two legs share the load"
-)
 #: what one ``simulate=True`` run of a hitch costs, as the answers quote it (measured: the
 #: clove hitch at the paper's size 7.3 s wall on an idle machine; the hold-table runs of the
 #: hitches 3-30 s of CPU per point, up to ~2 min on large posts, d/D ~ 0.02, where the rod
@@ -104,14 +100,13 @@ SIMULATE_COST = (
     "with a 3 s hold when the creep lies near the limit"
 )
 
-_HITCHES = (
-    "clove-hitch", "two-half-hitches", "round-turn", "round-turn-two-half-hitches", "cow-hitch",
-)  # fmt: skip
+_HITCHES = knots.names(family="hitch")
 #: the bends of Patil et al. (Science 2020): two ropes joined and pulled apart
-_BENDS = ("reef", "granny", "thief", "grief")
-#: hitches that may have a DER answer (a hold table or a DER scene,
-#: :data:`knotmech.scenes.phase_table.HOLD_SCENE_NAMES`); the clove hitch always has one
-_DER_HITCHES = ("clove-hitch", "two-half-hitches", "round-turn-two-half-hitches", "cow-hitch")
+_BENDS = knots.names(family="bend")
+#: hitches that may have a DER answer (a hold table or a DER scene): the registry's hitches
+#: with a scene or a shipped table; the clove hitch always has one
+_DER_HITCHES = tuple(k.name for k in knots.records(family="hitch", answered=True)
+                     if k.has_scene or k.hold_table)  # fmt: skip
 
 
 #: the hitches whose free-end case can have a DER answer (public name for the CLI)
@@ -134,35 +129,8 @@ def _der_knot(key) -> bool:
     return key in _shipped_hold_tables() or pt.has_hold_scene(key)
 
 
-#: knots :func:`hold` answers
-KNOT_NAMES = ("capstan",) + _HITCHES + _BENDS
-_ALIASES = {
-    "clove": "clove-hitch",
-    "round-turn-and-two-half-hitches": "round-turn-two-half-hitches",
-    "round-turn-&-two-half-hitches": "round-turn-two-half-hitches",
-    "rt2hh": "round-turn-two-half-hitches",
-    "2hh": "two-half-hitches",
-    "reef-knot": "reef",
-    "square-knot": "reef",
-    "square": "reef",
-    "granny-knot": "granny",
-    "thief-knot": "thief",
-    "grief-knot": "grief",
-    "cow": "cow-hitch",
-    "girth-hitch": "cow-hitch",
-    "girth": "cow-hitch",
-    "larks-head": "cow-hitch",
-    "larks-head-knot": "cow-hitch",
-    "larks-foot": "cow-hitch",
-}
-#: knots people ask about that hold does not answer, and what they are
-_NOT_ANSWERED = {
-    "bowline": "a loop knot (no post, no closed form or DER table here)",
-    "figure-eight": "a stopper / loop knot (no post, no closed form or DER table here)",
-    "figure-8": "a stopper / loop knot (no post, no closed form or DER table here)",
-    "sheet-bend": "a bend joining two ropes (no post, no closed form or DER table here)",
-    "overhand": "a stopper knot (see `knotmech simulate overhand`), not a hitch on a post",
-}
+#: knots :func:`hold` answers (the registry's answered records: capstan, hitches, bends)
+KNOT_NAMES = knots.names()
 
 
 def is_bend(knot) -> bool:
@@ -183,14 +151,13 @@ def can_simulate(knot) -> bool:
 
 def knot_key(knot) -> str:
     """Canonical knot name, or a one-line :class:`InputError` listing what is answered."""
-    key = str(knot).strip().lower().replace("_", "-").replace(" ", "-")
-    key = key.replace("'", "").replace("\u2019", "")  # lark's head, lark\u2019s head
-    key = _ALIASES.get(key, key)
+    key = knots.key(knot) or knots.normalise(knot)
     if key in KNOT_NAMES:
         return key
     supported = ", ".join(KNOT_NAMES)
-    if key in _NOT_ANSWERED:
-        raise InputError(f"{knot!r} is {_NOT_ANSWERED[key]}; hold answers: {supported}")
+    if key in knots.REGISTRY:
+        why = knots.REGISTRY[key].unanswered
+        raise InputError(f"{knot!r} is {why}; hold answers: {supported}")
     raise InputError(f"unknown knot {str(knot)!r}; hold answers: {supported}")
 
 
@@ -908,7 +875,7 @@ def _der(
             ),
             hold_rule,
         )
-        + ((COW_LOADING,) if knot == "cow-hitch" else ()),
+        + ((knots.get(knot).loading,) if knots.get(knot).loading else ()),
         validity=(validity,),
         reference=(
             "clove-hitch paper (Extreme Mech. Lett., DOI 10.1016/j.eml.2022.101788), "
@@ -1468,6 +1435,14 @@ def _plot_knot(verdict: Verdict, p: Path) -> Path:
     fig.savefig(p)
     plt.close(fig)
     return p
+
+
+def __getattr__(name: str):
+    """``COW_LOADING``: the loading the cow hitch's DER scene, table and ``simulate`` model
+    (its registry record's ``loading``)."""
+    if name == "COW_LOADING":
+        return knots.get("cow-hitch").loading
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 # ``knotmech.hold(...)``: the module itself is callable (the package attribute

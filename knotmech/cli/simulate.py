@@ -40,18 +40,20 @@ import sys
 from dataclasses import dataclass
 from pathlib import Path
 
+from knotmech import knots
 from knotmech.errors import InputError
 
 __all__ = ["register", "run"]
 
-#: the post hitches after the clove hitch: same options and outputs as clove-hitch
-HITCH_SCENES = ("two-half-hitches", "round-turn-two-half-hitches", "cow-hitch")
+#: the post hitches after the clove hitch (the registry's hitches with a scene made from their
+#: curve, :mod:`knotmech.knots`): same options and outputs as clove-hitch
+HITCH_SCENES = tuple(k.name for k in knots.records(family="hitch") if k.has_scene and not k.scene)
 
 SCENES = ("capstan", "two-loops", "pinch", "overhand", "clove-hitch", *HITCH_SCENES, "bend",
           "centreline")  # fmt: skip
 
-#: The bends of :func:`knotmech.scenes.bend` (its ``BEND_CODES``; a test keeps them equal).
-BEND_KINDS = ("reef", "granny", "thief", "grief")
+#: The bends of :func:`knotmech.scenes.bend` (the registry's bends with a scene).
+BEND_KINDS = tuple(k.name for k in knots.records(family="bend") if k.has_scene)
 
 REQUIRED = "required"
 
@@ -267,13 +269,7 @@ _DESCRIPTIONS = {
     "pinch": "a rod pinched between two crossed cylinders and pulled out (F_t* against "
     "Amontons' 2 mu F_n)",
     "overhand": "an overhand knot with n braid turns pulled tight (force against end-to-end)",
-    "clove-hitch": "a clove hitch tied on a post, held by end loads or pulled (clove-hitch paper)",
-    "two-half-hitches": "two half hitches on a post (a turn, then two half hitches round the "
-    "standing part), held by end loads or pulled: verdict, creep speed, knot type kept",
-    "round-turn-two-half-hitches": "a round turn and two half hitches on a post, held by end "
-    "loads or pulled: verdict, creep speed, knot type kept",
-    "cow-hitch": "a cow (girth) hitch on a post, one leg loaded and the other free, loaded or "
-    "both loaded, or pulled: verdict, creep speed, knot type kept",
+    **{k.name: k.simulate_help for k in knots.records(family="hitch") if k.simulate_help},
     "bend": "two ropes joined by a reef, granny, thief or grief bend, set and pulled apart "
     "until it slips (Patil et al., Science 2020): verdict and slip load",
     "centreline": "your own knot from a CSV of centreline points (one or two rods), relaxed "
@@ -768,14 +764,12 @@ def _run_clove_hitch(kw, args, progress):
 
 def _run_hitch(scene, kw, args, progress):
     """Two half hitches, round turn and two half hitches, cow hitch (scenes.hitches)."""
-    import importlib
+    from knotmech.scenes.hitches import hitch_function
 
-    name = scene.replace("-", "_")
-    module = importlib.import_module(f"knotmech.scenes.{name}")
     kw = {**kw, "loading": args.loading}
     if "mu_rod_post" in kw:
         kw.setdefault("mu_rod_rod", kw["mu_rod_post"])
-    res = getattr(module, name)(progress=progress, **kw)
+    res = hitch_function(scene)(progress=progress, **kw)
     kept = (
         "kept"
         if res.topology_preserved

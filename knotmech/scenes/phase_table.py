@@ -243,36 +243,30 @@ def point_geometry(
     return {"post_diameter": D, "rod_length": L, "n_nodes": n}
 
 
-#: knot -> name of its DER scene function in :mod:`knotmech.scenes` (keywords of
-#: :func:`~knotmech.scenes.clove_hitch.clove_hitch`); a new hitch is one entry here
-HOLD_SCENE_NAMES = {
-    "clove-hitch": "clove_hitch",
-    "two-half-hitches": "two_half_hitches",
-    "round-turn-two-half-hitches": "round_turn_two_half_hitches",
-    "cow-hitch": "cow_hitch",
-}
+def _hold_scene_names() -> dict:
+    from knotmech.scenes.hitches import HITCHES
+
+    return {name: ident for ident, name in HITCHES.items()}
+
+
+#: knot -> name of its DER scene function (keywords of
+#: :func:`~knotmech.scenes.clove_hitch.clove_hitch`): the registry's hitches with a scene
+#: (:mod:`knotmech.knots`)
+HOLD_SCENE_NAMES = _hold_scene_names()
 
 
 def hold_scene(knot: str):
     """The DER scene function of ``knot`` (one of :data:`HOLD_SCENE_NAMES`)."""
-    import importlib
-
-    name = HOLD_SCENE_NAMES.get(knot)
-    if name is None:
+    if knot not in HOLD_SCENE_NAMES:
         raise InputError(f"no DER hold scene for {knot!r}; known: {', '.join(HOLD_SCENE_NAMES)}")
-    try:
-        module = importlib.import_module(f"knotmech.scenes.{name}")
-    except ImportError:
-        raise InputError(f"the DER scene of {knot} (knotmech.scenes.{name}) is not here") from None
-    return getattr(module, name)
+    from knotmech.scenes.hitches import hitch_function
+
+    return hitch_function(knot)
 
 
 def has_hold_scene(knot: str) -> bool:
-    """Whether the DER scene of ``knot`` is importable (without importing it)."""
-    from importlib.util import find_spec
-
-    name = HOLD_SCENE_NAMES.get(knot)
-    return name is not None and find_spec(f"knotmech.scenes.{name}") is not None
+    """Whether ``knot`` has a DER scene (its registry record; nothing is imported)."""
+    return knot in HOLD_SCENE_NAMES
 
 
 def simulate_point(

@@ -294,12 +294,7 @@ _SCENE_FUNCS = {
     "pinch": ("knotmech.scenes.pinch", "pinch"),
     "overhand": ("knotmech.scenes.overhand", "overhand"),
     "clove-hitch": ("knotmech.scenes.clove_hitch", "clove_hitch"),
-    "two-half-hitches": ("knotmech.scenes.two_half_hitches", "two_half_hitches"),
-    "round-turn-two-half-hitches": (
-        "knotmech.scenes.round_turn_two_half_hitches",
-        "round_turn_two_half_hitches",
-    ),
-    "cow-hitch": ("knotmech.scenes.cow_hitch", "cow_hitch"),
+    **{name: ("knotmech.scenes.hitches", "hitch_function") for name in sim.HITCH_SCENES},
     "bend": ("knotmech.scenes.bends", "bend"),
     "centreline": ("knotmech.scenes.centreline", "centreline"),
 }
@@ -321,7 +316,10 @@ def test_fuzz_option_values_exit_2_with_one_line(data, monkeypatch, capsys):
         seen.update(kwargs)
         raise InputError("stub reached")
 
-    monkeypatch.setattr(module, func_name, stub)
+    if func_name == "hitch_function":  # a hitch scene made from its record
+        monkeypatch.setattr(module, func_name, lambda knot: stub)
+    else:
+        monkeypatch.setattr(module, func_name, stub)
     opts = sim.SCENE_OPTIONS[scene]
     argv = ["simulate", scene, "--no-progress"]
     if scene == "centreline":  # the file is read by the (stubbed) scene

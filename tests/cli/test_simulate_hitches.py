@@ -34,17 +34,21 @@ def _err(capsys):
 @pytest.fixture
 def stub(monkeypatch):
     """Replace each hitch scene function by a stub recording its keyword arguments."""
-    import importlib
+    from knotmech import knots
+    from knotmech.scenes import hitches
 
     seen = {}
-    for name in SCENES.values():
-        module = importlib.import_module(f"knotmech.scenes.{name}")
 
-        def fake(*args, _name=name, **kwargs):
-            seen["scene"], seen["kwargs"] = _name, kwargs
+    def scene_of(knot):
+        name = knots.get(knot).identifier
+
+        def fake(*args, **kwargs):
+            seen["scene"], seen["kwargs"] = name, kwargs
             raise InputError("stub reached")
 
-        monkeypatch.setattr(module, name, fake)
+        return fake
+
+    monkeypatch.setattr(hitches, "hitch_function", scene_of)
     return seen
 
 
@@ -85,9 +89,9 @@ def test_bad_options_one_line_exit_2(argv, message, stub, capsys):
 
 @pytest.mark.parametrize("scene", list(SCENES))
 def test_defaults_shown_are_the_scene_functions_defaults(scene):
-    import importlib
+    from knotmech.scenes.hitches import hitch_function
 
-    func = getattr(importlib.import_module(f"knotmech.scenes.{SCENES[scene]}"), SCENES[scene])
+    func = hitch_function(scene)
     params = inspect.signature(func).parameters
     checked = 0
     for o in sim.SCENE_OPTIONS[scene]:
