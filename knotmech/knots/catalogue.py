@@ -135,6 +135,55 @@ CATALOGUE = (
         hold_table=True,
         sources=(BAYMAN, "this work: DER hold table (knotmech.scenes.phase_table)"),
     ),
+    Knot(
+        name="cow-hitch",
+        family="hitch",
+        aliases=("cow", "girth-hitch", "girth", "larks-head", "larks-head-knot", "larks-foot"),
+        summary="two turns on the post in opposite senses (girth hitch, lark's head)",
+        wraps=Wraps(
+            post_wrap_in=TWO_PI,
+            post_wrap_out=TWO_PI,
+            post_nips=True,
+            thick_nip=False,
+            description="two turns on the post in opposite senses (girth hitch, "
+            "lark's head), the bight between them lying over both legs; load on one "
+            "leg, T_low on the other",
+        ),
+        curve="knotmech.scenes.hitch_curves.cow_hitch:cow_hitch_curve",
+        pull_angle=TWO_PI,
+        scene_defaults=_MADE_HITCH,
+        scene_doc=r"""Tie a cow hitch on a post and load it.
+
+    Same keywords as :func:`knotmech.scenes.clove_hitch.clove_hitch` (see
+    :func:`knotmech.scenes._hitch.run_hitch` for each), with these defaults: ``loading``
+    ``"free"`` (T_high on leg 0, leg 1 free), ``rod_length`` None (the knotted part and a
+    64 mm leg at each end: 0.436 m at d = 4 mm, D = 30 mm), ``n_nodes`` None (edges of about
+    3.1 mm), ``creep_limit`` 1e-3 d/s (see
+    :func:`~knotmech.scenes.two_half_hitches.two_half_hitches`).
+
+    Returns
+    -------
+    HitchResult
+        ``knot = "cow_hitch"``; ``verdict``, ``creep_speed`` [m/s] (``creep_speed_d``
+        [d/s]), ``tension`` T(s), ``topology_preserved`` (distances, winding and the
+        invariants ``(1,), 0`` kept), ``post_wraps()``.
+    """,
+        simulate_help="a cow (girth) hitch on a post, one leg loaded and the other free, "
+        "loaded or both loaded, or pulled: verdict, creep speed, knot type kept",
+        hold_table=True,
+        loading="cow hitch loaded on one leg (T_high on leg 0), the other leg free (T_low = "
+        "0): the one-ended loading, not the girth hitch of a sling whose two legs share the "
+        "load",
+        free_end_note="ideal-rope theory: with one leg free (T_low = 0) the cow hitch slips "
+        "at any load, whatever d and D (a capstan of finite wrap); in practice it is used "
+        "with both legs sharing the load (E. C. Fry, Knots and Ropework: useful 'provided "
+        "that both standing parts share the load')",
+        sources=(
+            BAYMAN,
+            "E. C. Fry, Knots and Ropework",
+            "this work: DER hold table (knotmech.scenes.phase_table)",
+        ),
+    ),
     *(
         Knot(
             name=kind,
