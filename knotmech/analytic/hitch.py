@@ -64,7 +64,7 @@ from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
-from knotmech import knots
+from knotmech import _json, knots
 from knotmech.analytic.capstan import mu_eff
 from knotmech.errors import InputError, check_nonnegative, check_positive
 
@@ -416,7 +416,17 @@ class ModelAnswer:
     notes: tuple[str, ...] = ()
 
     def to_dict(self) -> dict:
-        return {k: _jsonable(v) for k, v in asdict(self).items()}
+        """Strict JSON-ready dict (:mod:`knotmech._json`): a non-finite number is null, and
+        ``margin_unbounded``, ``capacity_unbounded`` (+inf: self-locking) and
+        ``critical_mu_none`` (inf: no friction coefficient suffices) say which."""
+        return _json.jsonable(
+            {
+                **asdict(self),
+                "margin_unbounded": bool(math.isinf(self.margin) and self.margin > 0),
+                "capacity_unbounded": bool(math.isinf(self.capacity) and self.capacity > 0),
+                "critical_mu_none": bool(math.isinf(self.critical_mu)),
+            }
+        )
 
 
 @dataclass(frozen=True)
@@ -456,28 +466,20 @@ class HoldVerdict:
         return replace(self, answers=old + (replace(answer, decides=decides),))
 
     def to_dict(self) -> dict:
-        return {
-            "knot": self.knot,
-            "holds": bool(self.holds),
-            "margin": _jsonable(self.margin),
-            "decided_by": self.decided_by,
-            "inputs": {k: _jsonable(v) for k, v in self.inputs.items()},
-            "answers": [a.to_dict() for a in self.answers],
-            "notes": list(self.notes),
-        }
-
-
-def _jsonable(v):
-    if isinstance(v, (bool, np.bool_)):
-        return bool(v)
-    if isinstance(v, (float, np.floating)):
-        v = float(v)
-        if math.isinf(v):
-            return "inf" if v > 0 else "-inf"
-        return v
-    if isinstance(v, tuple):
-        return list(v)
-    return v
+        """Strict JSON-ready dict (a non-finite number is null; ``margin_unbounded`` when
+        the margin is +inf, self-locking)."""
+        return _json.jsonable(
+            {
+                "knot": self.knot,
+                "holds": bool(self.holds),
+                "margin": self.margin,
+                "margin_unbounded": bool(math.isinf(self.margin) and self.margin > 0),
+                "decided_by": self.decided_by,
+                "inputs": self.inputs,
+                "answers": [a.to_dict() for a in self.answers],
+                "notes": list(self.notes),
+            }
+        )
 
 
 def _exp(x: float) -> float:

@@ -169,7 +169,7 @@ _CLOVE = (
         "pull: 0.069N (the paper's 7 g)"),
     Opt("--mu", "mu_rod_post", "dimensionless", "rod-post (static) friction coefficient",
         "0.3"),
-    Opt("--mu-rr", "mu_rod_rod", "dimensionless", "rod-rod friction coefficient", "--mu"),
+    Opt("--mu-rr", "mu_rod_rod", "dimensionless", "rod-rod friction coefficient", "0.3"),
     Opt("--mu-kinetic", "mu_kinetic", "dimensionless", "kinetic rod-post coefficient", "--mu"),
     Opt("--rod-diameter", "rod_diameter", "length", "rod diameter d", "4mm"),
     Opt("--post-diameter", "post_diameter", "length", "post diameter D", "30mm"),
@@ -734,9 +734,7 @@ def _run_overhand(kw, args, progress):
 def _run_clove_hitch(kw, args, progress):
     from knotmech.scenes.clove_hitch import clove_hitch
 
-    kw = {**kw, "loading": args.loading}
-    if "mu_rod_post" in kw:
-        kw.setdefault("mu_rod_rod", kw["mu_rod_post"])
+    kw = {**kw, "loading": args.loading}  # options not given: the scene's own defaults
     res = clove_hitch(progress=progress, **kw)
     if args.loading == "pull":
         print(
@@ -766,9 +764,7 @@ def _run_hitch(scene, kw, args, progress):
     """Two half hitches, round turn and two half hitches, cow hitch (scenes.hitches)."""
     from knotmech.scenes.hitches import hitch_function
 
-    kw = {**kw, "loading": args.loading}
-    if "mu_rod_post" in kw:
-        kw.setdefault("mu_rod_rod", kw["mu_rod_post"])
+    kw = {**kw, "loading": args.loading}  # options not given: the scene's own defaults
     res = hitch_function(scene)(progress=progress, **kw)
     kept = (
         "kept"

@@ -188,7 +188,7 @@ def test_shipped_table_answers_the_papers_example(capsys):
 
 def test_simulate_wiring(monkeypatch, capsys):
     """--simulate calls simulate_point with the user's geometry (stubbed: no DER here)."""
-    from knotmech.scenes import phase_table
+    from knotmech.verdict import build as phase_table
 
     seen = {}
 
@@ -270,7 +270,7 @@ def test_simulate_plot_draws_the_knot_coloured_by_tension(monkeypatch, tmp_path,
 
     import numpy as np
 
-    from knotmech.scenes import phase_table
+    from knotmech.verdict import build as phase_table
 
     s = np.linspace(0, 4 * np.pi, 40)
     helix = np.c_[0.02 * np.cos(s), 0.02 * np.sin(s), 0.002 * s]
@@ -301,7 +301,7 @@ def test_plot_without_a_der_answer_fails_in_one_line(capsys, tmp_path):
 def test_simulated_slip_reports_no_creep(monkeypatch, capsys):
     """A run that slipped before the hold's measuring window has no creep (NaN): the
     verdict says so and the JSON has ``creep: null``, not a NaN."""
-    from knotmech.scenes import phase_table
+    from knotmech.verdict import build as phase_table
 
     def fake(**kw):
         return {"holds": False, "verdict": "slip", "creep": float("nan"),

@@ -131,6 +131,18 @@ def _hold_answer(a) -> dict:
     }
 
 
+def _phase_answer(a) -> dict:
+    """A smooth-law table's answer (its fields; non-finite numbers as in :func:`_canon`)."""
+    return {
+        "holds": a.holds,
+        "inside_table": a.inside,
+        "critical_t_over_EA": a.critical,
+        "bracket_t_over_EA": [float(v) for v in a.bracket],
+        "message": a.message,
+        "mu_tables": list(a.mu_tables),
+    }
+
+
 def _lookup_records() -> dict:
     from knotmech.scenes import phase_table as pt
 
@@ -156,11 +168,13 @@ def _lookup_records() -> dict:
         for y in (0.01, 0.03, 0.15, 0.3, 0.6):
             for mu, mu_rr in ((0.1, None), (0.3, None), (0.33, None), (0.45, 0.2), (0.7, None)):
                 a = imc.lookup(x, y, mu=mu, mu_rr=mu_rr)
-                rows.append([x, y, mu, mu_rr, a.to_dict(), list(a.bracket), a.critical])
+                rows.append([x, y, mu, mu_rr, _phase_answer(a), list(a.bracket), a.critical])
     out["imc-set"] = rows
     single = pt.load_table()
     out["imc-0.3"] = [
-        [x, y, single.lookup(x, y).to_dict()] for x in (0.05, 0.1176, 0.25) for y in (0.02, 0.2)
+        [x, y, _phase_answer(single.lookup(x, y))]
+        for x in (0.05, 0.1176, 0.25)
+        for y in (0.02, 0.2)
     ]
     return out
 
