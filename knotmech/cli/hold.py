@@ -313,21 +313,24 @@ def format_verdict(verdict, *, verbose: bool = False) -> str:
     if verdict.next_step and verdict.holds is not None:
         lines.append(verdict.next_step)
     if not verbose:
-        others = ", ".join(
-            f"{a.model} {'holds' if a.holds else 'slips'}"
-            + ("" if a.inside_validity else " (outside its validity)")
-            for a in verdict.answers
-            if not a.decides
-        )
-        if others:
-            lines.append(f"other models: {others} (--verbose for details)")
-        return "\n".join(lines)
+        return "\n".join(lines + _others_line(verdict))
     lines.append(_inputs_line(verdict))
     for a in verdict.answers:
         lines += _answer_lines(a)
     lines += _der_lines(verdict.der)
     lines += [f"note: {s}" for s in verdict.notes]
     return "\n".join(lines)
+
+
+def _others_line(verdict) -> list:
+    """The models that did not decide, in one line (none: no line)."""
+    others = ", ".join(
+        f"{a.model} {'holds' if a.holds else 'slips'}"
+        + ("" if a.inside_validity else " (outside its validity)")
+        for a in verdict.answers
+        if not a.decides
+    )
+    return [f"other models: {others} (--verbose for details)"] if others else []
 
 
 def _inputs_line(verdict) -> str:

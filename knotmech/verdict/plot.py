@@ -52,8 +52,6 @@ def plot_verdict(verdict: Verdict, path, *, phase_table=None) -> Path:
 
     matplotlib.use("Agg", force=False)
     import matplotlib.pyplot as plt
-    import matplotlib.ticker
-    import numpy as np
 
     from knotmech.verdict.criterion import CREEP_LIMIT
     from knotmech.verdict.der import load_user_table, shipped_hold_table
@@ -68,32 +66,41 @@ def plot_verdict(verdict: Verdict, path, *, phase_table=None) -> Path:
         used = [tables.table(m) for m in der["mu_tables"]]
     fig, axes = plt.subplots(1, len(used), figsize=(5.2 * len(used), 4.2), squeeze=False)
     for ax, t in zip(axes[0], used, strict=True):
-        held = [(q.d_over_2R, q.t_over_EA) for q in t.points if q.holds]
-        slip = [(q.d_over_2R, q.t_over_EA) for q in t.points if not q.holds]
-        if held:
-            ax.scatter(*zip(*held, strict=True), marker="o", color="tab:green", label="held")
-        if slip:
-            ax.scatter(*zip(*slip, strict=True), marker="x", color="tab:red", label="slipped")
-        xs, lo, hi, _ = t.boundary()
-        ok = np.isfinite(hi)
-        if ok.any():
-            ax.plot(xs[ok], 0.5 * (lo[ok] + hi[ok]), "k--", lw=1, label="upper boundary")
-        ax.scatter([der["d_over_2R"]], [der["t_over_EA"]], marker="*", s=220,
-                   color="tab:blue", zorder=5, label=f"query: {verdict.state}")  # fmt: skip
-        ax.set_xscale("log")
-        ax.set_yscale("log")
-        cols = sorted({q.d_over_2R for q in t.points})  # ticks at the table's columns
-        ax.xaxis.set_major_locator(matplotlib.ticker.FixedLocator(cols))
-        ax.xaxis.set_major_formatter(matplotlib.ticker.FixedFormatter([f"{c:.3g}" for c in cols]))
-        ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
-        ax.set_xlabel("d/2R")
-        ax.set_ylabel("T_high/EA")
-        ax.set_title(f"{verdict.knot}, free end, mu = mu_rr = {t.mu:g}", fontsize=10)
-        ax.legend(loc="best", fontsize=8, framealpha=0.6)
+        _draw_slice(ax, t, der, verdict)
     fig.tight_layout()
     fig.savefig(p)
     plt.close(fig)
     return p
+
+
+def _draw_slice(ax, t, der: dict, verdict: Verdict) -> None:
+    """One friction's (d/2R, T_high/EA) slice: points held and slipped, the interpolated
+    upper boundary and the query."""
+    import matplotlib.ticker
+    import numpy as np
+
+    held = [(q.d_over_2R, q.t_over_EA) for q in t.points if q.holds]
+    slip = [(q.d_over_2R, q.t_over_EA) for q in t.points if not q.holds]
+    if held:
+        ax.scatter(*zip(*held, strict=True), marker="o", color="tab:green", label="held")
+    if slip:
+        ax.scatter(*zip(*slip, strict=True), marker="x", color="tab:red", label="slipped")
+    xs, lo, hi, _ = t.boundary()
+    ok = np.isfinite(hi)
+    if ok.any():
+        ax.plot(xs[ok], 0.5 * (lo[ok] + hi[ok]), "k--", lw=1, label="upper boundary")
+    ax.scatter([der["d_over_2R"]], [der["t_over_EA"]], marker="*", s=220,
+               color="tab:blue", zorder=5, label=f"query: {verdict.state}")  # fmt: skip
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    cols = sorted({q.d_over_2R for q in t.points})  # ticks at the table's columns
+    ax.xaxis.set_major_locator(matplotlib.ticker.FixedLocator(cols))
+    ax.xaxis.set_major_formatter(matplotlib.ticker.FixedFormatter([f"{c:.3g}" for c in cols]))
+    ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+    ax.set_xlabel("d/2R")
+    ax.set_ylabel("T_high/EA")
+    ax.set_title(f"{verdict.knot}, free end, mu = mu_rr = {t.mu:g}", fontsize=10)
+    ax.legend(loc="best", fontsize=8, framealpha=0.6)
 
 
 def _plot_knot(verdict: Verdict, p: Path) -> Path:
