@@ -161,9 +161,11 @@ def simulate_point(
         friction, criterion, creep_limit [d/s], verdict ("hold"/"slip"), holds (bool),
         reason, creep [m] (end 0 over the last half of the hold), creep_speed [d/s]
         (:func:`creep_speed` over the last :data:`CREEP_WINDOW`; NaN when the run stopped
-        early), ran_to_end, status, message, topology_preserved, wall_s, cpu_s``. A run
-        whose solver failed has ``holds = None``. With ``keep_result``, also ``result``:
-        the scene's :class:`~knotmech.scenes.clove_hitch.CloveHitchResult`.
+        early), ran_to_end, stopped_in ("" when it ran to the end, else the phase it stopped
+        in: "settle", "load" or "hold"), stopped_at_protocol_s, status, message,
+        topology_preserved, wall_s, cpu_s``. A run whose solver failed has ``holds = None``.
+        With ``keep_result``, also ``result``: the scene's
+        :class:`~knotmech.scenes.clove_hitch.CloveHitchResult`.
     """
     import time
 
@@ -176,19 +178,10 @@ def simulate_point(
     kappa = check_bending_scale(bending_scale)
     if friction not in ("anchor", "imc"):
         raise InputError(f"friction must be 'anchor' or 'imc', got {friction!r}")
-    if time_scale is None:
-        ts = protocol_time_scale(rod_diameter=d, youngs_modulus=E, density=density,
-                                 bending_scale=kappa)  # fmt: skip
-    else:
-        ts = float(check_positive("time_scale", time_scale))
+    ts = _time_scale(time_scale, d=d, E=E, density=density, kappa=kappa)
     scene = hold_scene(knot)
     geo = point_geometry(d_over_2R, rod_diameter=d)
-    if knot == "clove-hitch":
-        nn = geo["n_nodes"] if n_nodes is None else int(n_nodes)
-        length = geo["rod_length"]
-    else:  # the knot's curve picks its length and (n_nodes None) its edges
-        nn = None if n_nodes is None else int(n_nodes)
-        length = None
+    nn, length = _nodes_and_length(knot, geo, n_nodes)
     proto, run_proto, window = _point_protocol(friction, hold_time, ts, knot)
     t_high = tea * E * np.pi * d * d / 4
     c0 = time.process_time()
@@ -212,6 +205,7 @@ def simulate_point(
     t_end = sum(run_proto[k] for k in ("settle_time", "load_time", "hold_time"))
     times = np.asarray(r.times, dtype=float)
     ran = bool(times.size and times[-1] >= t_end - 1e-9 * ts)
+    stopped_in, stopped_at = _stop(times, run_proto, ts, ran=ran)
     speed, window = _point_speed(r, knot, ran=ran, d=d, window=window)
     holds, reason, criterion = _point_judgement(r, friction, speed * ts, ran=ran, limit=lim)
     out = {
@@ -238,6 +232,8 @@ def simulate_point(
         "creep_speed": speed,
         "creep_speed_protocol": speed * ts,
         "ran_to_end": ran,
+        "stopped_in": stopped_in,
+        "stopped_at_protocol_s": stopped_at,
         "status": r.status,
         "message": r.message,
         "topology_preserved": bool(r.topology_preserved),
@@ -259,6 +255,36 @@ def simulate_point(
         again["cpu_s"] += out["cpu_s"]
         return again
     return out
+
+
+def _stop(times, run_proto: dict, ts: float, *, ran: bool):
+    """(the phase a run that stopped early stopped in: ``"settle"`` (before any load),
+    ``"load"`` (the ramp) or ``"hold"``; ``""`` when it ran to the end, and its last time
+    [protocol s])."""
+    t = float(times[-1]) if times.size else 0.0
+    if ran:
+        return "", t / ts
+    if t < run_proto["settle_time"] - 1e-9 * ts:
+        return "settle", t / ts
+    if t < run_proto["settle_time"] + run_proto["load_time"] - 1e-9 * ts:
+        return "load", t / ts
+    return "hold", t / ts
+
+
+def _time_scale(time_scale, *, d, E, density, kappa) -> float:
+    """The given ``time_scale`` (> 0), or the rod's :func:`protocol_time_scale`."""
+    if time_scale is None:
+        return protocol_time_scale(rod_diameter=d, youngs_modulus=E, density=density,
+                                   bending_scale=kappa)  # fmt: skip
+    return float(check_positive("time_scale", time_scale))
+
+
+def _nodes_and_length(knot: str, geo: dict, n_nodes):
+    """(node count, rod length [m]) of a point: the clove hitch's from
+    :func:`point_geometry`; another knot's curve picks its length and (None) its edges."""
+    if knot == "clove-hitch":
+        return (geo["n_nodes"] if n_nodes is None else int(n_nodes)), geo["rod_length"]
+    return (None if n_nodes is None else int(n_nodes)), None
 
 
 def _point_protocol(friction: str, hold_time, ts: float, knot: str):

@@ -385,6 +385,15 @@ def _from_simulation(q: _Query, progress) -> _Found:
     if p["holds"] is None:
         q.out["message"] = f"the DER simulation failed: {p['message']}"
         return _Found(shape=shape)
+    if p.get("stopped_in") == "settle":  # no load was on: no verdict (issue 27)
+        q.out["failed"] = "settle"
+        q.out["message"] = (
+            "the DER simulation failed: the run stopped while the knot settled, at "
+            f"{p.get('stopped_at_protocol_s', 0.0):.3g} protocol s of "
+            f"{PROTOCOL['settle_time']:g}, before any load was on: no verdict "
+            f"({p.get('message') or p.get('reason', '')})"
+        )
+        return _Found(shape=shape)
     ts = float(p.get("time_scale", 1.0))
     speed = float(p.get("creep_speed_protocol", ts * p.get("creep_speed", math.nan)))
     ran = bool(p.get("ran_to_end", math.isfinite(speed)))

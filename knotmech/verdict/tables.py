@@ -101,6 +101,18 @@ class PhaseAnswer:
         )
 
 
+def _grid_answer(votes: set, where: str, pts: str):
+    """(holds, message) from the votes of the grid points around a query."""
+    if votes == {True}:
+        return True, f"holds in the DER table at {where} (grid points: {pts})"
+    if votes == {False}:
+        return False, f"slips in the DER table at {where} (grid points: {pts})"
+    return None, (
+        f"{where} lies near a hold/slip boundary of the DER table (grid points: "
+        f"{pts}): undecided, use --simulate"
+    )
+
+
 @dataclass
 class PhaseTable:
     """Hold/slip points of the DER clove hitch with a free end, on a (d/2R, T/EA) grid."""
@@ -232,17 +244,7 @@ class PhaseTable:
             f"({p.d_over_2R:.3g}, {p.t_over_EA:.3g}) {'held' if p.holds else 'slipped'}"
             for p in corners
         )
-        where = f"d/2R = {x:.4g}, T_high/EA = {y:.4g}"
-        if votes == {True}:
-            holds, msg = True, f"holds in the DER table at {where} (grid points: {pts})"
-        elif votes == {False}:
-            holds, msg = False, f"slips in the DER table at {where} (grid points: {pts})"
-        else:
-            holds = None
-            msg = (
-                f"{where} lies near a hold/slip boundary of the DER table (grid points: "
-                f"{pts}): undecided, use --simulate"
-            )
+        holds, msg = _grid_answer(votes, f"d/2R = {x:.4g}, T_high/EA = {y:.4g}", pts)
         return PhaseAnswer(holds, True, crit, (lo_i, hi_i), msg, (self.mu,))
 
     def to_dict(self) -> dict:
@@ -352,10 +354,7 @@ class PhaseTableSet:
             raise InputError(f"mu and mu_rr must be finite, >= 0; got {m}, {mr}")
         lo_m, hi_m = min(m, mr), max(m, mr)
         which = f"mu = {m:g}" + ("" if mr == m else f", mu_rr = {mr:g}")
-        below = max((t for t in self.tables if t.mu <= lo_m + MU_TOL), key=lambda t: t.mu,
-                    default=None)  # fmt: skip
-        above = min((t for t in self.tables if t.mu >= hi_m - MU_TOL), key=lambda t: t.mu,
-                    default=None)  # fmt: skip
+        below, above = self._bracketing(lo_m, hi_m)
         if below is None and above is None:
             return PhaseAnswer(
                 None,
@@ -368,18 +367,17 @@ class PhaseTableSet:
         if below is None or above is None:
             return self._one_side(below, above, which, d_over_2R, t_over_EA)
         if below is above:
-            a = below.lookup(d_over_2R, t_over_EA)
-            if not a.inside:
-                return a
-            return PhaseAnswer(
-                a.holds,
-                True,
-                a.critical,
-                a.bracket,
-                f"{a.message}; table mu = mu_rr = {below.mu:g}",
-                (below.mu,),
-            )
+            return _on_table(below, d_over_2R, t_over_EA)
         return self._bracketed(below, above, which, 0.5 * (lo_m + hi_m), d_over_2R, t_over_EA)
+
+    def _bracketing(self, lo_m: float, hi_m: float):
+        """(the largest table at or below ``lo_m``, the smallest at or above ``hi_m``), None
+        where there is none (within :data:`MU_TOL`)."""
+        below = max((t for t in self.tables if t.mu <= lo_m + MU_TOL), key=lambda t: t.mu,
+                    default=None)  # fmt: skip
+        above = min((t for t in self.tables if t.mu >= hi_m - MU_TOL), key=lambda t: t.mu,
+                    default=None)  # fmt: skip
+        return below, above
 
     def _one_side(self, below, above, which, d_over_2R, t_over_EA) -> PhaseAnswer:
         """Friction beyond the tables on one side: a hold at less friction stays a hold at
@@ -438,6 +436,15 @@ class PhaseTableSet:
 
 
 _NAN2 = (float("nan"), float("nan"))
+
+
+def _on_table(table, d_over_2R, t_over_EA) -> PhaseAnswer:
+    """The friction is a table's: that table's answer, naming it."""
+    a = table.lookup(d_over_2R, t_over_EA)
+    if not a.inside:
+        return a
+    return PhaseAnswer(a.holds, True, a.critical, a.bracket,
+                       f"{a.message}; table mu = mu_rr = {table.mu:g}", (table.mu,))  # fmt: skip
 
 
 def _say(answer) -> str:
@@ -591,6 +598,13 @@ def _hold_query(d_over_2R, t_over_EA, mu, mu_rr, creep_limit):
     return x, y, m, mr, lim
 
 
+def _split_message(where: str, pts: str, votes: list) -> str:
+    """Why neighbours that do not agree (or a run that failed) leave a query undecided."""
+    if None in votes:
+        return f"{where}: a neighbouring DER run failed ({pts}): undecided"
+    return f"{where} lies between DER points that disagree ({pts}): undecided"
+
+
 def _beyond_grid(ax: dict, yw: str, mw: str, v: bool) -> list:
     """The monotonicity rules that apply beyond the grid (where the load is ``yw`` and the
     friction ``mw`` of their axes ``ax``), for neighbours that agree on ``v``: a list of
@@ -732,24 +746,23 @@ class HoldTable:
                    for i in xi for j in yi for k in mi]  # fmt: skip
         votes = [p.holds(lim) for p in corners]
         pts = "; ".join(p.describe(lim) for p in corners)
-        speeds = [p.creep_speed for p, v in zip(corners, votes, strict=True) if v]
-        cap, first_slip = self._capacity(xi, mi, y, lim)
-        common = dict(corners=tuple(corners),
-                      creep_speed=max(speeds, key=abs) if speeds else float("nan"),
-                      capacity_t_over_EA=cap, first_slip_t_over_EA=first_slip,
-                      mu_tables=mus_used)  # fmt: skip
+        common = self._common(corners, votes, xi, mi, y, lim, mus_used)
         inside = yw in ("on", "between") and mw in ("on", "between")
-        if None in votes:
-            return HoldAnswer(None, inside, "undecided",
-                              f"{where}: a neighbouring DER run failed ({pts}): undecided",
+        if None in votes or len(set(votes)) > 1:
+            return HoldAnswer(None, inside, "undecided", _split_message(where, pts, votes),
                               **common)  # fmt: skip
-        if len(set(votes)) > 1:
-            return HoldAnswer(
-                None, inside, "undecided",
-                f"{where} lies between DER points that disagree ({pts}): undecided", **common,
-            )  # fmt: skip
         return self._agreed(votes[0], where, pts, inside, _beyond_grid(ax, yw, mw, votes[0]),
                             common)  # fmt: skip
+
+    def _common(self, corners, votes, xi, mi, y, lim, mus_used) -> dict:
+        """What every answer from ``corners`` reports: the corners, the largest creep of
+        those that held, the capacity bracket and the friction tables used."""
+        speeds = [p.creep_speed for p, v in zip(corners, votes, strict=True) if v]
+        cap, first_slip = self._capacity(xi, mi, y, lim)
+        return dict(corners=tuple(corners),
+                    creep_speed=max(speeds, key=abs) if speeds else float("nan"),
+                    capacity_t_over_EA=cap, first_slip_t_over_EA=first_slip,
+                    mu_tables=mus_used)  # fmt: skip
 
     def _agreed(self, v: bool, where: str, pts: str, inside: bool, rules: list, common: dict):
         """The answer where every neighbouring point agrees on ``v``: decided unless a rule

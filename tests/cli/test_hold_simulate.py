@@ -316,3 +316,23 @@ def test_simulated_slip_reports_no_creep(monkeypatch, capsys):
     assert "ran off" in data["der"]["message"]
     assert main(_hold("4mm", "9.3333mm", "0.47N", "--simulate")) == 0
     assert "creep: the loaded end ran off" in capsys.readouterr().out
+
+
+def test_a_run_that_stopped_while_settling_gives_no_verdict(monkeypatch, capsys):
+    """Issue 27: a run that stopped before any load was on (in the settling) is a failed
+    run, not a slip: the DER does not answer and the verdict names the run's stop."""
+    from knotmech.verdict import build
+
+    def fake(**kw):
+        return {"holds": False, "verdict": "slip", "creep": float("nan"),
+                "creep_speed": float("nan"), "ran_to_end": False, "wall_s": 0.0,
+                "stopped_in": "settle", "stopped_at_protocol_s": 0.004,
+                "message": "the rod left the post", "reason": "the loaded end ran off"}  # fmt: skip
+
+    monkeypatch.setattr(build, "simulate_point", fake)
+    assert main(_hold("4mm", "9.3333mm", "0.47N", "--simulate", "--json", "-")) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["der"]["holds"] is None and data["der"]["failed"] == "settle"
+    assert "stopped while the knot settled, at 0.004 protocol s of 0.2" in data["der"]["message"]
+    assert all(a["model"] != "DER-simulation" for a in data["answers"])
+    assert data["decided_by"] != "DER-simulation"
