@@ -127,6 +127,33 @@ def _check_existing(p: Path, where: str) -> None:
         raise InputError(f"{where}: file is not writable")
 
 
+def check_distinct(outputs) -> None:
+    """Refuse two outputs to one file (the second would overwrite the first).
+
+    Parameters
+    ----------
+    outputs : iterable of (str, path or None)
+        (option as the user typed it, the path it names); None (not given) and ``-``
+        (standard output) are skipped.
+
+    Raises
+    ------
+    InputError
+        One line naming both options and the file.
+    """
+    seen = {}
+    for option, path in outputs:
+        if path is None or os.fspath(path) == "-":
+            continue
+        key = os.path.realpath(os.fspath(path))
+        if key in seen:
+            raise InputError(
+                f"{seen[key]} and {option} name the same file {os.fspath(path)}: give each "
+                "output its own file"
+            )
+        seen[key] = option
+
+
 @contextlib.contextmanager
 def writing(path, *, option: str = "--json"):
     """Context manager turning an OSError while writing ``path`` into one InputError line.

@@ -167,6 +167,9 @@ def run(args) -> int:
     json_path = _json_path(args.json)
     if args.plot is not None:
         _check_plot(args.plot, knot, inputs["free_end_load"])
+        from knotmech.cli._paths import check_distinct
+
+        check_distinct([("--json", json_path), ("--plot", args.plot)])
     try:
         verdict = hold(
             knot, **inputs, material=args.material, simulate=bool(args.simulate),
@@ -220,14 +223,15 @@ def _check_plot(path, knot: str, free: float) -> None:
 
 
 def _emit(args, verdict, json_path) -> None:
-    """Print the verdict (or only its JSON with ``--json -``), write --json and --plot."""
+    """Print the verdict (or only its JSON with ``--json -``), write --json and --plot
+    (also with ``--json -``: the plot is a file, stdout stays JSON only)."""
     from knotmech.verdict import plot_verdict
 
     text = verdict.to_json() if args.json else ""
-    if args.json == "-":  # JSON only on stdout, for pipes
+    if args.json == "-":  # JSON only on stdout, for pipes (a plot still goes to its file)
         print(text)
-        return
-    print(format_verdict(verdict, verbose=bool(args.verbose)))
+    else:
+        print(format_verdict(verdict, verbose=bool(args.verbose)))
     if json_path is not None:
         try:
             json_path.write_text(text + "\n")

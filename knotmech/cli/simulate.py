@@ -474,7 +474,7 @@ def _csv_path(base: Path, suffix: str) -> Path:
 
 
 def _check_outputs(scene: str, args) -> dict:
-    from knotmech.cli._paths import check_output_path, plot_formats
+    from knotmech.cli._paths import check_distinct, check_output_path, plot_formats
 
     paths = {
         "json": check_output_path(args.json, option="--json"),
@@ -488,6 +488,10 @@ def _check_outputs(scene: str, args) -> dict:
         base = check_output_path(args.csv, option="--csv")
         for suffix, what in _csv_tables(scene, args):
             paths["csv"].append((check_output_path(_csv_path(base, suffix), option="--csv"), what))
+    check_distinct(
+        [("--json", paths["json"]), ("--npz", paths["npz"]), ("--plot", paths["plot"])]
+        + [("--csv", p) for p, _ in paths["csv"]]
+    )
     return paths
 
 
