@@ -93,7 +93,7 @@ def main(argv=None) -> dict:
     # in-process: the verdict itself, once the modules are loaded
     t0 = time.perf_counter()
     import knotmech.cli.hold  # noqa: F401
-    import knotmech.hold as hold_module
+    import knotmech.verdict as hold_module
 
     out["import_s"] = round(time.perf_counter() - t0, 4)
     kw = dict(rod_diameter=4e-3, post_diameter=30e-3, mu=0.3, load=1.47, material="vps32")
@@ -123,7 +123,9 @@ def main(argv=None) -> dict:
             "n_nodes": 120,
             "message": der.get("message"),
         }
-    print(json.dumps(out, indent=2))
+    from knotmech import _json
+
+    print(_json.dumps(out, indent=2))
     return out
 
 

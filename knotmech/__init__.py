@@ -7,8 +7,8 @@ subpackages: :mod:`knotmech.analytic` (closed forms, importable alone),
 :mod:`knotmech.diagnose` (the mismatch engine), :mod:`knotmech.sweep` (parallel,
 cached parameter sweeps) and :mod:`knotmech.plotting`.
 
-``knotmech.hold(knot, ...)`` is the hold verdict (:mod:`knotmech.hold`, loaded on first
-use; the module is callable). Only the closed forms are imported eagerly;
+``knotmech.hold(knot, ...)`` is the hold verdict (:func:`knotmech.verdict.hold`, loaded on
+first use); :mod:`knotmech.knots` is the knot registry. Only the closed forms are imported eagerly;
 ``knotmech.rod``, ``knotmech.scenes`` and ``knotmech.diagnose`` load on first attribute
 access (numba compilation and SciPy imports cost seconds that a classroom using
 ``mu_eff`` should not pay).
@@ -32,7 +32,8 @@ _LAZY_SUBPACKAGES = (
     "plotting",
     "units",
     "materials",
-    "hold",  # callable: knotmech.hold(knot, ...) is knotmech.hold.hold
+    "knots",
+    "verdict",
 )
 _LAZY_NAMES = {
     # name: (module, attribute)
@@ -41,8 +42,9 @@ _LAZY_NAMES = {
     "read_recording": ("knotmech.diagnose", "read_recording"),
     "sweep_parameters": ("knotmech.sweep", "sweep"),
     "parse_quantity": ("knotmech.units", "parse_quantity"),
-    "Verdict": ("knotmech.hold", "Verdict"),
-    "hold_verdict": ("knotmech.hold", "hold_verdict"),
+    "hold": ("knotmech.verdict", "hold"),
+    "Verdict": ("knotmech.verdict", "Verdict"),
+    "hold_verdict": ("knotmech.verdict", "hold_verdict"),
     "material": ("knotmech.materials", "material"),
 }
 

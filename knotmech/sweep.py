@@ -358,6 +358,52 @@ def _iter_dask(func, todo, scheduler):
             client.close()
 
 
+def _check_sweep_args(func, on_error, processes) -> None:
+    """One-line InputErrors for a non-callable ``func``, a bad ``on_error`` or ``processes``."""
+    if not callable(func):
+        raise InputError(f"func must be callable, got {type(func).__name__}")
+    if on_error not in ("raise", "return"):
+        raise InputError(f"on_error must be 'raise' or 'return', got {on_error!r}")
+    if processes is not None and (
+        isinstance(processes, bool) or not isinstance(processes, int | np.integer) or processes < 1
+    ):
+        raise InputError(f"processes must be an integer >= 1, got {processes!r}")
+
+
+def _from_cache(func, params_list, cache, version):
+    """(results with the cached ones filled in, cache keys, tasks to run as (index, params),
+    number cached)."""
+    n = len(params_list)
+    results: list = [None] * n
+    keys: list = [None] * n
+    todo = []
+    n_cached = 0
+    for i, params in enumerate(params_list):
+        if cache is not None:
+            keys[i] = param_hash(func, params, version)
+            hit, value = cache.get(keys[i])
+            if hit:
+                results[i] = value
+                n_cached += 1
+                continue
+        else:
+            _canonical(params)  # same input check with or without a cache
+        todo.append((i, params))
+    return results, keys, todo, n_cached
+
+
+def _outcomes(func, todo, scheduler, processes):
+    """(index, (ok, value, traceback)) as the tasks finish: on a dask ``scheduler``, local
+    worker processes, or in this process (one worker or one task)."""
+    if scheduler is not None:
+        return _iter_dask(func, todo, scheduler)
+    n_workers = int(processes) if processes is not None else (os.cpu_count() or 1)
+    n_workers = min(n_workers, max(len(todo), 1))
+    if n_workers <= 1 or len(todo) <= 1:
+        return _iter_serial(func, todo)
+    return _iter_local(func, todo, n_workers)
+
+
 def sweep(
     func: Callable,
     param_grid_or_list,
@@ -417,49 +463,19 @@ def sweep(
     """
     from tqdm.auto import tqdm
 
-    if not callable(func):
-        raise InputError(f"func must be callable, got {type(func).__name__}")
-    if on_error not in ("raise", "return"):
-        raise InputError(f"on_error must be 'raise' or 'return', got {on_error!r}")
-    if processes is not None and (
-        isinstance(processes, bool) or not isinstance(processes, int | np.integer) or processes < 1
-    ):
-        raise InputError(f"processes must be an integer >= 1, got {processes!r}")
+    _check_sweep_args(func, on_error, processes)
     params_list = _as_param_list(param_grid_or_list)
     name = _func_name(func)
     cache = _Cache(cache_dir) if cache_dir is not None else None
 
     n = len(params_list)
-    results: list = [None] * n
-    keys: list = [None] * n
-    todo = []
-    n_cached = 0
-    for i, params in enumerate(params_list):
-        if cache is not None:
-            keys[i] = param_hash(func, params, version)
-            hit, value = cache.get(keys[i])
-            if hit:
-                results[i] = value
-                n_cached += 1
-                continue
-        else:
-            _canonical(params)  # same input check with or without a cache
-        todo.append((i, params))
+    results, keys, todo, n_cached = _from_cache(func, params_list, cache, version)
 
     failures: list[TaskFailure] = []
     label = desc or name.rsplit(".", 1)[-1]
     bar = tqdm(total=n, initial=n_cached, desc=label, disable=not progress)
     try:
-        if scheduler is not None:
-            outcomes = _iter_dask(func, todo, scheduler)
-        else:
-            n_workers = int(processes) if processes is not None else (os.cpu_count() or 1)
-            n_workers = min(n_workers, max(len(todo), 1))
-            if n_workers <= 1 or len(todo) <= 1:
-                outcomes = _iter_serial(func, todo)
-            else:
-                outcomes = _iter_local(func, todo, n_workers)
-        for i, (ok, value, tb) in outcomes:
+        for i, (ok, value, tb) in _outcomes(func, todo, scheduler, processes):
             if ok:
                 results[i] = value
                 if cache is not None:

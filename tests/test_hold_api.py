@@ -81,7 +81,7 @@ def test_rule_outside_validity_never_decides(knot, dD, mu, load, free, mat):
         assert len(deciding) == 1 and deciding[0].inside_validity
         assert deciding[0].model == v.decided_by and deciding[0].holds is v.holds
         # the first valid answer in the rule's order decides
-        order = [m for m in knotmech.hold.RULE if any(a.model == m for a in valid)]
+        order = [m for m in knotmech.verdict.RULE if any(a.model == m for a in valid)]
         assert v.decided_by == order[0]
 
 
@@ -107,9 +107,9 @@ def test_papers_case_api_equals_cli_and_the_deprecated_alias():
 
 
 def test_callable_module_and_verdict_fields():
-    import knotmech.hold as module
+    import knotmech.verdict as module
 
-    assert knotmech.hold is module and callable(module)
+    assert knotmech.hold is module.hold and callable(knotmech.hold)
     v = module.hold(
         "capstan", rod_diameter=4e-3, post_diameter=30e-3, mu=0.3, load=6.0,
         free_end_load=1.0, wrap_angle=2 * math.pi,
@@ -209,8 +209,8 @@ def test_a_table_built_at_the_ropes_bending_scale_answers(tmp_path):
     """A table whose meta says bending_scale 0.01 (here the shipped clove-hitch points
     relabelled, only to test the gate) answers for nylon (0.01) and is refused for a
     solid rod (1, a factor 100 apart)."""
-    from knotmech.hold import _shipped_hold_tables
     from knotmech.scenes.phase_table import HoldTable
+    from knotmech.verdict.der import shipped_hold_tables as _shipped_hold_tables
 
     d = _shipped_hold_tables()["clove-hitch"].to_dict()
     d["meta"] = {**d["meta"], "bending_scale": 0.01, "rod": NYLON_ROD}
@@ -235,8 +235,8 @@ def test_the_shipped_tables_answer_for_every_material_on_the_flexural_clock(tmp_
     creep limit and window converted to the rope's seconds. A table run in seconds on
     another rod (meta without protocol_clock) is refused beyond a factor 3 of its rod's
     time scale."""
-    from knotmech.hold import _shipped_hold_tables
     from knotmech.scenes.phase_table import CREEP_LIMIT, HoldTable
+    from knotmech.verdict.der import shipped_hold_tables as _shipped_hold_tables
 
     kw = dict(rod_diameter=6e-3, post_diameter=40e-3, mu=0.4, bending_scale=1.0)
     nyl = knotmech.hold("clove-hitch", material="nylon", load=200.0, **kw)
@@ -266,7 +266,7 @@ def test_the_shipped_tables_answer_for_every_material_on_the_flexural_clock(tmp_
 def test_a_table_with_a_bad_bending_scale_is_refused_in_one_line(tmp_path, bad):
     """A table's meta bending_scale that is not a number in (0, 1] is an input error naming
     the file (it was read as 1, a solid rod, before), from the API and the CLI (exit 2)."""
-    from knotmech.hold import _shipped_hold_tables
+    from knotmech.verdict.der import shipped_hold_tables as _shipped_hold_tables
 
     d = _shipped_hold_tables()["clove-hitch"].to_dict()
     d["meta"] = {**d["meta"], "bending_scale": bad}
@@ -299,9 +299,9 @@ def test_the_shipped_table_nearest_the_ropes_kappa_answers(monkeypatch):
     """With tables shipped at several bending scales, hold takes the one nearest the rope's
     kappa by ratio (nylon 0.01 -> the 0.01 table; kappa 0.2 -> the solid rod's, a factor 5
     from 1 but 20 from 0.01, which is then refused as beyond the factor 3)."""
-    import knotmech.hold as h
+    import knotmech.verdict.der as h
 
-    solid = h._shipped_hold_tables()["clove-hitch"]
+    solid = h.shipped_hold_tables()["clove-hitch"]
     d = solid.to_dict()
     d["meta"] = {**d["meta"], "bending_scale": 0.01, "rod": NYLON_ROD}
     from knotmech.scenes.phase_table import HoldTable
@@ -309,10 +309,10 @@ def test_the_shipped_table_nearest_the_ropes_kappa_answers(monkeypatch):
     rope = HoldTable.from_dict(d)
     monkeypatch.setattr(h, "_shipped_hold_table_sets",
                         lambda: {"clove-hitch": {1.0: solid, 0.01: rope}})  # fmt: skip
-    assert h._shipped_hold_table("clove-hitch", 0.01) is rope
-    assert h._shipped_hold_table("clove-hitch", 0.05) is rope
-    assert h._shipped_hold_table("clove-hitch", 0.2) is solid
-    assert h._shipped_hold_table("cow-hitch", 0.01) is None
+    assert h.shipped_hold_table("clove-hitch", 0.01) is rope
+    assert h.shipped_hold_table("clove-hitch", 0.05) is rope
+    assert h.shipped_hold_table("clove-hitch", 0.2) is solid
+    assert h.shipped_hold_table("cow-hitch", 0.01) is None
     kw = dict(rod_diameter=6e-3, post_diameter=40e-3, mu=0.4, load=200.0, material="nylon")
     v = knotmech.hold("clove-hitch", **kw)
     assert v.decided_by == "DER-table" and v.der["table_bending_scale"] == 0.01
@@ -324,7 +324,7 @@ def test_the_shipped_table_nearest_the_ropes_kappa_answers(monkeypatch):
 def test_simulate_passes_the_bending_scale_to_the_scene(monkeypatch):
     """--simulate runs the DER scene at the rope's kappa (simulate_point is replaced by a
     recorder: the run itself is tested in tests/cli/test_hold_simulate.py)."""
-    from knotmech.scenes import phase_table as pt
+    from knotmech.verdict import build
 
     seen = {}
 
@@ -332,7 +332,7 @@ def test_simulate_passes_the_bending_scale_to_the_scene(monkeypatch):
         seen.update(kw)
         return {"holds": None, "message": "recorded"}
 
-    monkeypatch.setattr(pt, "simulate_point", fake)
+    monkeypatch.setattr(build, "simulate_point", fake)
     v = knotmech.hold("two-half-hitches", rod_diameter=6e-3, post_diameter=40e-3, mu=0.4,
                       load=200.0, material="nylon", simulate=True)  # fmt: skip
     assert seen["bending_scale"] == 0.01 and seen["knot"] == "two-half-hitches"

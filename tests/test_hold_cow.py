@@ -14,8 +14,9 @@ import math
 import pytest
 
 import knotmech
+from knotmech import knots
 from knotmech.cli.main import main
-from knotmech.hold import COW_LOADING, knot_key
+from knotmech.verdict import knot_key
 
 
 @pytest.mark.parametrize(
@@ -97,7 +98,7 @@ def test_thick_rope_without_a_table_answer_is_undecided_with_the_command(capsys)
 def test_simulate_runs_the_cow_hitch_scene(monkeypatch, capsys):
     """--simulate calls simulate_point with knot="cow-hitch" (stubbed: no DER here); the
     answer says which loading the scene models."""
-    from knotmech.scenes import phase_table
+    from knotmech.verdict import build as phase_table
 
     seen = {}
 
@@ -116,7 +117,7 @@ def test_simulate_runs_the_cow_hitch_scene(monkeypatch, capsys):
     assert data["holds"] is False and data["decided_by"] == "DER-simulation"
     assert data["creep"]["window_s"] == 0.75 and "0.75 s" in data["der"]["criterion"]
     der_answer = next(a for a in data["answers"] if a["model"] == "DER-simulation")
-    assert COW_LOADING in der_answer["assumptions"]
+    assert knots.get("cow-hitch").loading in der_answer["assumptions"]
     # both legs loaded is not what the scene runs: one line, exit 2
     assert main(args + ["--free-end-load", "0.3N"]) == 2
     err = capsys.readouterr().err.strip()

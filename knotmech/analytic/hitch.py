@@ -64,6 +64,7 @@ from dataclasses import asdict, dataclass, field
 
 import numpy as np
 
+from knotmech import _json, knots
 from knotmech.analytic.capstan import mu_eff
 from knotmech.errors import InputError, check_nonnegative, check_positive
 
@@ -71,7 +72,6 @@ __all__ = [
     "KNOTS",
     "HitchGeometry",
     "FREE_END_STATEMENT",
-    "COW_FREE_LEG_STATEMENT",
     "nip_factor",
     "ideal_hitch_ratio",
     "thick_hitch_ratio",
@@ -86,10 +86,7 @@ __all__ = [
 
 TWO_PI = 2.0 * math.pi
 
-FREE_END_STATEMENT = (
-    "ideal-rope theory (Bayman 1977; Maddocks & Keller 1987): with a free end "
-    "(T_low = 0) the clove hitch slips at any load, whatever the rod and post diameters d, D"
-)
+FREE_END_STATEMENT = knots.get("clove-hitch").free_end_note
 
 
 @dataclass(frozen=True)
@@ -134,41 +131,17 @@ class HitchGeometry:
         return self.half_hitches * self.half_hitch_wrap
 
 
-#: the hitches this module knows (``capstan`` is handled by :func:`hold_verdict`)
+def _from_record(k) -> HitchGeometry:
+    w = k.wraps
+    return HitchGeometry(k.name, post_wrap_in=w.post_wrap_in, post_wrap_out=w.post_wrap_out,
+                         half_hitches=w.half_hitches, post_nips=w.post_nips,
+                         description=w.description, thick_nip=w.thick_nip)  # fmt: skip
+
+
+#: the hitches this module knows: the registry's hitches with a closed-form geometry
+#: (:mod:`knotmech.knots`; ``capstan`` is handled by :func:`hold_verdict`)
 KNOTS: dict[str, HitchGeometry] = {
-    "clove-hitch": HitchGeometry(
-        "clove-hitch",
-        post_wrap_in=TWO_PI,
-        post_wrap_out=TWO_PI,
-        post_nips=True,
-        description="two turns on the post, both ends nipped under the diagonal rider",
-    ),
-    "two-half-hitches": HitchGeometry(
-        "two-half-hitches",
-        post_wrap_in=math.pi,
-        half_hitches=2,
-        description="a single turn (pi) on the post, then two half hitches on the standing part",
-    ),
-    "round-turn": HitchGeometry(
-        "round-turn",
-        post_wrap_in=TWO_PI,
-        description="one complete turn (2 pi) on the post, no crossing",
-    ),
-    "round-turn-two-half-hitches": HitchGeometry(
-        "round-turn-two-half-hitches",
-        post_wrap_in=TWO_PI,
-        half_hitches=2,
-        description="a round turn (2 pi) on the post, then two half hitches on the standing part",
-    ),
-    "cow-hitch": HitchGeometry(
-        "cow-hitch",
-        post_wrap_in=TWO_PI,
-        post_wrap_out=TWO_PI,
-        post_nips=True,
-        description="two turns on the post in opposite senses (girth hitch, lark's head), the "
-        "bight between them lying over both legs; load on one leg, T_low on the other",
-        thick_nip=False,
-    ),
+    k.name: _from_record(k) for k in knots.records(family="hitch") if k.wraps is not None
 }
 
 
@@ -443,7 +416,17 @@ class ModelAnswer:
     notes: tuple[str, ...] = ()
 
     def to_dict(self) -> dict:
-        return {k: _jsonable(v) for k, v in asdict(self).items()}
+        """Strict JSON-ready dict (:mod:`knotmech._json`): a non-finite number is null, and
+        ``margin_unbounded``, ``capacity_unbounded`` (+inf: self-locking) and
+        ``critical_mu_none`` (inf: no friction coefficient suffices) say which."""
+        return _json.jsonable(
+            {
+                **asdict(self),
+                "margin_unbounded": bool(math.isinf(self.margin) and self.margin > 0),
+                "capacity_unbounded": bool(math.isinf(self.capacity) and self.capacity > 0),
+                "critical_mu_none": bool(math.isinf(self.critical_mu)),
+            }
+        )
 
 
 @dataclass(frozen=True)
@@ -483,28 +466,20 @@ class HoldVerdict:
         return replace(self, answers=old + (replace(answer, decides=decides),))
 
     def to_dict(self) -> dict:
-        return {
-            "knot": self.knot,
-            "holds": bool(self.holds),
-            "margin": _jsonable(self.margin),
-            "decided_by": self.decided_by,
-            "inputs": {k: _jsonable(v) for k, v in self.inputs.items()},
-            "answers": [a.to_dict() for a in self.answers],
-            "notes": list(self.notes),
-        }
-
-
-def _jsonable(v):
-    if isinstance(v, (bool, np.bool_)):
-        return bool(v)
-    if isinstance(v, (float, np.floating)):
-        v = float(v)
-        if math.isinf(v):
-            return "inf" if v > 0 else "-inf"
-        return v
-    if isinstance(v, tuple):
-        return list(v)
-    return v
+        """Strict JSON-ready dict (a non-finite number is null; ``margin_unbounded`` when
+        the margin is +inf, self-locking)."""
+        return _json.jsonable(
+            {
+                "knot": self.knot,
+                "holds": bool(self.holds),
+                "margin": self.margin,
+                "margin_unbounded": bool(math.isinf(self.margin) and self.margin > 0),
+                "decided_by": self.decided_by,
+                "inputs": self.inputs,
+                "answers": [a.to_dict() for a in self.answers],
+                "notes": list(self.notes),
+            }
+        )
 
 
 def _exp(x: float) -> float:
@@ -667,23 +642,18 @@ def _hitch_answers(g: HitchGeometry, mu, mrr, d, D, load, free):
     return ideal, thick
 
 
-#: the ideal-rope statement for a cow hitch with one leg free, and what practice says
-COW_FREE_LEG_STATEMENT = (
-    "ideal-rope theory: with one leg free (T_low = 0) the cow hitch slips at any load, "
-    "whatever d and D (a capstan of finite wrap); in practice it is used with both legs "
-    "sharing the load (E. C. Fry, Knots and Ropework: useful 'provided that both standing "
-    "parts share the load')"
-)
-
-
 def _free_end_notes(g: HitchGeometry, free) -> tuple:
-    if free != 0:
-        return ()
-    if g.name == "clove-hitch":
-        return (FREE_END_STATEMENT,)
-    if g.name == "cow-hitch":
-        return (COW_FREE_LEG_STATEMENT,)
-    return ()
+    """What the ideal-rope theory says of this hitch's free-end case (its registry record)."""
+    note = knots.get(g.name).free_end_note
+    return (note,) if free == 0 and note else ()
+
+
+def __getattr__(name: str):
+    """``COW_FREE_LEG_STATEMENT``: the ideal-rope statement for a cow hitch with one leg free,
+    and what practice says (its registry record's ``free_end_note``)."""
+    if name == "COW_FREE_LEG_STATEMENT":
+        return knots.get("cow-hitch").free_end_note
+    raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
 
 
 def hold_verdict(

@@ -92,31 +92,66 @@ def check_output_path(path, *, formats: Iterable[str] | None = None, option: str
     if text.endswith(("/", os.sep)) or p.is_dir():
         raise InputError(f"{where}: is a directory; give a file name")
     if formats is not None:
-        allowed = sorted({f.lower().lstrip(".") for f in formats})
-        ext = p.suffix.lower().lstrip(".")
-        if not ext:
-            raise InputError(f"{where}: no file extension; use one of {', '.join(allowed)}")
-        if ext not in allowed:
-            raise InputError(
-                f"{where}: unsupported format '.{ext}'; use one of {', '.join(allowed)}"
-            )
+        _check_format(p, formats, where)
     parent = p.parent if str(p.parent) else Path(".")
     if not parent.exists():
         raise InputError(f"{where}: folder {parent} does not exist")
     if not parent.is_dir():
         raise InputError(f"{where}: {parent} is not a folder")
     if p.exists() or p.is_symlink():
-        try:
-            mode = p.stat().st_mode
-        except OSError as exc:  # dangling symlink, permission
-            raise InputError(f"{where}: cannot be written ({exc.strerror or exc})") from None
-        if not stat.S_ISREG(mode):
-            raise InputError(f"{where}: exists and is not a regular file")
-        if not os.access(p, os.W_OK):
-            raise InputError(f"{where}: file is not writable")
+        _check_existing(p, where)
     elif not os.access(parent, os.W_OK | os.X_OK):
         raise InputError(f"{where}: folder {parent} is not writable")
     return p
+
+
+def _check_format(p: Path, formats: Iterable[str], where: str) -> None:
+    """The extension of ``p`` is one of ``formats`` (case-insensitive, dot or not)."""
+    allowed = sorted({f.lower().lstrip(".") for f in formats})
+    ext = p.suffix.lower().lstrip(".")
+    if not ext:
+        raise InputError(f"{where}: no file extension; use one of {', '.join(allowed)}")
+    if ext not in allowed:
+        raise InputError(f"{where}: unsupported format '.{ext}'; use one of {', '.join(allowed)}")
+
+
+def _check_existing(p: Path, where: str) -> None:
+    """An existing ``p`` is a writable regular file."""
+    try:
+        mode = p.stat().st_mode
+    except OSError as exc:  # dangling symlink, permission
+        raise InputError(f"{where}: cannot be written ({exc.strerror or exc})") from None
+    if not stat.S_ISREG(mode):
+        raise InputError(f"{where}: exists and is not a regular file")
+    if not os.access(p, os.W_OK):
+        raise InputError(f"{where}: file is not writable")
+
+
+def check_distinct(outputs) -> None:
+    """Refuse two outputs to one file (the second would overwrite the first).
+
+    Parameters
+    ----------
+    outputs : iterable of (str, path or None)
+        (option as the user typed it, the path it names); None (not given) and ``-``
+        (standard output) are skipped.
+
+    Raises
+    ------
+    InputError
+        One line naming both options and the file.
+    """
+    seen = {}
+    for option, path in outputs:
+        if path is None or os.fspath(path) == "-":
+            continue
+        key = os.path.realpath(os.fspath(path))
+        if key in seen:
+            raise InputError(
+                f"{seen[key]} and {option} name the same file {os.fspath(path)}: give each "
+                "output its own file"
+            )
+        seen[key] = option
 
 
 @contextlib.contextmanager

@@ -11,7 +11,7 @@ Example::
     knotmech hold girth-hitch --rod-diameter 4mm --post-diameter 30mm --mu 0.8 \\
         --load 0.1N --material vps32 --plot cow.png
 
-The command parses quantities (:mod:`knotmech.units`), calls :func:`knotmech.hold.hold`
+The command parses quantities (:mod:`knotmech.units`), calls :func:`knotmech.verdict.hold`
 (which holds the whole policy: which model decides, what is assumed, what is
 implausible) and prints its answer: one line first (verdict, margin, deciding model),
 then warnings, assumptions and the next step; every model's answer under
@@ -45,8 +45,8 @@ _FLAGS = {
 
 
 def register(subparsers) -> None:
-    from knotmech.hold import KNOT_NAMES
     from knotmech.materials import material_names
+    from knotmech.verdict import KNOT_NAMES
 
     p = subparsers.add_parser(
         "hold",
@@ -155,122 +155,83 @@ def _json_path(text) -> Path | None:
 
 
 def run(args) -> int:
-    from knotmech.hold import (
-        DER_HITCHES,
-        can_simulate,
-        check_plot_path,
-        has_der_answer,
-        hold,
-        knot_key,
-        plot_verdict,
-    )
+    """Parse the options, ask :func:`knotmech.hold`, print (and write) the verdict.
+
+    The library checks every rule on the inputs; its one-line messages name the options
+    (:func:`_flag_names`). Only what concerns the command's own outputs is checked here.
+    """
+    from knotmech.verdict import hold, knot_key
 
     knot = knot_key(args.knot)
-    d = parse_quantity(args.rod_diameter, "length", name="--rod-diameter")
-    from knotmech.hold import is_bend
-
-    bend = is_bend(knot)
-    if args.post_diameter is None and not bend:
-        raise InputError(f"--post-diameter is required for {knot} (e.g. --post-diameter 30mm)")
-    D = (None if args.post_diameter is None
-         else parse_quantity(args.post_diameter, "length", name="--post-diameter"))  # fmt: skip
-    mu = parse_quantity(args.mu, "dimensionless", name="--mu")
-    mu_rr = (
-        None if args.mu_rr is None else parse_quantity(args.mu_rr, "dimensionless", name="--mu-rr")
-    )  # noqa: E501
-    load = parse_quantity(args.load, "force", name="--load")
-    free = parse_quantity(args.free_end_load, "force", name="--free-end-load")
-    theta = None
-    if args.wrap_angle is not None:
-        if knot != "capstan":
-            raise InputError(f"--wrap-angle applies to capstan only, not to {knot}")
-        theta = parse_quantity(args.wrap_angle, "angle", name="--wrap-angle")
-    elif knot == "capstan":
-        raise InputError("--wrap-angle is required for capstan (e.g. --wrap-angle 360deg)")
-    # range checks here so that messages name the command-line option
-    for name, value in (("--rod-diameter", d), ("--post-diameter", D), ("--load", load)):
-        if value is not None and value <= 0:
-            raise InputError(f"{name} must be > 0, got {value:g}")
-    for name, value in (("--mu", mu), ("--mu-rr", mu_rr), ("--free-end-load", free)):
-        if value is not None and value < 0:
-            raise InputError(f"{name} must be >= 0, got {value:g}")
-    if theta is not None and theta <= 0:
-        raise InputError(f"--wrap-angle must be > 0, got {theta:g}")
-    if free > load:
-        raise InputError(
-            f"--free-end-load must be <= --load (the load is the larger tension), "
-            f"got {free:g} N > {load:g} N"
-        )
-    if knot == "capstan" and mu_rr is not None:
-        raise InputError("--mu-rr (rope on rope) applies to hitches, not to capstan")
-    E = None
-    if args.youngs_modulus is not None:
-        E = parse_quantity(args.youngs_modulus, "pressure", name="--youngs-modulus")
-        if not E > 0:
-            raise InputError(f"--youngs-modulus must be > 0, got {E:g}")
-    if args.simulate and not can_simulate(knot):
-        raise InputError(
-            f"--simulate is available for the clove hitch, the hitches with a DER scene "
-            f"(two half hitches, round turn and two half hitches, cow hitch) and the bends, "
-            f"not for {knot}"
-        )
-    if args.simulate and free > 0 and not bend:
-        raise InputError(
-            "--simulate covers the hitches with a free end only (--free-end-load 0; cow "
-            "hitch: one leg loaded, the other free)"
-        )
-    kappa = None
-    if args.bending_scale is not None:
-        from knotmech.errors import check_bending_scale
-
-        try:
-            kappa = check_bending_scale(
-                parse_quantity(args.bending_scale, "dimensionless", name="--bending-scale")
-            )
-        except InputError as exc:
-            raise InputError(_flag_names(str(exc))) from None
-    creep_limit = None
-    if args.creep_limit is not None:
-        creep_limit = parse_quantity(args.creep_limit, "dimensionless", name="--creep-limit")
-        if not creep_limit > 0:
-            raise InputError(f"--creep-limit must be > 0 (rope diameters per second), got "
-                             f"{creep_limit:g}")  # fmt: skip
+    inputs = _quantities(args)
     json_path = _json_path(args.json)
     if args.plot is not None:
-        try:
-            check_plot_path(args.plot)
-        except InputError as exc:
-            raise InputError(f"--{exc}") from None
-        if not has_der_answer(knot) or free > 0:
-            raise InputError(
-                "--plot draws the DER answer (phase diagram or simulated knot): a hitch with "
-                f"a DER answer ({', '.join(DER_HITCHES)}) with a free end only"
-            )
+        _check_plot(args.plot, knot, inputs["free_end_load"])
+        from knotmech.cli._paths import check_distinct
+
+        check_distinct([("--json", json_path), ("--plot", args.plot)])
     try:
         verdict = hold(
-            knot,
-            rod_diameter=d,
-            post_diameter=D,
-            mu=mu,
-            load=load,
-            free_end_load=free,
-            mu_rr=mu_rr,
-            wrap_angle=theta,
-            material=args.material,
-            youngs_modulus=E,
-            simulate=bool(args.simulate),
-            phase_table=args.phase_table,
-            progress=bool(args.simulate) and args.json != "-",
-            creep_limit=creep_limit,
-            bending_scale=kappa,
-        )
+            knot, **inputs, material=args.material, simulate=bool(args.simulate),
+            phase_table=args.phase_table, progress=bool(args.simulate) and args.json != "-",
+        )  # fmt: skip
     except InputError as exc:
         raise InputError(_flag_names(str(exc))) from None
+    _emit(args, verdict, json_path)
+    return 0
+
+
+#: option -> (keyword of knotmech.hold, kind of quantity)
+_QUANTITIES = {
+    "rod_diameter": ("rod_diameter", "length"),
+    "post_diameter": ("post_diameter", "length"),
+    "mu": ("mu", "dimensionless"),
+    "mu_rr": ("mu_rr", "dimensionless"),
+    "load": ("load", "force"),
+    "free_end_load": ("free_end_load", "force"),
+    "wrap_angle": ("wrap_angle", "angle"),
+    "youngs_modulus": ("youngs_modulus", "pressure"),
+    "bending_scale": ("bending_scale", "dimensionless"),
+    "creep_limit": ("creep_limit", "dimensionless"),
+}
+
+
+def _quantities(args) -> dict:
+    """The quantity options in SI units, as keywords of :func:`knotmech.hold` (None: not
+    given)."""
+    out = {}
+    for attr, (kw, kind) in _QUANTITIES.items():
+        text = getattr(args, attr)
+        flag = "--" + attr.replace("_", "-")
+        out[kw] = None if text is None else parse_quantity(text, kind, name=flag)
+    return out
+
+
+def _check_plot(path, knot: str, free: float) -> None:
+    """``--plot`` draws a DER answer into a png, pdf or svg file in an existing folder."""
+    from knotmech.verdict import DER_HITCHES, check_plot_path, has_der_answer
+
+    try:
+        check_plot_path(path)
+    except InputError as exc:
+        raise InputError(f"--{exc}") from None
+    if not has_der_answer(knot) or free > 0:
+        raise InputError(
+            "--plot draws the DER answer (phase diagram or simulated knot): a hitch with "
+            f"a DER answer ({', '.join(DER_HITCHES)}) with a free end only"
+        )
+
+
+def _emit(args, verdict, json_path) -> None:
+    """Print the verdict (or only its JSON with ``--json -``), write --json and --plot
+    (also with ``--json -``: the plot is a file, stdout stays JSON only)."""
+    from knotmech.verdict import plot_verdict
+
     text = verdict.to_json() if args.json else ""
-    if args.json == "-":  # JSON only on stdout, for pipes
+    if args.json == "-":  # JSON only on stdout, for pipes (a plot still goes to its file)
         print(text)
-        return 0
-    print(format_verdict(verdict, verbose=bool(args.verbose)))
+    else:
+        print(format_verdict(verdict, verbose=bool(args.verbose)))
     if json_path is not None:
         try:
             json_path.write_text(text + "\n")
@@ -283,7 +244,6 @@ def run(args) -> int:
         except InputError as exc:
             raise InputError(f"--{exc}") from None
         print(f"wrote {args.plot}", file=sys.stderr)
-    return 0
 
 
 def _flag_names(message: str) -> str:
@@ -294,7 +254,9 @@ def _flag_names(message: str) -> str:
              "material", "youngs_modulus", "simulate", "phase_table", "creep_limit",
              "bending_scale")  # fmt: skip
     pattern = r"(?<![\w-])(" + "|".join(names) + r")(?!\w)"
-    return re.sub(pattern, lambda m: "--" + m.group(1).replace("_", "-"), message)
+    message = re.sub(pattern, lambda m: "--" + m.group(1).replace("_", "-"), message)
+    # "load" and "mu" are words too: an option only where a message starts with them
+    return re.sub(r"^(load|mu) (must|is|applies)", r"--\1 \2", message)
 
 
 def _force(value: float) -> str:
@@ -344,13 +306,9 @@ def format_verdict(verdict, *, verbose: bool = False) -> str:
     ``verbose`` adds the inputs, every model's answer (assumptions, validity,
     references), the DER details and the measured creep.
     """
-    from knotmech.hold import format_margin
-
     lines = [verdict.summary()]
-    for w in verdict.warnings:
-        lines.append(f"warning: {_FLAGS.get(w.name, w.name)}: {w.message}")
-    for s in verdict.assumptions:
-        lines.append(f"assumed: {s}")
+    lines += [f"warning: {_FLAGS.get(w.name, w.name)}: {w.message}" for w in verdict.warnings]
+    lines += [f"assumed: {s}" for s in verdict.assumptions]
     if verdict.creep is not None:
         lines.append(format_creep(verdict.creep))
     der = verdict.der or {}
@@ -359,15 +317,28 @@ def format_verdict(verdict, *, verbose: bool = False) -> str:
     if verdict.next_step and verdict.holds is not None:
         lines.append(verdict.next_step)
     if not verbose:
-        others = ", ".join(
-            f"{a.model} {'holds' if a.holds else 'slips'}"
-            + ("" if a.inside_validity else " (outside its validity)")
-            for a in verdict.answers
-            if not a.decides
-        )
-        if others:
-            lines.append(f"other models: {others} (--verbose for details)")
-        return "\n".join(lines)
+        return "\n".join(lines + _others_line(verdict))
+    lines.append(_inputs_line(verdict))
+    for a in verdict.answers:
+        lines += _answer_lines(a)
+    lines += _der_lines(verdict.der)
+    lines += [f"note: {s}" for s in verdict.notes]
+    return "\n".join(lines)
+
+
+def _others_line(verdict) -> list:
+    """The models that did not decide, in one line (none: no line)."""
+    others = ", ".join(
+        f"{a.model} {'holds' if a.holds else 'slips'}"
+        + ("" if a.inside_validity else " (outside its validity)")
+        for a in verdict.answers
+        if not a.decides
+    )
+    return [f"other models: {others} (--verbose for details)"] if others else []
+
+
+def _inputs_line(verdict) -> str:
+    """The inputs in one line (``--verbose``)."""
     i = verdict.inputs
     head = (
         f"{verdict.knot}: rope d = {format_quantity(i['rod_diameter'], 'length')}, "
@@ -382,30 +353,36 @@ def format_verdict(verdict, *, verbose: bool = False) -> str:
         head += f", material {i['material']}"
     if "youngs_modulus" in i:
         head += f", E = {i['youngs_modulus']:.3g} Pa"
-    lines.append(head)
-    for a in verdict.answers:
-        tag = "decides" if a.decides else "for comparison"
-        lines.append(
+    return head
+
+
+def _answer_lines(a) -> list:
+    """One model's answer in full (``--verbose``)."""
+    from knotmech.verdict import format_margin
+
+    tag = "decides" if a.decides else "for comparison"
+    return (
+        [
             f"  [{a.model}, {tag}] {'holds' if a.holds else 'slips'}; largest load held "
             f"{_force(a.capacity)}; margin {format_margin(a.margin)}; critical mu "
             f"{_mu(a.critical_mu)}; inside validity: {'yes' if a.inside_validity else 'no'}"
+        ]
+        + [f"      assumes: {s}" for s in a.assumptions]
+        + [f"      validity: {s}" for s in a.validity]
+        + [f"      note: {s}" for s in a.notes]
+        + [f"      reference: {a.reference}"]
+    )
+
+
+def _der_lines(der) -> list:
+    """The DER's answer and, where it differs, why from the ideal rope (``--verbose``)."""
+    if der is None:
+        return []
+    lines = [f"DER: {der.get('message') or 'no answer'}"]
+    if der.get("agrees_with_ideal_rope") is False:
+        lines.append(
+            "disagreement: ideal-rope theory says it slips at any load with a free end; "
+            f"the DER says it {'holds' if der['holds'] else 'slips'}: bending stiffness "
+            "and finite thickness (which the ideal rope leaves out) decide here"
         )
-        for s in a.assumptions:
-            lines.append(f"      assumes: {s}")
-        for s in a.validity:
-            lines.append(f"      validity: {s}")
-        for s in a.notes:
-            lines.append(f"      note: {s}")
-        lines.append(f"      reference: {a.reference}")
-    der = verdict.der
-    if der is not None:
-        lines.append(f"DER: {der.get('message') or 'no answer'}")
-        if der.get("agrees_with_ideal_rope") is False:
-            lines.append(
-                "disagreement: ideal-rope theory says it slips at any load with a free end; "
-                f"the DER says it {'holds' if der['holds'] else 'slips'}: bending stiffness "
-                "and finite thickness (which the ideal rope leaves out) decide here"
-            )
-    for s in verdict.notes:
-        lines.append(f"note: {s}")
-    return "\n".join(lines)
+    return lines

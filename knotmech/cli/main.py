@@ -82,6 +82,27 @@ def _join_negative_values(argv: list[str]) -> list[str]:
     return out
 
 
+#: options that collect a list and may be given more than once (``simulate centreline
+#: --ends``, once per rod; ``validate --only``); every other option given twice is refused
+REPEATABLE = frozenset({"--ends", "--only"})
+
+
+def repeated_option(argv: list[str]) -> str | None:
+    """The first long option given twice in ``argv`` (``--mu 1 --mu=2``), None when none is
+    (options of :data:`REPEATABLE` may repeat; nothing after ``--`` is an option)."""
+    seen = set()
+    for token in argv:
+        if token == "--":
+            break
+        if not token.startswith("--"):
+            continue
+        name = token.split("=", 1)[0]
+        if name in seen and name not in REPEATABLE:
+            return name
+        seen.add(name)
+    return None
+
+
 def main(argv=None) -> int:
     """Run the command line; return the exit status (0 success, 1 a failed run, 2 bad input)."""
     argv = _join_negative_values(list(sys.argv[1:] if argv is None else argv))
@@ -95,6 +116,11 @@ def main(argv=None) -> int:
         return exc.code if isinstance(exc.code, int) else 2
     if not getattr(args, "func", None):
         parser.print_help()
+        return 2
+    twice = repeated_option(argv)
+    if twice is not None:  # argparse would silently keep the last value
+        print(f"knotmech {args.command}: error: {twice} is given twice; give it once",
+              file=sys.stderr)  # fmt: skip
         return 2
     try:
         return int(args.func(args) or 0)

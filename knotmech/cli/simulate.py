@@ -40,18 +40,20 @@ import sys
 from dataclasses import dataclass
 from pathlib import Path
 
+from knotmech import knots
 from knotmech.errors import InputError
 
 __all__ = ["register", "run"]
 
-#: the post hitches after the clove hitch: same options and outputs as clove-hitch
-HITCH_SCENES = ("two-half-hitches", "round-turn-two-half-hitches", "cow-hitch")
+#: the post hitches after the clove hitch (the registry's hitches with a scene made from their
+#: curve, :mod:`knotmech.knots`): same options and outputs as clove-hitch
+HITCH_SCENES = tuple(k.name for k in knots.records(family="hitch") if k.has_scene and not k.scene)
 
 SCENES = ("capstan", "two-loops", "pinch", "overhand", "clove-hitch", *HITCH_SCENES, "bend",
           "centreline")  # fmt: skip
 
-#: The bends of :func:`knotmech.scenes.bend` (its ``BEND_CODES``; a test keeps them equal).
-BEND_KINDS = ("reef", "granny", "thief", "grief")
+#: The bends of :func:`knotmech.scenes.bend` (the registry's bends with a scene).
+BEND_KINDS = tuple(k.name for k in knots.records(family="bend") if k.has_scene)
 
 REQUIRED = "required"
 
@@ -167,7 +169,7 @@ _CLOVE = (
         "pull: 0.069N (the paper's 7 g)"),
     Opt("--mu", "mu_rod_post", "dimensionless", "rod-post (static) friction coefficient",
         "0.3"),
-    Opt("--mu-rr", "mu_rod_rod", "dimensionless", "rod-rod friction coefficient", "--mu"),
+    Opt("--mu-rr", "mu_rod_rod", "dimensionless", "rod-rod friction coefficient", "0.3"),
     Opt("--mu-kinetic", "mu_kinetic", "dimensionless", "kinetic rod-post coefficient", "--mu"),
     Opt("--rod-diameter", "rod_diameter", "length", "rod diameter d", "4mm"),
     Opt("--post-diameter", "post_diameter", "length", "post diameter D", "30mm"),
@@ -267,13 +269,7 @@ _DESCRIPTIONS = {
     "pinch": "a rod pinched between two crossed cylinders and pulled out (F_t* against "
     "Amontons' 2 mu F_n)",
     "overhand": "an overhand knot with n braid turns pulled tight (force against end-to-end)",
-    "clove-hitch": "a clove hitch tied on a post, held by end loads or pulled (clove-hitch paper)",
-    "two-half-hitches": "two half hitches on a post (a turn, then two half hitches round the "
-    "standing part), held by end loads or pulled: verdict, creep speed, knot type kept",
-    "round-turn-two-half-hitches": "a round turn and two half hitches on a post, held by end "
-    "loads or pulled: verdict, creep speed, knot type kept",
-    "cow-hitch": "a cow (girth) hitch on a post, one leg loaded and the other free, loaded or "
-    "both loaded, or pulled: verdict, creep speed, knot type kept",
+    **{k.name: k.simulate_help for k in knots.records(family="hitch") if k.simulate_help},
     "bend": "two ropes joined by a reef, granny, thief or grief bend, set and pulled apart "
     "until it slips (Patil et al., Science 2020): verdict and slip load",
     "centreline": "your own knot from a CSV of centreline points (one or two rods), relaxed "
@@ -478,7 +474,7 @@ def _csv_path(base: Path, suffix: str) -> Path:
 
 
 def _check_outputs(scene: str, args) -> dict:
-    from knotmech.cli._paths import check_output_path, plot_formats
+    from knotmech.cli._paths import check_distinct, check_output_path, plot_formats
 
     paths = {
         "json": check_output_path(args.json, option="--json"),
@@ -492,6 +488,10 @@ def _check_outputs(scene: str, args) -> dict:
         base = check_output_path(args.csv, option="--csv")
         for suffix, what in _csv_tables(scene, args):
             paths["csv"].append((check_output_path(_csv_path(base, suffix), option="--csv"), what))
+    check_distinct(
+        [("--json", paths["json"]), ("--npz", paths["npz"]), ("--plot", paths["plot"])]
+        + [("--csv", p) for p, _ in paths["csv"]]
+    )
     return paths
 
 
@@ -738,9 +738,7 @@ def _run_overhand(kw, args, progress):
 def _run_clove_hitch(kw, args, progress):
     from knotmech.scenes.clove_hitch import clove_hitch
 
-    kw = {**kw, "loading": args.loading}
-    if "mu_rod_post" in kw:
-        kw.setdefault("mu_rod_rod", kw["mu_rod_post"])
+    kw = {**kw, "loading": args.loading}  # options not given: the scene's own defaults
     res = clove_hitch(progress=progress, **kw)
     if args.loading == "pull":
         print(
@@ -768,14 +766,10 @@ def _run_clove_hitch(kw, args, progress):
 
 def _run_hitch(scene, kw, args, progress):
     """Two half hitches, round turn and two half hitches, cow hitch (scenes.hitches)."""
-    import importlib
+    from knotmech.scenes.hitches import hitch_function
 
-    name = scene.replace("-", "_")
-    module = importlib.import_module(f"knotmech.scenes.{name}")
-    kw = {**kw, "loading": args.loading}
-    if "mu_rod_post" in kw:
-        kw.setdefault("mu_rod_rod", kw["mu_rod_post"])
-    res = getattr(module, name)(progress=progress, **kw)
+    kw = {**kw, "loading": args.loading}  # options not given: the scene's own defaults
+    res = hitch_function(scene)(progress=progress, **kw)
     kept = (
         "kept"
         if res.topology_preserved

@@ -125,7 +125,7 @@ def section_capstan(ctx: TourContext) -> list[str]:
 def section_hold(ctx: TourContext) -> list[str]:
     """Hold verdicts as ``knotmech hold`` gives them (closed forms and the DER table)."""
     from knotmech.analytic.hitch import FREE_END_STATEMENT
-    from knotmech.hold import hold
+    from knotmech.verdict import hold
 
     lines = ["Does it hold? (knotmech hold ...), rod 4 mm on a 30 mm post, mu = mu_rr = 0.3:"]
     for knot, free in (("clove-hitch", 0.0), ("clove-hitch", 0.05), ("two-half-hitches", 0.05)):

@@ -4,10 +4,10 @@
 - :mod:`~knotmech.scenes.pinch`: a rod pinched between two crossed cylinders, pulled out.
 - :mod:`~knotmech.scenes.clove_hitch`: a clove hitch on a post under symmetric, asymmetric
   or free-end loading; tension profile, contact regions, Darboux vector.
-- :mod:`~knotmech.scenes.two_half_hitches`, :mod:`~knotmech.scenes.round_turn_two_half_hitches`,
-  :mod:`~knotmech.scenes.cow_hitch`: more post hitches, the clove hitch's keywords
-  (:mod:`~knotmech.scenes._hitch`, the scene they share; :mod:`~knotmech.scenes.hitches`,
-  all four by name; start curves in :mod:`~knotmech.scenes.hitch_curves`).
+- ``two_half_hitches``, ``round_turn_two_half_hitches``, ``cow_hitch``: more post hitches,
+  the clove hitch's keywords, made from their records in :mod:`knotmech.knots`
+  (:mod:`~knotmech.scenes.hitches`: every hitch by name; :mod:`~knotmech.scenes._hitch`, the
+  scene they share; start curves in :mod:`~knotmech.scenes.hitch_curves`, one file each).
 - :mod:`~knotmech.scenes.overhand`: overhand knots with n = 1..4 turns pulled tight.
 - :mod:`~knotmech.scenes.curves`: parametric knot centrelines (overhand, clove hitch, coil).
 - :mod:`~knotmech.scenes.topology`: knot invariants (Alexander polynomial, determinant),
@@ -19,17 +19,19 @@
 - :mod:`~knotmech.scenes._scene`: the shape scenes share (phases, grips, contacts).
 
 The names are loaded on first use: the scenes import the DER solver (numba, seconds), which
-``knotmech hold`` answering from :mod:`~knotmech.scenes.phase_table` must not pay. The
-package behaves as if it had imported them all: ``knotmech.scenes.capstan`` is the function
-:func:`~knotmech.scenes.capstan.capstan` (the submodule is ``sys.modules[...]``), whether or
-not the submodule has been imported already.
+``knotmech hold`` answering from the tables must not pay. A submodule named after its scene
+function (:data:`SCENE_MODULES`: ``capstan``, ``pinch``, ``clove_hitch``, ``overhand``,
+``centreline``, ``bend_curves``) is the module, as for any package: the function is
+``knotmech.scenes.capstan.capstan`` (``from knotmech.scenes.capstan import capstan``). The
+other names are the functions (``knotmech.scenes.bend``, ``knotmech.scenes.cow_hitch``: the
+hitch scenes made from their records, :mod:`~knotmech.scenes.hitches`).
 """
 
 from __future__ import annotations
 
 import importlib
-import sys
-import types
+
+from knotmech.scenes.hitches import HITCHES
 
 #: public name -> submodule defining it
 _SUBMODULE = {
@@ -50,9 +52,6 @@ _SUBMODULE = {
     "clove_hitch": "clove_hitch",
     "darboux_profile": "clove_hitch",
     "HitchResult": "_hitch",
-    "two_half_hitches": "two_half_hitches",
-    "round_turn_two_half_hitches": "round_turn_two_half_hitches",
-    "cow_hitch": "cow_hitch",
     "HITCHES": "hitches",
     "hitch": "hitches",
     "hitch_curve": "hitch_curves",
@@ -94,20 +93,21 @@ _SUBMODULE = {
 }
 
 
-class _ScenesPackage(types.ModuleType):
-    """Importing submodule ``capstan`` binds ``package.capstan`` to the module; the package
-    exports the function of the same name there (capstan, pinch, clove_hitch, overhand)."""
-
-    def __setattr__(self, name, value):
-        if isinstance(value, types.ModuleType) and _SUBMODULE.get(name) == name:
-            value = getattr(value, name, value)
-        super().__setattr__(name, value)
+#: submodules whose main function has the submodule's name: ``knotmech.scenes.capstan`` is
+#: the module (as for any package), the function is ``knotmech.scenes.capstan.capstan``
+SCENE_MODULES = tuple(name for name, module in _SUBMODULE.items() if name == module)
 
 
 def __getattr__(name: str):
+    if name in HITCHES and name not in _SUBMODULE:  # a hitch scene made from its record
+        from knotmech.scenes.hitches import hitch_function
+
+        return hitch_function(name)
     module = _SUBMODULE.get(name)
     if module is None:
         raise AttributeError(f"module {__name__!r} has no attribute {name!r}")
+    if module == name:
+        return importlib.import_module(f"{__name__}.{module}")
     value = getattr(importlib.import_module(f"{__name__}.{module}"), name)
     globals()[name] = value
     return value
@@ -116,8 +116,6 @@ def __getattr__(name: str):
 def __dir__():
     return sorted(set(globals()) | set(__all__))
 
-
-sys.modules[__name__].__class__ = _ScenesPackage
 
 __all__ = [
     "bend",
@@ -141,9 +139,7 @@ __all__ = [
     "CloveHitchResult",
     "darboux_profile",
     "HitchResult",
-    "two_half_hitches",
-    "round_turn_two_half_hitches",
-    "cow_hitch",
+    *(name for name in HITCHES if name != "clove_hitch"),
     "HITCHES",
     "hitch",
     "hitch_curve",

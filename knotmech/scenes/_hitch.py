@@ -73,6 +73,7 @@ from knotmech.scenes._common import (
 from knotmech.scenes._scene import RampedEndLoad, RunControl, Scene, SceneRun, post_contact
 from knotmech.scenes.curves import _edge_distances
 from knotmech.scenes.topology import post_crossing_code, winding_number
+from knotmech.verdict.criterion import CREEP_LIMIT  # the criterion's limit, defined once
 
 __all__ = [
     "HitchKnot",
@@ -88,10 +89,6 @@ __all__ = [
     "PAPER_PRETENSION",
     "CREEP_LIMIT",
 ]
-
-CREEP_LIMIT = 1e-3
-"""[d/s] default creep speed below which a hitch with a free end holds (issue 10: "the hitch
-holds when its loose end creeps slower than 1e-3 d per second, over the last second")."""
 
 PAPER_PRETENSION = 0.559
 """[N] pre-tension of the clove-hitch paper's pull test (sect. 5: T_low raised to 0.559 N

@@ -42,6 +42,7 @@ from dataclasses import dataclass
 import numpy as np
 from scipy.interpolate import PchipInterpolator
 
+from knotmech import knots
 from knotmech.errors import InputError, check_positive, check_range
 from knotmech.scenes.curves import _edge_distances, min_separation, resample_polyline
 from knotmech.scenes.topology import knot_invariant
@@ -56,17 +57,16 @@ __all__ = [
     "bend_invariants",
 ]
 
-#: Over/under of rope A at its six crossings with B, along A (see the module docstring).
-BEND_CODES = {"reef": "UOUUOU", "thief": "UOUUOU", "granny": "UOUOUO", "grief": "UOUOUO"}
+_BENDS = tuple(k for k in knots.records(family="bend") if k.curve.endswith(":bend_curves"))
+
+#: Over/under of rope A at its six crossings with B, along A (see the module docstring); the
+#: ``code`` of each bend's record in :mod:`knotmech.knots`.
+BEND_CODES = {k.name: k.curve_params["code"] for k in _BENDS}
 
 #: (pulled end of A, pulled end of B): "start"/"end" of each rope. A starts at
-#: (-x, +n) and ends at (-x, -n); B starts at (+x, -n) and ends at (+x, +n).
-BEND_ENDS = {
-    "reef": ("end", "start"),
-    "granny": ("end", "start"),
-    "thief": ("start", "start"),
-    "grief": ("start", "start"),
-}
+#: (-x, +n) and ends at (-x, -n); B starts at (+x, -n) and ends at (+x, +n). The ``ends`` of
+#: each bend's record.
+BEND_ENDS = {k.name: tuple(k.curve_params["ends"]) for k in _BENDS}
 
 
 @dataclass(frozen=True)

@@ -160,3 +160,4 @@ clove_hitch = hitch_scene(
     """,
     result_type=CloveHitchResult,
 )
+clove_hitch.__module__ = __name__  # pickled by reference (a sweep sends it to workers)

@@ -247,6 +247,19 @@ def test_plot_table_answer(tmp_path, capsys):
     assert out.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
 
 
+def test_plot_and_json_outputs_are_checked_together(tmp_path, capsys):
+    """Issue 27 item 5: two outputs to one file are refused before any work; with
+    ``--json -`` (JSON on stdout) the plot is still written to its file."""
+    same = tmp_path / "p.svg"
+    assert main(CLOVE + ["--material", "vps32", "--plot", str(same), "--json", str(same)]) == 2
+    err = capsys.readouterr().err.strip()
+    assert "--json and --plot name the same file" in err and "\n" not in err
+    assert not same.exists()
+    assert main(CLOVE + ["--material", "vps32", "--plot", str(same), "--json", "-"]) == 0
+    assert json.loads(capsys.readouterr().out)["decided_by"] == "DER-table"
+    assert same.read_text().lstrip().startswith("<?xml")
+
+
 def _run(argv):
     """main(argv), with argparse's own exit (SystemExit) turned into its status."""
     try:

@@ -188,7 +188,7 @@ def test_shipped_table_answers_the_papers_example(capsys):
 
 def test_simulate_wiring(monkeypatch, capsys):
     """--simulate calls simulate_point with the user's geometry (stubbed: no DER here)."""
-    from knotmech.scenes import phase_table
+    from knotmech.verdict import build as phase_table
 
     seen = {}
 
@@ -270,7 +270,7 @@ def test_simulate_plot_draws_the_knot_coloured_by_tension(monkeypatch, tmp_path,
 
     import numpy as np
 
-    from knotmech.scenes import phase_table
+    from knotmech.verdict import build as phase_table
 
     s = np.linspace(0, 4 * np.pi, 40)
     helix = np.c_[0.02 * np.cos(s), 0.02 * np.sin(s), 0.002 * s]
@@ -301,7 +301,7 @@ def test_plot_without_a_der_answer_fails_in_one_line(capsys, tmp_path):
 def test_simulated_slip_reports_no_creep(monkeypatch, capsys):
     """A run that slipped before the hold's measuring window has no creep (NaN): the
     verdict says so and the JSON has ``creep: null``, not a NaN."""
-    from knotmech.scenes import phase_table
+    from knotmech.verdict import build as phase_table
 
     def fake(**kw):
         return {"holds": False, "verdict": "slip", "creep": float("nan"),
@@ -316,3 +316,23 @@ def test_simulated_slip_reports_no_creep(monkeypatch, capsys):
     assert "ran off" in data["der"]["message"]
     assert main(_hold("4mm", "9.3333mm", "0.47N", "--simulate")) == 0
     assert "creep: the loaded end ran off" in capsys.readouterr().out
+
+
+def test_a_run_that_stopped_while_settling_gives_no_verdict(monkeypatch, capsys):
+    """Issue 27: a run that stopped before any load was on (in the settling) is a failed
+    run, not a slip: the DER does not answer and the verdict names the run's stop."""
+    from knotmech.verdict import build
+
+    def fake(**kw):
+        return {"holds": False, "verdict": "slip", "creep": float("nan"),
+                "creep_speed": float("nan"), "ran_to_end": False, "wall_s": 0.0,
+                "stopped_in": "settle", "stopped_at_protocol_s": 0.004,
+                "message": "the rod left the post", "reason": "the loaded end ran off"}  # fmt: skip
+
+    monkeypatch.setattr(build, "simulate_point", fake)
+    assert main(_hold("4mm", "9.3333mm", "0.47N", "--simulate", "--json", "-")) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["der"]["holds"] is None and data["der"]["failed"] == "settle"
+    assert "stopped while the knot settled, at 0.004 protocol s of 0.2" in data["der"]["message"]
+    assert all(a["model"] != "DER-simulation" for a in data["answers"])
+    assert data["decided_by"] != "DER-simulation"

@@ -50,3 +50,12 @@ def test_writing_turns_oserror_into_input_error():
             with open("/dev/full", "w") as fh:
                 fh.write("x" * 10000)
                 fh.flush()
+
+
+def test_two_outputs_to_one_file_are_refused(tmp_path):
+    from knotmech.cli._paths import check_distinct
+
+    a = tmp_path / "out.json"
+    check_distinct([("--json", a), ("--plot", tmp_path / "out.png"), ("--csv", None), ("--x", "-")])
+    with pytest.raises(InputError, match="--json and --npz name the same file"):
+        check_distinct([("--json", a), ("--npz", tmp_path / "." / "out.json")])

@@ -107,8 +107,17 @@ def test_all_missing_options_at_once(capsys):
 ])  # fmt: skip
 def test_capstan_bad_options_one_line(extra, message, capsys, capture_scene):
     capture_scene("knotmech.scenes.capstan", "capstan")
-    assert main(CAPSTAN + extra) == 2
+    assert main(_with(CAPSTAN, extra)) == 2
     assert message in _err(capsys)
+
+
+def _with(argv: list, extra: list) -> list:
+    """``argv`` with the options of ``extra`` replacing its own (an option is given once)."""
+    out = list(argv)
+    if extra and extra[0] in out:
+        i = out.index(extra[0])
+        del out[i : i + 2]
+    return out + extra
 
 
 def test_clove_hitch_conditions_all_at_once(capsys):
@@ -294,12 +303,7 @@ _SCENE_FUNCS = {
     "pinch": ("knotmech.scenes.pinch", "pinch"),
     "overhand": ("knotmech.scenes.overhand", "overhand"),
     "clove-hitch": ("knotmech.scenes.clove_hitch", "clove_hitch"),
-    "two-half-hitches": ("knotmech.scenes.two_half_hitches", "two_half_hitches"),
-    "round-turn-two-half-hitches": (
-        "knotmech.scenes.round_turn_two_half_hitches",
-        "round_turn_two_half_hitches",
-    ),
-    "cow-hitch": ("knotmech.scenes.cow_hitch", "cow_hitch"),
+    **{name: ("knotmech.scenes.hitches", "hitch_function") for name in sim.HITCH_SCENES},
     "bend": ("knotmech.scenes.bends", "bend"),
     "centreline": ("knotmech.scenes.centreline", "centreline"),
 }
@@ -321,7 +325,10 @@ def test_fuzz_option_values_exit_2_with_one_line(data, monkeypatch, capsys):
         seen.update(kwargs)
         raise InputError("stub reached")
 
-    monkeypatch.setattr(module, func_name, stub)
+    if func_name == "hitch_function":  # a hitch scene made from its record
+        monkeypatch.setattr(module, func_name, lambda knot: stub)
+    else:
+        monkeypatch.setattr(module, func_name, stub)
     opts = sim.SCENE_OPTIONS[scene]
     argv = ["simulate", scene, "--no-progress"]
     if scene == "centreline":  # the file is read by the (stubbed) scene

@@ -1,0 +1,141 @@
+"""The hold verdict of a bend (two ropes joined, pulled apart): no closed form and no table;
+with ``simulate`` one DER pull of the bend scene (:func:`knotmech.scenes.bends.bend`), its
+slip load against the load."""
+
+from __future__ import annotations
+
+import math
+
+from knotmech.errors import InputError, check_nonnegative, check_positive
+from knotmech.verdict.answer import Verdict
+from knotmech.verdict.command import simulate_command
+from knotmech.verdict.inputs import _bending_scale, _warnings, _youngs_modulus
+
+__all__ = ["hold_bend"]
+
+
+def hold_bend(
+    key, *, rod_diameter, post_diameter, mu, load, free_end_load, mu_rr, wrap_angle, material,
+    youngs_modulus, simulate, phase_table, progress, bending_scale=None,
+) -> Verdict:  # fmt: skip
+    """The verdict on bend ``key`` (keywords of :func:`knotmech.hold`; no post, mu is the
+    rope-rope friction): undecided with the command that decides, or one DER pull."""
+    d = float(check_positive("rod_diameter", rod_diameter))
+    mu = float(check_nonnegative("mu", mu))
+    load = float(check_positive("load", load))
+    _refuse_post_inputs(key, post_diameter=post_diameter, mu_rr=mu_rr, wrap_angle=wrap_angle,
+                        phase_table=phase_table, free_end_load=free_end_load)  # fmt: skip
+    E, mat, e_source = _youngs_modulus(material, youngs_modulus)
+    kappa, k_source = _bending_scale(mat, bending_scale)
+    inputs = {"rod_diameter": d, "mu": mu, "load": load, "bending_scale": kappa}
+    if mat is not None:
+        inputs["material"] = mat.key
+    if E is not None:
+        inputs["youngs_modulus"] = E
+    cmd = simulate_command(key, d=d, D=None, mu=mu, load=load,
+                           material=None if mat is None else mat.key,
+                           youngs_modulus=youngs_modulus,
+                           bending_scale=bending_scale)  # fmt: skip
+    common = dict(
+        knot=key, assumptions=tuple(([e_source] if e_source else []) + [k_source]),
+        warnings=_warnings(mu, None, d, math.inf, load, E, None), inputs=inputs,
+        notes=(
+            f"{key} is a bend (Patil et al., Science 2020): no closed form and no DER table; "
+            "one DER pull of the bend scene (knotmech.scenes.bends.bend) gives its slip load",
+        ),
+    )  # fmt: skip
+    if not simulate:
+        return Verdict(
+            holds=None, margin=math.nan, decided_by=None, inside_validity=False, answers=(),
+            next_step=f"next: {cmd} (one DER pull of the bend, 1-3 minutes) decides it",
+            **common,
+        )  # fmt: skip
+    if E is None:
+        from knotmech.materials import material_names
+
+        raise InputError(
+            "simulate needs the rope's stiffness: give material (one of "
+            f"{', '.join(material_names())}) or youngs_modulus"
+        )
+    der, answers = _pull(key, d=d, E=E, mu=mu, load=load, mat=mat, kappa=kappa,
+                         progress=progress)  # fmt: skip
+    return Verdict(
+        holds=der["holds"], margin=answers[0].margin if answers else math.nan,
+        decided_by="DER-simulation" if answers else None, inside_validity=bool(answers),
+        answers=answers, validity=answers[0].validity if answers else (),
+        next_step="" if answers else "next: test the knot (the DER pull did not decide)",
+        der=der, **common,
+    )  # fmt: skip
+
+
+def _refuse_post_inputs(key, *, post_diameter, mu_rr, wrap_angle, phase_table, free_end_load):
+    """A bend has no post, no second friction, no wrap, no table and no free end."""
+    for name, val in (("post_diameter", post_diameter), ("mu_rr", mu_rr),
+                      ("wrap_angle", wrap_angle), ("phase_table", phase_table)):  # fmt: skip
+        if val is not None:
+            raise InputError(
+                f"{name} does not apply to a bend ({key}: two ropes pulled apart, no post; "
+                "mu is the rope-rope friction)"
+            )
+    if float(free_end_load or 0.0) != 0.0:
+        raise InputError(f"free_end_load does not apply to a bend ({key}: no free end)")
+
+
+def _pull(key, *, d, E, mu, load, mat, kappa, progress):
+    """One DER pull of the bend: (details, answers: the DER's, empty when it did not decide)."""
+    from knotmech.scenes.bends import bend
+
+    kw = {"density": mat.density} if mat is not None else {}
+    if kappa != 1.0:
+        kw["bending_scale"] = kappa
+    r = bend(key, rod_diameter=d, youngs_modulus=E, mu_rod_rod=mu, progress=progress, **kw)
+    der = {
+        "source": "simulation", "scene": "knotmech.scenes.bends.bend", "kind": key,
+        "verdict": r.verdict, "slip_load": r.slip_load, "max_force": r.max_force,
+        "pull_speed": r.pull_speed, "status": r.status, "message": r.message,
+        "topology_preserved": bool(r.topology_preserved),
+        "wall_s": float(r.stats.get("wall_s", math.nan)),
+    }  # fmt: skip
+    holds, capacity, der["message"] = _pull_outcome(key, r, load)
+    der["holds"] = holds
+    if holds is None:
+        return der, ()
+    return der, (_pull_answer(r, holds, capacity, load, kappa, der["message"]),)
+
+
+def _pull_outcome(key, r, load):
+    """(holds or None, capacity [N], message) of a pull against ``load`` [N]."""
+    if r.verdict == "slips" and math.isfinite(r.slip_load):
+        return load < r.slip_load, float(r.slip_load), (
+            f"DER pull of the {key}: slips at {r.slip_load:.4g} N "
+            f"(the largest pull force before its tail drew in)")  # fmt: skip
+    if r.verdict == "holds" and load <= r.max_force:
+        return True, float(r.max_force), (
+            f"DER pull of the {key}: did not slip up to {r.max_force:.4g} N, "
+            "the largest force of the pull")  # fmt: skip
+    return None, math.nan, (
+        f"DER pull of the {key}: {r.verdict or 'failed'} ({r.message}); the load "
+        + (f"{load:.4g} N is above the largest pull force {r.max_force:.4g} N"
+           if r.verdict == "holds" else "is not decided")
+    )  # fmt: skip
+
+
+def _pull_answer(r, holds, capacity, load, kappa, message):
+    """The pull's deciding :class:`~knotmech.analytic.hitch.ModelAnswer`."""
+    from knotmech.analytic.hitch import ModelAnswer
+
+    return ModelAnswer(
+        model="DER-simulation", holds=bool(holds), margin=capacity / load - 1,
+        capacity=capacity, critical_mu=math.nan, decides=True, inside_validity=True,
+        assumptions=(
+            f"two elastic rods (B = kappa E pi d^4/64, kappa = {kappa:g}), sticking "
+            "rod-rod friction, "
+            f"set by hand then pulled apart at {r.pull_speed * 1e3:g} mm/s",
+            "slip: a tail draws in by more than 2 d while the pull force stays "
+            "within 10 % of its largest value",
+        ),
+        validity=("one DER pull of the bend at this d, E and mu",),
+        reference="Patil, Sandt, Kolle & Dunkel, Science 367, 71 (2020); "
+        "knotmech.scenes.bends",
+        notes=(message,),
+    )  # fmt: skip

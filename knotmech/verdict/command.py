@@ -1,0 +1,49 @@
+"""The command that decides an undecided case: ``knotmech hold ... --simulate``, and what one
+such run costs."""
+
+from __future__ import annotations
+
+__all__ = ["SIMULATE_COST", "simulate_command"]
+
+#: what one ``simulate=True`` run of a hitch costs, as the answers quote it (measured: the
+#: clove hitch at the paper's size 7.3 s wall on an idle machine; the hold-table runs of the
+#: hitches 3-30 s of CPU per point, up to ~2 min on large posts, d/D ~ 0.02, where the rod
+#: is long)
+SIMULATE_COST = (
+    "typically 10-30 s of CPU, up to ~2 min on a large post (d/D ~ 0.02); a second run "
+    "with a 3 s hold when the creep lies near the limit"
+)
+
+
+def _q(value: float, unit: str) -> str:
+    """A quantity as a command-line token with its unit (4mm, 1.47N, 1.26MPa)."""
+    if unit == "m":
+        return f"{value * 1e3:.6g}mm"
+    if unit == "Pa":
+        return f"{value / 1e6:.6g}MPa"
+    return f"{value:.6g}{unit}"
+
+
+def simulate_command(
+    knot, *, d, D, mu, mu_rr=None, load, material=None, youngs_modulus=None, creep_limit=None,
+    bending_scale=None,
+) -> str:  # fmt: skip
+    """The full ``knotmech hold ... --simulate`` command that decides this case by one DER run."""
+    parts = ["knotmech", "hold", knot, "--rod-diameter", _q(d, "m")]
+    if D is not None:
+        parts += ["--post-diameter", _q(D, "m")]
+    parts += ["--mu", f"{mu:g}"]
+    if mu_rr is not None and mu_rr != mu:
+        parts += ["--mu-rr", f"{mu_rr:g}"]
+    parts += ["--load", _q(load, "N")]
+    if youngs_modulus is not None:
+        parts += ["--youngs-modulus", _q(youngs_modulus, "Pa")]
+    elif material is not None:
+        parts += ["--material", str(material)]
+    else:  # a DER run needs the stiffness: the user picks it
+        parts += ["--material", "MATERIAL"]
+    if bending_scale is not None:
+        parts += ["--bending-scale", f"{float(bending_scale):g}"]
+    if creep_limit is not None:
+        parts += ["--creep-limit", f"{creep_limit:g}"]
+    return " ".join(parts + ["--simulate"])

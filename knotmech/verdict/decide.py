@@ -1,0 +1,405 @@
+r"""The hold verdict: :func:`hold` collects every model's answer and decides by one rule.
+
+See :mod:`knotmech.verdict` for the models, their validity and the rule. A hitch on a post
+(or a capstan) is answered here; a bend by :mod:`knotmech.verdict.bend`.
+"""
+
+from __future__ import annotations
+
+import math
+import warnings
+from dataclasses import dataclass, replace
+
+from knotmech.errors import InputError, check_nonnegative, check_positive
+from knotmech.verdict.answer import Verdict
+from knotmech.verdict.command import SIMULATE_COST, simulate_command
+from knotmech.verdict.inputs import STRAIN_LIMIT, _bending_scale, _warnings, _youngs_modulus
+from knotmech.verdict.rule import decide, with_validity
+from knotmech.verdict.scope import BENDS, can_simulate, has_der_answer, knot_key
+
+__all__ = ["hold", "hold_verdict"]
+
+
+def hold(
+    knot,
+    *,
+    rod_diameter,
+    post_diameter=None,
+    mu,
+    load,
+    free_end_load=0.0,
+    mu_rr=None,
+    wrap_angle=None,
+    material=None,
+    youngs_modulus=None,
+    simulate=False,
+    phase_table=None,
+    progress=False,
+    creep_limit=None,
+    bending_scale=None,
+) -> Verdict:
+    r"""Does a rope tied to a post hold a load? The verdict, every model's answer and why.
+
+    Parameters
+    ----------
+    knot : str
+        One of :data:`KNOT_NAMES` (``capstan``, ``clove-hitch``, ``two-half-hitches``,
+        ``round-turn``, ``round-turn-two-half-hitches``, ``cow-hitch`` (also girth hitch,
+        lark's head), and the bends ``reef``, ``granny``, ``thief``, ``grief``). Other
+        knots (bowline, figure-eight, sheet bend, ...) raise a one-line
+        :class:`~knotmech.errors.InputError` listing these.
+    rod_diameter, post_diameter : float
+        Rope diameter d and post diameter D [m], > 0 (no post for a bend: None).
+    mu : float
+        Rope-post friction coefficient [-], >= 0.
+    load : float
+        Tension on the loaded end :math:`T_\mathrm{high}` [N], > 0.
+    free_end_load : float
+        Tension on the other end :math:`T_\mathrm{low}` [N], 0 (free end) to ``load``.
+        Cow hitch: ``load`` is on one leg, ``free_end_load`` on the other (0: the hitch
+        loaded on one leg only, the case its DER table and ``simulate`` model; a girth
+        hitch whose legs share the load has ``free_end_load = load``).
+    mu_rr : float, optional
+        Rope-rope friction coefficient [-] (hitches; default ``mu``). Refused for capstan.
+    wrap_angle : float, optional
+        Wrap angle [rad], > 0: required for capstan, refused for hitches.
+    material : str or Material, optional
+        A preset of :mod:`knotmech.materials` (``nylon``, ``polyester``, ``hmpe``,
+        ``manila``, ``polypropylene``, ``steel-wire``, ``vps32``): gives E.
+    youngs_modulus : float, optional
+        The rope's effective axial modulus E [Pa] (overrides the material's).
+    bending_scale : float, optional
+        The rope's bending scale kappa in (0, 1]: bending stiffness B = kappa E pi d^4/64
+        (overrides the material's; default the material's, 1 (a solid rod) without a
+        material; stated in the assumptions). A DER table answers only when its own
+        kappa (meta ``bending_scale``, 1 for the shipped solid-rod tables) is within a
+        factor :data:`BENDING_SCALE_FACTOR` of it. The DER protocol runs on the rod's
+        flexural clock (:func:`knotmech.scenes.phase_table.protocol_time_scale`), so a table
+        answers for every material; a table run in seconds on another rod (meta without
+        ``protocol_clock``) only within :data:`ROD_RATE_FACTOR` of its rod's time scale;
+        otherwise the DER answer is undecided (``der["refused"]``: ``"bending_scale"`` or
+        ``"rod"``) and the other models decide as for an undecided table. ``simulate`` runs
+        at the rope's kappa and density.
+    simulate : bool
+        One DER run of this geometry instead of the tables (:data:`SIMULATE_COST`): the
+        hitches with a DER scene (clove hitch, two half hitches, round turn and two half
+        hitches, cow hitch) with a free end, or a bend's pull (its slip load against the
+        load, 1-3 minutes); needs E.
+    phase_table : path, optional
+        A hitch with a DER answer: read the DER table from this file instead of the
+        shipped one (it must exist and parse).
+    progress : bool
+        Progress bar on stderr for ``simulate``.
+    creep_limit : float, optional
+        The DER hold criterion's limit [rod diameters per second]: the hitch holds when
+        its loose end creeps slower than this over the last second of the hold once the
+        load is on (default :data:`knotmech.verdict.criterion.CREEP_LIMIT`, 1e-3 d/s),
+        in protocol seconds: the DER runs on the rod's flexural clock
+        (:func:`knotmech.scenes.phase_table.protocol_time_scale`); the verdict's creep
+        gives the limit in the rope's own seconds too.
+        The tables store each point's measured creep speed, so they are re-judged at
+        this limit.
+
+    Returns
+    -------
+    Verdict
+
+    Raises
+    ------
+    InputError
+        Bad or inconsistent inputs, an unknown knot or material, a phase table that
+        does not read.
+
+    Examples
+    --------
+    >>> v = hold("clove-hitch", rod_diameter=4e-3, post_diameter=30e-3, mu=0.3,
+    ...          load=1.47, material="vps32")
+    >>> v.holds, v.decided_by, v.der["rule"]
+    (True, 'DER-table', 'grid')
+    >>> round(v.creep["speed_d_per_s"], 7)
+    6.21e-05
+    """
+    key = knot_key(knot)
+    if key in BENDS:
+        from knotmech.verdict.bend import hold_bend
+
+        return hold_bend(
+            key, rod_diameter=rod_diameter, post_diameter=post_diameter, mu=mu, load=load,
+            free_end_load=free_end_load, mu_rr=mu_rr, wrap_angle=wrap_angle, material=material,
+            youngs_modulus=youngs_modulus, simulate=simulate, phase_table=phase_table,
+            progress=progress, bending_scale=bending_scale,
+        )  # fmt: skip
+    c = _case(
+        key, rod_diameter=rod_diameter, post_diameter=post_diameter, mu=mu, load=load,
+        free_end_load=free_end_load, mu_rr=mu_rr, material=material,
+        youngs_modulus=youngs_modulus, simulate=simulate, phase_table=phase_table,
+        progress=progress, creep_limit=creep_limit, bending_scale=bending_scale,
+    )  # fmt: skip
+    return _verdict(c, wrap_angle)
+
+
+@dataclass
+class _Case:
+    """One hitch (or capstan) question, checked: diameters [m], friction, loads [N], the
+    rope's stiffness (E [Pa] or None, its material, kappa and where they came from), what
+    the user gave as given (``youngs_modulus``, ``bending_scale``: the command repeats them)
+    and how the DER is asked."""
+
+    key: str
+    d: float
+    D: float
+    mu: float
+    mu_rr: float | None
+    load: float
+    free: float
+    creep_limit: float | None
+    E: float | None
+    mat: object
+    e_source: str
+    kappa: float
+    k_source: str
+    youngs_modulus: object
+    bending_scale: object
+    simulate: bool
+    phase_table: object
+    progress: bool
+
+    @property
+    def simulable(self) -> bool:
+        """Whether one DER run decides this case (a scene, a free end)."""
+        return can_simulate(self.key) and self.free == 0
+
+    def command(self) -> str:
+        """The one DER run that decides this case ("" when there is none)."""
+        if not self.simulable:
+            return ""
+        return simulate_command(
+            self.key, d=self.d, D=self.D, mu=self.mu,
+            mu_rr=None if self.mu_rr is None else float(self.mu_rr), load=self.load,
+            material=None if self.mat is None else self.mat.key,
+            youngs_modulus=self.youngs_modulus, creep_limit=self.creep_limit,
+            bending_scale=self.bending_scale,
+        )  # fmt: skip
+
+
+def _case(
+    key, *, rod_diameter, post_diameter, mu, load, free_end_load, mu_rr, material,
+    youngs_modulus, simulate, phase_table, progress, creep_limit, bending_scale,
+) -> _Case:  # fmt: skip
+    """The checked inputs of a hitch or capstan question (one-line InputErrors, in order)."""
+    if post_diameter is None:
+        raise InputError(f"post_diameter is required for {key}")
+    d = float(check_positive("rod_diameter", rod_diameter))
+    D = float(check_positive("post_diameter", post_diameter))
+    mu = float(check_nonnegative("mu", mu))
+    load = float(check_positive("load", load))
+    free = float(check_nonnegative("free_end_load", free_end_load))
+    if creep_limit is not None:
+        creep_limit = float(check_positive("creep_limit", creep_limit))
+    _check_combination(key, mu_rr=mu_rr, simulate=simulate, free=free, phase_table=phase_table)
+    E, mat, e_source = _youngs_modulus(material, youngs_modulus)
+    kappa, k_source = _bending_scale(mat, bending_scale)
+    _check_stiffness(E, simulate=simulate, phase_table=phase_table)
+    return _Case(
+        key=key, d=d, D=D, mu=mu, mu_rr=mu_rr, load=load, free=free, creep_limit=creep_limit,
+        E=E, mat=mat, e_source=e_source, kappa=kappa, k_source=k_source,
+        youngs_modulus=youngs_modulus, bending_scale=bending_scale, simulate=bool(simulate),
+        phase_table=phase_table, progress=progress,
+    )  # fmt: skip
+
+
+def _check_combination(key, *, mu_rr, simulate, free, phase_table) -> None:
+    """Refuse inputs that do not go together (one line each)."""
+    if key == "capstan" and mu_rr is not None:
+        raise InputError("mu_rr (rope-on-rope friction) applies to hitches, not to capstan")
+    if simulate and not can_simulate(key):
+        raise InputError(
+            f"simulate is available for the clove hitch, the hitches with a DER scene and the "
+            f"bends, not for {key}"
+        )
+    if simulate and free > 0:
+        raise InputError(
+            "simulate covers the hitches with a free end only (free_end_load 0; cow hitch: one "
+            "leg loaded, the other free)"
+        )
+    if simulate and phase_table is not None:
+        raise InputError("give either simulate or phase_table, not both")
+    if phase_table is not None and not has_der_answer(key):
+        from knotmech.verdict.scope import DER_HITCHES
+
+        raise InputError(
+            f"phase_table applies to the hitches with a DER answer "
+            f"({', '.join(DER_HITCHES)}), not to {key}"
+        )
+
+
+def _check_stiffness(E, *, simulate, phase_table) -> None:
+    """A DER run or a user's table needs E."""
+    if simulate and E is None:
+        from knotmech.materials import material_names
+
+        raise InputError(
+            "simulate needs the rope's stiffness: give material (one of "
+            f"{', '.join(material_names())}) or youngs_modulus"
+        )
+    if phase_table is not None and E is None:
+        raise InputError(
+            "phase_table is read in T_high/EA: give material or youngs_modulus as well"
+        )
+
+
+def _verdict(c: _Case, wrap_angle) -> Verdict:
+    """Every model's answer on ``c`` and the verdict of the rule."""
+    from knotmech.analytic.hitch import hold_verdict as closed_forms
+
+    base = closed_forms(
+        c.key, rod_diameter=c.d, post_diameter=c.D, mu=c.mu, load=c.load,
+        free_end_load=c.free, mu_rr=c.mu_rr, wrap_angle=wrap_angle,
+    )  # fmt: skip
+    inputs = _inputs(c, base)
+    answers = _closed_form_answers(c, base)
+    assumptions = [c.e_source] if c.e_source else []
+    if c.key != "capstan":
+        assumptions.append(c.k_source)
+    cmd = c.command()
+    der, creep, shape = _der_part(c, answers, assumptions, cmd)
+    i = decide(answers)
+    if i is not None:
+        answers[i] = replace(answers[i], decides=True)
+    dec = None if i is None else answers[i]
+    return Verdict(
+        knot=c.key,
+        holds=None if dec is None else bool(dec.holds),
+        margin=math.nan if dec is None else float(dec.margin),
+        decided_by=None if dec is None else dec.model,
+        inside_validity=dec is not None,
+        answers=tuple(answers),
+        validity=() if dec is None else tuple(dec.validity),
+        assumptions=tuple(assumptions),
+        warnings=_warnings(c.mu, c.mu_rr, c.d, c.D, c.load, c.E, inputs.get("wrap_angle")),
+        next_step=_next_step(c, dec, der, cmd),
+        creep=creep,
+        inputs=inputs,
+        der=der,
+        notes=tuple(base.notes),
+        shape=shape,
+    )
+
+
+def _inputs(c: _Case, base) -> dict:
+    """The inputs in SI units, as the verdict reports them."""
+    inputs = dict(base.inputs)
+    if c.key == "capstan":
+        inputs.pop("mu_rr", None)
+    if c.mat is not None:
+        inputs["material"] = c.mat.key
+    if c.E is not None:
+        inputs["youngs_modulus"] = c.E
+    inputs["bending_scale"] = c.kappa
+    return inputs
+
+
+def _closed_form_answers(c: _Case, base) -> list:
+    """The closed forms' answers, none deciding yet; the thick nip inside its validity only
+    for a rope no thicker than its post at a strain T_high/EA within :data:`STRAIN_LIMIT`."""
+    strain = None if c.E is None else c.load / (c.E * math.pi * c.d * c.d / 4)
+    answers = []
+    for a in base.answers:
+        a = replace(a, decides=False)
+        if a.model == "thick-nip":
+            ok = c.d <= c.D and (strain is None or strain <= STRAIN_LIMIT)
+            a = with_validity(
+                a,
+                ok,
+                f"rope no thicker than the post; strain T_high/EA <= {STRAIN_LIMIT * 100:g} % "
+                "(inextensible rope)"
+                + ("" if strain is None else f": here {strain:.3g}")
+                + ("" if strain is not None else " (not checked: E not given)"),
+            )
+        answers.append(a)
+    return answers
+
+
+def _der_part(c: _Case, answers: list, assumptions: list, cmd: str):
+    """The DER answer of a hitch with one (appended to ``answers``): (details, creep, shape)."""
+    if not has_der_answer(c.key):
+        return None, None, None
+    if c.free > 0:
+        return {
+            "source": "none",
+            "holds": None,
+            "message": "the DER phase diagram covers the free end only (T_low = 0)",
+        }, None, None  # fmt: skip
+    if c.E is None:
+        assumptions.append(
+            "nothing about the rope's stiffness: E was not given, so the DER phase table "
+            "(in T_high/EA) was not consulted"
+        )
+        return {
+            "source": "none",
+            "holds": None,
+            "message": "not consulted: the DER tables are in T_high/EA and E was not given",
+        }, None, None  # fmt: skip
+    from knotmech.verdict.der import der_answer
+
+    ideal = next((a.holds for a in answers if a.model == "ideal-rope"), None)
+    der, answer, creep, shape = der_answer(
+        knot=c.key, d=c.d, D=c.D, mu=c.mu, mu_rr=c.mu if c.mu_rr is None else float(c.mu_rr),
+        load=c.load, E=c.E, simulate=c.simulate, phase_table=c.phase_table,
+        progress=c.progress, ideal_holds=ideal, creep_limit=c.creep_limit,
+        bending_scale=c.kappa, command=cmd, density=None if c.mat is None else c.mat.density,
+    )  # fmt: skip
+    if answer is not None:
+        answers.append(answer)
+    return der, creep, shape
+
+
+def _next_step(c: _Case, dec, der, cmd: str) -> str:
+    """What to do next: the command that decides an undecided case, the input that lets the
+    DER answer, or the run that checks a case the DER did not decide."""
+    if dec is None:
+        if c.simulable:
+            return (
+                f"next: {cmd} (one DER run of this geometry, {SIMULATE_COST}) decides it"
+                + ("" if c.E is not None else "; MATERIAL: one of the presets, or give "
+                   "--youngs-modulus")
+            )  # fmt: skip
+        return "next: no model here applies inside its validity; test the knot"
+    if has_der_answer(c.key) and c.free == 0 and c.E is None:
+        return (
+            "next: give --material or --youngs-modulus (material=, youngs_modulus=) to "
+            "check against the DER phase table"
+        )
+    der_silent = der is not None and der.get("holds") is None and c.free == 0
+    if c.simulable and der_silent and not c.simulate and dec.model != "DER-table":
+        return f"next: {cmd} checks it with one DER run of this geometry"
+    return ""
+
+
+def hold_verdict(
+    knot,
+    *,
+    rod_diameter,
+    post_diameter,
+    mu,
+    load,
+    free_end_load=0.0,
+    mu_rr=None,
+    wrap_angle=None,
+) -> Verdict:
+    """Deprecated alias of :func:`hold` (same verdict; use ``knotmech.hold``)."""
+    warnings.warn(
+        "knotmech.hold_verdict is deprecated; use knotmech.hold (same verdict, more answers)",
+        DeprecationWarning,
+        stacklevel=2,
+    )
+    return hold(
+        knot,
+        rod_diameter=rod_diameter,
+        post_diameter=post_diameter,
+        mu=mu,
+        load=load,
+        free_end_load=free_end_load,
+        mu_rr=mu_rr,
+        wrap_angle=wrap_angle,
+    )

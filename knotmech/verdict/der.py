@@ -1,0 +1,577 @@
+"""The DER answer of the hold verdict for a hitch with a free end: one DER run of the user's
+geometry, a table the user names, or the shipped hold table of the knot (nearest the rope's
+bending scale), each refused where it does not apply (another bending scale; a table run in
+seconds on a rod of another elastic-wave rate). :func:`der_answer` returns the details the
+verdict reports, the model answer (None when the DER does not decide), the creep measured
+and, after a simulation, the knot's shape.
+"""
+
+from __future__ import annotations
+
+import functools
+import json
+import math
+from dataclasses import dataclass, field
+from pathlib import Path
+
+from knotmech import knots
+from knotmech.errors import InputError
+from knotmech.verdict import build as _build
+from knotmech.verdict.criterion import (
+    CREEP_CRITERION,
+    CREEP_LIMIT,
+    CREEP_WINDOW,
+    DENSITY,
+    PROTOCOL,
+    PROTOCOL_CLOCK,
+    ROD_DIAMETER,
+    YOUNGS_MODULUS,
+    protocol_time_scale,
+)
+from knotmech.verdict.tables import (
+    HOLD_TABLE_FORMAT,
+    HoldTable,
+    PhaseTableSet,
+    load_hold_table_sets,
+    load_table,
+    load_tables,
+    meta_bending_scale,
+    read_hold_table,
+)
+
+__all__ = [
+    "BENDING_SCALE_FACTOR",
+    "ROD_RATE_FACTOR",
+    "der_answer",
+    "load_user_table",
+    "shipped_hold_table",
+    "shipped_hold_tables",
+]
+
+#: the DER table answers only when the table's bending scale kappa is within this factor of
+#: the rope's (a rope's kappa is of order 0.01; the shipped tables are solid rods, kappa = 1)
+BENDING_SCALE_FACTOR = 3.0
+
+
+#: a DER table built before the protocol ran on the rod's own clock (its meta has no
+#: ``protocol_clock``) answers only for a rope whose protocol time scale
+#: (:func:`knotmech.scenes.phase_table.protocol_time_scale`) is within this factor of its
+#: rod's: such a table ran in seconds, and a run in seconds is not in T_high/EA, d/2R, mu and
+#: kappa alone (at d/2R 0.118, 0.1 EA, mu 0.3, kappa 1 a 6 mm nylon rod ran off in seconds
+#: where the silicone table held). The shipped tables ran on the reference rod (time scale
+#: 1), so they are on the flexural clock and answer for every material.
+ROD_RATE_FACTOR = 3.0
+
+
+def _table_rod(table):
+    """(d [m], E [Pa], rho [kg/m^3]) of the rod a DER table was run on (its meta ``rod``;
+    the scene's silicone defaults when absent)."""
+    meta = getattr(table, "meta", None) or {}
+    rod = meta.get("rod") or {}
+    try:
+        return (float(rod.get("d_m", ROD_DIAMETER)), float(rod.get("E_Pa", YOUNGS_MODULUS)),
+                float(rod.get("rho", DENSITY)))  # fmt: skip
+    except (TypeError, ValueError):
+        raise InputError("a DER table's meta rod must hold numbers d_m, E_Pa, rho") from None
+
+
+def _table_time_scale(table, kappa) -> tuple[float, bool]:
+    """(protocol time scale of the rod the table ran on, whether the table is on the
+    flexural clock: meta ``protocol_clock`` == "flexural", or a time scale of 1, the
+    reference rod, on which seconds and protocol seconds are the same)."""
+    td, tE, trho = _table_rod(table)
+    ts = protocol_time_scale(rod_diameter=td, youngs_modulus=tE, density=trho,
+                                bending_scale=kappa)  # fmt: skip
+    meta = getattr(table, "meta", None) or {}
+    return ts, meta.get("protocol_clock") == PROTOCOL_CLOCK or abs(ts - 1.0) < 1e-9
+
+
+def _table_kappa(table, name="the DER table") -> float:
+    """The bending scale a DER table was built with (meta ``bending_scale``, 1 if absent;
+    :func:`knotmech.scenes.phase_table.meta_bending_scale`: a one-line InputError naming
+    ``name`` when it is not a number in (0, 1])."""
+    return meta_bending_scale(getattr(table, "meta", None), name)
+
+
+def load_user_table(path):
+    """A DER table the user names: a 3-axis hold table, or a smooth-law phase table (as a
+    one-table set); a one-line InputError when it does not read or is out of range."""
+    try:
+        head = json.loads(Path(path).read_text())
+    except (OSError, ValueError):
+        head = None  # load_table says what is wrong
+    if isinstance(head, dict) and head.get("format") == HOLD_TABLE_FORMAT:
+        return read_hold_table(path)  # a 3-axis hold table (checked when read)
+    t = load_table(path)  # InputError when missing or not a table
+    pts = t.points
+    if not pts:
+        raise InputError(f"phase table {str(path)!r} has no points")
+    for p in pts:
+        if not (0 < p.d_over_2R < 0.5 and math.isfinite(p.t_over_EA) and p.t_over_EA > 0):
+            raise InputError(
+                f"phase table {str(path)!r}: point ({p.d_over_2R:g}, {p.t_over_EA:g}) is "
+                "outside 0 < d/2R < 0.5, T_high/EA > 0"
+            )
+    if not (math.isfinite(t.mu) and t.mu >= 0 and math.isfinite(t.mu_rr) and t.mu_rr >= 0):
+        raise InputError(f"phase table {str(path)!r}: mu and mu_rr must be finite, >= 0")
+    return PhaseTableSet([t])
+
+
+def _shape(result, *, d, D):
+    """The last frame's centreline and tension of a DER result, or None."""
+    try:
+        pos = result.positions[-1]
+        tension = result.tension
+    except (AttributeError, IndexError, TypeError):
+        return None
+    return {"positions": pos, "tension": tension, "rod_diameter": d, "post_diameter": D}
+
+
+@functools.lru_cache(maxsize=1)
+def _shipped_tables():
+    """The shipped smooth-law (imc) DER tables, read once per process (package data)."""
+    return load_tables()
+
+
+def shipped_hold_tables():
+    """The shipped anchor-law solid-rod hold tables {knot: HoldTable} (those nearest kappa = 1
+    of :func:`_shipped_hold_table_sets`, which reads the files once per process)."""
+    return {knot: shipped_hold_table(knot, 1.0) for knot in _shipped_hold_table_sets()}
+
+
+@functools.lru_cache(maxsize=1)
+def _shipped_hold_table_sets():
+    """The shipped anchor-law hold tables {knot: {kappa: HoldTable}}, read once per process."""
+    return load_hold_table_sets()
+
+
+def shipped_hold_table(knot, kappa=1.0):
+    """The shipped hold table of ``knot`` whose bending scale is nearest ``kappa`` (by
+    ratio), or None when none is shipped."""
+    by_kappa = _shipped_hold_table_sets().get(knot)
+    if not by_kappa:
+        return None
+    best = min(by_kappa, key=lambda k: abs(math.log(k / float(kappa))))
+    return by_kappa[best]
+
+
+def _criterion_text(limit: float, window: float | None = None, time_scale: float = 1.0) -> str:
+    """The criterion in words; ``limit`` [d per protocol s] and ``window`` [protocol s], with
+    ``time_scale`` the rope's real seconds per protocol second."""
+    w = CREEP_WINDOW if window is None else float(window)
+    s = float(time_scale)
+    clock = "" if s == 1.0 else (
+        f" (the protocol's {limit:g} d/s over {w:g} s, on the rod's flexural clock "
+        f"d/(sqrt(kappa) sqrt(E/rho)): 1 protocol s = {s:.3g} s for this rope)"
+    )  # fmt: skip
+    return (
+        f"{CREEP_CRITERION} criterion: holds when the loose end creeps slower than "
+        f"{limit / s:.3g} d/s over the last {w * s:.3g} s of the hold once the load is "
+        f"on{clock}, topology kept"
+    )
+
+
+def _creep_dict(source, speed, d, *, limit, ran_to_end=True, window=None, time_scale=1.0):
+    """The measured creep as the verdict reports it, in real seconds for this rope.
+
+    ``speed`` [d per protocol s], ``limit`` [d per protocol s] and ``window`` [protocol s,
+    default the clove hitch's :data:`~knotmech.scenes.phase_table.CREEP_WINDOW`] are on the
+    protocol's clock; ``time_scale`` is the rope's real seconds per protocol second
+    (:func:`knotmech.scenes.phase_table.protocol_time_scale`). The dict has the speed in
+    d/s and m/s, the limit in d/s and the window in s (real), and the protocol's values."""
+    ok = ran_to_end and speed is not None and math.isfinite(speed)
+    w = CREEP_WINDOW if window is None else float(window)
+    s = float(time_scale)
+    return {
+        "source": source,
+        "criterion": CREEP_CRITERION,
+        "limit_d_per_s": limit / s,
+        "window_s": w * s,
+        "speed_d_per_s": float(speed) / s if ok else None,
+        "speed_m_per_s": float(speed) / s * d if ok else None,
+        "creep_m": float(speed) * d * w if ok else None,
+        "ran_off": not ran_to_end,
+        "time_scale": s,
+        "limit_d_per_protocol_s": limit,
+        "speed_d_per_protocol_s": float(speed) if ok else None,
+    }
+
+
+def _table_validity_imc(tables, a):
+    used = [tables.table(m) for m in a.mu_tables]
+    xs, ys = used[0].d_over_2R, used[0].t_over_EA
+    return (
+        f"table grid d/2R {xs[0]:.3g}-{xs[-1]:.3g}, T_high/EA {ys[0]:.3g}-{ys[-1]:.3g}, "
+        f"mu = mu_rr = {' and '.join(f'{t.mu:g}' for t in used)}"
+        + (" (bracketing the user's friction)" if len(used) > 1 else "")
+        + "; boundary resolved to one grid step"
+    )
+
+
+@dataclass
+class _Query:
+    """One DER question: the geometry [m], friction, load [N], the rope (E [Pa], kappa,
+    density [kg/m^3] or None: the reference rod's) and the criterion (limit [d per protocol
+    s]); ``x`` = d/2R, ``y`` = T_high/EA, ``ts`` the rope's seconds per protocol second, and
+    ``out`` the details the verdict reports (filled as the sources answer)."""
+
+    knot: str
+    d: float
+    D: float
+    mu: float
+    mu_rr: float
+    load: float
+    E: float
+    kappa: float
+    lim: float
+    command: str
+    density: float | None
+    x: float = math.nan
+    y: float = math.nan
+    EA: float = math.nan
+    ts: float = 1.0
+    out: dict = field(default_factory=dict)
+
+
+@dataclass
+class _Found:
+    """What a DER source found: ``validity`` (None: it does not decide), the capacity [N],
+    the rod-rod law of its runs, the creep measured and the simulated shape."""
+
+    validity: str | None = None
+    capacity: float = math.nan
+    law: str = "anchor"
+    creep: dict | None = None
+    shape: dict | None = None
+
+
+def _start(q: _Query) -> _Query:
+    """``q`` with d/2R (R = (D + d)/2), T_high/EA, the time scale and the empty details."""
+    q.x = q.d / (q.D + q.d)
+    q.EA = q.E * math.pi * q.d * q.d / 4
+    q.y = q.load / q.EA
+    q.out = {
+        "source": "none",
+        "holds": None,
+        "d_over_2R": q.x,
+        "t_over_EA": q.y,
+        "youngs_modulus": q.E,
+        "inside_table": False,
+        "critical_t_over_EA": None,
+        "mu_tables": [],
+        "message": "",
+        "agrees_with_ideal_rope": None,
+        "criterion": _criterion_text(q.lim),
+        "bending_scale": q.kappa,
+    }
+    # the rope's real seconds per protocol second (the DER runs on the rod's flexural clock)
+    q.ts = protocol_time_scale(
+        rod_diameter=q.d,
+        youngs_modulus=q.E,
+        bending_scale=q.kappa,
+        density=DENSITY if q.density is None else float(q.density),
+    )
+    q.out["time_scale"] = q.ts
+    q.out["criterion"] = _criterion_text(q.lim, None, q.ts)
+    return q
+
+
+def der_answer(
+    *, knot="clove-hitch", d, D, mu, mu_rr, load, E, simulate, phase_table, progress,
+    ideal_holds, creep_limit=None, bending_scale=1.0, command="", density=None,
+):  # fmt: skip
+    """The DER answer for a hitch with a free end.
+
+    Parameters
+    ----------
+    knot : str
+        Canonical name of a hitch with a DER answer.
+    d, D : float
+        Rope and post diameters [m].
+    mu, mu_rr : float
+        Rope-post and rope-rope friction coefficients [-].
+    load : float
+        T_high [N].
+    E : float
+        Young's modulus [Pa].
+    simulate : bool
+        One DER run of this geometry instead of the tables (at ``density`` [kg/m^3]; None:
+        the reference rod's), on the rope's clock.
+    phase_table : path or None
+        A table to read instead of the shipped one.
+    progress : bool
+        Progress bar of a simulation.
+    ideal_holds : bool or None
+        The ideal-rope answer (the details say whether the DER agrees).
+    creep_limit : float, optional
+        Limit of the creep criterion [d per protocol s].
+    bending_scale : float
+        The rope's kappa: a table answers only within :data:`BENDING_SCALE_FACTOR` of it and,
+        unless it ran on the protocol's flexural clock (every shipped table does), its rod's
+        protocol time scale within :data:`ROD_RATE_FACTOR` of the rope's.
+    command : str
+        The command that decides a case the table refuses.
+
+    Returns
+    -------
+    details : dict
+        What the DER said (source, holds, d/2R, T_high/EA, message, ...).
+    answer : ModelAnswer or None
+        None when the DER does not decide.
+    creep : dict or None
+        The creep measured, in the rope's real seconds.
+    shape : dict or None
+        The simulated knot.
+    """
+    q = _start(_Query(
+        knot=knot, d=d, D=D, mu=mu, mu_rr=mu_rr, load=load, E=E, kappa=float(bending_scale),
+        lim=CREEP_LIMIT if creep_limit is None else float(creep_limit), command=command,
+        density=density,
+    ))  # fmt: skip
+    found = _from_simulation(q, progress) if simulate else _from_tables(q, phase_table)
+    if found.validity is None:
+        return q.out, None, found.creep, found.shape
+    return q.out, _model_answer(q, found, simulate, ideal_holds), found.creep, found.shape
+
+
+def _refusal(q: _Query, table, name: str) -> str:
+    """The reason a table built at another kappa, or for a rod of another elastic-wave rate,
+    may not answer; "" when it may."""
+    tk = _table_kappa(table, name)
+    q.out["table_bending_scale"] = tk
+    then = f"; decide with: {q.command}" if q.command else ""
+    if max(tk / q.kappa, q.kappa / tk) > BENDING_SCALE_FACTOR:
+        kind = "solid rods" if tk == 1.0 else "rods"
+        q.out["refused"] = "bending_scale"
+        return (
+            f"not decided by the table: the tables are for {kind} (kappa = {tk:g}); this "
+            f"rope's kappa = {q.kappa:g} (more than a factor {BENDING_SCALE_FACTOR:g} apart)" + then
+        )
+    return _rate_refusal(q, table, tk, then)
+
+
+def _rate_refusal(q: _Query, table, tk: float, then: str) -> str:
+    """A table run in seconds answers only for a rope whose clock ticks like its rod's."""
+    td, tE, trho = _table_rod(table)
+    ts_table, clocked = _table_time_scale(table, tk)
+    q.out["table_rod"] = {
+        "d_m": td,
+        "E_Pa": tE,
+        "rho": trho,
+        "time_scale": ts_table,
+        "protocol_clock": PROTOCOL_CLOCK if clocked else "seconds",
+    }
+    if clocked or max(q.ts / ts_table, ts_table / q.ts) <= ROD_RATE_FACTOR:
+        return ""
+    q.out["refused"] = "rod"
+    return (
+        f"not decided by the table: it ran in seconds on a rod of E = {tE / 1e6:.3g} "
+        f"MPa, d = {td * 1e3:.3g} mm, {trho:g} kg/m^3 (protocol time scale "
+        f"{ts_table:.3g}); this rope's is {q.ts:.3g} (more than a factor "
+        f"{ROD_RATE_FACTOR:g} apart), so its answer is not in T_high/EA alone" + then
+    )
+
+
+def _from_simulation(q: _Query, progress) -> _Found:
+    """One DER run of the user's geometry (:func:`knotmech.verdict.build.simulate_point`)."""
+    p = _build.simulate_point(
+        d_over_2R=q.x, t_over_EA=q.y, mu=q.mu, mu_rr=q.mu_rr, rod_diameter=q.d,
+        youngs_modulus=q.E, bending_scale=q.kappa, creep_limit=q.lim, recheck=True,
+        progress=progress, keep_result=True,
+        **({} if q.knot == "clove-hitch" else {"knot": q.knot}),
+        **({} if q.density is None else {"density": float(q.density)}),
+    )  # fmt: skip
+    shape = _shape(p.get("result"), d=q.d, D=q.D)
+    if p["holds"] is None:
+        q.out["message"] = f"the DER simulation failed: {p['message']}"
+        return _Found(shape=shape)
+    if p.get("stopped_in") == "settle":  # no load was on: no verdict (issue 27)
+        q.out["failed"] = "settle"
+        q.out["message"] = (
+            "the DER simulation failed: the run stopped while the knot settled, at "
+            f"{p.get('stopped_at_protocol_s', 0.0):.3g} protocol s of "
+            f"{PROTOCOL['settle_time']:g}, before any load was on: no verdict "
+            f"({p.get('message') or p.get('reason', '')})"
+        )
+        return _Found(shape=shape)
+    ts = float(p.get("time_scale", 1.0))
+    speed = float(p.get("creep_speed_protocol", ts * p.get("creep_speed", math.nan)))
+    ran = bool(p.get("ran_to_end", math.isfinite(speed)))
+    win = float(p.get("creep_window_s", ts * CREEP_WINDOW)) / ts
+    creep = _creep_dict("DER simulation of this geometry", speed, q.d, limit=q.lim,
+                        ran_to_end=ran, window=win, time_scale=ts)  # fmt: skip
+    q.out["time_scale"] = ts
+    q.out["criterion"] = _criterion_text(q.lim, win, ts)
+    q.out.update(source="simulation", holds=bool(p["holds"]), message=_run_message(q, p, creep))
+    run_s = sum(PROTOCOL[k] for k in ("settle_time", "load_time", "hold_time"))
+    validity = (
+        f"one run of the user's geometry ({run_s:g} protocol s of simulated time"
+        + ("" if ts == 1.0 else f", {run_s * ts:.3g} s for this rope")
+        + ")"
+    )
+    return _Found(validity=validity, creep=creep, shape=shape)
+
+
+def _run_message(q: _Query, p: dict, creep: dict) -> str:
+    """The simulation's answer in one line: verdict, creep, reason, wall time."""
+    if creep["speed_d_per_s"] is not None:
+        crept = (
+            f"loaded end creeps {creep['speed_d_per_s']:.3g} d/s over the last "
+            f"{creep['window_s']:.3g} s of the hold"
+        )
+        reason = ""
+    else:
+        crept = "the loaded end ran off before the hold's measuring window"
+        reason = p.get("reason", "")
+    return (
+        f"DER simulation at d/2R = {q.x:.4g}, T_high/EA = {q.y:.4g}: {p['verdict']} "
+        f"({crept}{'; ' + reason if reason else ''}; {p['wall_s']:.0f} s)"
+    )
+
+
+def _from_tables(q: _Query, phase_table) -> _Found:
+    """The table the user names (a hold table or a smooth-law phase table), else the shipped
+    hold table of the knot nearest the rope's kappa."""
+    user = None if phase_table is None else load_user_table(phase_table)
+    if user is not None and not isinstance(user, HoldTable):
+        return _from_phase_table(q, user, str(phase_table))
+    return _from_hold_table(q, user, phase_table)
+
+
+def _from_phase_table(q: _Query, user, path: str) -> _Found:
+    """A smooth-law phase table the user names (mu = mu_rr tables bracketing the friction)."""
+    law = "imc"
+    why = _refusal(q, user, f"phase table {path!r}")
+    if why:
+        q.out.update(source="table", table=path, law=law, message=why)
+        return _Found(law=law)
+    a = user.lookup(q.x, q.y, mu=q.mu, mu_rr=q.mu_rr)
+    q.out.update(
+        source="table", holds=a.holds, inside_table=bool(a.inside), message=a.message,
+        critical_t_over_EA=a.critical if math.isfinite(a.critical) else None,
+        mu_tables=[float(m) for m in a.mu_tables],
+        mu_tables_available=[float(m) for m in user.mus], table=path, law=law,
+        criterion="distance: end 0 creeps less than d over the last half of the hold "
+        "(the smooth-law tables' criterion)",
+    )  # fmt: skip
+    capacity = a.bracket[0] * q.EA if a.inside and a.bracket[0] > 0 else math.nan
+    if a.holds is None:
+        return _Found(law=law)
+    return _Found(validity=_table_validity_imc(user, a), capacity=capacity, law=law)
+
+
+def _from_hold_table(q: _Query, user, phase_table) -> _Found:
+    """A 3-axis hold table: the user's, or the shipped one of the knot."""
+    table = user if user is not None else shipped_hold_table(q.knot, q.kappa)
+    if table is None:
+        q.out["message"] = f"no DER hold table for {q.knot} is shipped"
+        return _Found()
+    law = table.law
+    where = "shipped" if user is None else str(phase_table)
+    name = f"phase table {where!r}" if user is not None else f"the shipped {q.knot} hold table"
+    why = _refusal(q, table, name)
+    if why:
+        q.out.update(source="table", law=law, message=why, table=where)
+        return _Found(law=law)
+    a = table.lookup(q.x, q.y, mu=q.mu, mu_rr=q.mu_rr, creep_limit=q.lim)
+    _report_lookup(q, table, a, where)
+    creep = _table_creep(q, table, a)
+    capacity = (
+        a.capacity_t_over_EA * q.EA if a.holds and math.isfinite(a.capacity_t_over_EA) else math.nan
+    )
+    if a.holds is None:
+        return _Found(law=law, creep=creep)
+    ax = table.axes
+    validity = (
+        f"{q.knot} table grid d/2R {ax['d_over_2R'][0]:.3g}-{ax['d_over_2R'][-1]:.3g}, "
+        f"T_high/EA {ax['t_over_EA'][0]:.3g}-{ax['t_over_EA'][-1]:.3g}, mu = mu_rr "
+        f"{ax['mu'][0]:g}-{ax['mu'][-1]:g} ({law} rod-rod law); decided by the rule "
+        f"{a.rule!r} (neighbours agree, or beyond the grid where monotonicity says so)"
+    )
+    return _Found(validity=validity, capacity=capacity, law=law, creep=creep)
+
+
+def _report_lookup(q: _Query, table, a, where: str) -> None:
+    """The hold table's answer into the details."""
+    ax = table.axes
+    clock = "" if q.ts == 1.0 else (
+        f" (grid creep speeds in d per protocol s; 1 protocol s = {q.ts:.3g} s for this "
+        "rope)")  # fmt: skip
+    q.out.update(
+        source="table", holds=a.holds, inside_table=bool(a.inside),
+        message=a.message + clock,
+        rule=a.rule,
+        critical_t_over_EA=a.critical if math.isfinite(a.critical) else None,
+        capacity_t_over_EA=(a.capacity_t_over_EA
+                            if math.isfinite(a.capacity_t_over_EA) else None),
+        mu_tables=[float(m) for m in a.mu_tables], mu_tables_available=table.mus,
+        table=where, law=table.law,
+        grid={k: [float(v) for v in ax[k]] for k in ax},
+    )  # fmt: skip
+
+
+def _table_creep(q: _Query, table, a):
+    """The creep the table's neighbouring points measured: the largest of those that held
+    when it holds, else the smallest measured; None without neighbours."""
+    if not a.corners:
+        return None
+    n = len(a.corners)
+    src = f"DER {q.knot} table, {n} neighbouring grid point{'s' if n > 1 else ''}"
+    win = table.criterion.get("window_s")
+    q.out["criterion"] = _criterion_text(q.lim, win, q.ts)
+    kw = {"limit": q.lim, "window": win, "time_scale": q.ts}
+    if a.holds and math.isfinite(a.creep_speed):
+        return _creep_dict(src + " (largest creep of the points that held)", a.creep_speed,
+                           q.d, **kw)  # fmt: skip
+    finite = [c.creep_speed for c in a.corners if math.isfinite(c.creep_speed)]
+    if finite:
+        return _creep_dict(src + " (smallest creep measured)", min(finite), q.d, **kw)
+    return _creep_dict(src, math.nan, q.d, ran_to_end=False, **kw)
+
+
+def _model_answer(q: _Query, f: _Found, simulate: bool, ideal_holds):
+    """The DER's :class:`~knotmech.analytic.hitch.ModelAnswer` (not yet deciding)."""
+    from knotmech.analytic.hitch import ModelAnswer
+
+    holds = bool(q.out["holds"])
+    if ideal_holds is not None:
+        q.out["agrees_with_ideal_rope"] = holds == bool(ideal_holds)
+    return ModelAnswer(
+        model=f"DER-{q.out['source']}",
+        holds=holds,
+        margin=(f.capacity / q.load - 1) if math.isfinite(f.capacity) else math.nan,
+        capacity=f.capacity,
+        critical_mu=math.nan,
+        decides=False,
+        inside_validity=True,
+        assumptions=_assumptions(q, f.law, simulate),
+        validity=(f.validity,),
+        reference=(
+            "clove-hitch paper (Extreme Mech. Lett., DOI 10.1016/j.eml.2022.101788), "
+            "sec. 8 and Fig. 4; knotmech.scenes.phase_table"
+        ),
+        notes=(q.out["message"],),
+    )
+
+
+def _assumptions(q: _Query, law: str, simulate: bool) -> tuple:
+    """The DER model's assumptions: the rod, its bending stiffness, the hold criterion and
+    the loading the knot's record names."""
+    if q.kappa == 1.0:
+        solid = " (a solid rod; a fibre rope bends far more easily, kappa ~ 0.01)"
+    else:
+        k = q.kappa if simulate else q.out.get("table_bending_scale", 1.0)
+        solid = f" (the {'run' if simulate else 'table'}'s kappa {k:g})"
+    hold_rule = (
+        q.out["criterion"]
+        if law == "anchor"
+        else "free end: held if the end creeps less than d over the last half of the hold"
+    )
+    loading = knots.get(q.knot).loading
+    return (
+        "discrete elastic rod (centreline, circular cross-section, no flattening in "
+        "the nips), rigid post, Coulomb-type friction at the rod surface"
+        + (" (sticking rod-rod anchor law)" if law == "anchor" else " (smooth rod-rod law)"),
+        f"bending stiffness B = kappa E pi d^4/64 with kappa = {q.kappa:g}" + solid,
+        hold_rule,
+    ) + ((loading,) if loading else ())

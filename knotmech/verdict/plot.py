@@ -1,0 +1,141 @@
+"""Drawing a verdict's DER answer: the query on the phase diagram, or the simulated knot."""
+
+from __future__ import annotations
+
+from pathlib import Path
+
+from knotmech.errors import InputError
+from knotmech.verdict.answer import Verdict
+
+__all__ = ["PLOT_FORMATS", "check_plot_path", "plot_verdict"]
+
+PLOT_FORMATS = ("png", "pdf", "svg")
+
+
+def check_plot_path(path) -> Path:
+    """Refuse a plot path whose folder is missing or whose format is not png/pdf/svg."""
+    p = Path(path)
+    fmt = p.suffix.lower().lstrip(".")
+    if fmt not in PLOT_FORMATS:
+        raise InputError(
+            f"plot {str(path)!r}: the format must be one of {', '.join(PLOT_FORMATS)} "
+            "(from the file name)"
+        )
+    if not p.parent.is_dir():
+        raise InputError(f"plot {str(path)!r}: folder {str(p.parent)!r} does not exist")
+    return p
+
+
+def plot_verdict(verdict: Verdict, path, *, phase_table=None) -> Path:
+    """Draw the DER answer: the query on the phase diagram, or the simulated knot.
+
+    Table answer: one panel per friction table used, grid points held (dots) and
+    slipped (crosses), the interpolated upper boundary and the query (star, labelled with
+    the verdict). Simulation: the knot's centreline at the end of the hold in 3-D,
+    coloured by the tension T(s), with the post (axis z through the origin).
+
+    Raises
+    ------
+    InputError
+        The verdict has neither a table answer nor a simulated knot, or a bad path.
+    """
+    p = check_plot_path(path)
+    if verdict.shape is not None:
+        return _plot_knot(verdict, p)
+    der = verdict.der or {}
+    if der.get("source") != "table" or not der.get("mu_tables"):
+        raise InputError(
+            "plot: there is no DER answer to draw (a hitch with a DER table, free end, E "
+            "given, inside the table's reach, or simulate)"
+        )
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+
+    from knotmech.verdict.criterion import CREEP_LIMIT
+    from knotmech.verdict.der import load_user_table, shipped_hold_table
+    from knotmech.verdict.tables import HoldTable
+
+    tables = (shipped_hold_table(verdict.knot, der.get("table_bending_scale", 1.0))
+              if phase_table is None else load_user_table(phase_table))  # fmt: skip
+    if isinstance(tables, HoldTable):
+        lim = (verdict.creep or {}).get("limit_d_per_protocol_s") or CREEP_LIMIT
+        used = [tables.slice(m, creep_limit=lim) for m in der["mu_tables"]]
+    else:
+        used = [tables.table(m) for m in der["mu_tables"]]
+    fig, axes = plt.subplots(1, len(used), figsize=(5.2 * len(used), 4.2), squeeze=False)
+    for ax, t in zip(axes[0], used, strict=True):
+        _draw_slice(ax, t, der, verdict)
+    fig.tight_layout()
+    fig.savefig(p)
+    plt.close(fig)
+    return p
+
+
+def _draw_slice(ax, t, der: dict, verdict: Verdict) -> None:
+    """One friction's (d/2R, T_high/EA) slice: points held and slipped, the interpolated
+    upper boundary and the query."""
+    import matplotlib.ticker
+    import numpy as np
+
+    held = [(q.d_over_2R, q.t_over_EA) for q in t.points if q.holds]
+    slip = [(q.d_over_2R, q.t_over_EA) for q in t.points if not q.holds]
+    if held:
+        ax.scatter(*zip(*held, strict=True), marker="o", color="tab:green", label="held")
+    if slip:
+        ax.scatter(*zip(*slip, strict=True), marker="x", color="tab:red", label="slipped")
+    xs, lo, hi, _ = t.boundary()
+    ok = np.isfinite(hi)
+    if ok.any():
+        ax.plot(xs[ok], 0.5 * (lo[ok] + hi[ok]), "k--", lw=1, label="upper boundary")
+    ax.scatter([der["d_over_2R"]], [der["t_over_EA"]], marker="*", s=220,
+               color="tab:blue", zorder=5, label=f"query: {verdict.state}")  # fmt: skip
+    ax.set_xscale("log")
+    ax.set_yscale("log")
+    cols = sorted({q.d_over_2R for q in t.points})  # ticks at the table's columns
+    ax.xaxis.set_major_locator(matplotlib.ticker.FixedLocator(cols))
+    ax.xaxis.set_major_formatter(matplotlib.ticker.FixedFormatter([f"{c:.3g}" for c in cols]))
+    ax.xaxis.set_minor_formatter(matplotlib.ticker.NullFormatter())
+    ax.set_xlabel("d/2R")
+    ax.set_ylabel("T_high/EA")
+    ax.set_title(f"{verdict.knot}, free end, mu = mu_rr = {t.mu:g}", fontsize=10)
+    ax.legend(loc="best", fontsize=8, framealpha=0.6)
+
+
+def _plot_knot(verdict: Verdict, p: Path) -> Path:
+    import matplotlib
+
+    matplotlib.use("Agg", force=False)
+    import matplotlib.pyplot as plt
+    import numpy as np
+    from mpl_toolkits.mplot3d.art3d import Line3DCollection
+
+    sh = verdict.shape
+    x = np.asarray(sh["positions"], dtype=float)
+    t = np.asarray(sh["tension"], dtype=float)
+    segs = np.stack([x[:-1], x[1:]], axis=1) * 1e3  # mm
+    fig = plt.figure(figsize=(6.4, 5.6))
+    ax = fig.add_subplot(projection="3d")
+    lc = Line3DCollection(segs, cmap="viridis", linewidths=3)
+    lc.set_array(t[: len(segs)])
+    ax.add_collection3d(lc)
+    R = 0.5 * float(sh["post_diameter"]) * 1e3
+    zlo, zhi = segs[..., 2].min(), segs[..., 2].max()
+    phi = np.linspace(0, 2 * np.pi, 41)
+    for z in np.linspace(zlo, zhi, 5):
+        ax.plot(R * np.cos(phi), R * np.sin(phi), np.full_like(phi, z), color="0.7", lw=0.6)
+    lim = np.abs(segs[..., :2]).max() * 1.05
+    ax.set_xlim(-lim, lim)
+    ax.set_ylim(-lim, lim)
+    ax.set_zlim(zlo, zhi)
+    ax.set_box_aspect((1.0, 1.0, max(0.25, min(1.0, (zhi - zlo) / (2 * lim)))))
+    ax.set_xlabel("x [mm]")
+    ax.set_ylabel("y [mm]")
+    ax.set_zlabel("z [mm] (post axis)")
+    fig.colorbar(lc, ax=ax, shrink=0.7, pad=0.12, label="tension T(s) [N]")
+    ax.set_title(f"{verdict.knot}: {verdict.state} (DER simulation, last frame)")
+    fig.tight_layout()
+    fig.savefig(p)
+    plt.close(fig)
+    return p
