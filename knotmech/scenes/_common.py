@@ -30,6 +30,11 @@ import numpy as np
 
 from knotmech.errors import InputError, check_positive
 
+#: [d/s] the creep criterion's limit: a hitch holds when its loose end creeps slower than
+#: this many rope diameters per (protocol) second at the end of the hold; the hitch scenes
+#: measure it and :mod:`knotmech.verdict.criterion` decides with it
+CREEP_LIMIT = 1e-3
+
 #: strain T/EA above which a scene warns that its rod model (Hookean stretching, a fixed
 #: cross-section) is used outside its range
 STRAIN_WARN = 0.10

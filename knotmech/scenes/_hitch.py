@@ -60,6 +60,7 @@ from knotmech.rod.constraints import Clamp, MovingNodes
 from knotmech.rod.contact import RodContact
 from knotmech.rod.friction import AnchorFriction, SmoothFriction
 from knotmech.scenes._common import (
+    CREEP_LIMIT,
     check_memory,
     check_numbers,
     check_pull_step,
@@ -73,7 +74,6 @@ from knotmech.scenes._common import (
 from knotmech.scenes._scene import RampedEndLoad, RunControl, Scene, SceneRun, post_contact
 from knotmech.scenes.curves import _edge_distances
 from knotmech.scenes.topology import post_crossing_code, winding_number
-from knotmech.verdict.criterion import CREEP_LIMIT  # the criterion's limit, defined once
 
 __all__ = [
     "HitchKnot",

@@ -17,6 +17,9 @@ import numpy as np
 
 from knotmech.errors import check_positive
 
+# defined once, with the hitch scenes that measure it (the scenes sit below the verdict)
+from knotmech.scenes._common import CREEP_LIMIT
+
 __all__ = [
     "CREEP_CRITERION",
     "CREEP_LIMIT",
@@ -51,7 +54,6 @@ PROTOCOL = dict(settle_time=0.2, load_time=0.3, hold_time=1.5, dt=2e-3, n_frames
 IMC_PROTOCOL = dict(settle_time=0.2, load_time=0.2, hold_time=0.4, dt=2e-3, n_frames=21)
 #: name of the hold criterion of the anchor-law tables and of ``hold --simulate``
 CREEP_CRITERION = "creep-speed"
-CREEP_LIMIT = 1e-3  #: [d/s] default: holds when the loose end creeps slower than this
 CREEP_WINDOW = 1.0  #: [s] the creep speed is measured over the last this-long of the hold
 #: meta ``protocol_clock`` of a table whose points ran on the flexural clock below
 PROTOCOL_CLOCK = "flexural"
