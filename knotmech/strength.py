@@ -126,7 +126,7 @@ class Estimate(NamedTuple):
     nominal, low, high : float or ndarray
         In the unit of the function that returns it (N for loads, 1 for efficiencies).
     source : str
-        The sources used, ``; ``-separated.
+        The sources used, separated by semicolons.
     """
 
     nominal: object

@@ -527,7 +527,7 @@ def _csv_columns(scene: str, res, loading: str | None) -> list[tuple[list[str], 
         return [(["time_s", "end_to_end_m", "pull_force_N", "loop_diameter_m"],
                  [res.times, res.end_to_end, res.pull_force, res.loop_diameter])]  # fmt: skip
     if scene in ("bend", "centreline"):
-        draw = np.asarray(res.draw_in).reshape(len(res.times), -1)
+        draw = np.asarray(res.draw_in)  # (n_frames, k) for bends and centrelines, 0 frames included
         names = (["draw_in_tail_a_m", "draw_in_tail_b_m"] if scene == "bend"
                  else [f"draw_in_free_end_{j}_m" for j in range(draw.shape[1])])  # fmt: skip
         return [(["time_s", "pull_displacement_m", "pull_force_N", *names],
@@ -709,8 +709,11 @@ def _run_capstan(scene, args, kw, progress):
 
     kw = {**kw, "mode": args.mode, "surface_friction": not args.centreline_friction}
     res = (capstan if scene == "capstan" else capstan_two_loops)(progress=progress, **kw)
+    hold = res.mode == "hold"  # a hold has no sliding ratio (res.ratio is NaN by design)
+    ratio = kw["t_high"] / res.t_low if hold else res.ratio
     print(
-        f"{scene}: status {res.status}; T_high/T_low = {res.ratio:.4g} (sliding) | "
+        f"{scene}: status {res.status}; T_high/T_low = {ratio:.4g} "
+        f"({'held' if hold else 'sliding'}) | "
         f"exp(mu theta) = {res.exp_mu_theta:.4g}, exp(mu_eff theta) = "
         f"{res.exp_mu_eff_theta:.4g}" + (f"; creep {res.creep:.3g} m" if res.mode == "hold" else "")
     )
