@@ -41,6 +41,22 @@ __all__ = [
 ]
 
 
+#: [-] the largest float, 1.8e308: a ratio or tension beyond it is refused, not returned as inf
+_FLOAT_MAX = float(np.finfo(float).max)
+
+
+def _finite_result(value, what: str):
+    r"""``value`` if every entry is finite, else InputError: ``what`` overflows a float.
+
+    The arguments are finite when this is called, so a non-finite result is an
+    overflow of :math:`e^{\mu\theta}` (:math:`\mu\theta > 709.8`) or of a tension times
+    it; ``what`` names the arguments that make it.
+    """
+    if not np.all(np.isfinite(value)):
+        raise InputError(f"{what} is beyond the largest float ({_FLOAT_MAX:.3g}); no rope holds it")
+    return value
+
+
 # --------------------------------------------------------------------------- ideal rope
 def capstan_ratio(mu, wrap_angle):
     r"""Ideal capstan (Euler-Eytelwein) tension ratio at the onset of slip.
@@ -74,7 +90,9 @@ def capstan_ratio(mu, wrap_angle):
     """
     mu = check_nonnegative("mu", mu)
     theta = check_nonnegative("wrap_angle", wrap_angle)
-    return np.exp(mu * theta)
+    with np.errstate(over="ignore"):
+        ratio = np.exp(mu * theta)
+    return _finite_result(ratio, "the ratio exp(mu*wrap_angle)")
 
 
 def capstan_tension_profile(s, *, high_tension, mu, radius):
@@ -256,7 +274,9 @@ def capstan_ratio_thick(mu, wrap_angle, D_over_d):
     Reference: clove-hitch paper eq. (3).
     """
     theta = check_nonnegative("wrap_angle", wrap_angle)
-    return np.exp(mu_eff(mu, D_over_d) * theta)
+    with np.errstate(over="ignore"):
+        ratio = np.exp(mu_eff(mu, D_over_d) * theta)
+    return _finite_result(ratio, "the ratio exp(mu_eff(mu, D_over_d)*wrap_angle)")
 
 
 def capstan_end_factors(mu, D_over_d):
@@ -345,7 +365,9 @@ def capstan_ratio_thick_ends(mu, wrap_angle, D_over_d):
         :math:`T_\mathrm{high}/T_\mathrm{low}` at slip [-].
     """
     entry, exit_ = capstan_end_factors(mu, D_over_d)
-    return capstan_ratio_thick(mu, wrap_angle, D_over_d) * entry * exit_
+    with np.errstate(over="ignore"):
+        ratio = capstan_ratio_thick(mu, wrap_angle, D_over_d) * entry * exit_
+    return _finite_result(ratio, "the ratio of mu, wrap_angle and D_over_d")
 
 
 # --------------------------------------------------------------------------- bending rigidity
@@ -476,7 +498,9 @@ def capstan_ratio_bending(mu, wrap_angle, *, bending_stiffness, low_tension, hig
     if np.any(den <= 0):
         raise InputError("mu*tan(lift-off angle) must be < 1 at the high-tension end")
     num = np.cos(phi_l) + mu * np.sin(phi_l)
-    return num / den * np.exp(mu * (theta - phi_l - phi_h))
+    with np.errstate(over="ignore"):
+        ratio = num / den * np.exp(mu * (theta - phi_l - phi_h))
+    return _finite_result(ratio, "the ratio exp(mu*wrap_angle) of mu and wrap_angle")
 
 
 # --------------------------------------------------------------------------- nonlinear friction
@@ -535,9 +559,13 @@ def capstan_high_tension_nonlinear(
     one_minus_n = 1.0 - n
     linear = np.isclose(one_minus_n, 0.0, atol=1e-9)
     safe = np.where(linear, 1.0, one_minus_n)
-    base = t0**safe + safe * a * R**safe * theta
-    nonlinear = base ** (1.0 / safe)
-    return np.where(linear, t0 * np.exp(a * theta), nonlinear)
+    with np.errstate(over="ignore"):
+        base = t0**safe + safe * a * R**safe * theta
+        nonlinear = base ** (1.0 / safe)
+        t_high = np.where(linear, t0 * np.exp(a * theta), nonlinear)
+    return _finite_result(
+        t_high, "the high tension of low_tension, friction_coefficient and wrap_angle"
+    )
 
 
 def capstan_ratio_nonlinear(
