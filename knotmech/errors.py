@@ -135,11 +135,13 @@ def _array_of_reals(name: str, value, what: str) -> np.ndarray:
     return np.asarray(arr, dtype=float)
 
 
-def _as_array(name: str, value, rule: str = "", *, scalar: bool = False) -> np.ndarray:
+def _as_array(
+    name: str, value, rule: str = "", *, scalar: bool = False, allow_inf: bool = False
+) -> np.ndarray:
     """``value`` as a float ndarray after the checks of the module docstring.
 
     ``rule`` (e.g. ``">= 0"``) is quoted in the message on NaN or infinity; ``scalar``
-    refuses arrays, lists and tuples.
+    refuses arrays, lists and tuples; ``allow_inf`` admits +-inf (never NaN).
     """
     what = "a number" if scalar else "a number or an array of numbers"
     if _is_real_scalar(value):
@@ -150,10 +152,12 @@ def _as_array(name: str, value, rule: str = "", *, scalar: bool = False) -> np.n
         arr = _array_of_reals(name, value, what)
     else:
         raise InputError(f"{name} must be {what}, got {_kind_of(value)}")
-    if not np.all(np.isfinite(arr)):
-        bad = arr[~np.isfinite(arr)].ravel()[0]
+    finite = ~np.isnan(arr) if allow_inf else np.isfinite(arr)
+    if not np.all(finite):
+        bad = arr[~finite].ravel()[0]
         rule = f" {rule}" if rule else ""
-        raise InputError(f"{name} must be a finite number{rule}, got {bad}")
+        what = "a number" if allow_inf else "a finite number"
+        raise InputError(f"{name} must be {what}{rule}, got {bad}")
     return arr
 
 
@@ -181,8 +185,11 @@ def check_finite(name: str, value, *, scalar: bool = False):
     return _out(_as_array(name, value, scalar=scalar), scalar)
 
 
-def check_positive(name: str, value, *, scalar: bool = False):
-    """As :func:`check_finite`, and every entry must be > 0."""
+def check_positive(name: str, value, *, scalar: bool = False, allow_inf: bool = False):
+    """As :func:`check_finite`, and every entry must be > 0; ``allow_inf`` admits +inf
+    (e.g. the modulus of a rigid body)."""
+    if allow_inf:
+        return check_range(name, value, 0.0, np.inf, low_open=True, scalar=scalar, allow_inf=True)
     arr = _as_array(name, value, "> 0", scalar=scalar)
     if np.any(arr <= 0):
         raise InputError(f"{name} must be > 0, got {_show(arr)}")
@@ -198,13 +205,22 @@ def check_nonnegative(name: str, value, *, scalar: bool = False):
 
 
 def check_range(
-    name: str, value, low=-np.inf, high=np.inf, *, low_open=False, high_open=False, scalar=False
+    name: str,
+    value,
+    low=-np.inf,
+    high=np.inf,
+    *,
+    low_open=False,
+    high_open=False,
+    scalar=False,
+    allow_inf=False,
 ):
-    """As :func:`check_finite`, and every entry must lie in [low, high] (ends open on request)."""
+    """As :func:`check_finite`, and every entry must lie in [low, high] (ends open on request);
+    ``allow_inf`` admits the infinite ends of a closed interval."""
     lo = "(" if low_open else "["
     hi = ")" if high_open else "]"
     interval = f"in {lo}{low:g}, {high:g}{hi}"
-    arr = _as_array(name, value, interval, scalar=scalar)
+    arr = _as_array(name, value, interval, scalar=scalar, allow_inf=allow_inf)
     bad_low = arr <= low if low_open else arr < low
     bad_high = arr >= high if high_open else arr > high
     if np.any(bad_low) or np.any(bad_high):

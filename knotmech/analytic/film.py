@@ -196,7 +196,8 @@ def film_thickness_fibre_white_tallmadge(radius, viscosity, speed, surface_tensi
     x = LLD_FIBRE_COEFFICIENT * ca ** (2.0 / 3.0)
     if np.any(x >= 1.0):
         raise InputError(
-            "capillary number eta*U/gamma must be < 0.646 for the White-Tallmadge film "
+            "viscosity*speed/surface_tension (the capillary number Ca) must be < 0.646 for "
+            "the White-Tallmadge film "
             f"(1.34 Ca^(2/3) < 1), got Ca up to {float(np.max(ca)):g}"
         )
     return r * x / (1.0 - x)
@@ -261,6 +262,8 @@ def film_thickness(
     -------
     FilmThickness
     """
+    if not isinstance(strict, (bool, np.bool_)):
+        raise InputError(f"strict must be True or False, got {strict!r:.40}")
     ca = np.asarray(capillary_number(viscosity, speed, surface_tension))
     lc = np.asarray(capillary_length(surface_tension, density, gravity))
     if radius is None:
@@ -277,7 +280,8 @@ def film_thickness(
     reasons = []
     if np.any(~small_ca):
         reasons.append(
-            f"capillary number {float(np.max(ca)):g} is not small (LLD needs Ca < {CA_MAX_LLD:g})"
+            f"viscosity*speed/surface_tension (the capillary number) {float(np.max(ca)):g} "
+            f"is not small (LLD needs Ca < {CA_MAX_LLD:g})"
         )
     crossover = small_ca & ~applicable
     if np.any(crossover):

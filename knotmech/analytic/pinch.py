@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from knotmech.errors import InputError, check_nonnegative, check_positive, check_range
+from knotmech.errors import check_nonnegative, check_positive, check_range
 
 
 # scipy.special is imported on first use (about 0.3 s that `import knotmech` should not pay)
@@ -134,9 +134,7 @@ def effective_modulus(youngs_modulus, poisson_ratio, youngs_modulus_2=np.inf, po
     e1 = check_positive("youngs_modulus", youngs_modulus)
     n1 = check_range("poisson_ratio", poisson_ratio, 0.0, 0.5)
     n2 = check_range("poisson_ratio_2", poisson_ratio_2, 0.0, 0.5)
-    e2 = np.asarray(youngs_modulus_2, dtype=float)
-    if np.any(np.isnan(e2)) or np.any(e2 <= 0):
-        raise InputError("youngs_modulus_2 must be > 0 (inf for a rigid body)")
+    e2 = check_positive("youngs_modulus_2", youngs_modulus_2, allow_inf=True)
     return 1.0 / ((1.0 - n1**2) / e1 + (1.0 - n2**2) / e2)
 
 
