@@ -24,11 +24,14 @@ every closed form and everything above them calls):
   ``mu must be a finite number >= 0, got nan``.
 
 Every message is one line (values are shown by a short, single-line repr) and starts
-with the name of the argument.
+with the name of the argument. A vectorised function is decorated with :func:`vectorised`,
+which refuses, naming them, array arguments whose shapes do not broadcast together.
 """
 
 from __future__ import annotations
 
+import functools
+import inspect
 import numbers
 
 import numpy as np
@@ -44,6 +47,8 @@ __all__ = [
     "check_finite",
     "check_bending_scale",
     "check_range",
+    "check_broadcast",
+    "vectorised",
 ]
 
 
@@ -90,7 +95,7 @@ def _kind_of(value) -> str:
     if isinstance(value, (str, bytes)):
         return f"the string {_short(value)}"
     if isinstance(value, (bool, np.bool_)):
-        return f"the bool {value!r}"
+        return f"the bool {bool(value)!r}"
     if value is None:
         return "None"
     if isinstance(value, (complex, np.complexfloating)):
@@ -102,25 +107,24 @@ def _is_real_scalar(value) -> bool:
     return isinstance(value, numbers.Real) and not isinstance(value, (bool, np.bool_))
 
 
-def _bad_item(items):
-    """The first entry of a (nested) list/tuple that is not a real number, else None."""
+def _bad_items(items) -> list:
+    """The entries of a (nested) list/tuple that are not real numbers (empty if none)."""
+    bad = []
     for item in items:
         if isinstance(item, (list, tuple)):
-            bad = _bad_item(item)
-            if bad is not None:
-                return bad
+            bad.extend(_bad_items(item))
         elif not _is_real_scalar(item):
-            return item if item is not None else "None"
-    return None
+            bad.append(item)
+    return bad
 
 
 def _array_of_reals(name: str, value, what: str) -> np.ndarray:
     """A list, tuple or array of real numbers as a float ndarray, else InputError."""
     if isinstance(value, (list, tuple)):
-        bad = _bad_item(value)
-        if bad is not None:
+        bad = _bad_items(value)
+        if bad:
             raise InputError(
-                f"{name} must be {what}, got {_kind_of(bad)} in a {type(value).__name__}"
+                f"{name} must be {what}, got {_kind_of(bad[0])} in a {type(value).__name__}"
             )
     try:
         arr = np.asarray(value)
@@ -247,3 +251,60 @@ def check_bending_scale(value) -> float:
     if not (np.isfinite(k) and 0.0 < k <= 1.0):
         raise InputError(f"bending_scale must be a number in (0, 1], got {value!r}")
     return k
+
+
+def _shape(value):
+    """Shape of an array, list or tuple argument; None for anything else (or a ragged list,
+    which the argument's own check refuses by name)."""
+    if not isinstance(value, (list, tuple, np.ndarray)):
+        return None
+    try:
+        return np.shape(value)
+    except ValueError:
+        return None
+
+
+def check_broadcast(**arguments) -> None:
+    """Refuse, naming them, array arguments whose shapes do not broadcast together.
+
+    Parameters
+    ----------
+    **arguments
+        Argument name -> value; scalars and non-arrays are skipped.
+
+    Raises
+    ------
+    InputError
+        ``mu (shape (2,)) and wrap_angle (shape (3,)) do not broadcast together``.
+    """
+    seen: dict[str, tuple] = {}
+    for name, value in arguments.items():
+        shape = _shape(value)
+        if shape is None:
+            continue
+        try:
+            np.broadcast_shapes(*seen.values(), shape)
+        except ValueError:
+            first = ", ".join(f"{n} (shape {s})" for n, s in seen.items())
+            raise InputError(f"{name} (shape {shape}) does not broadcast with {first}") from None
+        seen[name] = shape
+
+
+def vectorised(func):
+    """Decorate a vectorised closed form: array arguments must broadcast together.
+
+    Without it numpy would raise a bare ValueError (``operands could not be broadcast``)
+    from inside the formula; with it the caller gets an InputError naming the arguments.
+    """
+    signature = inspect.signature(func)
+
+    @functools.wraps(func)
+    def checked(*args, **kwargs):
+        try:
+            bound = signature.bind(*args, **kwargs)
+        except TypeError:
+            return func(*args, **kwargs)  # a wrong call: Python's own message
+        check_broadcast(**bound.arguments)
+        return func(*args, **kwargs)
+
+    return checked

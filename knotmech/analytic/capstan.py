@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from knotmech.errors import InputError, check_nonnegative, check_positive
+from knotmech.errors import InputError, check_nonnegative, check_positive, vectorised
 
 __all__ = [
     "capstan_ratio",
@@ -58,6 +58,7 @@ def _finite_result(value, what: str):
 
 
 # --------------------------------------------------------------------------- ideal rope
+@vectorised
 def capstan_ratio(mu, wrap_angle):
     r"""Ideal capstan (Euler-Eytelwein) tension ratio at the onset of slip.
 
@@ -95,6 +96,7 @@ def capstan_ratio(mu, wrap_angle):
     return _finite_result(ratio, "the ratio exp(mu*wrap_angle)")
 
 
+@vectorised
 def capstan_tension_profile(s, *, high_tension, mu, radius):
     r"""Tension along the contact arc of an ideal capstan at the onset of slip.
 
@@ -129,6 +131,7 @@ def capstan_tension_profile(s, *, high_tension, mu, radius):
     return t_high * np.exp(-mu * s / radius)
 
 
+@vectorised
 def mu_from_capstan_test(high_tension, low_tension, wrap_angle):
     r"""Friction coefficient from a capstan test (the coated-rod paper's method).
 
@@ -162,6 +165,7 @@ def mu_from_capstan_test(high_tension, low_tension, wrap_angle):
 
 
 # --------------------------------------------------------------------------- thick rod
+@vectorised
 def mu_eff(mu, D_over_d):
     r"""Effective capstan friction coefficient of a rod of finite thickness.
 
@@ -215,6 +219,7 @@ def mu_eff(mu, D_over_d):
     return np.where(mu > 0, out, 0.0)
 
 
+@vectorised
 def mu_from_mu_eff(mu_effective, D_over_d):
     r"""Material friction coefficient from a measured effective one (inverse of :func:`mu_eff`).
 
@@ -249,6 +254,7 @@ def mu_from_mu_eff(mu_effective, D_over_d):
     return me * (1 + Dt) / (Dt - me**2)
 
 
+@vectorised
 def capstan_ratio_thick(mu, wrap_angle, D_over_d):
     r"""Capstan tension ratio of a rod of finite thickness.
 
@@ -279,6 +285,7 @@ def capstan_ratio_thick(mu, wrap_angle, D_over_d):
     return _finite_result(ratio, "the ratio exp(mu_eff(mu, D_over_d)*wrap_angle)")
 
 
+@vectorised
 def capstan_end_factors(mu, D_over_d):
     r"""Entry and exit factors of a sliding thick rod on a post (the end layers of eq. (3)).
 
@@ -345,6 +352,7 @@ def capstan_end_factors(mu, D_over_d):
     return entry, exit_
 
 
+@vectorised
 def capstan_ratio_thick_ends(mu, wrap_angle, D_over_d):
     r"""Sliding ratio of a thick rod with its end layers: :func:`capstan_ratio_thick` times
     the two factors of :func:`capstan_end_factors`.
@@ -371,6 +379,7 @@ def capstan_ratio_thick_ends(mu, wrap_angle, D_over_d):
 
 
 # --------------------------------------------------------------------------- bending rigidity
+@vectorised
 def bending_parameter(*, bending_stiffness, tension, radius):
     r"""Dimensionless bending parameter :math:`\varepsilon = \sqrt{B/(T R^2)}`.
 
@@ -416,6 +425,7 @@ def liftoff_angle(epsilon):
     return 2 * np.arcsin(eps / 2)
 
 
+@vectorised
 def capstan_ratio_bending(mu, wrap_angle, *, bending_stiffness, low_tension, high_tension, radius):
     r"""Capstan tension ratio of an elastic rod with bending rigidity (elastica lift-off).
 
@@ -504,6 +514,7 @@ def capstan_ratio_bending(mu, wrap_angle, *, bending_stiffness, low_tension, hig
 
 
 # --------------------------------------------------------------------------- nonlinear friction
+@vectorised
 def capstan_high_tension_nonlinear(
     *, low_tension, wrap_angle, friction_coefficient, friction_exponent, radius
 ):
@@ -568,6 +579,7 @@ def capstan_high_tension_nonlinear(
     )
 
 
+@vectorised
 def capstan_ratio_nonlinear(
     *, low_tension, wrap_angle, friction_coefficient, friction_exponent, radius
 ):

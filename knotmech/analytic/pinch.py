@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from knotmech.errors import check_nonnegative, check_positive, check_range
+from knotmech.errors import check_nonnegative, check_positive, check_range, vectorised
 
 
 # scipy.special is imported on first use (about 0.3 s that `import knotmech` should not pay)
@@ -57,6 +57,7 @@ __all__ = [
 PINCH_AMONTONS_LIMIT = 0.1
 
 
+@vectorised
 def pinch_load_parameter(normal_force, youngs_modulus, rod_diameter, pinch_diameter):
     r"""Dimensionless pinch load :math:`x = 4F_n/(\pi E d D)`.
 
@@ -86,6 +87,7 @@ def pinch_load_parameter(normal_force, youngs_modulus, rod_diameter, pinch_diame
     return 4.0 * fn / (np.pi * e * d * dd)
 
 
+@vectorised
 def pinch_sliding_force(mu, normal_force):
     r"""Critical tangential force to pull a rod through a pinch, :math:`F_t^* = 2\mu F_n`.
 
@@ -109,12 +111,14 @@ def pinch_sliding_force(mu, normal_force):
     return 2.0 * mu * fn
 
 
+@vectorised
 def pinch_amontons_applies(normal_force, youngs_modulus, rod_diameter, pinch_diameter):
     """True where the load parameter is at most :data:`PINCH_AMONTONS_LIMIT` (0.1)."""
     x = pinch_load_parameter(normal_force, youngs_modulus, rod_diameter, pinch_diameter)
     return x <= PINCH_AMONTONS_LIMIT
 
 
+@vectorised
 def effective_modulus(youngs_modulus, poisson_ratio, youngs_modulus_2=np.inf, poisson_ratio_2=0.0):
     r"""Hertz contact modulus :math:`E^*`.
 
@@ -158,6 +162,7 @@ class HertzContact:
     eccentricity: np.ndarray
 
 
+@vectorised
 def hertz_circular_contact(*, normal_force, radius, contact_modulus):
     r"""Hertz contact of a sphere of radius R on a flat (or equal crossed cylinders).
 
@@ -232,6 +237,7 @@ def _solve_eccentricity(ratio):
     return np.where(ratio <= 1.0 + 1e-12, 0.0, m)
 
 
+@vectorised
 def hertz_crossed_cylinders(
     *,
     normal_force,
