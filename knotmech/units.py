@@ -204,7 +204,7 @@ def _checked(value: float, s: str, kind: str, name: str) -> float:
     leading = _LEADING_NUMBER.match(s)
     if value == 0.0 and leading and re.search("[1-9]", leading.group()):
         raise InputError(f"{name}: {s!r} is too small for a float (it would be read as 0)")
-    if kind == "angle" and abs(value) > MAX_ANGLE_TURNS * 2 * math.pi:
+    if kind == "angle" and abs(value) > MAX_ANGLE_TURNS * 2 * math.pi * (1 + 1e-12):
         raise InputError(
             f"{name}: {s!r} is {value / (2 * math.pi):.3g} turns; an angle must be within "
             f"{MAX_ANGLE_TURNS:g} turns ({MAX_ANGLE_TURNS * 360:g} deg)"
