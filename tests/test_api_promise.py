@@ -21,6 +21,7 @@ from __future__ import annotations
 import dataclasses
 import inspect
 import time
+import warnings
 
 import numpy as np
 import pytest
@@ -281,7 +282,11 @@ def _assert_finite(name, result):
 def _call(name, func, kwargs, names_in_message):
     start = time.perf_counter()
     try:
-        result = func(**kwargs)
+        with warnings.catch_warnings():
+            # numpy's overflow / invalid-value warnings are errors here: a NaN masked inside
+            # a formula gave a finite but wrong Hertz ellipse (radii 1e24 apart)
+            warnings.simplefilter("error", RuntimeWarning)
+            result = func(**kwargs)
     except InputError as e:
         msg = str(e)
         assert msg and "\n" not in msg, f"{name}({kwargs!r}): message not one line: {msg!r}"
@@ -359,7 +364,7 @@ _QUICK = settings(
     suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large],
 )
 _CAMPAIGN = settings(
-    max_examples=60,
+    max_examples=100,
     derandomize=False,
     deadline=None,
     suppress_health_check=[HealthCheck.too_slow, HealthCheck.data_too_large],
@@ -384,7 +389,7 @@ def test_parse_quantity_returns_a_finite_float_or_one_line(data):
 @_CAMPAIGN
 @given(data=st.data())
 def test_campaign_closed_forms(name, data):
-    """About 45 functions x 60 examples (> 2,000 calls)."""
+    """About 45 functions x 100 examples (> 4,000 calls)."""
     _check_function(name, data)
 
 

@@ -16,7 +16,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from knotmech.errors import check_nonnegative, check_positive, check_range, vectorised
+from knotmech.errors import InputError, check_nonnegative, check_positive, check_range, vectorised
 
 
 # scipy.special is imported on first use (about 0.3 s that `import knotmech` should not pay)
@@ -222,6 +222,11 @@ def _curvature_ratio(m):
     return (ellipkm1(1.0 - m) - kme) / ((1.0 - m) * kme)
 
 
+#: [-] largest radius ratio of :func:`hertz_crossed_cylinders`: the eccentricity solver
+#: meets its curvature ratio to 2.5e-5 at 1e10 (1e-8 at 1e8) and saturates near 1e14
+HERTZ_RADIUS_RATIO_MAX = 1e10
+
+
 def _solve_eccentricity(ratio):
     """Parameter m = e^2 with _curvature_ratio(m) == ratio >= 1 (vectorised bisection)."""
     ratio = np.asarray(ratio, dtype=float)
@@ -281,11 +286,20 @@ def hertz_crossed_cylinders(
     Assumptions: linear elasticity, frictionless contact, half-space approximation.
     Validity: patch small against both radii, :math:`a \ll R_\mathrm{small}`; for the
     pinch of a soft rod this means a load parameter :math:`4F_n/(\pi E d D) \ll 1`.
+    Radii more than :data:`HERTZ_RADIUS_RATIO_MAX` apart are refused (InputError): the
+    ellipse is then too slender for the eccentricity solver in floating point.
     Reference: Johnson, *Contact Mechanics* (1985), sec. 4.2, eqs. (4.36)-(4.40).
     """
     p = check_nonnegative("normal_force", normal_force)
     r1 = check_positive("radius_1", radius_1)
     r2 = check_positive("radius_2", radius_2)
+    slender = np.maximum(r1, r2) / np.minimum(r1, r2)
+    if np.any(slender > HERTZ_RADIUS_RATIO_MAX):
+        raise InputError(
+            f"radius_1/radius_2 = {float(np.max(np.maximum(slender, 1 / slender))):.3g} is "
+            f"beyond {HERTZ_RADIUS_RATIO_MAX:g} (either way): the contact ellipse is too "
+            "slender for this Hertz solution in floating point"
+        )
     es = effective_modulus(youngs_modulus, poisson_ratio, youngs_modulus_2, poisson_ratio_2)
     p, r1, r2, es = np.broadcast_arrays(p, r1, r2, es)
     a_coef = 1.0 / (2.0 * np.maximum(r1, r2))

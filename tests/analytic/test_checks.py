@@ -7,7 +7,7 @@ from fractions import Fraction
 import numpy as np
 import pytest
 
-from knotmech.analytic import capstan_ratio, effective_modulus, mu_eff
+from knotmech.analytic import capstan_ratio, effective_modulus, hertz_crossed_cylinders, mu_eff
 from knotmech.errors import InputError, check_bending_scale, check_positive, check_range
 
 MU_EFF_03_2 = 0.19615242270663188  # mu_eff(0.3, D/d = 2); the clove-hitch paper's 0.196
@@ -98,3 +98,12 @@ def test_an_overflowing_capstan_ratio_is_refused_not_inf():
     assert np.isfinite(capstan_ratio(1.0, 709.0))
     with pytest.raises(InputError, match=r"exp\(mu\*wrap_angle\) is beyond the largest float"):
         capstan_ratio(1.0, 710.0)
+
+
+def test_a_hertz_ellipse_too_slender_for_the_solver_is_refused():
+    """Radii 1e24 apart gave a silently wrong ellipse (the solver saturates near 1e14)."""
+    kw = dict(normal_force=1.0, youngs_modulus=1e6, poisson_ratio=0.5)
+    ok = hertz_crossed_cylinders(radius_1=1e-5, radius_2=1e5, **kw)  # ratio 1e10: accepted
+    assert np.isfinite(ok.semi_major) and ok.semi_minor < ok.semi_major
+    with pytest.raises(InputError, match=r"radius_1/radius_2 = 1e\+24 is beyond 1e\+10"):
+        hertz_crossed_cylinders(radius_1=1e-12, radius_2=1e12, **kw)
