@@ -6,14 +6,20 @@ hostile ones (magnitudes 1e-12 to 1e12 of either sign, zero, NaN, infinities, bo
 strings, unicode, lists, None, complex numbers), either
 
 - returns finite numbers (every number in the result, arrays and dataclass fields
-  included: never a NaN or an infinity silently), or
+  included: never a NaN silently; +inf only where documented, a self-locking hitch, see
+  :data:`INFINITY_MEANS_LOCKED`; NaN only in entries a result flags as not applicable), or
 - raises :class:`knotmech.errors.InputError` whose message is one line and names an
   argument of the call;
 
-no other exception escapes, and every call returns within :data:`CALL_SECONDS`.
+no other exception escapes, numpy emits no overflow or invalid-value RuntimeWarning (a NaN
+masked inside a formula is a silently wrong answer), and every call returns within
+:data:`CALL_SECONDS`. Deterministic companions: every knot name, and array arguments
+that do not broadcast.
 
-The default run is derandomized and small (a few examples per function, about 30 s in
-all); ``-m slow`` runs a campaign of more than 2,000 examples.
+The default run is derandomized and small (20 examples per function, about 20 s in
+all); ``-m slow`` runs a random campaign of 100 examples per function and 600 texts for
+``parse_quantity`` (about 5,000 calls, about 1 min). What it found in ``hitch.py``
+(another helper's) is kept as strict xfails (:data:`HITCH_PENDING`).
 """
 
 from __future__ import annotations
