@@ -121,11 +121,9 @@ SAMPLES = {
 }
 
 
-#: what this test found in hitch.py, which another helper owns (issue 27); each entry is a
+#: what this test found in hitch.py (issue 27) and is not fixed yet; each entry is a
 #: strict xfail: remove it when hitch.py is fixed and the case passes
 HITCH_PENDING = {
-    "hold_verdict": "hitch.py:737-760 float(check_*(x)) raises TypeError on a one-element "
-    "array or a list: use check_*(name, x, scalar=True)",
     "ideal_hitch_ratio": "hitch.py ideal_hitch_ratio returns inf when exp(mu*wrap) overflows "
     "(mu >= 57 on the clove hitch): refuse it as capstan._finite_result does",
 }
