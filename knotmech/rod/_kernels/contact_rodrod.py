@@ -954,3 +954,102 @@ def max_node_speed(v, node_dofs):
         if s2 > vmax:
             vmax = s2
     return np.sqrt(vmax)
+
+
+# columns of the per-pair table written by :func:`rodrod_friction_census`
+CENSUS_COLUMNS = (
+    "fnorm",  # |F_n| [N]
+    "ft",  # |F_t| of the anchor law [N] (0 without anchors)
+    "mu",  # the coefficient in force: mu_k if the pair slid at the last step, else mu_s
+    "gap_over_a",  # |u| / a, a = mu |F_n| / k_t (the cap's width) [-]
+    "a",  # the cap's width a [m]
+    "slides",  # 1 if |u| > SLIP_GAP a
+    "fresh",  # 1 if the pair had no committed anchor (made from the step start)
+    "free_s",  # closest-point parameter on edge i inside (0, 1)
+    "free_t",  # on edge j
+    "plane_n",  # 1 if the friction plane is the pair normal's (near-parallel edges)
+    "vt",  # |v_T| of the edge midpoints, (x - x_old)/dt projected off n [m/s]
+    "ux",  # friction direction u/|u| (3 columns; 0 if |u| = 0)
+    "uy",
+    "uz",
+    "anchor_in_edge",  # 1 if both anchor parameters lie in [0, 1]
+)
+
+
+@njit(cache=True)
+def rodrod_friction_census(
+    pos, pos_old, dt, pairs, edge_nodes, radius_edge, sharpness, stiffness, z_cutoff,
+    mu_s, mu_k, k_t, anchor, anchor_slip, known, out,
+):  # fmt: skip
+    """Diagnostics of the friction each candidate pair carries at ``pos`` (read-only).
+
+    For each pair within the penalty's reach with a normal force, writes a row of ``out``
+    (n_pairs, len(CENSUS_COLUMNS)) as named in :data:`CENSUS_COLUMNS` (rows of the other
+    pairs are set to 0, ``fnorm`` 0). The anchor law's |F_t| = mu |F_n| |u| / sqrt(|u|^2 +
+    a^2) is that of :func:`_anchor_friction`; a pair without a committed anchor
+    (``known`` False) is given one from ``pos_old`` on a copy (the anchors are not
+    changed). ``k_t`` <= 0: no anchors (the regularised law), only the geometry and v_T.
+    Returns the number of rows written."""
+    x = np.empty(12)
+    xo = np.empty(12)
+    grad = np.empty(12)
+    coef = np.empty(4)
+    w = np.empty(3)
+    n = np.empty(3)
+    nf = np.empty(3)
+    cw = np.empty(4)
+    u = np.empty(3)
+    anc = np.empty(2)
+    n_o = np.empty(3)
+    vr = np.empty(3)
+    out[:, :] = 0.0
+    rows = 0
+    for p in range(pairs.shape[0]):
+        ei, ej = _pair_nodes(pos, pairs, p, edge_nodes, x)
+        if sharpness * (radius_edge[ei] + radius_edge[ej] - edge_distance(x)) < z_cutoff:
+            continue
+        fnorm = _pair_normal(x, ei, ej, radius_edge, sharpness, stiffness, grad, coef, w, n)
+        if not fnorm > 0.0:
+            continue
+        rows += 1
+        _, _, free_s, free_t = _segment_params_flat(x)
+        _pair_nodes(pos_old, pairs, p, edge_nodes, xo)
+        vt2 = 0.0
+        vn = 0.0
+        for m in range(3):
+            vi = 0.5 * (x[m] - xo[m] + x[3 + m] - xo[3 + m])
+            vj = 0.5 * (x[6 + m] - xo[6 + m] + x[9 + m] - xo[9 + m])
+            vr[m] = (vi - vj) / dt
+            vn += vr[m] * n[m]
+        for m in range(3):
+            vt2 += (vr[m] - vn * n[m]) ** 2
+        out[p, 0] = fnorm
+        out[p, 7] = 1.0 if free_s else 0.0
+        out[p, 8] = 1.0 if free_t else 0.0
+        out[p, 10] = np.sqrt(vt2)
+        if k_t <= 0.0:
+            continue
+        anc[0] = anchor[p, 0]
+        anc[1] = anchor[p, 1]
+        if not known[p]:
+            _fresh_anchor(xo, anc, coef, w, n_o, nf, cw, u)
+            out[p, 6] = 1.0
+        _pair_normal(x, ei, ej, radius_edge, sharpness, stiffness, grad, coef, w, n)
+        cnorm = _friction_normal(x, n, nf)
+        unorm, _ = _anchor_gap(x, anc, nf, cw, u)
+        mu = mu_k if anchor_slip[p] else mu_s
+        limit = mu * fnorm
+        a = limit / k_t
+        sq = np.sqrt(unorm * unorm + a * a)
+        out[p, 1] = limit * unorm / sq if sq > 0.0 else 0.0
+        out[p, 2] = mu
+        out[p, 3] = unorm / a if a > 0.0 else 0.0
+        out[p, 4] = a
+        out[p, 5] = 1.0 if unorm > SLIP_GAP * a else 0.0
+        out[p, 9] = 1.0 if cnorm == 0.0 else 0.0
+        if unorm > 0.0:
+            for m in range(3):
+                out[p, 11 + m] = u[m] / unorm
+        inside = anc[0] >= 0.0 and anc[0] <= 1.0 and anc[1] >= 0.0 and anc[1] <= 1.0
+        out[p, 14] = 1.0 if inside else 0.0
+    return rows
