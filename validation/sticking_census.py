@@ -59,15 +59,16 @@ class Census:
             if contact._anc is None:
                 contact._align_anchors(system)
             mu_s, mu_k, k_t = contact._anchor_params()
+            floor = float(contact.friction.cap_floor)
             _, anc, slip, _, known = contact._anc
         else:
             mu_s = mu_k = float(getattr(contact.friction, "mu", 0.0))
-            k_t = 0.0
+            k_t = floor = 0.0
             anc = np.zeros((pairs.shape[0], 2))
             slip = known = np.zeros(pairs.shape[0], dtype=bool)
         rodrod_friction_census(
             pos, pos_old, float(dt) if dt else 1.0, pairs, en, rad, contact.sharpness,
-            contact.stiffness, Z_CUTOFF, mu_s, mu_k, k_t, anc, slip, known, out,
+            contact.stiffness, Z_CUTOFF, mu_s, mu_k, k_t, anc, slip, known, out, floor,
         )  # fmt: skip
         return out
 
@@ -96,6 +97,22 @@ class Census:
 
 
 @contextlib.contextmanager
+def anchor_cap_floor(cap_floor):
+    """Inside the block, the scenes' anchor law (``friction="anchor"``) is built with
+    ``AnchorFriction(..., cap_floor=cap_floor)`` (the scenes take the law by name only)."""
+    import functools
+
+    import knotmech.scenes.overhand as scene
+
+    orig = scene.AnchorFriction
+    scene.AnchorFriction = functools.partial(AnchorFriction, cap_floor=float(cap_floor))
+    try:
+        yield
+    finally:
+        scene.AnchorFriction = orig
+
+
+@contextlib.contextmanager
 def recording():
     """Record the friction census of every RodContact inside the block; yields a
     :class:`Census`."""
@@ -119,15 +136,23 @@ def recording():
         RodContact.assemble, RodContact.end_step = orig_assemble, orig_end
 
 
-def run(out, law, mu, turns, pull_time, n_frames=61, scheme=None):
+def run(out, law, mu, turns, pull_time, n_frames=61, cap_floor=0.0, census=True):
     """Pull the coated overhand with the census on; save rows, flips and the curve."""
     from knotmech.scenes.overhand import overhand
 
     kw = dict(QUICK, pull_time=pull_time)
     c0 = time.process_time()
-    with recording() as census:
+    rec = recording() if census else contextlib.nullcontext(None)
+    with anchor_cap_floor(cap_floor), rec as census:
         r = overhand(turns, mu, params="coated", n_frames=n_frames, friction=law, **kw)
     cpu = time.process_time() - c0
+    meta = dict(law=law, mu=mu, turns=turns, pull_time=pull_time, cpu_s=cpu)
+    meta.update(cap_floor=cap_floor, status=r.status, **r.stats)
+    if census is None:
+        np.savez(out, end_to_end=r.end_to_end, pull_force=r.pull_force, times=r.times,
+                 meta=json.dumps(meta, default=str))  # fmt: skip
+        print(json.dumps(meta, default=str), flush=True)
+        return
     step_of = np.concatenate([np.full(len(k), i) for i, (k, _) in enumerate(census.steps)])
     rows = np.concatenate([t for _, t in census.steps])
     keys = np.concatenate([k for k, _ in census.steps])
@@ -135,8 +160,6 @@ def run(out, law, mu, turns, pull_time, n_frames=61, scheme=None):
     flip_rows = np.concatenate(flips) if flips else np.zeros((0, 3))
     n_live = np.array([n for n, _ in census.flips])
     n_flip = np.array([len(f) for f in flips])
-    meta = dict(law=law, mu=mu, turns=turns, pull_time=pull_time, cpu_s=cpu,
-                status=r.status, **{k: v for k, v in r.stats.items()})  # fmt: skip
     np.savez(
         out, rows=rows, keys=keys, step_of=step_of, flip_rows=flip_rows, n_live=n_live,
         n_flip=n_flip, end_to_end=r.end_to_end, pull_force=r.pull_force, times=r.times,
@@ -230,7 +253,7 @@ def figure(paths, png):
         ax.set_ylim(-0.02, 1.05)
         ax.set_xlabel("|F_n| of the pair [N]")
         ax.set_ylabel("|F_t| / (mu |F_n|) at accepted steps")
-        scheme = meta.get("scheme") or "anchor"
+        scheme = f"anchor cap_floor {meta.get('cap_floor', 0):g}"
         ax.set_title(f"n={meta['turns']} mu={meta['mu']:g} {scheme}", fontsize=9)
         ax.legend(loc="lower right", markerscale=4, fontsize=8)
         ax = axes[1, col]
@@ -257,12 +280,14 @@ def main(argv=None):
     r.add_argument("--turns", type=int, default=3)
     r.add_argument("--pull-time", type=float, default=3.0)
     r.add_argument("--frames", type=int, default=61)
+    r.add_argument("--cap-floor", type=float, default=0.0)
+    r.add_argument("--no-census", action="store_true")
     p = sub.add_parser("report")
     p.add_argument("files", nargs="+")
     p.add_argument("--figure")
     a = ap.parse_args(argv)
     if a.cmd == "run":
-        run(a.out, a.law, a.mu, a.turns, a.pull_time, a.frames)
+        run(a.out, a.law, a.mu, a.turns, a.pull_time, a.frames, a.cap_floor, not a.no_census)
     else:
         print(json.dumps([summary(f) for f in a.files], indent=1, default=str))
         if a.figure:

@@ -360,6 +360,7 @@ def rodrod_assemble(
     anchor_slip,
     anchor_known,
     out_slip,
+    cap_floor=0.0,
 ):
     """Contact + friction forces and Jacobian blocks of the near candidate pairs.
 
@@ -386,7 +387,8 @@ def rodrod_assemble(
     ``anchor`` (n_pairs, 2) and last slip flags ``anchor_slip``, ``anchor_known`` False
     for a pair without an anchor yet: it is made from ``pos_old`` and the flag set;
     ``out_slip`` (n_pairs,) receives whether each pair slides at ``pos``); the energy then
-    includes the anchor springs' (see :func:`rodrod_anchor_commit`).
+    includes the anchor springs' (see :func:`rodrod_anchor_commit`). ``cap_floor`` > 0
+    floors the cap's width at ``cap_floor`` (r_i + r_j) (see :func:`_anchor_friction`).
     """
     x = np.empty(12)
     grad = np.empty(12)
@@ -462,6 +464,7 @@ def rodrod_assemble(
             e_f, slip, cnt = _anchor_friction(
                 x, anchor[p], anchor_slip[p], n, fnorm, mu, mu_k, k_t, cn, grad, dofs, jac,
                 force, rows, cols, vals, cnt, cw, u, ft, nf, coef, dist, B, U, dndx, G3,
+                cap_floor * two_h,
             )  # fmt: skip
             energy += e_f
             out_slip[p] = slip
@@ -697,7 +700,7 @@ def _plane_normal_jacobian(x, nf, cnorm, dndx):
 @njit(cache=True)
 def _anchor_friction(
     x, anc, slipped, n, fnorm, mu_s, mu_k, k_t, cn, grad, dofs, jac,
-    force, rows, cols, vals, cnt, cw, u, ft, nf, coef, dist, B, U, dndx, G,
+    force, rows, cols, vals, cnt, cw, u, ft, nf, coef, dist, B, U, dndx, G, a_min,
 ):  # fmt: skip
     """Elasto-plastic anchor friction of one rod-rod pair (return mapping of Coulomb's law
     with a tangential penalty; Wriggers, Computational Contact Mechanics, 2nd ed., sect.
@@ -720,12 +723,21 @@ def _anchor_friction(
     dF/dx = -(mu |F_n|/s) (I - u u^T/s^2) du/dx + F (|u|^2/s^2) (c_n grad Delta)^T, the
     last term through |F_n| (``cn`` = d2E/dDelta2 / dE/dDelta, 0 to leave it out).
     Returns (stored energy mu |F_n| (s - a), slides, entries written).
+
+    ``a_min`` [m] > 0 floors the cap's width, a = max(mu |F_n|/k_t, a_min) (the
+    ``cap_floor`` of :class:`knotmech.rod.friction.AnchorFriction`): a lightly loaded
+    pair then sticks on the softer spring mu |F_n|/a_min, and where a is floored the
+    term through |F_n| is F c_n grad^T (a no longer scales with |F_n|). ``a_min`` 0: the
+    law as shipped, bit for bit.
     """
     cnorm = _friction_normal(x, n, nf)
     unorm, dpar = _anchor_gap(x, anc, nf, cw, u)
     mu = mu_k if slipped else mu_s
     limit = mu * fnorm
     a = limit / k_t
+    floored = a < a_min
+    if floored:
+        a = a_min
     slip = unorm > SLIP_GAP * a
     sq = np.sqrt(unorm * unorm + a * a)
     if sq > 0.0:
@@ -755,7 +767,7 @@ def _anchor_friction(
     # dF/dx = -scale (I - u u^T/s^2) G + F (|u|^2/s^2) c_n grad^T, s^2 = |u|^2 + a^2
     if sq > 0.0:
         s2 = sq * sq
-        wn = unorm * unorm / s2 * cn
+        wn = cn if floored else unorm * unorm / s2 * cn
         for j in range(12):
             ug = (u[0] * G[0, j] + u[1] * G[1, j] + u[2] * G[2, j]) / s2
             for b in range(3):
@@ -848,7 +860,7 @@ def align_anchors(keys_old, anc_old, slip_old, keys, anc, slip, known):
 @njit(cache=True)
 def rodrod_anchor_commit(
     pos, pos_old, pairs, edge_nodes, radius_edge, sharpness, stiffness, z_cutoff,
-    mu_s, mu_k, k_t, anchor, anchor_slip, known, keep, mode,
+    mu_s, mu_k, k_t, anchor, anchor_slip, known, keep, mode, cap_floor=0.0,
 ):  # fmt: skip
     """Commit (``mode`` 1) or stored energy (``mode`` 2) of the rod-rod anchors at ``pos``.
 
@@ -859,7 +871,7 @@ def rodrod_anchor_commit(
     gets it from ``pos_old``; mode 2 skips it); mode 1 writes whether it slides to
     ``anchor_slip`` and, if it does, moves the anchor's material points along the two edges
     (:func:`_shift_anchor`) so that the tangential gap shrinks to SLIP_GAP mu |F_n|/k_t.
-    Returns the anchors' stored energy (mode 2).
+    ``cap_floor``: see :func:`rodrod_assemble`. Returns the anchors' stored energy (mode 2).
     """
     x = np.empty(12)
     grad = np.empty(12)
@@ -890,6 +902,9 @@ def rodrod_anchor_commit(
         mu = mu_k if anchor_slip[p] else mu_s
         limit = mu * fnorm
         a = limit / k_t
+        a_min = cap_floor * (radius_edge[ei] + radius_edge[ej])
+        if a < a_min:
+            a = a_min
         slip = unorm > SLIP_GAP * a
         keep[p] = True
         if mode == 2:
@@ -979,7 +994,7 @@ CENSUS_COLUMNS = (
 @njit(cache=True)
 def rodrod_friction_census(
     pos, pos_old, dt, pairs, edge_nodes, radius_edge, sharpness, stiffness, z_cutoff,
-    mu_s, mu_k, k_t, anchor, anchor_slip, known, out,
+    mu_s, mu_k, k_t, anchor, anchor_slip, known, out, cap_floor=0.0,
 ):  # fmt: skip
     """Diagnostics of the friction each candidate pair carries at ``pos`` (read-only).
 
@@ -1039,7 +1054,7 @@ def rodrod_friction_census(
         unorm, _ = _anchor_gap(x, anc, nf, cw, u)
         mu = mu_k if anchor_slip[p] else mu_s
         limit = mu * fnorm
-        a = limit / k_t
+        a = max(limit / k_t, cap_floor * (radius_edge[ei] + radius_edge[ej]))
         sq = np.sqrt(unorm * unorm + a * a)
         out[p, 1] = limit * unorm / sq if sq > 0.0 else 0.0
         out[p, 2] = mu
