@@ -101,8 +101,9 @@ def anchor_cap_floor(cap_floor):
     """Inside the block, the scenes' anchor law (``friction="anchor"``) is built with
     ``AnchorFriction(..., cap_floor=cap_floor)`` (the scenes take the law by name only)."""
     import functools
+    import importlib
 
-    import knotmech.scenes.overhand as scene
+    scene = importlib.import_module("knotmech.scenes.overhand")
 
     orig = scene.AnchorFriction
     scene.AnchorFriction = functools.partial(AnchorFriction, cap_floor=float(cap_floor))
