@@ -271,6 +271,47 @@ def figure(paths, png):
     fig.savefig(png, dpi=110)
 
 
+def pulls_table(paths, png=None, at=0.45):
+    """Table (JSON rows) of full pulls saved by ``run --no-census``: pull force at
+    end-to-end ``at`` [m], largest force, inversions, steps and CPU; optional figure of the
+    force curves (one panel per law/scheme)."""
+    from knotmech.scenes.overhand import inversion_points
+
+    rows, curves = [], {}
+    for path in paths:
+        d = np.load(path)
+        meta = json.loads(str(d["meta"]))
+        e, f, t = d["end_to_end"], d["pull_force"], d["times"]
+        pulling = t > QUICK["wait_time"] + 0.2
+        order = np.argsort(e[pulling])
+        f_at = float(np.interp(at, e[pulling][order], f[pulling][order]))
+        inv = inversion_points(e[pulling], f[pulling], span=0.05)
+        name = meta["law"] if meta["law"] == "imc" else f"anchor floor {meta['cap_floor']:g}"
+        rows.append(dict(law=name, mu=meta["mu"], turns=meta["turns"], force_at_mN=1e3 * f_at,
+                         force_max_mN=1e3 * float(f[pulling].max()),
+                         inversions_m=[round(float(x), 4) for x in inv], steps=meta["steps"],
+                         newton_iterations=meta["newton_iterations"],
+                         rejected=meta["rejected_steps"], cpu_s=round(meta["cpu_s"], 1),
+                         status=meta["status"]))  # fmt: skip
+        curves.setdefault(name, []).append((meta["mu"], e, f))
+    if png:
+        import matplotlib.pyplot as plt
+
+        names = sorted(curves)
+        fig, axes = plt.subplots(1, len(names), figsize=(4.4 * len(names), 4), sharey=True)
+        for ax, name in zip(np.atleast_1d(axes), names, strict=True):
+            for mu, e, f in sorted(curves[name], key=lambda c: c[0]):
+                ax.plot(e, 1e3 * f, lw=1, label=f"mu = {mu:g}")
+            ax.axvline(at, color="k", lw=0.5, ls=":")
+            ax.set_title(name, fontsize=9)
+            ax.set_xlabel("end-to-end length [m]")
+            ax.legend(fontsize=8)
+        np.atleast_1d(axes)[0].set_ylabel("pull force [mN]")
+        fig.tight_layout()
+        fig.savefig(png, dpi=110)
+    return rows
+
+
 def main(argv=None):
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     sub = ap.add_subparsers(dest="cmd", required=True)
@@ -286,9 +327,16 @@ def main(argv=None):
     p = sub.add_parser("report")
     p.add_argument("files", nargs="+")
     p.add_argument("--figure")
+    t = sub.add_parser("table")
+    t.add_argument("files", nargs="+")
+    t.add_argument("--figure")
+    t.add_argument("--at", type=float, default=0.45)
     a = ap.parse_args(argv)
     if a.cmd == "run":
         run(a.out, a.law, a.mu, a.turns, a.pull_time, a.frames, a.cap_floor, not a.no_census)
+    elif a.cmd == "table":
+        for row in pulls_table(a.files, a.figure, a.at):
+            print(json.dumps(row))
     else:
         print(json.dumps([summary(f) for f in a.files], indent=1, default=str))
         if a.figure:
