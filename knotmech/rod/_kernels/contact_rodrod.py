@@ -180,65 +180,8 @@ def _edge_distance_hessian_ws(x, grad, hess, coef, w, gphi, H, B, U):
                 H[3 * k + m, 3 * l + m] = coef[k] * coef[l]
     nfree = int(free_s) + int(free_t)
     if nfree > 0:
-        # columns of phi_xu for the free parameters and the matrix phi_uu
-        B[:, :] = 0.0
-        U[:, :] = 0.0
-        col = 0
-        idx_s = -1
-        idx_t = -1
-        if free_s:
-            idx_s = col
-            col += 1
-        if free_t:
-            idx_t = col
-            col += 1
-        e11 = 0.0
-        e22 = 0.0
-        e12 = 0.0
-        for m in range(3):
-            a1 = x[3 + m] - x[m]
-            a2 = x[9 + m] - x[6 + m]
-            e11 += a1 * a1
-            e22 += a2 * a2
-            e12 += a1 * a2
-        if free_s:
-            # d/dx (w . e1) = A^T e1 + [-w, w, 0, 0]
-            for k in range(4):
-                for m in range(3):
-                    B[3 * k + m, idx_s] = coef[k] * (x[3 + m] - x[m])
-            for m in range(3):
-                B[m, idx_s] -= w[m]
-                B[3 + m, idx_s] += w[m]
-            U[idx_s, idx_s] = e11 * (1.0 + _REG)  # the regularised problem's phi_ss
-        if free_t:
-            # d/dx (-w . e2) = -A^T e2 + [0, 0, w, -w]
-            for k in range(4):
-                for m in range(3):
-                    B[3 * k + m, idx_t] = -coef[k] * (x[9 + m] - x[6 + m])
-            for m in range(3):
-                B[6 + m, idx_t] += w[m]
-                B[9 + m, idx_t] -= w[m]
-            U[idx_t, idx_t] = e22
-        if free_s and free_t:
-            U[0, 1] = -e12
-            U[1, 0] = U[0, 1]
-        if nfree == 1:
-            inv = 1.0 / U[0, 0]
-            for i in range(12):
-                for j in range(12):
-                    H[i, j] -= B[i, 0] * inv * B[j, 0]
-        else:
-            det = U[0, 0] * U[1, 1] - U[0, 1] * U[1, 0]
-            i00 = U[1, 1] / det
-            i11 = U[0, 0] / det
-            i01 = -U[0, 1] / det
-            for i in range(12):
-                bi0 = B[i, 0]
-                bi1 = B[i, 1]
-                for j in range(12):
-                    H[i, j] -= bi0 * (i00 * B[j, 0] + i01 * B[j, 1]) + bi1 * (
-                        i01 * B[j, 0] + i11 * B[j, 1]
-                    )
+        _coupling_columns(x, coef, w, free_s, free_t, B, U)
+        _subtract_coupling(nfree, H, B, U)
     inv_d = 1.0 / dist
     for i in range(12):
         grad[i] = gphi[i] * inv_d
@@ -247,6 +190,79 @@ def _edge_distance_hessian_ws(x, grad, hess, coef, w, gphi, H, B, U):
         for j in range(12):
             hess[i, j] = H[i, j] * inv_d - gphi[i] * gphi[j] * inv_d3
     return dist
+
+
+@njit(cache=True)
+def _coupling_columns(x, coef, w, free_s, free_t, B, U):
+    """The columns phi_xu (``B`` (12, 2)) and the matrix phi_uu (``U`` (2, 2)) of the free
+    closest-point parameters (s first if free, then t) of the two edges in ``x`` (12,),
+    with the gap's node weights ``coef`` (4,) and gap vector ``w`` (3,) (see
+    :func:`_edge_distance_hessian_ws`)."""
+    # columns of phi_xu for the free parameters and the matrix phi_uu
+    B[:, :] = 0.0
+    U[:, :] = 0.0
+    col = 0
+    idx_s = -1
+    idx_t = -1
+    if free_s:
+        idx_s = col
+        col += 1
+    if free_t:
+        idx_t = col
+        col += 1
+    e11 = 0.0
+    e22 = 0.0
+    e12 = 0.0
+    for m in range(3):
+        a1 = x[3 + m] - x[m]
+        a2 = x[9 + m] - x[6 + m]
+        e11 += a1 * a1
+        e22 += a2 * a2
+        e12 += a1 * a2
+    if free_s:
+        # d/dx (w . e1) = A^T e1 + [-w, w, 0, 0]
+        for k in range(4):
+            for m in range(3):
+                B[3 * k + m, idx_s] = coef[k] * (x[3 + m] - x[m])
+        for m in range(3):
+            B[m, idx_s] -= w[m]
+            B[3 + m, idx_s] += w[m]
+        U[idx_s, idx_s] = e11 * (1.0 + _REG)  # the regularised problem's phi_ss
+    if free_t:
+        # d/dx (-w . e2) = -A^T e2 + [0, 0, w, -w]
+        for k in range(4):
+            for m in range(3):
+                B[3 * k + m, idx_t] = -coef[k] * (x[9 + m] - x[6 + m])
+        for m in range(3):
+            B[6 + m, idx_t] += w[m]
+            B[9 + m, idx_t] -= w[m]
+        U[idx_t, idx_t] = e22
+    if free_s and free_t:
+        U[0, 1] = -e12
+        U[1, 0] = U[0, 1]
+
+
+@njit(cache=True)
+def _subtract_coupling(nfree, H, B, U):
+    """H -= B U^-1 B^T for the ``nfree`` (1 or 2) free parameters (the implicit
+    differentiation term of :func:`_edge_distance_hessian_ws`)."""
+    if nfree == 1:
+        inv = 1.0 / U[0, 0]
+        for i in range(12):
+            for j in range(12):
+                H[i, j] -= B[i, 0] * inv * B[j, 0]
+    else:
+        det = U[0, 0] * U[1, 1] - U[0, 1] * U[1, 0]
+        i00 = U[1, 1] / det
+        i11 = U[0, 0] / det
+        i01 = -U[0, 1] / det
+        for i in range(12):
+            bi0 = B[i, 0]
+            bi1 = B[i, 1]
+            for j in range(12):
+                H[i, j] -= bi0 * (i00 * B[j, 0] + i01 * B[j, 1]) + bi1 * (
+                    i01 * B[j, 0] + i11 * B[j, 1]
+                )
 
 
 @njit(cache=True)
@@ -469,51 +485,67 @@ def rodrod_assemble(
             energy += e_f
             out_slip[p] = slip
             continue
-        for m in range(3):
-            vi = 0.5 * (pos[nodes[0], m] - pos_old[nodes[0], m])
-            vi += 0.5 * (pos[nodes[1], m] - pos_old[nodes[1], m])
-            vj = 0.5 * (pos[nodes[2], m] - pos_old[nodes[2], m])
-            vj += 0.5 * (pos[nodes[3], m] - pos_old[nodes[3], m])
-            vrel[m] = (vi - vj) / dt
-        vn = vrel[0] * n[0] + vrel[1] * n[1] + vrel[2] * n[2]
-        vt = vrel - vn * n
-        vtn_raw = np.sqrt(vt @ vt)
-        vtn = np.sqrt(vtn_raw * vtn_raw + vel_eps * vel_eps)
-        gam = _sigmoid(fric_k * (vtn_raw - fric_c))
-        dgam = fric_k * gam * (1.0 - gam)
-        ffr = -gam * mu * fnorm * vt / vtn
-        sgn = (0.5, 0.5, -0.5, -0.5)
-        for k in range(4):
-            for m in range(3):
-                force[dofs[3 * k + m]] += sgn[k] * ffr[m]
-        if not jac:
-            continue
-        # dF_fr/dv_rel = -mu |Fn| [gamma/vtn (I - vt vt^T/vtn^2) + gamma' vt vt^T/(vtn vtn_raw)] P
-        for a in range(3):
-            for b in range(3):
-                Dm[a, b] = gam / vtn * ((1.0 if a == b else 0.0) - vt[a] * vt[b] / (vtn * vtn))
-                if vtn_raw > 0.0:
-                    Dm[a, b] += dgam * vt[a] * vt[b] / (vtn * vtn_raw)
-        # Dp = -mu |Fn| Dm P, P = I - n n^T
-        for a in range(3):
-            for b in range(3):
-                acc = Dm[a, b]
-                for c in range(3):
-                    acc -= Dm[a, c] * n[c] * n[b]
-                Dp[a, b] = -mu * fnorm * acc
-        # with normal_derivative: also the dependence of |F_n| on q (the normal stays
-        # lagged), d|F_n|/dx = (d2e/de) |F_n| grad Delta, which makes dF/dq unsymmetric
-        cn = d2e / de if (normal_derivative and de != 0.0) else 0.0
-        for k in range(4):
-            for a in range(3):
-                for l in range(4):
-                    scale = sgn[k] * sgn[l] / dt
-                    for b in range(3):
-                        rows[cnt] = dofs[3 * k + a]
-                        cols[cnt] = dofs[3 * l + b]
-                        vals[cnt] = scale * Dp[a, b] + sgn[k] * ffr[a] * cn * grad[3 * l + b]
-                        cnt += 1
+        cnt = _smooth_friction(
+            pos, pos_old, nodes, dofs, dt, n, fnorm, mu, fric_k, fric_c, vel_eps, jac,
+            normal_derivative, de, d2e, grad, force, rows, cols, vals, cnt, vrel, Dm, Dp,
+        )  # fmt: skip
     return energy, cnt
+
+
+@njit(cache=True)
+def _smooth_friction(
+    pos, pos_old, nodes, dofs, dt, n, fnorm, mu, fric_k, fric_c, vel_eps, jac,
+    normal_derivative, de, d2e, grad, force, rows, cols, vals, cnt, vrel, Dm, Dp,
+):  # fmt: skip
+    """Regularised friction of one pair (coated-rod eqs. 11-12; see
+    :func:`rodrod_assemble`): adds the force of the pair's ``nodes`` (4,) to ``force`` and,
+    if ``jac``, its Jacobian triplets from ``cnt`` on; ``vrel`` (3,), ``Dm`` and ``Dp``
+    (3, 3) are work arrays. Returns the new entry count."""
+    for m in range(3):
+        vi = 0.5 * (pos[nodes[0], m] - pos_old[nodes[0], m])
+        vi += 0.5 * (pos[nodes[1], m] - pos_old[nodes[1], m])
+        vj = 0.5 * (pos[nodes[2], m] - pos_old[nodes[2], m])
+        vj += 0.5 * (pos[nodes[3], m] - pos_old[nodes[3], m])
+        vrel[m] = (vi - vj) / dt
+    vn = vrel[0] * n[0] + vrel[1] * n[1] + vrel[2] * n[2]
+    vt = vrel - vn * n
+    vtn_raw = np.sqrt(vt @ vt)
+    vtn = np.sqrt(vtn_raw * vtn_raw + vel_eps * vel_eps)
+    gam = _sigmoid(fric_k * (vtn_raw - fric_c))
+    dgam = fric_k * gam * (1.0 - gam)
+    ffr = -gam * mu * fnorm * vt / vtn
+    sgn = (0.5, 0.5, -0.5, -0.5)
+    for k in range(4):
+        for m in range(3):
+            force[dofs[3 * k + m]] += sgn[k] * ffr[m]
+    if not jac:
+        return cnt
+    # dF_fr/dv_rel = -mu |Fn| [gamma/vtn (I - vt vt^T/vtn^2) + gamma' vt vt^T/(vtn vtn_raw)] P
+    for a in range(3):
+        for b in range(3):
+            Dm[a, b] = gam / vtn * ((1.0 if a == b else 0.0) - vt[a] * vt[b] / (vtn * vtn))
+            if vtn_raw > 0.0:
+                Dm[a, b] += dgam * vt[a] * vt[b] / (vtn * vtn_raw)
+    # Dp = -mu |Fn| Dm P, P = I - n n^T
+    for a in range(3):
+        for b in range(3):
+            acc = Dm[a, b]
+            for c in range(3):
+                acc -= Dm[a, c] * n[c] * n[b]
+            Dp[a, b] = -mu * fnorm * acc
+    # with normal_derivative: also the dependence of |F_n| on q (the normal stays
+    # lagged), d|F_n|/dx = (d2e/de) |F_n| grad Delta, which makes dF/dq unsymmetric
+    cn = d2e / de if (normal_derivative and de != 0.0) else 0.0
+    for k in range(4):
+        for a in range(3):
+            for l in range(4):
+                scale = sgn[k] * sgn[l] / dt
+                for b in range(3):
+                    rows[cnt] = dofs[3 * k + a]
+                    cols[cnt] = dofs[3 * l + b]
+                    vals[cnt] = scale * Dp[a, b] + sgn[k] * ffr[a] * cn * grad[3 * l + b]
+                    cnt += 1
+    return cnt
 
 
 # Anchor parameters stay within [ANCHOR_LO, ANCHOR_HI] on the lines of their edges: a pair
