@@ -38,6 +38,9 @@ from knotmech.rod.friction import AnchorFriction
 
 QUICK = dict(n_nodes=151, pull_speed=0.03, dt=5e-3, wait_time=0.5)
 COL = {name: i for i, name in enumerate(CENSUS_COLUMNS)}
+#: [m] end-to-end window of the pulls table's mean force (the knot tight, before the
+#: inversions of the regularised law at 0.43-0.46 m)
+WINDOW = (0.30, 0.42)
 
 
 class Census:
@@ -273,7 +276,8 @@ def figure(paths, png):
 
 def pulls_table(paths, png=None, at=0.45):
     """Table (JSON rows) of full pulls saved by ``run --no-census``: pull force at
-    end-to-end ``at`` [m], largest force, inversions, steps and CPU; optional figure of the
+    end-to-end ``at`` [m], its mean over :data:`WINDOW`, largest force, inversions, steps
+    and CPU; optional figure of the
     force curves (one panel per law/scheme)."""
     from knotmech.scenes.overhand import inversion_points
 
@@ -286,8 +290,10 @@ def pulls_table(paths, png=None, at=0.45):
         order = np.argsort(e[pulling])
         f_at = float(np.interp(at, e[pulling][order], f[pulling][order]))
         inv = inversion_points(e[pulling], f[pulling], span=0.05)
+        win = pulling & (e >= WINDOW[0]) & (e <= WINDOW[1])
         name = meta["law"] if meta["law"] == "imc" else f"anchor floor {meta['cap_floor']:g}"
         rows.append(dict(law=name, mu=meta["mu"], turns=meta["turns"], force_at_mN=1e3 * f_at,
+                         force_mean_mN=1e3 * float(f[win].mean()) if win.any() else None,
                          force_max_mN=1e3 * float(f[pulling].max()),
                          inversions_m=[round(float(x), 4) for x in inv], steps=meta["steps"],
                          newton_iterations=meta["newton_iterations"],
