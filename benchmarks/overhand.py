@@ -3,7 +3,8 @@
 301 nodes, L = 1 m, h = 1.6 mm, E = 0.18 MPa, dt = 2.5 ms, mu = 0.3, wait 2 s then both
 ends pulled at 6 mm/s for 60 s (62 s simulated), with each rod-rod friction law: ``imc``
 (the regularised law of the papers, the scene's default) and ``anchor`` (the elasto-plastic
-anchor that sticks, mu_s = mu_k = mu). Prints JSON to stdout, one entry per law:
+anchor that sticks, mu_s = mu_k = mu; ``floored``: the same with
+``AnchorFriction.cap_floor = --cap-floor``). Prints JSON to stdout, one entry per law:
 {"imc": {"wall_s", "cpu_s", "steps", "newton_iterations", ...}, "anchor": {...},
 "anchor_over_imc_wall": ..., "tight_phase_force_ratio": {...}} (median wall and process CPU
 time of ``--repeats`` runs, the laws alternated so that both see the same machine load; on
@@ -30,6 +31,9 @@ Both laws in one run (load 15, docs/notes/fricspeed.md): imc cpu_s 31.1, anchor 
 (1.06x; a second run 36.9 / 42.7 s, 1.16x); anchor 24893 steps, 39901 iterations, 36
 rejected, final force 0.07310 N; tight-phase force ratio anchor/imc 0.923 / 0.989 / 1.007
 (min / median / max); post-processing 0.5 % of the wall.
+``--laws imc,anchor,floored`` (issue 24, docs/notes/sticking.md; load 8-14, one run each):
+cpu_s 52.7 / 52.3 / 45.5; floored (cap_floor 1e-2) 24800 steps, 38204 iterations, no
+rejection, final force 0.07300 N, tight-phase force ratio floored/imc 0.851 / 0.986 / 1.014.
 """
 
 from __future__ import annotations
