@@ -31,7 +31,8 @@ Both laws in one run (load 15, docs/notes/fricspeed.md): imc cpu_s 31.1, anchor 
 (1.06x; a second run 36.9 / 42.7 s, 1.16x); anchor 24893 steps, 39901 iterations, 36
 rejected, final force 0.07310 N; tight-phase force ratio anchor/imc 0.923 / 0.989 / 1.007
 (min / median / max); post-processing 0.5 % of the wall.
-``--laws imc,anchor,floored`` (issue 24, docs/notes/sticking.md; load 8-14, one run each):
+``--laws imc,anchor,floored`` (issue 24; load 8-14, one run each;
+docs/notes/contact-and-friction/sticking-law-cap-width.md):
 cpu_s 52.7 / 52.3 / 45.5; floored (cap_floor 1e-2) 24800 steps, 38204 iterations, no
 rejection, final force 0.07300 N, tight-phase force ratio floored/imc 0.851 / 0.986 / 1.014.
 """

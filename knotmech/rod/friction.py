@@ -112,7 +112,8 @@ class AnchorFriction:
         radii). 0 (default) is the law as shipped, bit for bit. With a floor, a lightly
         loaded pair sticks on the softer spring mu |F_n|/a and slides (at mu_k |F_n|, as
         before) once its tangential gap exceeds 10 a; the sliding pairs' friction
-        direction then no longer flips between Newton iterates (``docs/notes/sticking.md``:
+        direction then no longer flips between Newton iterates
+        (``docs/notes/contact-and-friction/sticking-law-cap-width.md``:
         1e-3 cuts the coated n = 3 overhand's steps several-fold). No effect on
         rod-cylinder contact.
 
