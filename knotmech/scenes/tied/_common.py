@@ -190,7 +190,7 @@ def planar_crossings(paths, step: float = 0.1):
 
 def _lift(s, marks, h0):
     """z(s): PCHIP through +/- h0 on plateaus at the crossings ``marks`` [(s_k, +1/-1, w_k)]
-    (half-width w_k, shortened to a quarter of the distance to the next crossing)."""
+    (half-width w_k, at most a fifth of the distance to the next crossing)."""
     if not marks:
         return np.zeros_like(s)
     marks = sorted(marks)
@@ -198,7 +198,7 @@ def _lift(s, marks, h0):
     zk = np.array([h0 * m[1] for m in marks])
     gaps = np.diff(sk)
     half = np.minimum(np.concatenate([[np.inf], gaps]), np.concatenate([gaps, [np.inf]]))
-    w = np.minimum([m[2] for m in marks], 0.25 * half)
+    w = np.minimum([m[2] for m in marks], 0.2 * half)
     knots = np.column_stack([sk - w, sk + w]).ravel()
     vals = np.repeat(zk, 2)
     z = PchipInterpolator(knots, vals, extrapolate=False)(s)
@@ -254,11 +254,11 @@ def build_ropes(ctrls, *, ribbon=None, h0: float = LIFT, ds: float = DS):
 
 
 def _plateau(dense, ribbon, i, si, j, sj) -> float:
-    """Half-width [d] of the height plateau at a crossing: 0.9, or for ribbons
+    """Half-width [d] of the height plateau at a crossing: 0.6, or for ribbons
     w cot(theta/2) + 0.6, theta the crossing angle (where the four strands cross)."""
     ws = [0.0 if ribbon is None or ribbon[k] is None else ribbon[k] for k in (i, j)]
     if max(ws) == 0.0:
-        return 0.9
+        return 0.6
     ti, tj = _tangent(dense[i], si), _tangent(dense[j], sj)
     cos = abs(ti @ tj) / (np.linalg.norm(ti) * np.linalg.norm(tj))
     th = np.arccos(np.clip(cos, 0.0, 1.0))
@@ -293,10 +293,12 @@ def _tangent(p, s):
 def join_far(pieces, *, reach: float | None = None, avoid=(), center=None) -> np.ndarray:
     """One closed polygon through open pieces joined end to start far outside the knot.
 
-    The end of piece k is carried radially out (from the centroid of all pieces, in the
-    plane z = 0) to radius R, along the circle of radius R to the angle of the start of
-    piece k+1 (cyclically), and radially back in; the arc is the one that passes no other
-    piece's end, so the closure adds no crossing with the knot seen from z.
+    The end of piece k is lifted straight up (+z) to the height R above the centroid of
+    all pieces, carried radially out at that height to radius R, along the circle of radius
+    R to the angle of the start of piece k+1 (cyclically), radially back in and down to that
+    start. The arc is the shorter one that passes no other piece's end. An end on the
+    outside of the knot is so closed as in the plane (nothing lies above it); an end inside
+    (a bowline's tail in its eye) is taken out over everything.
 
     Parameters
     ----------
@@ -322,10 +324,12 @@ def join_far(pieces, *, reach: float | None = None, avoid=(), center=None) -> np
     out = []
     for k, p in enumerate(pieces):
         out.append(p)
-        a_end = _angle(p[-1] - c)
         nxt = pieces[(k + 1) % len(pieces)]
-        a_start = _angle(nxt[0] - c)
-        out.append(_far_arc(c, R, a_end, a_start, ang))
+        arc = _far_arc(c, R, _angle(p[-1] - c), _angle(nxt[0] - c), ang)
+        arc[:, 2] = c[2] + R
+        out.append([p[-1] + [0.0, 0.0, c[2] + R - p[-1][2]]])
+        out.append(arc)
+        out.append([nxt[0] + [0.0, 0.0, c[2] + R - nxt[0][2]]])
     return np.vstack(out)
 
 
@@ -349,17 +353,29 @@ def _far_arc(c, R, a0, a1, others):
     return np.column_stack([c[0] + R * np.cos(a), c[1] + R * np.sin(a), np.full(64, c[2])])
 
 
+def _refine(c, parts: int = 1500):
+    """The closed polygon c with its long edges split (no edge longer than 1/parts of the
+    polygon's length), so the midpoint rule of :func:`linking_number` converges."""
+    e = np.roll(c, -1, axis=0) - c
+    le = np.linalg.norm(e, axis=1)
+    k = np.maximum(1, np.ceil(le / (le.sum() / parts)).astype(int))
+    return np.vstack([c[i] + np.arange(k[i])[:, None] / k[i] * e[i] for i in range(len(c))])
+
+
 def linking_number(c1, c2) -> float:
     r"""Gauss linking number of two closed polygons (midpoint rule; near an integer)."""
     def seg(c):
         c1_ = np.roll(c, -1, axis=0)
         return 0.5 * (c + c1_), c1_ - c
 
-    am, da = seg(np.asarray(c1, float))
-    bm, db = seg(np.asarray(c2, float))
-    r = am[:, None, :] - bm[None, :, :]
-    num = np.einsum("ijk,ijk->ij", np.cross(da[:, None, :], db[None, :, :]), r)
-    return float((num / np.linalg.norm(r, axis=2) ** 3).sum() / (4 * np.pi))
+    am, da = seg(_refine(np.asarray(c1, float)))
+    bm, db = seg(_refine(np.asarray(c2, float)))
+    tot = 0.0
+    for k in range(0, len(am), 400):
+        r = am[k : k + 400, None, :] - bm[None, :, :]
+        num = np.einsum("ijk,ijk->ij", np.cross(da[k : k + 400, None, :], db[None, :, :]), r)
+        tot += float((num / np.linalg.norm(r, axis=2) ** 3).sum())
+    return tot / (4 * np.pi)
 
 
 def max_curvature(nodes) -> float:
@@ -465,16 +481,20 @@ def ribbon_strands(core: str, scale: float, w: float, tail: float):
     return upper, lower, writhe(signed, single)
 
 
-def eye_controls(p_out, p_back, center, radius, reach: float) -> np.ndarray:
-    """Control polygon [d] of an eye: from ``p_out`` (heading +x) out to a half turn round a
-    pin at ``center`` (clockwise, centreline radius ``radius``) and back to ``p_back``
-    (arriving heading -x). ``reach``: straight run before the legs start to spread."""
-    a = np.asarray(p_out, float)
-    b = np.asarray(p_back, float)
-    arc = circle_controls(center, radius, 0.5 * np.pi, -0.5 * np.pi, 13)
+def eye_controls(p_out, p_back, center, radius, reach: float, direction: float = 1.0):
+    """Control polygon [d] of an eye: from ``p_out`` (heading ``direction`` x: +1 or -1)
+    out to a half turn round a pin at ``center`` (centreline radius ``radius``) and back to
+    ``p_back`` (arriving heading the other way). ``reach``: straight run before the legs
+    start to spread or close in."""
+    sx = np.array([direction, 1.0, 1.0])
+    a = np.asarray(p_out, float) * sx
+    b = np.asarray(p_back, float) * sx
+    c = np.asarray(center, float)[:2] * sx[:2]
+    a0 = 0.5 * np.pi * np.sign(a[1] - b[1])
+    arc = circle_controls(c, radius, a0, -a0, 13)
     first = [a, a + [1.0, 0, 0], a + [reach, 0, 0]]
     last = [b + [reach, 0, 0], b + [1.0, 0, 0], b]
-    return np.vstack([first, arc, last])
+    return np.vstack([first, arc, last]) * sx
 
 
 def cut_at(nodes, point) -> int:
@@ -548,7 +568,8 @@ def measure(knot: TiedKnot) -> dict:
         out[f"alexander_{names[1]}"] = invariant(cb)
         out["linking"] = int(round(linking_number(ca, cb)))
     if len(names) == 1:
-        closed = join_far([ropes[names[0]]])
+        centre = None if knot.pin is None else knot.pin["point"]
+        closed = join_far([ropes[names[0]]], center=centre)
         out["alexander"] = invariant(closed)
         if knot.pin is not None:
             out["winding_pin"] = _pin_winding(closed, knot.pin)
@@ -572,3 +593,33 @@ def start_checks(ropes_m, d) -> dict:
     ``max_curvature`` [1/m] (largest over the ropes)."""
     return {"min_gap": rope_gap(ropes_m, d),
             "max_curvature": max(max_curvature(r) for r in ropes_m)}  # fmt: skip
+
+
+# ---------------------------------------------------------------------------
+# the sheet-bend structure (sheet bend, bowline): a bight A and a nipping loop B
+# ---------------------------------------------------------------------------
+
+LEG = 2.2  #: half spacing of the bight's legs [d]
+LOOP = 5.5  #: half height of B's loop round the legs [d]
+LOOP_X = (-3.0, 2.0)  #: x of the loop's two sides [d]
+
+
+def sheet_controls(left: float = -20.0, right: float = 30.0):
+    r"""Control polygons [d] of the sheet-bend structure (see :mod:`.sheet_bend`).
+
+    A: a bight, standing leg along y = +LEG from x = ``left`` - 10, a half turn round
+    x = 7.5 (apex x = 9.7), tail leg back along y = -LEG to x = ``left``. B: from x =
+    ``right`` along y = 0 over A's apex, under A's lower leg, then a loop round both legs
+    (down to y = -LOOP, up at x = -3 over both legs, down at x = 2 under both, over its own
+    first run), and its tail to the left along y = -8.5 to x = ``left``.
+    """
+    H, LB = LEG, LOOP
+    XL, XR = LOOP_X
+    a = [(left - 10, H, 0), (left, H, 0), (-8, H, 0), (XL, H, -1), (XR, H, 1), (5.5, H, 0),
+         (7.5, H, 0), (9.7, 1.2, -1), (9.7, -1.2, -1), (7.5, -H, 0), (4.5, -H, 1),
+         (XR, -H, 1), (XL, -H, -1), (-8, -H, 0), (left, -H, 0)]  # fmt: skip
+    b = [(right, 0, 1), (right - 10, 0, 1), (12, 0, 1), (9.7, 0, 1), (6.5, 0, 0), (4.5, 0, -1),
+         (4.5, -H, -1), (4.5, -LB, -1), (XR, -LB, -1), (XL, -LB, 0), (XL, -H, 1), (XL, H, 1),
+         (XL, LB, 1), (XR, LB, 0), (XR, H, -1), (XR, -H, -1), (XR, -LB, 1), (XR, -8, 1),
+         (-1, -8.5, 0), (-8, -8.5, 0), (left, -8.5, 0)]  # fmt: skip
+    return np.array(a, float), np.array(b, float)
