@@ -502,12 +502,14 @@ def cut_at(nodes, point) -> int:
     return int(np.argmin(np.linalg.norm(np.asarray(nodes) - np.asarray(point), axis=1)))
 
 
-def closed_alone(piece, others=(), *, scale: float = 3.0) -> np.ndarray:
-    """``piece`` closed far outside on its own (circle about the centroid of all pieces,
-    radius ``scale`` x their extent), the arc avoiding the ends of ``others``."""
+def closed_alone(piece, others=(), *, scale: float = 3.0, center=None) -> np.ndarray:
+    """``piece`` closed far outside on its own (circle about ``center``, default the
+    centroid of all pieces, radius ``scale`` x their extent), the arc avoiding the ends of
+    ``others``."""
     allp = np.vstack([piece, *others])
+    c = allp.mean(axis=0) if center is None else np.asarray(center, float)
     return join_far([piece], reach=scale * float(np.ptp(allp, axis=0).max()),
-                    avoid=[q for o in others for q in (o[0], o[-1])], center=allp.mean(axis=0))
+                    avoid=[q for o in others for q in (o[0], o[-1])], center=c)
 
 
 #: Alexander polynomials (t^0, t^1, ...) of the knots the closures meet (Rolfsen table;
@@ -553,7 +555,9 @@ def measure(knot: TiedKnot) -> dict:
       ``info["join"]``: (rope, forward) pairs),
     - ``winding_pin`` (turns of the closed rope about the pin or pole axis),
     - ``alexander_cut``, ``linking_cut`` (a loop's rope cut at ``info["eye_cut"]``, the
-      node of the eye farthest round the pin: the two halves closed on their own).
+      node of the eye farthest round the pin: the two halves closed on their own, about
+      the pin's axis; ``linking_cut`` unless ``info["cut_linking"]`` is False: a tail that
+      ends inside the eye makes it depend on the closure).
     """
     out = {}
     ropes = _open_ropes(knot)
@@ -577,9 +581,11 @@ def measure(knot: TiedKnot) -> dict:
         r = ropes[names[0]]
         k = knot.info["eye_cut"]
         p1, p2 = r[: k + 1], r[k:]
-        c1, c2 = closed_alone(p1, [p2]), closed_alone(p2, [p1], scale=2.5)
+        c1 = closed_alone(p1, [p2], center=knot.pin["point"])
+        c2 = closed_alone(p2, [p1], scale=2.5, center=knot.pin["point"])
         out["alexander_cut"] = (invariant(c1), invariant(c2))
-        out["linking_cut"] = int(round(linking_number(c1, c2)))
+        if knot.info.get("cut_linking", True):
+            out["linking_cut"] = int(round(linking_number(c1, c2)))
     for name, rope in knot.ropes.items():
         if knot.ends[name][0] == "closed":
             out["alexander"] = invariant(np.vstack([rope]))

@@ -27,8 +27,10 @@ Topology, proven in ``tests/scenes/test_tied_curves.py``:
   a rectangular path round the far left (a second embedding: other lengths, no pin, no
   eye) and A's tail lifted out the same way;
 - the closed rope winds **once** round the pin (clockwise seen from +z: -1);
-- cut at the far side of the pin: two unknots (a bight and a kinked loop), linking
-  once: the sheet bend's two ropes.
+- cut at the far side of the pin: two unknots (a bight and a kinked loop: the sheet
+  bend's two ropes). Their linking number is not checked here: the tail ends inside the
+  eye, so it depends on how each half is closed (the sheet bend checks it, +1, with all
+  four ends outside).
 """
 
 from __future__ import annotations
@@ -88,7 +90,8 @@ def bowline(*, rod_diameter: float, n_nodes: int = 300, pin_diameter: float) -> 
     (nodes,) = finish([rope], d, n)
     pin_c = (center[0] * d, center[1] * d, 0.0)
     far = np.array([center[0] - R, center[1], 0.0]) * d
-    info = {"pin_center": pin_c, "eye_cut": cut_at(nodes, far), **start_checks([nodes], d)}
+    info = {"pin_center": pin_c, "eye_cut": cut_at(nodes, far), "cut_linking": False,
+            **start_checks([nodes], d)}  # fmt: skip
     return TiedKnot(
         name="bowline",
         ropes={"rope": nodes},
@@ -96,6 +99,6 @@ def bowline(*, rod_diameter: float, n_nodes: int = 300, pin_diameter: float) -> 
         rod_radius=0.5 * d,
         pin={"point": pin_c, "axis": (0.0, 0.0, 1.0), "diameter": D},
         expected={"alexander": (1, -3, 5, -3, 1), "winding_pin": -1,
-                  "alexander_cut": ((1,), (1,)), "linking_cut": 1},  # fmt: skip
+                  "alexander_cut": ((1,), (1,))},  # fmt: skip
         info=info,
     )
