@@ -364,6 +364,7 @@ def _refine(c, parts: int = 1500):
 
 def linking_number(c1, c2) -> float:
     r"""Gauss linking number of two closed polygons (midpoint rule; near an integer)."""
+
     def seg(c):
         c1_ = np.roll(c, -1, axis=0)
         return 0.5 * (c + c1_), c1_ - c
@@ -455,7 +456,6 @@ def long_knot_controls(core: str, scale: float, tail: float, *, n_ctrl: int = 40
     body = np.array([f(tt) for tt in t]) * [scale, scale, 1.0]
     y0 = -3.0 * scale
     x_in, x_out = body[0, 0], body[-1, 0]
-    z_in, z_out = body[0, 2], body[-1, 2]
     start = [[x_in - tail - 3.0, y0 - drop, -1.0], [x_in - 2.5, y0 - drop, -1.0],
              [x_in - 0.4, y0 - 1.8, -1.0], [x_in - 0.2, y0 - 0.6, -1.0]]  # fmt: skip
     end = [[x_out + 1.0, y0 + 0.0, 1.0], [x_in + 1.0, y0 + 0.2, 1.0],
@@ -483,18 +483,36 @@ def ribbon_strands(core: str, scale: float, w: float, tail: float):
 
 def eye_controls(p_out, p_back, center, radius, reach: float, direction: float = 1.0):
     """Control polygon [d] of an eye: from ``p_out`` (heading ``direction`` x: +1 or -1)
-    out to a half turn round a pin at ``center`` (centreline radius ``radius``) and back to
-    ``p_back`` (arriving heading the other way). ``reach``: straight run before the legs
-    start to spread or close in."""
+    straight on for ``reach``, along the tangent to the pin's circle (``center``, centreline
+    radius ``radius``), round its far side, and back by the other tangent to ``p_back``
+    (arriving heading the other way)."""
     sx = np.array([direction, 1.0, 1.0])
     a = np.asarray(p_out, float) * sx
     b = np.asarray(p_back, float) * sx
     c = np.asarray(center, float)[:2] * sx[:2]
-    a0 = 0.5 * np.pi * np.sign(a[1] - b[1])
-    arc = circle_controls(c, radius, a0, -a0, 13)
-    first = [a, a + [1.0, 0, 0], a + [reach, 0, 0]]
-    last = [b + [reach, 0, 0], b + [1.0, 0, 0], b]
+    pa, pb = a + [reach, 0, 0], b + [reach, 0, 0]
+    ta, tb = _tangent_angle(pa, c, radius, a[1] > b[1]), _tangent_angle(pb, c, radius, b[1] > a[1])
+    if a[1] > b[1]:
+        tb -= 2 * np.pi * (tb > ta)
+    else:
+        tb += 2 * np.pi * (tb < ta)
+    n_arc = max(13, int(abs(tb - ta) / 0.25) + 1)
+    arc = circle_controls(c, radius, ta, tb, n_arc)
+    first = [a, a + [1.0, 0, 0], pa, 0.5 * (pa + arc[0])]
+    last = [0.5 * (pb + arc[-1]), pb, b + [1.0, 0, 0], b]
     return np.vstack([first, arc, last]) * sx
+
+
+def _tangent_angle(p, c, radius, upper: bool) -> float:
+    """Angle [rad] about c of the point where the tangent from p touches the circle, on the
+    upper (or lower) side."""
+    v = np.asarray(p[:2], float) - c
+    L = float(np.linalg.norm(v))
+    if L <= radius * 1.05:
+        raise InputError("design: eye leg starts inside the pin's circle")
+    base = np.arctan2(v[1], v[0])
+    off = np.arccos(radius / L)
+    return float(base - off) if upper else float(base + off)
 
 
 def cut_at(nodes, point) -> int:
@@ -508,8 +526,12 @@ def closed_alone(piece, others=(), *, scale: float = 3.0, center=None) -> np.nda
     ``others``."""
     allp = np.vstack([piece, *others])
     c = allp.mean(axis=0) if center is None else np.asarray(center, float)
-    return join_far([piece], reach=scale * float(np.ptp(allp, axis=0).max()),
-                    avoid=[q for o in others for q in (o[0], o[-1])], center=c)
+    return join_far(
+        [piece],
+        reach=scale * float(np.ptp(allp, axis=0).max()),
+        avoid=[q for o in others for q in (o[0], o[-1])],
+        center=c,
+    )
 
 
 #: Alexander polynomials (t^0, t^1, ...) of the knots the closures meet (Rolfsen table;

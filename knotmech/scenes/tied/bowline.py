@@ -77,7 +77,9 @@ def bowline(*, rod_diameter: float, n_nodes: int = 300, pin_diameter: float) -> 
     d, n = check_sizes(rod_diameter, n_nodes, 150)
     D = float(check_positive("pin_diameter", pin_diameter))
     if not 0.5 * d <= D <= 40 * d:
-        raise InputError(f"pin_diameter must lie in [0.5 d, 40 d] = [{0.5 * d:g}, {40 * d:g}] m, got {D:g}")
+        raise InputError(
+            f"pin_diameter must lie in [0.5 d, 40 d] = [{0.5 * d:g}, {40 * d:g}] m, got {D:g}"
+        )
     a, b = sheet_controls(left=EYE_X + 4.0)
     a = a[1:]  # A's standing leg starts where the eye ends
     a[0, 0] = EYE_X
@@ -98,7 +100,10 @@ def bowline(*, rod_diameter: float, n_nodes: int = 300, pin_diameter: float) -> 
         ends={"rope": ("standing", "tail")},
         rod_radius=0.5 * d,
         pin={"point": pin_c, "axis": (0.0, 0.0, 1.0), "diameter": D},
-        expected={"alexander": (1, -3, 5, -3, 1), "winding_pin": -1,
-                  "alexander_cut": ((1,), (1,))},  # fmt: skip
+        expected={
+            "alexander": (1, -3, 5, -3, 1),
+            "winding_pin": -1,
+            "alexander_cut": ((1,), (1,)),
+        },  # fmt: skip
         info=info,
     )

@@ -61,7 +61,11 @@ def figure_eight_bend(*, rod_diameter: float, n_nodes: int = 200) -> TiedKnot:
         ropes={"A": a, "B": b},
         ends={"A": ("standing", "tail"), "B": ("standing", "tail")},
         rod_radius=0.5 * d,
-        expected={"alexander_A": (-1, 3, -1), "alexander_B": (-1, 3, -1), "linking": -w,
-                  "alexander_joined": (1,)},  # fmt: skip
+        expected={
+            "alexander_A": (-1, 3, -1),
+            "alexander_B": (-1, 3, -1),
+            "linking": -w,
+            "alexander_joined": (1,),
+        },  # fmt: skip
         info={"writhe": w, "join": [("A", True), ("B", True)], **start_checks([a, b], d)},
     )

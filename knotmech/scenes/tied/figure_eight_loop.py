@@ -74,7 +74,9 @@ def figure_eight_loop(*, rod_diameter: float, n_nodes: int = 400,
     d, n = check_sizes(rod_diameter, n_nodes, 200)
     D = float(check_positive("pin_diameter", pin_diameter))
     if not 0.5 * d <= D <= 40 * d:
-        raise InputError(f"pin_diameter must lie in [0.5 d, 40 d] = [{0.5 * d:g}, {40 * d:g}] m, got {D:g}")
+        raise InputError(
+            f"pin_diameter must lie in [0.5 d, 40 d] = [{0.5 * d:g}, {40 * d:g}] m, got {D:g}"
+        )
     upper, lower, w = ribbon_strands("figure_eight", SCALE, HALF, TAIL)
     R = 0.5 * (D / d + 1.0)
     y_mid = 0.5 * (upper[-1, 1] + lower[-1, 1])
@@ -91,7 +93,11 @@ def figure_eight_loop(*, rod_diameter: float, n_nodes: int = 400,
         ends={"rope": ("standing", "tail")},
         rod_radius=0.5 * d,
         pin={"point": info["pin_center"], "axis": (0.0, 0.0, 1.0), "diameter": D},
-        expected={"alexander": (1,), "winding_pin": -1, "alexander_cut": ((-1, 3, -1),) * 2,
-                  "linking_cut": -w},  # fmt: skip
+        expected={
+            "alexander": (1,),
+            "winding_pin": -1,
+            "alexander_cut": ((-1, 3, -1),) * 2,
+            "linking_cut": -w,
+        },  # fmt: skip
         info=info,
     )

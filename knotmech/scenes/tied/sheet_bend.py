@@ -81,7 +81,11 @@ def sheet_bend(*, rod_diameter: float, n_nodes: int = 200) -> TiedKnot:
         ropes={"A": a, "B": b},
         ends={"A": ("standing", "tail"), "B": ("standing", "tail")},
         rod_radius=0.5 * d,
-        expected={"alexander_A": (1,), "alexander_B": (1,), "linking": 1,
-                  "alexander_joined": (-1, 3, -3, 3, -1)},  # fmt: skip
+        expected={
+            "alexander_A": (1,),
+            "alexander_B": (1,),
+            "linking": 1,
+            "alexander_joined": (-1, 3, -3, 3, -1),
+        },  # fmt: skip
         info={"join": [("A", True), ("B", False)], **start_checks([a, b], d)},
     )
