@@ -17,6 +17,7 @@ from knotmech.scenes.tied.bowline import bowline
 from knotmech.scenes.tied.figure_eight_bend import figure_eight_bend
 from knotmech.scenes.tied.figure_eight_loop import figure_eight_loop
 from knotmech.scenes.tied.flat_overhand_bend import flat_overhand_bend
+from knotmech.scenes.tied.prusik import prusik
 from knotmech.scenes.tied.sheet_bend import sheet_bend
 
 __all__ = [
@@ -29,6 +30,7 @@ __all__ = [
     "flat_overhand_bend",
     "knot_name",
     "measure",
+    "prusik",
     "sheet_bend",
 ]
 
@@ -39,4 +41,5 @@ TIED_KNOTS = {
     "sheet_bend": sheet_bend,
     "flat_overhand_bend": flat_overhand_bend,
     "figure_eight_bend": figure_eight_bend,
+    "prusik": prusik,
 }

@@ -616,11 +616,27 @@ def measure(knot: TiedKnot) -> dict:
     return out
 
 
-def start_checks(ropes_m, d) -> dict:
-    """Clearances of a start shape: ``min_gap`` [m] (:func:`rope_gap`) and
-    ``max_curvature`` [1/m] (largest over the ropes)."""
+def start_checks(ropes_m, d, *, closed: bool = False) -> dict:
+    """Clearances of a start shape: ``min_gap`` [m] (:func:`rope_gap`, or
+    :func:`closed_gap` for one closed rope) and ``max_curvature`` [1/m] (largest over the
+    ropes; a closed rope's seam included)."""
+    if closed:
+        (x,) = ropes_m
+        ext = np.vstack([x[-1:], x, x[:1]])
+        return {"min_gap": closed_gap(x, d), "max_curvature": max_curvature(ext)}
     return {"min_gap": rope_gap(ropes_m, d),
             "max_curvature": max(max_curvature(r) for r in ropes_m)}  # fmt: skip
+
+
+def closed_gap(nodes, d) -> float:
+    """Smallest distance [m] between nodes of a closed rope more than two diameters of arc
+    apart along it (either way round)."""
+    x = np.asarray(nodes, float)
+    n = len(x)
+    edge = float(np.mean(np.linalg.norm(np.diff(x, axis=0), axis=1)))
+    k = max(3, int(np.ceil(2.0 * d / edge)) + 1)
+    return min(float(np.linalg.norm(np.roll(x, -o, axis=0) - x, axis=1).min())
+               for o in range(k, n - k + 1))  # fmt: skip
 
 
 # ---------------------------------------------------------------------------
