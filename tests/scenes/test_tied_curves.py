@@ -2,8 +2,8 @@
 winding numbers), clearance and smoothness, and the one-line errors for bad input.
 
 Reference polynomials (Rolfsen table; composites as products): unknot 1, trefoil 3_1
-1 - t + t^2, figure-eight 4_1 -1 + 3t - t^2, 6_2 -1 + 3t - 3t^2 + 3t^3 - t^4, 6_3
-1 - 3t + 5t^2 - 3t^3 + t^4.
+1 - t + t^2, figure-eight 4_1 -1 + 3t - t^2, cinquefoil 5_1 1 - t + t^2 - t^3 + t^4,
+6_2 -1 + 3t - 3t^2 + 3t^3 - t^4, 6_3 1 - 3t + 5t^2 - 3t^3 + t^4.
 """
 
 import numpy as np
@@ -63,6 +63,12 @@ EXPECTED = {
         "alexander_joined": "0_1",
     },
     "prusik": {"alexander": "0_1", "winding_pin": 0},
+    "double_fishermans": {
+        "alexander_A": "5_1",
+        "alexander_B": "5_1",
+        "linking": 4,
+        "alexander_joined": "0_1",
+    },
 }
 
 

@@ -14,6 +14,7 @@ from __future__ import annotations
 
 from knotmech.scenes.tied._common import KNOT_TABLE, TiedKnot, knot_name, measure
 from knotmech.scenes.tied.bowline import bowline
+from knotmech.scenes.tied.double_fishermans import double_fishermans
 from knotmech.scenes.tied.figure_eight_bend import figure_eight_bend
 from knotmech.scenes.tied.figure_eight_loop import figure_eight_loop
 from knotmech.scenes.tied.flat_overhand_bend import flat_overhand_bend
@@ -25,6 +26,7 @@ __all__ = [
     "TIED_KNOTS",
     "TiedKnot",
     "bowline",
+    "double_fishermans",
     "figure_eight_bend",
     "figure_eight_loop",
     "flat_overhand_bend",
@@ -41,5 +43,6 @@ TIED_KNOTS = {
     "sheet_bend": sheet_bend,
     "flat_overhand_bend": flat_overhand_bend,
     "figure_eight_bend": figure_eight_bend,
+    "double_fishermans": double_fishermans,
     "prusik": prusik,
 }
