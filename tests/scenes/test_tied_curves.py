@@ -63,6 +63,13 @@ EXPECTED = {
         "alexander_joined": "0_1",
     },
     "prusik": {"alexander": "0_1", "winding_pin": 0},
+    # joined closure not in the table (measured polynomial, determinant 7; see below)
+    "double_sheet_bend": {
+        "alexander_A": "0_1",
+        "alexander_B": "0_1",
+        "linking": 1,
+        "alexander_joined": "?",
+    },
     "double_fishermans": {
         "alexander_A": "5_1",
         "alexander_B": "5_1",
@@ -180,3 +187,15 @@ def test_prusik_on_poles(pole, wraps):
 def test_prusik_wraps(bad):
     with pytest.raises(InputError, match="wraps"):
         tie("prusik", wraps=bad)
+
+
+def test_double_sheet_bend_closure_is_a_property_of_its_crossings(knots):
+    """A second embedding (every turn and run 1.3 times wider) closes to the same knot,
+    determinant 7, which is not the sheet bend's 6_2."""
+    other = TIED_KNOTS["double_sheet_bend"](rod_diameter=D, spread=1.3)
+    poly = measure(other)["alexander_joined"]
+    assert poly == measure(knots["double_sheet_bend"])["alexander_joined"]
+    assert abs(sum(c * (-1) ** i for i, c in enumerate(poly))) == 7
+    assert poly != measure(knots["sheet_bend"])["alexander_joined"]
+    with pytest.raises(InputError, match="spread"):
+        TIED_KNOTS["double_sheet_bend"](rod_diameter=D, spread=0.5)

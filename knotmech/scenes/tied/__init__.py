@@ -15,6 +15,7 @@ from __future__ import annotations
 from knotmech.scenes.tied._common import KNOT_TABLE, TiedKnot, knot_name, measure
 from knotmech.scenes.tied.bowline import bowline
 from knotmech.scenes.tied.double_fishermans import double_fishermans
+from knotmech.scenes.tied.double_sheet_bend import double_sheet_bend
 from knotmech.scenes.tied.figure_eight_bend import figure_eight_bend
 from knotmech.scenes.tied.figure_eight_loop import figure_eight_loop
 from knotmech.scenes.tied.flat_overhand_bend import flat_overhand_bend
@@ -27,6 +28,7 @@ __all__ = [
     "TiedKnot",
     "bowline",
     "double_fishermans",
+    "double_sheet_bend",
     "figure_eight_bend",
     "figure_eight_loop",
     "flat_overhand_bend",
@@ -41,6 +43,7 @@ TIED_KNOTS = {
     "bowline": bowline,
     "figure_eight_loop": figure_eight_loop,
     "sheet_bend": sheet_bend,
+    "double_sheet_bend": double_sheet_bend,
     "flat_overhand_bend": flat_overhand_bend,
     "figure_eight_bend": figure_eight_bend,
     "double_fishermans": double_fishermans,

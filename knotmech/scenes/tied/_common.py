@@ -667,3 +667,27 @@ def sheet_controls(left: float = -20.0, right: float = 30.0):
          (XL, LB, 1), (XR, LB, 0), (XR, H, -1), (XR, -H, -1), (XR, -LB, 1), (XR, -8, 1),
          (-1, -8.5, 0), (-8, -8.5, 0), (left, -8.5, 0)]  # fmt: skip
     return np.array(a, float), np.array(b, float)
+
+
+def double_sheet_controls(left: float = -22.0, right: float = 32.0, spread: float = 1.0):
+    r"""Control polygons [d] of the double sheet bend (see :mod:`.double_sheet_bend`):
+    A's bight as in :func:`sheet_controls` (half turn about x = 9.5), B round both legs
+    twice: the first turn at x = -2 (up, over) and 1.5 (down, under), the second at x = -5
+    and 4, each descent over B's first bottom run. ``spread`` scales the x positions of the
+    turns and the heights of B's runs (a second embedding for the tests)."""
+    H = LEG
+    L1, L2, L3 = 5.5 * spread, 7.5 * spread, 9.5 * spread
+    XL2, XL, XR, XR2, XE = (-5.0 * spread, -2.0 * spread, 1.5 * spread, 4.0 * spread,
+                            6.5 * spread)  # fmt: skip
+    UC = XE + 3.0
+    a = [(left - 10, H, 0), (left, H, 0), (XL2 - 4, H, 0), (XL2, H, -1), (XL, H, -1), (XR, H, 1),
+         (XR2, H, 1), (UC - 2, H, 0), (UC, H, 0), (UC + 2.2, 1.2, -1), (UC + 2.2, -1.2, -1),
+         (UC, -H, 0), (XE, -H, 1), (XR2, -H, 1), (XR, -H, 1), (XL, -H, -1), (XL2, -H, -1),
+         (XL2 - 4, -H, 0), (left, -H, 0)]  # fmt: skip
+    b = [(right, 0, 1), (right - 10, 0, 1), (UC + 4, 0, 1), (UC + 2.2, 0, 1), (XE + 2, 0, 0),
+         (XE, 0, -1), (XE, -H, -1), (XE, -L1, -1), (XR2, -L1, -1), (XR, -L1, -1), (XL, -L1, 0),
+         (XL, -H, 1), (XL, H, 1), (XL, L1, 1), (XR, L1, 0), (XR, H, -1), (XR, -H, -1),
+         (XR, -L1, 1), (XR, -L2, 0), (XL2, -L2, 0), (XL2, -H, 1), (XL2, H, 1), (XL2, L2, 1),
+         (XR2, L2, 0), (XR2, H, -1), (XR2, -H, -1), (XR2, -L1, 1), (XR2, -L3, 0),
+         (0, -L3 - 0.5, 0), (XL2 - 4, -L3 - 0.5, 0), (left, -L3 - 0.5, 0)]  # fmt: skip
+    return np.array(a, float), np.array(b, float)
