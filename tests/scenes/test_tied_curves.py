@@ -114,7 +114,7 @@ def test_scales_with_the_rod_diameter(knots, name):
         np.testing.assert_allclose(k2.ropes[r], 2 * knots[name].ropes[r], atol=1e-12)
 
 
-@pytest.mark.parametrize("pin", [0.5, 10.0, 40.0])
+@pytest.mark.parametrize("pin", [0.5, 40.0])
 @pytest.mark.parametrize("name", ["bowline", "figure_eight_loop"])
 def test_loops_round_any_pin(name, pin):
     k = tie(name, pin_diameter=pin * D)
@@ -167,8 +167,7 @@ def test_bad_input_is_one_line(name):
             TIED_KNOTS[name](rod_diameter=D, pin_diameter=-D)
 
 
-@pytest.mark.parametrize("pole", [1.0, 1.7, 3.0, 10.0])
-@pytest.mark.parametrize("wraps", [2, 3, 4])
+@pytest.mark.parametrize(("pole", "wraps"), [(1.0, 2), (1.7, 3), (3.0, 4), (10.0, 2)])
 def test_prusik_on_poles(pole, wraps):
     k = tie("prusik", pin_diameter=pole * D, wraps=wraps)
     x = k.ropes["sling"]
@@ -193,9 +192,9 @@ def test_double_sheet_bend_closure_is_a_property_of_its_crossings(knots):
     """A second embedding (every turn and run 1.3 times wider) closes to the same knot,
     determinant 7, which is not the sheet bend's 6_2."""
     other = TIED_KNOTS["double_sheet_bend"](rod_diameter=D, spread=1.3)
-    poly = measure(other)["alexander_joined"]
-    assert poly == measure(knots["double_sheet_bend"])["alexander_joined"]
+    poly = invariant(join_far([other.ropes["A"], other.ropes["B"][::-1]]))
+    assert poly == knots["double_sheet_bend"].expected["alexander_joined"]
     assert abs(sum(c * (-1) ** i for i, c in enumerate(poly))) == 7
-    assert poly != measure(knots["sheet_bend"])["alexander_joined"]
+    assert poly != knots["sheet_bend"].expected["alexander_joined"]
     with pytest.raises(InputError, match="spread"):
         TIED_KNOTS["double_sheet_bend"](rod_diameter=D, spread=0.5)
