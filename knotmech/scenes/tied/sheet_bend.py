@@ -2,17 +2,19 @@ r"""Sheet bend (ABoK #1431): a bight in rope A, rope B through it, round both it
 and tucked under itself.
 
 Crossing design (x to the right, y up, the viewer at +z; A's bight legs along
-y = +/-2.2 d to the left, its half turn at x = 7.5 d; B from the far right)::
+y = +/-2.2 d to the left, its half turn at x = 7.5 d; B from the far right; at each
+crossing the letter is the rope on top)::
 
-          B loop top
-        +----------+
-        |          |                 A standing  <=====+===========+=====\
-   A s ==U=========O=====\                             |  nipping   |     ) A's bight
-   (A)  |          |      )  <====== B standing   ....+  loop (B)  +.....  (B over apex)
-   A t ==O=========U=====/                             |           |     /
-        |          |  (B under A's tail leg)     A tail<=====+===========+=====/
-        +----------X  (B over its own first run)   B tail <=====...
-        B tail to the left, beside A's tail
+                 x = -3   x = 2
+                  +--------+              B's nipping loop (y = -5.5 ... 5.5)
+                  |        |
+    A standing ===B========A=========\     c4 (B over), c5 (A over)
+                  |        |   +------)=== B standing    c1: B over A's apex
+    A tail     ===B========A===A=====/     c3 (B over), c6, c2 (A over)
+                  |        |   |
+                  +--------B---+          c7: B's descent over its first run
+                           |
+    B tail     <===========+              (y = -8.5, beside A's tail)
 
 Along B: over A's apex (c1), under A's tail leg (c2), under its own later descent (c7,
 first passage), over A's tail leg and over A's standing leg (c3, c4: the loop's left
@@ -30,9 +32,10 @@ Topology, proven in ``tests/scenes/test_tied_curves.py``:
 
 - each rope closed on its own: the **unknot** (A a bight, B a loop with one
   self-crossing: a kink);
-- the two ropes each closed: linking number **+1** (B's loop round A's two legs, A's
-  bight round B: the signs of c1 ... c6, +1 +1 +1 -1 ... summed and halved, checked by
-  the Gauss integral);
+- the two ropes each closed: linking number **+1** (the signs of the six crossings of A
+  with B, read off the diagram with both ropes run from their standing parts: c4, c5 on
+  A's standing leg -1 each, c1, c2, c3, c6 +1 each; (4 - 2)/2 = 1; the test takes the
+  Gauss integral);
 - joined into one curve (A's tail to B's tail, B's standing part to A's, around the
   outside): the knot **6_2** (Alexander polynomial :math:`-1 + 3t - 3t^2 + 3t^3 - t^4`,
   determinant 11). The same structure with B's tail joined to A's standing part instead
