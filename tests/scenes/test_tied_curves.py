@@ -198,3 +198,20 @@ def test_double_sheet_bend_closure_is_a_property_of_its_crossings(knots):
     assert poly != knots["sheet_bend"].expected["alexander_joined"]
     with pytest.raises(InputError, match="spread"):
         TIED_KNOTS["double_sheet_bend"](rod_diameter=D, spread=0.5)
+
+
+def test_interleaved_ends_give_no_linking_number():
+    """Two straight ropes crossing like + (their ends alternate round the centre): each is
+    an unknot and A's end joins B's start without a new crossing, but each rope cannot be
+    closed on its own without crossing the other's ends: the linking number is None rather
+    than a number that depends on the choice."""
+    from knotmech.scenes.tied import TiedKnot
+
+    s = np.linspace(-1.0, 1.0, 50)[:, None]
+    a = s * [1.0, 0.0, 0.0]
+    b = s * [0.0, 1.0, 0.0] + [0.0, 0.0, 0.3]
+    k = TiedKnot("cross", {"A": a, "B": b}, {"A": ("standing", "tail"), "B": ("standing", "tail")},
+                 0.05, info={"join": [("A", True), ("B", True)]})  # fmt: skip
+    got = measure(k)
+    assert got == {"alexander_joined": (1,), "alexander_A": (1,), "alexander_B": (1,),
+                   "linking": None}  # fmt: skip

@@ -566,15 +566,37 @@ def _pin_winding(closed, pin) -> int:
     return int(round(w))
 
 
+def _or_none(f):
+    """f(), or None where the ends interleave round the knot (free tails that swung round
+    during a run): a closure without new crossings is then not defined."""
+    try:
+        return f()
+    except InputError as e:
+        if "interleaved" in str(e):
+            return None
+        raise
+
+
+def _two_ropes(a, b, names) -> dict:
+    """Each rope closed on its own (its knot type does not depend on the side of the lifted
+    closure) and the linking number of the pair (None if their ends interleave)."""
+    out = {f"alexander_{names[0]}": invariant(join_far([a])),
+           f"alexander_{names[1]}": invariant(join_far([b]))}  # fmt: skip
+    out["linking"] = _or_none(lambda: int(round(linking_number(
+        closed_alone(a, [b]), closed_alone(b, [a], scale=2.5)))))  # fmt: skip
+    return out
+
+
 def measure(knot: TiedKnot) -> dict:
     """The invariants of a tied knot's start shape (or of any frame with the same ropes),
     under the keys its ``expected`` dict uses:
 
     - ``alexander`` (one rope closed far outside, standing part to tail; or a sling),
     - ``alexander_A``, ``alexander_B`` (each rope of a bend closed on its own) and
-      ``linking`` (their Gauss linking number, rounded),
+      ``linking`` (their Gauss linking number, rounded; None when the ends of the two
+      ropes interleave round the knot, as free tails may after swinging in a run),
     - ``alexander_joined`` (the ropes joined into one curve in the order of
-      ``info["join"]``: (rope, forward) pairs),
+      ``info["join"]``: (rope, forward) pairs; None when the ends interleave),
     - ``winding_pin`` (turns of the closed rope about the pin or pole axis),
     - ``alexander_cut``, ``linking_cut`` (a loop's rope cut at ``info["eye_cut"]``, the
       node of the eye farthest round the pin: the two halves closed on their own, about
@@ -586,13 +608,9 @@ def measure(knot: TiedKnot) -> dict:
     names = list(ropes)
     if "join" in knot.info:
         pieces = [ropes[n] if fwd else ropes[n][::-1] for n, fwd in knot.info["join"]]
-        out["alexander_joined"] = invariant(join_far(pieces))
+        out["alexander_joined"] = _or_none(lambda: invariant(join_far(pieces)))
     if len(names) == 2:
-        a, b = ropes[names[0]], ropes[names[1]]
-        ca, cb = closed_alone(a, [b]), closed_alone(b, [a], scale=2.5)
-        out[f"alexander_{names[0]}"] = invariant(ca)
-        out[f"alexander_{names[1]}"] = invariant(cb)
-        out["linking"] = int(round(linking_number(ca, cb)))
+        out.update(_two_ropes(ropes[names[0]], ropes[names[1]], names))
     if len(names) == 1:
         centre = None if knot.pin is None else knot.pin["point"]
         closed = join_far([ropes[names[0]]], center=centre)
