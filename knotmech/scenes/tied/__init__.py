@@ -7,7 +7,7 @@ knot's name to its function; :func:`~knotmech.scenes.tied._common.measure` compu
 invariants of any frame with the same ropes, for comparison with ``expected``. The design
 pipeline and the closures are described in :mod:`knotmech.scenes.tied._common`; the
 construction and topology of each knot in its module's docstring and in
-``docs/notes/tied.md``.
+``docs/notes/knots-and-curves/tied-knot-curves.md``.
 """
 
 from __future__ import annotations
