@@ -3,7 +3,8 @@
 301 nodes, L = 1 m, h = 1.6 mm, E = 0.18 MPa, dt = 2.5 ms, mu = 0.3, wait 2 s then both
 ends pulled at 6 mm/s for 60 s (62 s simulated), with each rod-rod friction law: ``imc``
 (the regularised law of the papers, the scene's default) and ``anchor`` (the elasto-plastic
-anchor that sticks, mu_s = mu_k = mu). Prints JSON to stdout, one entry per law:
+anchor that sticks, mu_s = mu_k = mu; ``floored``: the same with
+``AnchorFriction.cap_floor = --cap-floor``). Prints JSON to stdout, one entry per law:
 {"imc": {"wall_s", "cpu_s", "steps", "newton_iterations", ...}, "anchor": {...},
 "anchor_over_imc_wall": ..., "tight_phase_force_ratio": {...}} (median wall and process CPU
 time of ``--repeats`` runs, the laws alternated so that both see the same machine load; on
@@ -30,6 +31,10 @@ Both laws in one run (load 15, docs/notes/fricspeed.md): imc cpu_s 31.1, anchor 
 (1.06x; a second run 36.9 / 42.7 s, 1.16x); anchor 24893 steps, 39901 iterations, 36
 rejected, final force 0.07310 N; tight-phase force ratio anchor/imc 0.923 / 0.989 / 1.007
 (min / median / max); post-processing 0.5 % of the wall.
+``--laws imc,anchor,floored`` (issue 24; load 8-14, one run each;
+docs/notes/contact-and-friction/sticking-law-cap-width.md):
+cpu_s 52.7 / 52.3 / 45.5; floored (cap_floor 1e-2) 24800 steps, 38204 iterations, no
+rejection, final force 0.07300 N, tight-phase force ratio floored/imc 0.851 / 0.986 / 1.014.
 """
 
 from __future__ import annotations
@@ -43,7 +48,7 @@ import numpy as np
 
 from knotmech.scenes.overhand import imc_setup, overhand
 
-LAWS = ("imc", "anchor")
+LAWS = ("imc", "anchor", "floored")
 
 
 def tight_phase_ratio(imc, anchor, fraction=0.25):
@@ -59,34 +64,55 @@ def tight_phase_ratio(imc, anchor, fraction=0.25):
     return float(ratio.min()), float(np.median(ratio)), float(ratio.max()), int(sel.sum())
 
 
+def _pull(law, cap_floor, turns, mu, **kw):
+    """One overhand pull with ``law`` ("floored": the anchor law with ``cap_floor``)."""
+    if law != "floored":
+        return overhand(turns, mu, friction=law, **kw)
+    from validation.sticking_census import anchor_cap_floor
+
+    with anchor_cap_floor(cap_floor):
+        return overhand(turns, mu, friction="anchor", **kw)
+
+
 def main() -> None:
     ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     ap.add_argument("--turns", type=int, default=1, choices=(1, 2, 3, 4))
     ap.add_argument("--mu", type=float, default=0.3)
     ap.add_argument("--t-end", type=float, default=62.0, help="simulated time [s]")
     ap.add_argument("--repeats", type=int, default=1)
-    ap.add_argument("--laws", default="imc,anchor", help="comma-separated: imc, anchor")
+    ap.add_argument(
+        "--laws",
+        default="imc,anchor",
+        help="comma-separated: imc, anchor, floored (the anchor law with a "
+        "floored cap width, AnchorFriction.cap_floor = --cap-floor)",
+    )
+    ap.add_argument(
+        "--cap-floor",
+        type=float,
+        default=1e-2,
+        help="cap_floor of the 'floored' law (default 1e-2)",
+    )
     ap.add_argument("--curves", default=None, help="write the force curves to this .npz")
     args = ap.parse_args()
     laws = [x.strip() for x in args.laws.split(",") if x.strip()]
     bad = [x for x in laws if x not in LAWS]
     if bad or not laws:
-        ap.error(f"--laws takes imc and/or anchor, got {args.laws!r}")
+        ap.error(f"--laws takes imc, anchor and/or floored, got {args.laws!r}")
     base = imc_setup(args.turns)
     pull_time = max(args.t_end - base.wait_time, 0.0)
     wait_time = min(base.wait_time, args.t_end)
     # compile the numba kernels outside the timing (a pull long enough for contacts)
     for law in laws:
-        overhand(args.turns, args.mu, n_nodes=101, wait_time=0.0, pull_time=0.05, dt=0.01,
-                 friction=law)  # fmt: skip
+        _pull(law, args.cap_floor, args.turns, args.mu, n_nodes=101, wait_time=0.0,
+              pull_time=0.05, dt=0.01)  # fmt: skip
     walls = {law: [] for law in laws}
     cpus = {law: [] for law in laws}
     runs = {}
     for _ in range(max(1, args.repeats)):
         for law in laws:  # alternated: both laws see the same load
             t0, c0 = time.perf_counter(), time.process_time()
-            r = overhand(args.turns, args.mu, wait_time=wait_time, pull_time=pull_time,
-                         n_frames=63, friction=law)  # fmt: skip
+            r = _pull(law, args.cap_floor, args.turns, args.mu, wait_time=wait_time,
+                      pull_time=pull_time, n_frames=63)  # fmt: skip
             walls[law].append(time.perf_counter() - t0)
             cpus[law].append(time.process_time() - c0)
             runs[law] = r
@@ -107,11 +133,16 @@ def main() -> None:
             "final_pull_force_N": float(r.pull_force[-1]),
             "final_end_to_end_m": float(r.end_to_end[-1]),
         }
-    if len(laws) == 2:
-        out["anchor_over_imc_wall"] = out["anchor"]["wall_s"] / out["imc"]["wall_s"]
-        out["anchor_over_imc_cpu"] = out["anchor"]["cpu_s"] / out["imc"]["cpu_s"]
-        lo, med, hi, n = tight_phase_ratio(runs["imc"], runs["anchor"])
-        out["tight_phase_force_ratio"] = {"min": lo, "median": med, "max": hi, "frames": n}
+    for law in ("anchor", "floored"):
+        if "imc" not in laws or law not in laws:
+            continue
+        key = "" if law == "anchor" else f"{law}_"
+        out[f"{law}_over_imc_wall"] = out[law]["wall_s"] / out["imc"]["wall_s"]
+        out[f"{law}_over_imc_cpu"] = out[law]["cpu_s"] / out["imc"]["cpu_s"]
+        lo, med, hi, n = tight_phase_ratio(runs["imc"], runs[law])
+        out[f"{key}tight_phase_force_ratio"] = {"min": lo, "median": med, "max": hi, "frames": n}
+    if "floored" in laws:
+        out["cap_floor"] = args.cap_floor
     out["target_wall_s"] = 30.0
     out["mu"] = args.mu
     out["turns"] = args.turns

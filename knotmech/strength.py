@@ -42,7 +42,7 @@ from typing import NamedTuple
 
 import numpy as np
 
-from knotmech.errors import InputError, KnotmechError
+from knotmech.errors import InputError, KnotmechError, check_positive
 from knotmech.materials import material as _material
 
 __all__ = [
@@ -212,24 +212,13 @@ def _name(argument: str, value) -> str:
 
 
 def _diameter(argument: str, value) -> np.ndarray:
-    if isinstance(value, (bool, np.bool_)) or (
-        isinstance(value, (list, tuple)) and any(isinstance(v, (bool, np.bool_)) for v in value)
-    ):
-        raise InputError(f"{argument} must be a diameter in metres, got {value!r}")
-    try:
-        arr = np.asarray(value, dtype=float)
-    except (TypeError, ValueError):
-        raise InputError(f"{argument} must be a diameter in metres, got {value!r}") from None
-    if not np.all(np.isfinite(arr)) or np.any(arr <= 0):
-        raise InputError(f"{argument} must be finite and > 0 m, got {value!r}")
-    return arr
+    """A diameter [m] or an array of them, finite and > 0 (the rule of knotmech.errors)."""
+    return check_positive(argument, value)
 
 
 def _one_diameter(argument: str, value) -> float:
-    arr = _diameter(argument, value)
-    if arr.size != 1:
-        raise InputError(f"{argument} must be one diameter in metres, got {value!r}")
-    return float(arr.reshape(()))
+    """One diameter [m], finite and > 0; an array or a list is refused."""
+    return check_positive(argument, value, scalar=True)
 
 
 # ---------------------------------------------------------------- breaking load

@@ -17,7 +17,16 @@ Text is read strictly, because a quantity read wrongly gives a confident wrong a
 - a decimal comma (``4,0mm``), digit separators (``1_0``), and digits other than
   ASCII 0-9 (fullwidth, Arabic-Indic) are refused; the Unicode minus sign U+2212
   (``−4mm``) is read as a minus;
-- counts (:func:`parse_count`) are whole numbers written with ASCII digits.
+- counts (:func:`parse_count`) are whole numbers written with ASCII digits;
+- magnitudes: NaN and infinity are refused, a number that overflows a float (``1e400mm``,
+  or ``1e308km`` once in metres) is refused as such, and a non-zero number that underflows
+  to zero (``1e-400mm``) is refused rather than read as 0; an angle beyond
+  :data:`MAX_ANGLE_TURNS` turns (``1e300deg``) is refused: no input of knotmech is that large;
+- text longer than :data:`MAX_TEXT` characters is refused, and a power (``^`` or ``**``)
+  applies to a unit name with a whole exponent below 100 (``kg/m^3``), so that the text
+  cannot make pint compute ``9**9**9`` for ever.
+
+Every refusal is one line that names the argument (the option, e.g. ``--wrap-angle``).
 """
 
 from __future__ import annotations
@@ -30,7 +39,7 @@ from functools import lru_cache
 
 from knotmech.errors import InputError
 
-__all__ = ["KINDS", "format_quantity", "parse_count", "parse_quantity"]
+__all__ = ["KINDS", "MAX_ANGLE_TURNS", "format_quantity", "parse_count", "parse_quantity"]
 
 #: kind -> (SI unit pint converts to, pint dimensionality string, examples)
 KINDS: dict[str, tuple[str, str, str]] = {
@@ -72,6 +81,14 @@ _ALLOWED_NON_ASCII = frozenset("\u00b5\u03bc\u00b0\u00b2\u00b3")
 _MINUS_SIGNS = "\u2212\ufe63\uff0d"  # minus sign, small and fullwidth hyphen-minus
 _BARE = re.compile(r"[+-]?(\d+\.?\d*|\.\d+)([eE][+-]?\d+)?|[+-]?(nan|inf|infinity)", re.I)
 _COUNT = re.compile(r"[+-]?\d+")
+_POWER = re.compile(r"\*\*|\^")
+_EXPONENT = re.compile(r"\s*[+-]?\d{1,2}(?![\d.]|\s*(\*\*|\^))")
+_LEADING_NUMBER = re.compile(r"[+-]?(\d+\.?\d*|\.\d+)")
+
+#: [turn] the largest angle accepted (a wrap of 1000 turns is already no knot)
+MAX_ANGLE_TURNS = 1000.0
+#: the longest text accepted for one quantity
+MAX_TEXT = 100
 
 
 _G = 9.80665  # [m/s^2] standard gravity (gram-force, kilogram-force)
@@ -162,15 +179,10 @@ def parse_quantity(text, kind: str, *, name: str = "value", bare_si: bool = Fals
         raise InputError(f"{name} must be {_article(kind)} {_label(kind)} such as {examples}, "
                          f"got {text!r}")  # fmt: skip
     if isinstance(text, numbers.Real):
-        value = float(text)
-        if not math.isfinite(value):
-            raise InputError(f"{name} must be finite (got {text!r})")
-        return value
+        return _checked(float(text), repr(text), kind, name)
     s = _clean_text(text, name, kind)
     if _BARE.fullmatch(s):
-        value = float(s)
-        if not math.isfinite(value):
-            raise InputError(f"{name} must be finite (got {s!r})")
+        value = _checked(float(s), s, kind, name)
         if kind == "dimensionless" or bare_si or value == 0.0:
             return value
         raise InputError(f"{name} {s}: give a unit, e.g. {s}{HINT_UNITS[kind]}")
@@ -179,8 +191,24 @@ def parse_quantity(text, kind: str, *, name: str = "value", bare_si: bool = Fals
     value = _fast(s, kind)
     if value is None:
         value = _parse_with_units(s, kind, name, examples)
-    if not math.isfinite(value):
-        raise InputError(f"{name} must be finite (got {s!r})")
+    return _checked(value, s, kind, name)
+
+
+def _checked(value: float, s: str, kind: str, name: str) -> float:
+    """``value`` (read from the text ``s``) unless NaN, inf, overflowed, underflowed, or an
+    angle beyond :data:`MAX_ANGLE_TURNS`; else InputError naming ``name``."""
+    if math.isnan(value) or (math.isinf(value) and re.search("inf", s, re.I)):
+        raise InputError(f"{name} must be a finite number, got {s!r}")
+    if math.isinf(value):
+        raise InputError(f"{name}: {s!r} is beyond the largest float (1.8e308) in SI units")
+    leading = _LEADING_NUMBER.match(s)
+    if value == 0.0 and leading and re.search("[1-9]", leading.group()):
+        raise InputError(f"{name}: {s!r} is too small for a float (it would be read as 0)")
+    if kind == "angle" and abs(value) > MAX_ANGLE_TURNS * 2 * math.pi * (1 + 1e-12):
+        raise InputError(
+            f"{name}: {s!r} is {value / (2 * math.pi):.3g} turns; an angle must be within "
+            f"{MAX_ANGLE_TURNS:g} turns ({MAX_ANGLE_TURNS * 360:g} deg)"
+        )
     return value
 
 
@@ -234,6 +262,8 @@ def _clean_text(text, name: str, kind: str) -> str:
     if "," in s:
         raise InputError(f"{name}: {s!r} contains a comma; write the decimal point as '.' "
                          f"(e.g. {s.replace(',', '.', 1)}) and no thousands separator")  # fmt: skip
+    if len(s) > MAX_TEXT:
+        raise InputError(f"{name}: the text is {len(s)} characters long (at most {MAX_TEXT})")
     if re.search(r"\d_|_\d", s):
         raise InputError(f"{name}: {s!r} contains '_' in a number; write the digits without "
                          f"separators (e.g. {s.replace('_', '')})")  # fmt: skip
@@ -243,6 +273,7 @@ def _clean_text(text, name: str, kind: str) -> str:
 def _parse_with_units(s: str, kind: str, name: str, examples: str) -> float:
     import pint
 
+    _check_powers(s, name)
     ureg = _registry()
     unit = KINDS[kind][0]
     try:
@@ -265,6 +296,17 @@ def _parse_with_units(s: str, kind: str, name: str, examples: str) -> float:
     except (TypeError, ValueError, OverflowError):
         raise InputError(f"{name}: cannot read {s!r} as {_article(kind)} {_label(kind)} "
                          f"(e.g. {examples})") from None  # fmt: skip
+
+
+def _check_powers(s: str, name: str) -> None:
+    """Refuse a power of a number or a large or chained exponent (``9**9**9`` would never end)."""
+    for m in _POWER.finditer(s):
+        left = s[: m.start()].rstrip()
+        if not (left and left[-1].isalpha() and _EXPONENT.match(s, m.end())):
+            raise InputError(
+                f"{name}: {s!r}: a power applies to a unit name with a whole exponent "
+                "below 100 (e.g. kg/m^3)"
+            )
 
 
 def _label(kind: str) -> str:

@@ -109,6 +109,20 @@ def test_millimetres_round_trip(x):
         ("30%", "dimensionless", "plain number"),
         ("1200kg/m^3", "dimensionless", "plain number"),
         ("1200kg/m^3", "pressure", "not a pressure"),
+        # magnitudes (issue 27): overflow, underflow, an angle of 1e300 deg, hanging powers
+        ("1e400mm", "length", r"beyond the largest float \(1.8e308\)"),
+        ("1e400", "dimensionless", "beyond the largest float"),
+        ("1e308 km", "length", "beyond the largest float"),  # 1e311 m
+        ("-1e400N", "force", "beyond the largest float"),
+        ("1e-400mm", "length", r"too small for a float \(it would be read as 0\)"),
+        ("1e-320 um", "length", "too small for a float"),
+        ("1e300deg", "angle", r"is 2.78e\+297 turns; an angle must be within 1000 turns"),
+        ("1001turn", "angle", "1e\\+03 turns; an angle must be within 1000 turns"),
+        ("9**9**9 mm", "length", "a power applies to a unit name"),  # hung pint for ever
+        ("10**400 mm", "length", "a power applies to a unit name"),
+        ("mm^999", "length", "whole exponent below 100"),
+        ("1" * 101 + "mm", "length", "103 characters long"),
+        (" ", "length", "empty"),
     ],
 )
 def test_bad_quantities_name_the_argument(text, kind, match):
@@ -185,3 +199,16 @@ def test_fuzz_counts(text):
         assert "--n" in str(exc) and "\n" not in str(exc)
     else:
         assert isinstance(value, int) and str(abs(value)) in text.replace("\u2212", "-")
+
+
+def test_the_largest_accepted_magnitudes_still_parse():
+    """Edges of the magnitude checks: 1000 turns, 1e308 m, the smallest normal float, m^3."""
+    assert parse_quantity("1000turn", "angle") == pytest.approx(2000 * math.pi, rel=1e-15)
+    assert parse_quantity("-360000deg", "angle") == pytest.approx(-2000 * math.pi, rel=1e-15)
+    assert parse_quantity("1e308 m", "length") == 1e308
+    assert parse_quantity("2.3e-308 m", "length") == 2.3e-308
+    assert parse_quantity("0e-400mm", "length") == 0.0
+    assert parse_quantity("1 kg/m**3", "density") == 1.0
+    assert parse_quantity(1e300, "length") == 1e300  # a Python number is SI: no angle here
+    with pytest.raises(InputError, match="must be within 1000 turns"):
+        parse_quantity(1e300, "angle", name="wrap_angle")

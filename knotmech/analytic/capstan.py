@@ -22,7 +22,7 @@ from __future__ import annotations
 
 import numpy as np
 
-from knotmech.errors import InputError, check_nonnegative, check_positive
+from knotmech.errors import InputError, check_nonnegative, check_positive, vectorised
 
 __all__ = [
     "capstan_ratio",
@@ -41,7 +41,24 @@ __all__ = [
 ]
 
 
+#: [-] the largest float, 1.8e308: a ratio or tension beyond it is refused, not returned as inf
+_FLOAT_MAX = float(np.finfo(float).max)
+
+
+def _finite_result(value, what: str):
+    r"""``value`` if every entry is finite, else InputError: ``what`` overflows a float.
+
+    The arguments are finite when this is called, so a non-finite result is an
+    overflow of :math:`e^{\mu\theta}` (:math:`\mu\theta > 709.8`) or of a tension times
+    it; ``what`` names the arguments that make it.
+    """
+    if not np.all(np.isfinite(value)):
+        raise InputError(f"{what} is beyond the largest float ({_FLOAT_MAX:.3g}); no rope holds it")
+    return value
+
+
 # --------------------------------------------------------------------------- ideal rope
+@vectorised
 def capstan_ratio(mu, wrap_angle):
     r"""Ideal capstan (Euler-Eytelwein) tension ratio at the onset of slip.
 
@@ -74,9 +91,12 @@ def capstan_ratio(mu, wrap_angle):
     """
     mu = check_nonnegative("mu", mu)
     theta = check_nonnegative("wrap_angle", wrap_angle)
-    return np.exp(mu * theta)
+    with np.errstate(over="ignore"):
+        ratio = np.exp(mu * theta)
+    return _finite_result(ratio, "the ratio exp(mu*wrap_angle)")
 
 
+@vectorised
 def capstan_tension_profile(s, *, high_tension, mu, radius):
     r"""Tension along the contact arc of an ideal capstan at the onset of slip.
 
@@ -111,6 +131,7 @@ def capstan_tension_profile(s, *, high_tension, mu, radius):
     return t_high * np.exp(-mu * s / radius)
 
 
+@vectorised
 def mu_from_capstan_test(high_tension, low_tension, wrap_angle):
     r"""Friction coefficient from a capstan test (the coated-rod paper's method).
 
@@ -144,6 +165,7 @@ def mu_from_capstan_test(high_tension, low_tension, wrap_angle):
 
 
 # --------------------------------------------------------------------------- thick rod
+@vectorised
 def mu_eff(mu, D_over_d):
     r"""Effective capstan friction coefficient of a rod of finite thickness.
 
@@ -197,6 +219,7 @@ def mu_eff(mu, D_over_d):
     return np.where(mu > 0, out, 0.0)
 
 
+@vectorised
 def mu_from_mu_eff(mu_effective, D_over_d):
     r"""Material friction coefficient from a measured effective one (inverse of :func:`mu_eff`).
 
@@ -231,6 +254,7 @@ def mu_from_mu_eff(mu_effective, D_over_d):
     return me * (1 + Dt) / (Dt - me**2)
 
 
+@vectorised
 def capstan_ratio_thick(mu, wrap_angle, D_over_d):
     r"""Capstan tension ratio of a rod of finite thickness.
 
@@ -256,9 +280,12 @@ def capstan_ratio_thick(mu, wrap_angle, D_over_d):
     Reference: clove-hitch paper eq. (3).
     """
     theta = check_nonnegative("wrap_angle", wrap_angle)
-    return np.exp(mu_eff(mu, D_over_d) * theta)
+    with np.errstate(over="ignore"):
+        ratio = np.exp(mu_eff(mu, D_over_d) * theta)
+    return _finite_result(ratio, "the ratio exp(mu_eff(mu, D_over_d)*wrap_angle)")
 
 
+@vectorised
 def capstan_end_factors(mu, D_over_d):
     r"""Entry and exit factors of a sliding thick rod on a post (the end layers of eq. (3)).
 
@@ -325,6 +352,7 @@ def capstan_end_factors(mu, D_over_d):
     return entry, exit_
 
 
+@vectorised
 def capstan_ratio_thick_ends(mu, wrap_angle, D_over_d):
     r"""Sliding ratio of a thick rod with its end layers: :func:`capstan_ratio_thick` times
     the two factors of :func:`capstan_end_factors`.
@@ -345,10 +373,13 @@ def capstan_ratio_thick_ends(mu, wrap_angle, D_over_d):
         :math:`T_\mathrm{high}/T_\mathrm{low}` at slip [-].
     """
     entry, exit_ = capstan_end_factors(mu, D_over_d)
-    return capstan_ratio_thick(mu, wrap_angle, D_over_d) * entry * exit_
+    with np.errstate(over="ignore"):
+        ratio = capstan_ratio_thick(mu, wrap_angle, D_over_d) * entry * exit_
+    return _finite_result(ratio, "the ratio of mu, wrap_angle and D_over_d")
 
 
 # --------------------------------------------------------------------------- bending rigidity
+@vectorised
 def bending_parameter(*, bending_stiffness, tension, radius):
     r"""Dimensionless bending parameter :math:`\varepsilon = \sqrt{B/(T R^2)}`.
 
@@ -394,6 +425,7 @@ def liftoff_angle(epsilon):
     return 2 * np.arcsin(eps / 2)
 
 
+@vectorised
 def capstan_ratio_bending(mu, wrap_angle, *, bending_stiffness, low_tension, high_tension, radius):
     r"""Capstan tension ratio of an elastic rod with bending rigidity (elastica lift-off).
 
@@ -476,10 +508,13 @@ def capstan_ratio_bending(mu, wrap_angle, *, bending_stiffness, low_tension, hig
     if np.any(den <= 0):
         raise InputError("mu*tan(lift-off angle) must be < 1 at the high-tension end")
     num = np.cos(phi_l) + mu * np.sin(phi_l)
-    return num / den * np.exp(mu * (theta - phi_l - phi_h))
+    with np.errstate(over="ignore"):
+        ratio = num / den * np.exp(mu * (theta - phi_l - phi_h))
+    return _finite_result(ratio, "the ratio exp(mu*wrap_angle) of mu and wrap_angle")
 
 
 # --------------------------------------------------------------------------- nonlinear friction
+@vectorised
 def capstan_high_tension_nonlinear(
     *, low_tension, wrap_angle, friction_coefficient, friction_exponent, radius
 ):
@@ -535,11 +570,16 @@ def capstan_high_tension_nonlinear(
     one_minus_n = 1.0 - n
     linear = np.isclose(one_minus_n, 0.0, atol=1e-9)
     safe = np.where(linear, 1.0, one_minus_n)
-    base = t0**safe + safe * a * R**safe * theta
-    nonlinear = base ** (1.0 / safe)
-    return np.where(linear, t0 * np.exp(a * theta), nonlinear)
+    with np.errstate(over="ignore"):
+        base = t0**safe + safe * a * R**safe * theta
+        nonlinear = base ** (1.0 / safe)
+        t_high = np.where(linear, t0 * np.exp(a * theta), nonlinear)
+    return _finite_result(
+        t_high, "the high tension of low_tension, friction_coefficient and wrap_angle"
+    )
 
 
+@vectorised
 def capstan_ratio_nonlinear(
     *, low_tension, wrap_angle, friction_coefficient, friction_exponent, radius
 ):

@@ -32,7 +32,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from knotmech.errors import InputError, check_positive
+from knotmech.errors import InputError, check_positive, vectorised
 
 __all__ = [
     "LANDAU_LEVICH_CURVATURE",
@@ -68,6 +68,7 @@ FIBRE_RADIUS_MAX = 0.1
 PLATE_RADIUS_MIN = 10.0
 
 
+@vectorised
 def capillary_number(viscosity, speed, surface_tension):
     r"""Capillary number :math:`\mathrm{Ca} = \eta U/\gamma` [-].
 
@@ -83,6 +84,7 @@ def capillary_number(viscosity, speed, surface_tension):
     return eta * u / gamma
 
 
+@vectorised
 def capillary_length(surface_tension, density, gravity=STANDARD_GRAVITY):
     r"""Capillary length :math:`\ell_c = \sqrt{\gamma/(\rho g)}` [m]."""
     gamma = check_positive("surface_tension", surface_tension)
@@ -91,6 +93,7 @@ def capillary_length(surface_tension, density, gravity=STANDARD_GRAVITY):
     return np.sqrt(gamma / (rho * g))
 
 
+@vectorised
 def film_thickness_plate(viscosity, speed, surface_tension, density, *, gravity=STANDARD_GRAVITY):
     r"""LLD film thickness on a plate withdrawn vertically from a bath.
 
@@ -128,6 +131,7 @@ def film_thickness_plate(viscosity, speed, surface_tension, density, *, gravity=
     return LLD_PLATE_COEFFICIENT * lc * ca ** (2.0 / 3.0)
 
 
+@vectorised
 def film_thickness_fibre(radius, viscosity, speed, surface_tension):
     r"""Goucher-Ward (LLD) film thickness on a thin fibre.
 
@@ -161,6 +165,7 @@ def film_thickness_fibre(radius, viscosity, speed, surface_tension):
     return LLD_FIBRE_COEFFICIENT * r * ca ** (2.0 / 3.0)
 
 
+@vectorised
 def film_thickness_fibre_white_tallmadge(radius, viscosity, speed, surface_tension):
     r"""Fibre film thickness with the White-Tallmadge correction.
 
@@ -196,7 +201,8 @@ def film_thickness_fibre_white_tallmadge(radius, viscosity, speed, surface_tensi
     x = LLD_FIBRE_COEFFICIENT * ca ** (2.0 / 3.0)
     if np.any(x >= 1.0):
         raise InputError(
-            "capillary number eta*U/gamma must be < 0.646 for the White-Tallmadge film "
+            "viscosity*speed/surface_tension (the capillary number Ca) must be < 0.646 for "
+            "the White-Tallmadge film "
             f"(1.34 Ca^(2/3) < 1), got Ca up to {float(np.max(ca)):g}"
         )
     return r * x / (1.0 - x)
@@ -224,6 +230,7 @@ class FilmThickness:
     message: str
 
 
+@vectorised
 def film_thickness(
     *,
     viscosity,
@@ -261,6 +268,8 @@ def film_thickness(
     -------
     FilmThickness
     """
+    if not isinstance(strict, (bool, np.bool_)):
+        raise InputError(f"strict must be True or False, got {strict!r:.40}")
     ca = np.asarray(capillary_number(viscosity, speed, surface_tension))
     lc = np.asarray(capillary_length(surface_tension, density, gravity))
     if radius is None:
@@ -277,7 +286,8 @@ def film_thickness(
     reasons = []
     if np.any(~small_ca):
         reasons.append(
-            f"capillary number {float(np.max(ca)):g} is not small (LLD needs Ca < {CA_MAX_LLD:g})"
+            f"viscosity*speed/surface_tension (the capillary number) {float(np.max(ca)):g} "
+            f"is not small (LLD needs Ca < {CA_MAX_LLD:g})"
         )
     crossover = small_ca & ~applicable
     if np.any(crossover):

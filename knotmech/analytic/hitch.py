@@ -704,17 +704,17 @@ def hold_verdict(
     alias).
     """
     key = str(knot).strip().lower().replace("_", "-").replace(" ", "-")
-    d = float(check_positive("rod_diameter", rod_diameter))
-    D = float(check_positive("post_diameter", post_diameter))
-    mu = float(check_nonnegative("mu", mu))
-    load = float(check_positive("load", load))
-    free = float(check_nonnegative("free_end_load", free_end_load))
+    d = check_positive("rod_diameter", rod_diameter, scalar=True)
+    D = check_positive("post_diameter", post_diameter, scalar=True)
+    mu = check_nonnegative("mu", mu, scalar=True)
+    load = check_positive("load", load, scalar=True)
+    free = check_nonnegative("free_end_load", free_end_load, scalar=True)
     if free > load:
         raise InputError(
             "free_end_load must be <= load (the load is the larger tension), "
             f"got {free:g} > {load:g}"
         )
-    mrr = mu if mu_rr is None else float(check_nonnegative("mu_rr", mu_rr))
+    mrr = mu if mu_rr is None else check_nonnegative("mu_rr", mu_rr, scalar=True)
     inputs = {
         "rod_diameter": d,
         "post_diameter": D,
@@ -727,7 +727,7 @@ def hold_verdict(
     if key == "capstan":
         if wrap_angle is None:
             raise InputError("wrap_angle is required for capstan (e.g. 360deg)")
-        theta = float(check_positive("wrap_angle", wrap_angle))
+        theta = check_positive("wrap_angle", wrap_angle, scalar=True)
         inputs["wrap_angle"] = theta
         answers = _capstan_answers(mu, theta, d, D, load, free)
         if free == 0:

@@ -49,7 +49,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-from knotmech.errors import InputError, check_finite, check_nonnegative, check_positive
+from knotmech.errors import InputError, check_finite, check_nonnegative, check_positive, vectorised
 
 
 # scipy.special is imported on first use (about 0.3 s that `import knotmech` should not pay)
@@ -103,6 +103,7 @@ def _check_turns(turns):
     return n
 
 
+@vectorised
 def braid_wavenumber(*, loop_radius, rod_radius):
     r"""Braid wave number of a long overhand knot, Jawed et al. (2015) Eq. (3).
 
@@ -130,6 +131,7 @@ def braid_wavenumber(*, loop_radius, rod_radius):
     return 1.0 / np.sqrt(_SQRT12 * h * r)
 
 
+@vectorised
 def braid_contact_force_per_length(*, wavenumber, rod_radius, bending_stiffness):
     r"""Line contact force between the two strands of a braid, :math:`p = B h k^4`.
 
@@ -158,6 +160,7 @@ def braid_contact_force_per_length(*, wavenumber, rod_radius, bending_stiffness)
     return b * h * k**4
 
 
+@vectorised
 def braid_friction_force(*, wavenumber, turns, mu, rod_radius, bending_stiffness):
     r"""Pulling force to slide a braid of n turns, Jawed et al. (2015) Eq. (4).
 
@@ -279,6 +282,7 @@ class OverhandKnot:
     message: str
 
 
+@vectorised
 def overhand_knot(*, end_to_end_shortening, turns, mu, rod_radius, bending_stiffness):
     r"""Long overhand knot of Jawed et al. (2015): solve Eqs. (3)-(5) for a given shortening.
 
@@ -362,6 +366,7 @@ def overhand_knot(*, end_to_end_shortening, turns, mu, rod_radius, bending_stiff
     )
 
 
+@vectorised
 def overhand_pull_force(end_to_end_shortening, turns, mu, rod_radius, bending_stiffness):
     r"""Pulling force of a long overhand knot, Jawed, Dieleman, Audoly & Reis (2015).
 
@@ -411,6 +416,7 @@ def overhand_pull_force(end_to_end_shortening, turns, mu, rod_radius, bending_st
     ).force
 
 
+@vectorised
 def loose_knot_force(*, loop_radius, bending_stiffness):
     r"""Frictionless loose-trefoil force at leading order, Audoly et al. (2007).
 
@@ -439,6 +445,7 @@ def loose_knot_force(*, loop_radius, bending_stiffness):
     return b / (2.0 * r**2)
 
 
+@vectorised
 def loose_knot_force_from_shortening(*, end_to_end_shortening, bending_stiffness):
     r"""Frictionless loose-trefoil force from the shortening, :math:`F = 2\pi^2 B/e^2`.
 

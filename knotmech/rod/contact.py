@@ -344,6 +344,7 @@ class RodContact:
             slip_prev,
             known,
             slip_now,
+            float(self.friction.cap_floor) if law == 1 else 0.0,
         )
         self.last_normal_force = fn
         self._energy_cache = (pairs, pos, float(e))  # energy() at the same q is free
@@ -416,7 +417,7 @@ class RodContact:
         return rodrod_anchor_commit(
             _positions(system, q), _positions(system, q_old), self.pairs, en, rad,
             self.sharpness, self.stiffness, Z_CUTOFF, mu_s, mu_k, k_t, anc, slip, known,
-            keep, mode,
+            keep, mode, float(self.friction.cap_floor),
         )  # fmt: skip
 
     def end_step(self, system, q_new, q_old, dt):

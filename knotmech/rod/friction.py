@@ -106,6 +106,16 @@ class AnchorFriction:
     tangential_stiffness : float or None
         k_t; rod-cylinder: per unit rod length [N/m^2], rod-rod: per contact pair [N/m];
         None -> the contact's normal penalty stiffness scale.
+    cap_floor : float
+        Rod-rod only, dimensionless (>= 0): floor on the width of the anchor spring's
+        smooth cap, a = max(mu |F_n|/k_t, cap_floor (r_i + r_j)) [m] (r the two edges'
+        radii). 0 (default) is the law as shipped, bit for bit. With a floor, a lightly
+        loaded pair sticks on the softer spring mu |F_n|/a and slides (at mu_k |F_n|, as
+        before) once its tangential gap exceeds 10 a; the sliding pairs' friction
+        direction then no longer flips between Newton iterates
+        (``docs/notes/contact-and-friction/sticking-law-cap-width.md``:
+        1e-3 cuts the coated n = 3 overhand's steps several-fold). No effect on
+        rod-cylinder contact.
 
     References
     ----------
@@ -115,9 +125,11 @@ class AnchorFriction:
     mu_static: float
     mu_kinetic: float | None = None
     tangential_stiffness: float | None = None
+    cap_floor: float = 0.0
 
     def __post_init__(self):
         check_nonnegative("mu_static", self.mu_static)
+        check_nonnegative("cap_floor", self.cap_floor)
         if self.mu_kinetic is not None:
             check_nonnegative("mu_kinetic", self.mu_kinetic)
             if self.mu_kinetic > self.mu_static:

@@ -20,9 +20,9 @@ def hold_bend(
 ) -> Verdict:  # fmt: skip
     """The verdict on bend ``key`` (keywords of :func:`knotmech.hold`; no post, mu is the
     rope-rope friction): undecided with the command that decides, or one DER pull."""
-    d = float(check_positive("rod_diameter", rod_diameter))
-    mu = float(check_nonnegative("mu", mu))
-    load = float(check_positive("load", load))
+    d = check_positive("rod_diameter", rod_diameter, scalar=True)
+    mu = check_nonnegative("mu", mu, scalar=True)
+    load = check_positive("load", load, scalar=True)
     _refuse_post_inputs(key, post_diameter=post_diameter, mu_rr=mu_rr, wrap_angle=wrap_angle,
                         phase_table=phase_table, free_end_load=free_end_load)  # fmt: skip
     E, mat, e_source = _youngs_modulus(material, youngs_modulus)

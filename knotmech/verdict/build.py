@@ -66,7 +66,7 @@ def point_geometry(
     x = float(d_over_2R)
     if not 0.0 < x < 0.5:
         raise InputError(f"d_over_2R must be in (0, 0.5), got {x:g}")
-    d = float(check_positive("rod_diameter", rod_diameter))
+    d = check_positive("rod_diameter", rod_diameter, scalar=True)
     D = d * (1.0 / x - 1.0)
     R = 0.5 * (D + d)
     L = 4 * np.pi * R * 1.15 + 2 * TAIL
@@ -169,10 +169,10 @@ def simulate_point(
     """
     import time
 
-    d = float(check_positive("rod_diameter", rod_diameter))
-    E = float(check_positive("youngs_modulus", youngs_modulus))
-    tea = float(check_positive("t_over_EA", t_over_EA))
-    lim = float(check_positive("creep_limit", creep_limit))
+    d = check_positive("rod_diameter", rod_diameter, scalar=True)
+    E = check_positive("youngs_modulus", youngs_modulus, scalar=True)
+    tea = check_positive("t_over_EA", t_over_EA, scalar=True)
+    lim = check_positive("creep_limit", creep_limit, scalar=True)
     from knotmech.errors import check_bending_scale
 
     kappa = check_bending_scale(bending_scale)
@@ -276,7 +276,7 @@ def _time_scale(time_scale, *, d, E, density, kappa) -> float:
     if time_scale is None:
         return protocol_time_scale(rod_diameter=d, youngs_modulus=E, density=density,
                                    bending_scale=kappa)  # fmt: skip
-    return float(check_positive("time_scale", time_scale))
+    return check_positive("time_scale", time_scale, scalar=True)
 
 
 def _nodes_and_length(knot: str, geo: dict, n_nodes):
@@ -293,7 +293,7 @@ def _point_protocol(friction: str, hold_time, ts: float, knot: str):
     ``hold_time``, its times stretched by the time scale ``ts``."""
     proto = dict(PROTOCOL if friction == "anchor" else IMC_PROTOCOL)
     if hold_time is not None:
-        h = float(check_positive("hold_time", hold_time))
+        h = check_positive("hold_time", hold_time, scalar=True)
         proto["hold_time"] = h
         proto["n_frames"] = int(round((proto["settle_time"] + proto["load_time"] + h) / 0.05)) + 1
     run_proto = {k: (v * ts if k in ("settle_time", "load_time", "hold_time", "dt") else v)

@@ -80,9 +80,9 @@ def protocol_time_scale(
     material. A 6 mm nylon rope (E = 0.25 GPa, 1140 kg/m^3, kappa 0.01) has s = 1.06; a
     solid nylon rod (kappa 1) 0.11; a 6 mm steel wire rope (80 GPa, 5000 kg/m^3, 0.02) 0.09.
     """
-    d = float(check_positive("rod_diameter", rod_diameter))
-    E = float(check_positive("youngs_modulus", youngs_modulus))
-    rho = float(check_positive("density", density))
+    d = check_positive("rod_diameter", rod_diameter, scalar=True)
+    E = check_positive("youngs_modulus", youngs_modulus, scalar=True)
+    rho = check_positive("density", density, scalar=True)
     from knotmech.errors import check_bending_scale
 
     kappa = check_bending_scale(bending_scale)
@@ -101,8 +101,8 @@ def creep_speed(times, end_displacement, *, rod_diameter, window=CREEP_WINDOW) -
     """
     t = np.asarray(times, dtype=float)
     u = np.asarray(end_displacement, dtype=float)
-    d = float(check_positive("rod_diameter", rod_diameter))
-    w = float(check_positive("window", window))
+    d = check_positive("rod_diameter", rod_diameter, scalar=True)
+    w = check_positive("window", window, scalar=True)
     if t.size < 2:
         return float("nan")
     sel = np.flatnonzero(t >= t[-1] - w - 1e-9)
@@ -128,7 +128,7 @@ def creep_verdict(
     end still moving back fast, a stiff rod springing open, is not a hold). Returns ``(holds,
     reason)``; ``holds`` is None when the solver failed (no verdict).
     """
-    lim = float(check_positive("creep limit", limit))
+    lim = check_positive("creep limit", limit, scalar=True)
     if not solver_ok:
         return None, "solver failed"
     if not ran_to_end:

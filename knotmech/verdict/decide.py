@@ -189,13 +189,13 @@ def _case(
     """The checked inputs of a hitch or capstan question (one-line InputErrors, in order)."""
     if post_diameter is None:
         raise InputError(f"post_diameter is required for {key}")
-    d = float(check_positive("rod_diameter", rod_diameter))
-    D = float(check_positive("post_diameter", post_diameter))
-    mu = float(check_nonnegative("mu", mu))
-    load = float(check_positive("load", load))
-    free = float(check_nonnegative("free_end_load", free_end_load))
+    d = check_positive("rod_diameter", rod_diameter, scalar=True)
+    D = check_positive("post_diameter", post_diameter, scalar=True)
+    mu = check_nonnegative("mu", mu, scalar=True)
+    load = check_positive("load", load, scalar=True)
+    free = check_nonnegative("free_end_load", free_end_load, scalar=True)
     if creep_limit is not None:
-        creep_limit = float(check_positive("creep_limit", creep_limit))
+        creep_limit = check_positive("creep_limit", creep_limit, scalar=True)
     _check_combination(key, mu_rr=mu_rr, simulate=simulate, free=free, phase_table=phase_table)
     E, mat, e_source = _youngs_modulus(material, youngs_modulus)
     kappa, k_source = _bending_scale(mat, bending_scale)

@@ -591,7 +591,7 @@ def _hold_query(d_over_2R, t_over_EA, mu, mu_rr, creep_limit):
     """(x, y, mu, mu_rr, limit) of a hold-table query, checked (one-line InputErrors)."""
     x, y, m = float(d_over_2R), float(t_over_EA), float(mu)
     mr = m if mu_rr is None else float(mu_rr)
-    lim = float(check_positive("creep_limit", creep_limit))
+    lim = check_positive("creep_limit", creep_limit, scalar=True)
     for name, v in (("d_over_2R", x), ("t_over_EA", y), ("mu", m), ("mu_rr", mr)):
         if not math.isfinite(v) or v < 0:
             raise InputError(f"{name} must be finite and >= 0, got {v}")

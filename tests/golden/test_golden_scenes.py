@@ -53,9 +53,9 @@ _HITCH_QUICK = dict(n_nodes=100, settle_time=0.05, load_time=0.05, hold_time=0.0
 
 #: name -> (runner, slow)
 CASES = {
-    "capstan_pull": (lambda: scenes.capstan(**_capstan_kw(), pull_distance=2e-3), False),
+    "capstan_pull": (lambda: scenes.capstan.capstan(**_capstan_kw(), pull_distance=2e-3), False),
     "capstan_hold": (
-        lambda: scenes.capstan(
+        lambda: scenes.capstan.capstan(
             **_capstan_kw(), mode="hold", t_high=0.015 * EA, hold_time=0.1, ramp_time=0.05
         ),
         False,
@@ -65,15 +65,15 @@ CASES = {
         False,
     ),
     "pinch": (
-        lambda: scenes.pinch(normal_load=0.3, mu=0.5, n_elements=60, pull_distance=2e-3),
+        lambda: scenes.pinch.pinch(normal_load=0.3, mu=0.5, n_elements=60, pull_distance=2e-3),
         False,
     ),
     "clove_hitch_free": (
-        lambda: scenes.clove_hitch(loading="free", t_high=1.47, **_HITCH_QUICK),
+        lambda: scenes.clove_hitch.clove_hitch(loading="free", t_high=1.47, **_HITCH_QUICK),
         False,
     ),
     "clove_hitch_pull": (
-        lambda: scenes.clove_hitch(
+        lambda: scenes.clove_hitch.clove_hitch(
             loading="pull",
             t_low=0.069,
             mu_rod_post=0.32,
@@ -91,7 +91,7 @@ CASES = {
         False,
     ),
     "overhand_n1": (
-        lambda: scenes.overhand(
+        lambda: scenes.overhand.overhand(
             1,
             0.3,
             n_frames=11,
@@ -110,7 +110,7 @@ CASES = {
         False,
     ),
     "centreline_quarter_circle": (
-        lambda: scenes.centreline(
+        lambda: scenes.centreline.centreline(
             _quarter_circle(),
             ends=[("fixed", "pull")],
             rod_diameter=4e-3,

@@ -131,3 +131,62 @@ def test_state_arrays_round_trip_and_rigid_motion_keeps_the_anchor():
 def test_friction_type_is_checked():
     with pytest.raises(InputError, match="friction"):
         RodContact(stiffness=1.0, sharpness=1.0, friction=0.3)
+
+
+@pytest.mark.parametrize("dx, cap_floor", [(2e-5, 0.0), (5e-3, 0.0), (2e-4, 5e-2)])
+def test_friction_census_reports_the_force_the_law_applies(dx, cap_floor):
+    """``rodrod_friction_census`` (validation/sticking_census.py) reports for the pair
+    that carries the contact the |F_t| that the assembly applies (the net friction force
+    on rod 0), mu_s, |u|/a = dx/a with a = max(mu_s N/k_t, cap_floor (r_i + r_j)), and
+    whether it slides (|u| > SLIP_GAP a)."""
+    from knotmech.rod._kernels.contact_rodrod import (
+        CENSUS_COLUMNS,
+        Z_CUTOFF,
+        rodrod_friction_census,
+    )
+
+    col = {k: i for i, k in enumerate(CENSUS_COLUMNS)}
+    sysm, q = crossing_rods(gap=0.0195)
+    fr = AnchorFriction(mu_static=0.4, tangential_stiffness=1e4, cap_floor=cap_floor)
+    c = RodContact(stiffness=K_C, sharpness=2000.0, friction=fr)
+    c.begin_step(sysm, q, None, 1e-3)
+    q1 = moved(sysm, q, dx)
+    ffr, _, _ = friction_part(c, sysm, q1, q)
+    rod0 = np.linalg.norm(ffr[sysm.node_dofs[:6].ravel()].reshape(-1, 3).sum(0))
+    rad, en, nd = c._arrays(sysm)[:3]
+    out = np.zeros((c.pairs.shape[0], len(CENSUS_COLUMNS)))
+    _, anc, slip, _, known = c._anc
+    rodrod_friction_census(
+        q1[nd], q[nd], 1e-3, c.pairs, en, rad, c.sharpness, c.stiffness, Z_CUTOFF,
+        0.4, 0.4, 1e4, anc, slip, known, out, cap_floor,
+    )  # fmt: skip
+    main = int(np.argmax(out[:, col["fnorm"]]))
+    fn = out[main, col["fnorm"]]
+    assert fn == pytest.approx(c.last_normal_force[main], rel=1e-12)
+    a = max(0.4 * fn / 1e4, cap_floor * 2 * rad[0])
+    assert out[main, col["a"]] == pytest.approx(a, rel=1e-12)
+    assert out[main, col["gap_over_a"]] == pytest.approx(dx / a, rel=1e-3)
+    assert out[main, col["ft"]] == pytest.approx(0.4 * fn * dx / np.hypot(dx, a), rel=1e-3)
+    assert out[main, col["ft"]] == pytest.approx(rod0, rel=1e-3)
+    assert out[main, col["slides"]] == float(dx > SLIP_GAP * a)
+
+
+@pytest.mark.parametrize("dx", [2e-4, 1e-3, 5e-3])
+def test_floored_cap_force_and_jacobian(dx):
+    """cap_floor 5e-2: a = 5e-2 (r_i + r_j) = 1e-3 m (above mu_s N/k_t = 3.8e-4 m): the
+    force is
+    mu_s N dx / sqrt(dx^2 + a^2) and the Jacobian (whose |F_n| term is F c_n grad^T where
+    the floor is active) matches central differences."""
+    sysm, q = crossing_rods(gap=0.0195)
+    fr = AnchorFriction(mu_static=0.4, tangential_stiffness=1e4, cap_floor=5e-2)
+    c = RodContact(stiffness=K_C, sharpness=2000.0, friction=fr)
+    c.begin_step(sysm, q, None, 1e-3)
+    q1 = moved(sysm, q, dx)
+    ffr, f, J = friction_part(c, sysm, q1, q)
+    rod0 = ffr[sysm.node_dofs[:6].ravel()].reshape(-1, 3).sum(0)
+    fn = float(np.sum(c.last_normal_force))
+    a = 1e-3
+    assert 0.4 * fn / 1e4 < a  # the floor is what sets the cap
+    assert np.linalg.norm(rod0) == pytest.approx(0.4 * fn * dx / np.hypot(dx, a), rel=1e-6)
+    J_fd = fd_jacobian(c, sysm, q1, q, 1e-3, h=1e-9)
+    np.testing.assert_allclose(J, J_fd, atol=2e-3 * np.abs(J).max())

@@ -140,3 +140,57 @@ def test_a_load_below_two_mu_s_fn_does_not_move_the_rod(friction, holds):
         assert 0 < x[-1] - x[0] < 2e-4  # only the elastic give of P and the anchor springs
     else:
         assert creep > 1e-6
+
+
+# cap_floor 1e-2: a_min = 1e-2 (2 R) = 2e-5 m, above mu_s |F_n|/k_t (about 2.8e-6 m here),
+# so the floor is what sets the cap in these two tests
+FLOORED = AnchorFriction(mu_static=MU_S, mu_kinetic=MU_K, cap_floor=1e-2)
+
+
+def test_floored_cap_keeps_pull_out_at_two_mu_s_fn_and_sliding_at_two_mu_k_fn():
+    """The anchor law with a floored cap width (``cap_floor``): the same Coulomb limits as
+    the law as shipped, the onset only after a longer elastic give (10 a = 0.2 mm)."""
+    system, clamp = pinch_system()
+    contact = RodContact(stiffness=500.0, sharpness=1 / (0.05 * R), friction=FLOORED)
+    v, t0 = 5e-3, 0.2
+    x_end = system.positions(system.initial_state().q)[N_P - 1].copy()
+
+    def path(t):
+        return (x_end + [v * max(t - t0, 0.0), 0.0, 0.0])[None]
+
+    seen = {}
+
+    def record(state):
+        seen[round(state.t, 9)] = side_normal_forces(system, contact)
+
+    res = simulate(system, t_end=t0 + 1.2, dt=1e-3, interactions=[contact],
+                   constraints=[clamp, MovingNodes(nodes=[N_P - 1], path=path)],
+                   loads=[ViscousDamping(0.05)], options=SolverOptions(save_every=1e-3),
+                   callback=record)  # fmt: skip
+    t = res.times[1:]
+    pull = res.reaction(N_P - 1)[1:, 0]
+    two_fn = np.array([seen[round(x, 9)] for x in t]).sum(axis=1)
+    onset = np.argmax(np.where(t < t0 + 0.15, pull, -np.inf))
+    assert t[onset] > t0 + 0.03  # the softer stick: 0.2 mm of give at 5 mm/s
+    assert pull[onset] / (MU_S * two_fn[onset]) == pytest.approx(1.0, abs=0.01)
+    sl = (t > t0 + 0.4) & (t <= t0 + 1.2)
+    assert pull[sl].mean() / (MU_K * two_fn[sl].mean()) == pytest.approx(1.0, abs=0.01)
+
+
+def test_floored_cap_holds_a_load_below_two_mu_s_fn_without_creep():
+    """Dead load 0.9 * 2 mu_s F_n with the floored cap: held, creep < 1e-9 m/s; the give
+    is the softer spring's, u = 0.9/sqrt(1 - 0.81) a = 2.06 a per contact (about 41 um)."""
+    system, clamp = pinch_system()
+    contact = RodContact(stiffness=500.0, sharpness=1 / (0.05 * R), friction=FLOORED)
+    opt = SolverOptions(save_every=0.01)
+    damp = ViscousDamping(0.05)
+    kw = dict(dt=1e-3, constraints=[clamp], interactions=[contact], options=opt)
+    settled = simulate(system, t_end=0.2, loads=[damp], **kw)
+    fn = side_normal_forces(system, contact)
+    load = NodeForce(nodes=[N_P - 1], force=(0.9 * 2 * MU_S * fn[0], 0, 0), ramp_time=0.2)
+    res = simulate(system, settled.final_state, t_end=1.4, loads=[damp, _Delayed(load, 0.2)], **kw)
+    x = res.positions[:, N_P - 1, 0]
+    held = res.times >= 0.9 - 1e-9
+    creep = abs(x[-1] - x[held][0]) / (res.times[-1] - res.times[held][0])
+    assert creep < 1e-9
+    assert 2e-5 < x[-1] - x[0] < 2e-4

@@ -11,17 +11,13 @@ import pytest
 
 from knotmech import rod
 from knotmech.errors import InputError
-from knotmech.scenes import (
-    bend,
-    capstan,
-    centreline,
-    clove_hitch,
-    overhand,
-    pinch,
-    read_centreline,
-    two_half_hitches,
-)
+from knotmech.scenes import bend, read_centreline, two_half_hitches
 from knotmech.scenes._common import MAX_MEMORY, check_memory, check_numbers, pair_check_bytes
+from knotmech.scenes.capstan import capstan
+from knotmech.scenes.centreline import centreline
+from knotmech.scenes.clove_hitch import clove_hitch
+from knotmech.scenes.overhand import overhand
+from knotmech.scenes.pinch import pinch
 
 ROD = dict(rod_diameter=4e-3, youngs_modulus=1e6, density=1100.0, mu_rod_rod=0.3)
 

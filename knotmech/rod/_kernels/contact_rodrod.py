@@ -180,65 +180,8 @@ def _edge_distance_hessian_ws(x, grad, hess, coef, w, gphi, H, B, U):
                 H[3 * k + m, 3 * l + m] = coef[k] * coef[l]
     nfree = int(free_s) + int(free_t)
     if nfree > 0:
-        # columns of phi_xu for the free parameters and the matrix phi_uu
-        B[:, :] = 0.0
-        U[:, :] = 0.0
-        col = 0
-        idx_s = -1
-        idx_t = -1
-        if free_s:
-            idx_s = col
-            col += 1
-        if free_t:
-            idx_t = col
-            col += 1
-        e11 = 0.0
-        e22 = 0.0
-        e12 = 0.0
-        for m in range(3):
-            a1 = x[3 + m] - x[m]
-            a2 = x[9 + m] - x[6 + m]
-            e11 += a1 * a1
-            e22 += a2 * a2
-            e12 += a1 * a2
-        if free_s:
-            # d/dx (w . e1) = A^T e1 + [-w, w, 0, 0]
-            for k in range(4):
-                for m in range(3):
-                    B[3 * k + m, idx_s] = coef[k] * (x[3 + m] - x[m])
-            for m in range(3):
-                B[m, idx_s] -= w[m]
-                B[3 + m, idx_s] += w[m]
-            U[idx_s, idx_s] = e11 * (1.0 + _REG)  # the regularised problem's phi_ss
-        if free_t:
-            # d/dx (-w . e2) = -A^T e2 + [0, 0, w, -w]
-            for k in range(4):
-                for m in range(3):
-                    B[3 * k + m, idx_t] = -coef[k] * (x[9 + m] - x[6 + m])
-            for m in range(3):
-                B[6 + m, idx_t] += w[m]
-                B[9 + m, idx_t] -= w[m]
-            U[idx_t, idx_t] = e22
-        if free_s and free_t:
-            U[0, 1] = -e12
-            U[1, 0] = U[0, 1]
-        if nfree == 1:
-            inv = 1.0 / U[0, 0]
-            for i in range(12):
-                for j in range(12):
-                    H[i, j] -= B[i, 0] * inv * B[j, 0]
-        else:
-            det = U[0, 0] * U[1, 1] - U[0, 1] * U[1, 0]
-            i00 = U[1, 1] / det
-            i11 = U[0, 0] / det
-            i01 = -U[0, 1] / det
-            for i in range(12):
-                bi0 = B[i, 0]
-                bi1 = B[i, 1]
-                for j in range(12):
-                    H[i, j] -= bi0 * (i00 * B[j, 0] + i01 * B[j, 1]) + bi1 * (
-                        i01 * B[j, 0] + i11 * B[j, 1]
-                    )
+        _coupling_columns(x, coef, w, free_s, free_t, B, U)
+        _subtract_coupling(nfree, H, B, U)
     inv_d = 1.0 / dist
     for i in range(12):
         grad[i] = gphi[i] * inv_d
@@ -247,6 +190,79 @@ def _edge_distance_hessian_ws(x, grad, hess, coef, w, gphi, H, B, U):
         for j in range(12):
             hess[i, j] = H[i, j] * inv_d - gphi[i] * gphi[j] * inv_d3
     return dist
+
+
+@njit(cache=True)
+def _coupling_columns(x, coef, w, free_s, free_t, B, U):
+    """The columns phi_xu (``B`` (12, 2)) and the matrix phi_uu (``U`` (2, 2)) of the free
+    closest-point parameters (s first if free, then t) of the two edges in ``x`` (12,),
+    with the gap's node weights ``coef`` (4,) and gap vector ``w`` (3,) (see
+    :func:`_edge_distance_hessian_ws`)."""
+    # columns of phi_xu for the free parameters and the matrix phi_uu
+    B[:, :] = 0.0
+    U[:, :] = 0.0
+    col = 0
+    idx_s = -1
+    idx_t = -1
+    if free_s:
+        idx_s = col
+        col += 1
+    if free_t:
+        idx_t = col
+        col += 1
+    e11 = 0.0
+    e22 = 0.0
+    e12 = 0.0
+    for m in range(3):
+        a1 = x[3 + m] - x[m]
+        a2 = x[9 + m] - x[6 + m]
+        e11 += a1 * a1
+        e22 += a2 * a2
+        e12 += a1 * a2
+    if free_s:
+        # d/dx (w . e1) = A^T e1 + [-w, w, 0, 0]
+        for k in range(4):
+            for m in range(3):
+                B[3 * k + m, idx_s] = coef[k] * (x[3 + m] - x[m])
+        for m in range(3):
+            B[m, idx_s] -= w[m]
+            B[3 + m, idx_s] += w[m]
+        U[idx_s, idx_s] = e11 * (1.0 + _REG)  # the regularised problem's phi_ss
+    if free_t:
+        # d/dx (-w . e2) = -A^T e2 + [0, 0, w, -w]
+        for k in range(4):
+            for m in range(3):
+                B[3 * k + m, idx_t] = -coef[k] * (x[9 + m] - x[6 + m])
+        for m in range(3):
+            B[6 + m, idx_t] += w[m]
+            B[9 + m, idx_t] -= w[m]
+        U[idx_t, idx_t] = e22
+    if free_s and free_t:
+        U[0, 1] = -e12
+        U[1, 0] = U[0, 1]
+
+
+@njit(cache=True)
+def _subtract_coupling(nfree, H, B, U):
+    """H -= B U^-1 B^T for the ``nfree`` (1 or 2) free parameters (the implicit
+    differentiation term of :func:`_edge_distance_hessian_ws`)."""
+    if nfree == 1:
+        inv = 1.0 / U[0, 0]
+        for i in range(12):
+            for j in range(12):
+                H[i, j] -= B[i, 0] * inv * B[j, 0]
+    else:
+        det = U[0, 0] * U[1, 1] - U[0, 1] * U[1, 0]
+        i00 = U[1, 1] / det
+        i11 = U[0, 0] / det
+        i01 = -U[0, 1] / det
+        for i in range(12):
+            bi0 = B[i, 0]
+            bi1 = B[i, 1]
+            for j in range(12):
+                H[i, j] -= bi0 * (i00 * B[j, 0] + i01 * B[j, 1]) + bi1 * (
+                    i01 * B[j, 0] + i11 * B[j, 1]
+                )
 
 
 @njit(cache=True)
@@ -360,6 +376,7 @@ def rodrod_assemble(
     anchor_slip,
     anchor_known,
     out_slip,
+    cap_floor=0.0,
 ):
     """Contact + friction forces and Jacobian blocks of the near candidate pairs.
 
@@ -386,7 +403,8 @@ def rodrod_assemble(
     ``anchor`` (n_pairs, 2) and last slip flags ``anchor_slip``, ``anchor_known`` False
     for a pair without an anchor yet: it is made from ``pos_old`` and the flag set;
     ``out_slip`` (n_pairs,) receives whether each pair slides at ``pos``); the energy then
-    includes the anchor springs' (see :func:`rodrod_anchor_commit`).
+    includes the anchor springs' (see :func:`rodrod_anchor_commit`). ``cap_floor`` > 0
+    floors the cap's width at ``cap_floor`` (r_i + r_j) (see :func:`_anchor_friction`).
     """
     x = np.empty(12)
     grad = np.empty(12)
@@ -462,55 +480,72 @@ def rodrod_assemble(
             e_f, slip, cnt = _anchor_friction(
                 x, anchor[p], anchor_slip[p], n, fnorm, mu, mu_k, k_t, cn, grad, dofs, jac,
                 force, rows, cols, vals, cnt, cw, u, ft, nf, coef, dist, B, U, dndx, G3,
+                cap_floor * two_h,
             )  # fmt: skip
             energy += e_f
             out_slip[p] = slip
             continue
-        for m in range(3):
-            vi = 0.5 * (pos[nodes[0], m] - pos_old[nodes[0], m])
-            vi += 0.5 * (pos[nodes[1], m] - pos_old[nodes[1], m])
-            vj = 0.5 * (pos[nodes[2], m] - pos_old[nodes[2], m])
-            vj += 0.5 * (pos[nodes[3], m] - pos_old[nodes[3], m])
-            vrel[m] = (vi - vj) / dt
-        vn = vrel[0] * n[0] + vrel[1] * n[1] + vrel[2] * n[2]
-        vt = vrel - vn * n
-        vtn_raw = np.sqrt(vt @ vt)
-        vtn = np.sqrt(vtn_raw * vtn_raw + vel_eps * vel_eps)
-        gam = _sigmoid(fric_k * (vtn_raw - fric_c))
-        dgam = fric_k * gam * (1.0 - gam)
-        ffr = -gam * mu * fnorm * vt / vtn
-        sgn = (0.5, 0.5, -0.5, -0.5)
-        for k in range(4):
-            for m in range(3):
-                force[dofs[3 * k + m]] += sgn[k] * ffr[m]
-        if not jac:
-            continue
-        # dF_fr/dv_rel = -mu |Fn| [gamma/vtn (I - vt vt^T/vtn^2) + gamma' vt vt^T/(vtn vtn_raw)] P
-        for a in range(3):
-            for b in range(3):
-                Dm[a, b] = gam / vtn * ((1.0 if a == b else 0.0) - vt[a] * vt[b] / (vtn * vtn))
-                if vtn_raw > 0.0:
-                    Dm[a, b] += dgam * vt[a] * vt[b] / (vtn * vtn_raw)
-        # Dp = -mu |Fn| Dm P, P = I - n n^T
-        for a in range(3):
-            for b in range(3):
-                acc = Dm[a, b]
-                for c in range(3):
-                    acc -= Dm[a, c] * n[c] * n[b]
-                Dp[a, b] = -mu * fnorm * acc
-        # with normal_derivative: also the dependence of |F_n| on q (the normal stays
-        # lagged), d|F_n|/dx = (d2e/de) |F_n| grad Delta, which makes dF/dq unsymmetric
-        cn = d2e / de if (normal_derivative and de != 0.0) else 0.0
-        for k in range(4):
-            for a in range(3):
-                for l in range(4):
-                    scale = sgn[k] * sgn[l] / dt
-                    for b in range(3):
-                        rows[cnt] = dofs[3 * k + a]
-                        cols[cnt] = dofs[3 * l + b]
-                        vals[cnt] = scale * Dp[a, b] + sgn[k] * ffr[a] * cn * grad[3 * l + b]
-                        cnt += 1
+        cnt = _smooth_friction(
+            pos, pos_old, nodes, dofs, dt, n, fnorm, mu, fric_k, fric_c, vel_eps, jac,
+            normal_derivative, de, d2e, grad, force, rows, cols, vals, cnt, vrel, Dm, Dp,
+        )  # fmt: skip
     return energy, cnt
+
+
+@njit(cache=True)
+def _smooth_friction(
+    pos, pos_old, nodes, dofs, dt, n, fnorm, mu, fric_k, fric_c, vel_eps, jac,
+    normal_derivative, de, d2e, grad, force, rows, cols, vals, cnt, vrel, Dm, Dp,
+):  # fmt: skip
+    """Regularised friction of one pair (coated-rod eqs. 11-12; see
+    :func:`rodrod_assemble`): adds the force of the pair's ``nodes`` (4,) to ``force`` and,
+    if ``jac``, its Jacobian triplets from ``cnt`` on; ``vrel`` (3,), ``Dm`` and ``Dp``
+    (3, 3) are work arrays. Returns the new entry count."""
+    for m in range(3):
+        vi = 0.5 * (pos[nodes[0], m] - pos_old[nodes[0], m])
+        vi += 0.5 * (pos[nodes[1], m] - pos_old[nodes[1], m])
+        vj = 0.5 * (pos[nodes[2], m] - pos_old[nodes[2], m])
+        vj += 0.5 * (pos[nodes[3], m] - pos_old[nodes[3], m])
+        vrel[m] = (vi - vj) / dt
+    vn = vrel[0] * n[0] + vrel[1] * n[1] + vrel[2] * n[2]
+    vt = vrel - vn * n
+    vtn_raw = np.sqrt(vt @ vt)
+    vtn = np.sqrt(vtn_raw * vtn_raw + vel_eps * vel_eps)
+    gam = _sigmoid(fric_k * (vtn_raw - fric_c))
+    dgam = fric_k * gam * (1.0 - gam)
+    ffr = -gam * mu * fnorm * vt / vtn
+    sgn = (0.5, 0.5, -0.5, -0.5)
+    for k in range(4):
+        for m in range(3):
+            force[dofs[3 * k + m]] += sgn[k] * ffr[m]
+    if not jac:
+        return cnt
+    # dF_fr/dv_rel = -mu |Fn| [gamma/vtn (I - vt vt^T/vtn^2) + gamma' vt vt^T/(vtn vtn_raw)] P
+    for a in range(3):
+        for b in range(3):
+            Dm[a, b] = gam / vtn * ((1.0 if a == b else 0.0) - vt[a] * vt[b] / (vtn * vtn))
+            if vtn_raw > 0.0:
+                Dm[a, b] += dgam * vt[a] * vt[b] / (vtn * vtn_raw)
+    # Dp = -mu |Fn| Dm P, P = I - n n^T
+    for a in range(3):
+        for b in range(3):
+            acc = Dm[a, b]
+            for c in range(3):
+                acc -= Dm[a, c] * n[c] * n[b]
+            Dp[a, b] = -mu * fnorm * acc
+    # with normal_derivative: also the dependence of |F_n| on q (the normal stays
+    # lagged), d|F_n|/dx = (d2e/de) |F_n| grad Delta, which makes dF/dq unsymmetric
+    cn = d2e / de if (normal_derivative and de != 0.0) else 0.0
+    for k in range(4):
+        for a in range(3):
+            for l in range(4):
+                scale = sgn[k] * sgn[l] / dt
+                for b in range(3):
+                    rows[cnt] = dofs[3 * k + a]
+                    cols[cnt] = dofs[3 * l + b]
+                    vals[cnt] = scale * Dp[a, b] + sgn[k] * ffr[a] * cn * grad[3 * l + b]
+                    cnt += 1
+    return cnt
 
 
 # Anchor parameters stay within [ANCHOR_LO, ANCHOR_HI] on the lines of their edges: a pair
@@ -697,7 +732,7 @@ def _plane_normal_jacobian(x, nf, cnorm, dndx):
 @njit(cache=True)
 def _anchor_friction(
     x, anc, slipped, n, fnorm, mu_s, mu_k, k_t, cn, grad, dofs, jac,
-    force, rows, cols, vals, cnt, cw, u, ft, nf, coef, dist, B, U, dndx, G,
+    force, rows, cols, vals, cnt, cw, u, ft, nf, coef, dist, B, U, dndx, G, a_min,
 ):  # fmt: skip
     """Elasto-plastic anchor friction of one rod-rod pair (return mapping of Coulomb's law
     with a tangential penalty; Wriggers, Computational Contact Mechanics, 2nd ed., sect.
@@ -720,12 +755,21 @@ def _anchor_friction(
     dF/dx = -(mu |F_n|/s) (I - u u^T/s^2) du/dx + F (|u|^2/s^2) (c_n grad Delta)^T, the
     last term through |F_n| (``cn`` = d2E/dDelta2 / dE/dDelta, 0 to leave it out).
     Returns (stored energy mu |F_n| (s - a), slides, entries written).
+
+    ``a_min`` [m] > 0 floors the cap's width, a = max(mu |F_n|/k_t, a_min) (the
+    ``cap_floor`` of :class:`knotmech.rod.friction.AnchorFriction`): a lightly loaded
+    pair then sticks on the softer spring mu |F_n|/a_min, and where a is floored the
+    term through |F_n| is F c_n grad^T (a no longer scales with |F_n|). ``a_min`` 0: the
+    law as shipped, bit for bit.
     """
     cnorm = _friction_normal(x, n, nf)
     unorm, dpar = _anchor_gap(x, anc, nf, cw, u)
     mu = mu_k if slipped else mu_s
     limit = mu * fnorm
     a = limit / k_t
+    floored = a < a_min
+    if floored:
+        a = a_min
     slip = unorm > SLIP_GAP * a
     sq = np.sqrt(unorm * unorm + a * a)
     if sq > 0.0:
@@ -755,7 +799,7 @@ def _anchor_friction(
     # dF/dx = -scale (I - u u^T/s^2) G + F (|u|^2/s^2) c_n grad^T, s^2 = |u|^2 + a^2
     if sq > 0.0:
         s2 = sq * sq
-        wn = unorm * unorm / s2 * cn
+        wn = cn if floored else unorm * unorm / s2 * cn
         for j in range(12):
             ug = (u[0] * G[0, j] + u[1] * G[1, j] + u[2] * G[2, j]) / s2
             for b in range(3):
@@ -848,7 +892,7 @@ def align_anchors(keys_old, anc_old, slip_old, keys, anc, slip, known):
 @njit(cache=True)
 def rodrod_anchor_commit(
     pos, pos_old, pairs, edge_nodes, radius_edge, sharpness, stiffness, z_cutoff,
-    mu_s, mu_k, k_t, anchor, anchor_slip, known, keep, mode,
+    mu_s, mu_k, k_t, anchor, anchor_slip, known, keep, mode, cap_floor=0.0,
 ):  # fmt: skip
     """Commit (``mode`` 1) or stored energy (``mode`` 2) of the rod-rod anchors at ``pos``.
 
@@ -859,7 +903,7 @@ def rodrod_anchor_commit(
     gets it from ``pos_old``; mode 2 skips it); mode 1 writes whether it slides to
     ``anchor_slip`` and, if it does, moves the anchor's material points along the two edges
     (:func:`_shift_anchor`) so that the tangential gap shrinks to SLIP_GAP mu |F_n|/k_t.
-    Returns the anchors' stored energy (mode 2).
+    ``cap_floor``: see :func:`rodrod_assemble`. Returns the anchors' stored energy (mode 2).
     """
     x = np.empty(12)
     grad = np.empty(12)
@@ -890,6 +934,9 @@ def rodrod_anchor_commit(
         mu = mu_k if anchor_slip[p] else mu_s
         limit = mu * fnorm
         a = limit / k_t
+        a_min = cap_floor * (radius_edge[ei] + radius_edge[ej])
+        if a < a_min:
+            a = a_min
         slip = unorm > SLIP_GAP * a
         keep[p] = True
         if mode == 2:
@@ -954,3 +1001,102 @@ def max_node_speed(v, node_dofs):
         if s2 > vmax:
             vmax = s2
     return np.sqrt(vmax)
+
+
+# columns of the per-pair table written by :func:`rodrod_friction_census`
+CENSUS_COLUMNS = (
+    "fnorm",  # |F_n| [N]
+    "ft",  # |F_t| of the anchor law [N] (0 without anchors)
+    "mu",  # the coefficient in force: mu_k if the pair slid at the last step, else mu_s
+    "gap_over_a",  # |u| / a, a = mu |F_n| / k_t (the cap's width) [-]
+    "a",  # the cap's width a [m]
+    "slides",  # 1 if |u| > SLIP_GAP a
+    "fresh",  # 1 if the pair had no committed anchor (made from the step start)
+    "free_s",  # closest-point parameter on edge i inside (0, 1)
+    "free_t",  # on edge j
+    "plane_n",  # 1 if the friction plane is the pair normal's (near-parallel edges)
+    "vt",  # |v_T| of the edge midpoints, (x - x_old)/dt projected off n [m/s]
+    "ux",  # friction direction u/|u| (3 columns; 0 if |u| = 0)
+    "uy",
+    "uz",
+    "anchor_in_edge",  # 1 if both anchor parameters lie in [0, 1]
+)
+
+
+@njit(cache=True)
+def rodrod_friction_census(
+    pos, pos_old, dt, pairs, edge_nodes, radius_edge, sharpness, stiffness, z_cutoff,
+    mu_s, mu_k, k_t, anchor, anchor_slip, known, out, cap_floor=0.0,
+):  # fmt: skip
+    """Diagnostics of the friction each candidate pair carries at ``pos`` (read-only).
+
+    For each pair within the penalty's reach with a normal force, writes a row of ``out``
+    (n_pairs, len(CENSUS_COLUMNS)) as named in :data:`CENSUS_COLUMNS` (rows of the other
+    pairs are set to 0, ``fnorm`` 0). The anchor law's |F_t| = mu |F_n| |u| / sqrt(|u|^2 +
+    a^2) is that of :func:`_anchor_friction`; a pair without a committed anchor
+    (``known`` False) is given one from ``pos_old`` on a copy (the anchors are not
+    changed). ``k_t`` <= 0: no anchors (the regularised law), only the geometry and v_T.
+    Returns the number of rows written."""
+    x = np.empty(12)
+    xo = np.empty(12)
+    grad = np.empty(12)
+    coef = np.empty(4)
+    w = np.empty(3)
+    n = np.empty(3)
+    nf = np.empty(3)
+    cw = np.empty(4)
+    u = np.empty(3)
+    anc = np.empty(2)
+    n_o = np.empty(3)
+    vr = np.empty(3)
+    out[:, :] = 0.0
+    rows = 0
+    for p in range(pairs.shape[0]):
+        ei, ej = _pair_nodes(pos, pairs, p, edge_nodes, x)
+        if sharpness * (radius_edge[ei] + radius_edge[ej] - edge_distance(x)) < z_cutoff:
+            continue
+        fnorm = _pair_normal(x, ei, ej, radius_edge, sharpness, stiffness, grad, coef, w, n)
+        if not fnorm > 0.0:
+            continue
+        rows += 1
+        _, _, free_s, free_t = _segment_params_flat(x)
+        _pair_nodes(pos_old, pairs, p, edge_nodes, xo)
+        vt2 = 0.0
+        vn = 0.0
+        for m in range(3):
+            vi = 0.5 * (x[m] - xo[m] + x[3 + m] - xo[3 + m])
+            vj = 0.5 * (x[6 + m] - xo[6 + m] + x[9 + m] - xo[9 + m])
+            vr[m] = (vi - vj) / dt
+            vn += vr[m] * n[m]
+        for m in range(3):
+            vt2 += (vr[m] - vn * n[m]) ** 2
+        out[p, 0] = fnorm
+        out[p, 7] = 1.0 if free_s else 0.0
+        out[p, 8] = 1.0 if free_t else 0.0
+        out[p, 10] = np.sqrt(vt2)
+        if k_t <= 0.0:
+            continue
+        anc[0] = anchor[p, 0]
+        anc[1] = anchor[p, 1]
+        if not known[p]:
+            _fresh_anchor(xo, anc, coef, w, n_o, nf, cw, u)
+            out[p, 6] = 1.0
+        _pair_normal(x, ei, ej, radius_edge, sharpness, stiffness, grad, coef, w, n)
+        cnorm = _friction_normal(x, n, nf)
+        unorm, _ = _anchor_gap(x, anc, nf, cw, u)
+        mu = mu_k if anchor_slip[p] else mu_s
+        limit = mu * fnorm
+        a = max(limit / k_t, cap_floor * (radius_edge[ei] + radius_edge[ej]))
+        sq = np.sqrt(unorm * unorm + a * a)
+        out[p, 1] = limit * unorm / sq if sq > 0.0 else 0.0
+        out[p, 2] = mu
+        out[p, 3] = unorm / a if a > 0.0 else 0.0
+        out[p, 4] = a
+        out[p, 5] = 1.0 if unorm > SLIP_GAP * a else 0.0
+        out[p, 9] = 1.0 if cnorm == 0.0 else 0.0
+        if unorm > 0.0:
+            for m in range(3):
+                out[p, 11 + m] = u[m] / unorm
+        inside = anc[0] >= 0.0 and anc[0] <= 1.0 and anc[1] >= 0.0 and anc[1] <= 1.0
+        out[p, 14] = 1.0 if inside else 0.0
+    return rows
