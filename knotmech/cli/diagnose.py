@@ -111,6 +111,7 @@ def run(args) -> int:
             f"missing {' and '.join(missing)}: knotmech diagnose REC.csv [REC2.csv ...] "
             "--json OUT.json (or --template KIND for an example recording)"
         )
+    _check_distinct(args.recording)
     json_path, plot_path = _output_paths(args)
     # imported here, not at the top, for start-up speed: `knotmech --help` and the other
     # commands do not load SciPy and the engine
@@ -126,6 +127,18 @@ def run(args) -> int:
     print(report.summary)
     print(f"  report: {args.json}" + (f", plot: {args.plot}" if args.plot else ""))
     return 0
+
+
+def _check_distinct(paths) -> None:
+    """Refuse a recording named twice: fitting the same data twice would count it twice."""
+    seen = {}
+    for path in map(Path, paths):
+        key = path.resolve() if path.exists() else path
+        if key in seen:
+            raise InputError(
+                f"{path}: the same recording is given twice (as {seen[key]} too); give it once"
+            )
+        seen[key] = path
 
 
 def _output_paths(args):

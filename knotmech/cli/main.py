@@ -114,8 +114,10 @@ def main(argv=None) -> int:
         args = parser.parse_args(argv)
     except SystemExit as exc:  # --help, --version, or an argument error (already printed)
         return exc.code if isinstance(exc.code, int) else 2
-    if not getattr(args, "func", None):
-        parser.print_help()
+    if not getattr(args, "func", None):  # `knotmech` alone: the usage, and why it stopped
+        parser.print_help(sys.stderr)
+        print(f"knotmech: error: give a command ({', '.join(SUBCOMMANDS)})",
+              file=sys.stderr)  # fmt: skip
         return 2
     twice = repeated_option(argv)
     if twice is not None:  # argparse would silently keep the last value

@@ -40,3 +40,27 @@ def test_repeatable_is_every_append_option():
                 elif isinstance(action, argparse._AppendAction | argparse._ExtendAction):
                     found.update(o for o in action.option_strings if o.startswith("--"))
     assert found == set(REPEATABLE)
+
+
+def test_no_command_says_why_on_stderr(capsys):
+    """Issue 27: `knotmech` alone exited 2 with an empty stderr."""
+    assert main([]) == 2
+    out, err = capsys.readouterr()
+    assert out == ""
+    assert err.strip().splitlines()[-1] == (
+        "knotmech: error: give a command (tour, hold, simulate, diagnose, validate)"
+    )
+
+
+def test_a_recording_given_twice_is_refused(tmp_path, capsys):
+    """Issue 27: `diagnose pinch.csv pinch.csv` fitted the same data twice."""
+    from knotmech.cli.diagnose import template_text
+
+    rec = tmp_path / "pinch.csv"
+    rec.write_text(template_text("pinch"), encoding="utf-8")
+    argv = ["diagnose", str(rec), str(tmp_path / ".." / tmp_path.name / "pinch.csv"),
+            "--json", str(tmp_path / "r.json")]  # fmt: skip
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip()
+    assert "the same recording is given twice" in err and "\n" not in err
+    assert not (tmp_path / "r.json").exists()
