@@ -347,3 +347,11 @@ def test_materials_bending_scales_are_sourced_and_in_range():
     assert material("vps32").bending_scale == 1.0
     ropes = [k for k in MATERIALS if k != "vps32"]
     assert all(MATERIALS[k].bending_scale <= 0.05 for k in ropes)
+
+
+@pytest.mark.parametrize("E", [1e30, 1.0, 1e14])
+def test_an_implausible_modulus_is_refused_before_any_model(E):
+    """Issue 27: 1e30 Pa gave 'HOLDS margin +2.56e+26 %' from the table's light-load edge."""
+    with pytest.raises(InputError, match=r"youngs_modulus .* is outside 100-1e\+13 Pa"):
+        knotmech.hold("clove-hitch", rod_diameter=4e-3, post_diameter=0.03, mu=0.3, load=1.47,
+                youngs_modulus=E)  # fmt: skip

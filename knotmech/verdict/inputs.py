@@ -5,7 +5,7 @@ from __future__ import annotations
 
 import math
 
-from knotmech.errors import InputError
+from knotmech.errors import InputError, check_positive
 from knotmech.verdict.answer import InputWarning
 
 __all__ = ["STRAIN_LIMIT", "MU_PLAUSIBLE", "WRAP_TURNS_PLAUSIBLE"]
@@ -16,6 +16,11 @@ WRAP_TURNS_PLAUSIBLE = 20.0  #: a capstan wrap beyond this many turns is implaus
 
 
 # --------------------------------------------------------------------------- inputs
+#: [Pa] the moduli a rope or rod can have (soft gels ~1e2 Pa to diamond ~1e12 Pa); the
+#: recording format bounds ``youngs_modulus_Pa`` the same way (docs/recordings.md sec. 6)
+YOUNGS_MODULUS_RANGE = (1e2, 1e13)
+
+
 def _youngs_modulus(material, youngs_modulus):
     """(E [Pa] or None, material or None, what was assumed)."""
     from knotmech.materials import format_modulus as fm
@@ -23,9 +28,13 @@ def _youngs_modulus(material, youngs_modulus):
 
     mat = None if material is None else get_material(material)
     if youngs_modulus is not None:
-        E = float(youngs_modulus)
-        if not (math.isfinite(E) and E > 0):
-            raise InputError(f"youngs_modulus must be > 0, got {E:g}")
+        E = check_positive("youngs_modulus", youngs_modulus, scalar=True)
+        if not YOUNGS_MODULUS_RANGE[0] <= E <= YOUNGS_MODULUS_RANGE[1]:
+            lo, hi = YOUNGS_MODULUS_RANGE
+            raise InputError(
+                f"youngs_modulus {E:g} Pa is outside {lo:g}-{hi:g} Pa (soft gels to diamond); "
+                "no rope or rod is made of it"
+            )
         src = f"Young's modulus E = {fm(E)}, as given"
         if mat is not None:
             src += f" (instead of the {mat.key} preset's {fm(mat.youngs_modulus)})"
