@@ -75,6 +75,10 @@ from knotmech.scenes._scene import RampedEndLoad, RunControl, Scene, SceneRun, p
 from knotmech.scenes.curves import _edge_distances
 from knotmech.scenes.topology import post_crossing_code, winding_number
 
+#: the largest post a DER hitch is tied on, in rope diameters (a 6 mm rope on a 6 m post):
+#: the start curve is sampled every 0.05 d round the post, so its size grows with D/d
+MAX_POST_RATIO = 1000.0
+
 __all__ = [
     "HitchKnot",
     "HitchResult",
@@ -713,6 +717,12 @@ class HitchScene(Scene):
         if o.n_nodes is not None and int(o.n_nodes) != o.n_nodes:
             raise InputError(f"n_nodes must be an integer, got {o.n_nodes!r}")
         self.ea = self.E * np.pi * self.d * self.d / 4
+        if self.D > MAX_POST_RATIO * self.d:  # the start curve alone grows with D/d
+            raise InputError(
+                f"post_diameter / rod_diameter = {self.D / self.d:.3g} is above "
+                f"{MAX_POST_RATIO:g}: a DER hitch is tied on posts up to {MAX_POST_RATIO:g} "
+                "rope diameters (its start curve and run grow with D/d)"
+            )
 
     def _check_friction(self) -> None:
         f = self.fric

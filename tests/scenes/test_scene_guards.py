@@ -194,3 +194,10 @@ def test_a_hitch_that_fails_in_settling_gives_no_verdict():
     assert res.message.startswith("settle: ")
     assert res.verdict == ""
     assert res.times[-1] < 0.05  # the last good state, inside the settling
+
+
+def test_a_hitch_on_a_post_of_kilometres_is_refused_before_its_curve():
+    """Issue 27: `hold ... --post-diameter 40km --simulate` allocated its start curve (6 GiB
+    on a 40 km post: 0.05 d sampling round the post) before any cost check."""
+    with pytest.raises(InputError, match=r"post_diameter / rod_diameter = 1e\+07 is above 1000"):
+        clove_hitch(loading="free", t_high=1.0, rod_diameter=4e-3, post_diameter=40e3)
