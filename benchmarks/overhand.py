@@ -68,7 +68,7 @@ def _pull(law, cap_floor, turns, mu, **kw):
     """One overhand pull with ``law`` ("floored": the anchor law with ``cap_floor``)."""
     if law != "floored":
         return overhand(turns, mu, friction=law, **kw)
-    from validation.sticking_census import anchor_cap_floor
+    from validation._sticking_census import anchor_cap_floor
 
     with anchor_cap_floor(cap_floor):
         return overhand(turns, mu, friction="anchor", **kw)

@@ -108,10 +108,11 @@ class AnchorFriction:
         None -> the contact's normal penalty stiffness scale.
     cap_floor : float
         Rod-rod only, dimensionless (>= 0): floor on the width of the anchor spring's
-        smooth cap, a = max(mu |F_n|/k_t, cap_floor (r_i + r_j)) [m] (r the two edges'
-        radii). 0 (default) is the law as shipped, bit for bit. With a floor, a lightly
-        loaded pair sticks on the softer spring mu |F_n|/a and slides (at mu_k |F_n|, as
-        before) once its tangential gap exceeds 10 a; the sliding pairs' friction
+        smooth cap, :math:`a = \max(\mu |F_n|/k_t, c_f (r_i + r_j))` [m] (:math:`c_f` the
+        floor, r the two edges' radii). 0 (default) is the law as shipped, bit for bit.
+        With a floor, a lightly loaded pair sticks on the softer spring
+        :math:`\mu |F_n|/a` and slides (at :math:`\mu_k |F_n|`, as before) once its
+        tangential gap exceeds 10 a; the sliding pairs' friction
         direction then no longer flips between Newton iterates
         (``docs/notes/contact-and-friction/sticking-law-cap-width.md``:
         1e-3 cuts the coated n = 3 overhand's steps several-fold). No effect on

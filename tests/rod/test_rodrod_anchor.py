@@ -135,7 +135,7 @@ def test_friction_type_is_checked():
 
 @pytest.mark.parametrize("dx, cap_floor", [(2e-5, 0.0), (5e-3, 0.0), (2e-4, 5e-2)])
 def test_friction_census_reports_the_force_the_law_applies(dx, cap_floor):
-    """``rodrod_friction_census`` (validation/sticking_census.py) reports for the pair
+    """``rodrod_friction_census`` (validation/_sticking_census.py) reports for the pair
     that carries the contact the |F_t| that the assembly applies (the net friction force
     on rod 0), mu_s, |u|/a = dx/a with a = max(mu_s N/k_t, cap_floor (r_i + r_j)), and
     whether it slides (|u| > SLIP_GAP a)."""

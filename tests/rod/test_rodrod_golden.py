@@ -31,7 +31,7 @@ def golden_run(law, cap_floor=0.0):
 
     ctx = contextlib.nullcontext()
     if cap_floor:
-        from validation.sticking_census import anchor_cap_floor
+        from validation._sticking_census import anchor_cap_floor
 
         ctx = anchor_cap_floor(cap_floor)
     with ctx:

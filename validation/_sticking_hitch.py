@@ -5,7 +5,7 @@ parameters: mu = 0.3 on post and between the strands, T_high = 1.47 N, 120 nodes
 dt = 2 ms, hold 0.4 s) and its asymmetric case (T_low = 0.5 N), each with
 ``AnchorFriction.cap_floor`` = 0 (the law of every shipped table) and the given floors:
 
-    OPENBLAS_NUM_THREADS=1 python validation/sticking_hitch.py [CAP_FLOOR ...]
+    OPENBLAS_NUM_THREADS=1 python validation/_sticking_hitch.py [CAP_FLOOR ...]
 
 Prints one JSON line per run: verdict, creep, end displacement, steps, CPU.
 """

@@ -10,9 +10,9 @@ of every rod-rod contact is passed through
 stick/slide, whether the anchor was made afresh this step, edge-edge vs node-edge
 geometry, the midpoints' tangential speed and the friction direction.
 
-    OPENBLAS_NUM_THREADS=1 python validation/sticking_census.py run OUT.npz \
+    OPENBLAS_NUM_THREADS=1 python validation/_sticking_census.py run OUT.npz \
         [--law anchor] [--mu 0.6] [--turns 3] [--pull-time 3]
-    python validation/sticking_census.py report OUT.npz [OUT2.npz ...] [--figure PNG]
+    python validation/_sticking_census.py report OUT.npz [OUT2.npz ...] [--figure PNG]
 
 ``run`` pulls the coated-rod paper's overhand (151 nodes, 30 mm/s, dt 5 ms, 0.5 s wait;
 the quick mesh of tests/scenes/test_overhand.py) and saves the per-step rows of the pairs
