@@ -94,6 +94,18 @@ def check_sizes(rod_diameter, n_nodes, min_nodes: int = 60) -> tuple[float, int]
     return d, int(n_nodes)
 
 
+def check_pin(pin_diameter, d: float, low: float, high: float) -> float:
+    """D [m] of the pin or pole, checked to lie in [low d, high d] (the range the knot's
+    start shape is built for)."""
+    D = float(check_positive("pin_diameter", pin_diameter))
+    if not low * d <= D <= high * d:
+        lo, hi = (("d" if k == 1 else f"{k:g} d") for k in (low, high))
+        raise InputError(
+            f"pin_diameter must lie in [{lo}, {hi}] = [{low * d:g}, {high * d:g}] m, got {D:g}"
+        )
+    return D
+
+
 def bspline(ctrl, ds: float = DS) -> np.ndarray:
     """Dense points (step about ``ds``) of the clamped cubic B-spline of a control polygon.
 

@@ -37,11 +37,11 @@ from __future__ import annotations
 
 import numpy as np
 
-from knotmech.errors import InputError, check_positive
 from knotmech.scenes.tied._common import (
     LEG,
     TiedKnot,
     build_ropes,
+    check_pin,
     check_sizes,
     cut_at,
     eye_controls,
@@ -75,11 +75,7 @@ def bowline(*, rod_diameter: float, n_nodes: int = 300, pin_diameter: float) -> 
         axis (z) and diameter; ``expected`` (module docstring); ``info["eye_cut"]``.
     """
     d, n = check_sizes(rod_diameter, n_nodes, 150)
-    D = float(check_positive("pin_diameter", pin_diameter))
-    if not 0.5 * d <= D <= 40 * d:
-        raise InputError(
-            f"pin_diameter must lie in [0.5 d, 40 d] = [{0.5 * d:g}, {40 * d:g}] m, got {D:g}"
-        )
+    D = check_pin(pin_diameter, d, 0.5, 40)
     a, b = sheet_controls(left=EYE_X + 4.0)
     a = a[1:]  # A's standing leg starts where the eye ends
     a[0, 0] = EYE_X

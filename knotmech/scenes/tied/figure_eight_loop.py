@@ -33,10 +33,10 @@ from __future__ import annotations
 
 import numpy as np
 
-from knotmech.errors import InputError, check_positive
 from knotmech.scenes.tied._common import (
     TiedKnot,
     bspline,
+    check_pin,
     check_sizes,
     cut_at,
     eye_controls,
@@ -72,11 +72,7 @@ def figure_eight_loop(*, rod_diameter: float, n_nodes: int = 400,
         axis (z) and diameter; ``expected`` (module docstring); ``info["eye_cut"]``.
     """
     d, n = check_sizes(rod_diameter, n_nodes, 200)
-    D = float(check_positive("pin_diameter", pin_diameter))
-    if not 0.5 * d <= D <= 40 * d:
-        raise InputError(
-            f"pin_diameter must lie in [0.5 d, 40 d] = [{0.5 * d:g}, {40 * d:g}] m, got {D:g}"
-        )
+    D = check_pin(pin_diameter, d, 0.5, 40)
     upper, lower, w = ribbon_strands("figure_eight", SCALE, HALF, TAIL)
     R = 0.5 * (D / d + 1.0)
     y_mid = 0.5 * (upper[-1, 1] + lower[-1, 1])

@@ -49,8 +49,15 @@ from __future__ import annotations
 
 import numpy as np
 
-from knotmech.errors import InputError, check_positive
-from knotmech.scenes.tied._common import TiedKnot, bspline, check_sizes, finish, start_checks
+from knotmech.errors import InputError
+from knotmech.scenes.tied._common import (
+    TiedKnot,
+    bspline,
+    check_pin,
+    check_sizes,
+    finish,
+    start_checks,
+)
 from knotmech.scenes.topology import post_crossing_code
 
 __all__ = ["prusik"]
@@ -126,9 +133,7 @@ def prusik(*, rod_diameter: float, n_nodes: int = 400, pin_diameter: float,
         ``expected`` (module docstring).
     """
     d, n = check_sizes(rod_diameter, n_nodes, 200)
-    D = float(check_positive("pin_diameter", pin_diameter))
-    if not d <= D <= 10 * d:
-        raise InputError(f"pin_diameter must lie in [d, 10 d] = [{d:g}, {10 * d:g}] m, got {D:g}")
+    D = check_pin(pin_diameter, d, 1, 10)
     if isinstance(wraps, bool) or not float(wraps).is_integer() or not 2 <= int(wraps) <= 6:
         raise InputError(f"wraps must be an integer from 2 to 6 (turns a side), got {wraps!r}")
     Rd = 0.5 * (D / d + 1.0)
