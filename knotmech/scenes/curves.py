@@ -711,6 +711,44 @@ def coil_curve(
     return KnotCurve(nodes=nodes, rod_radius=0.5 * d, parts=parts, info=info)
 
 
+#: half angular width [rad] of the clove core's diagonal
+_DIAGONAL_HALF_WIDTH = 0.5
+
+
+def _smoothstep(u):
+    u = np.clip(u, 0.0, 1.0)
+    return u * u * (3 - 2 * u)
+
+
+def _clove_core(R: float, d: float, gap: float, lift: float, m: int):
+    """(psi, z, rho) of two same-sense wraps joined by a lifted diagonal (psi in [0, 4 pi]): the
+    core of :func:`clove_hitch_curve` and of the half hitches' and cow hitch's curves."""
+    zt = 0.5 * gap * d
+    zw = zt + gap * d
+    alpha = _DIAGONAL_HALF_WIDTH
+    psi = np.linspace(0.0, 4 * np.pi, m)
+    run = 0.9  # angle over which the ends run in from +-z_t to +-z_w [rad]
+    z = np.where(
+        psi < 2 * np.pi,
+        -zt - (zw - zt) * _smoothstep(psi / run),
+        zt + (zw - zt) * _smoothstep((4 * np.pi - psi) / run),
+    )
+    diag = np.abs(psi - 2 * np.pi) < alpha
+    u = (psi - 2 * np.pi + alpha) / (2 * alpha)
+    z = np.where(diag, -zw + 2 * zw * _smoothstep(u), z)
+    # lift of the diagonal: smooth bump reaching R/cos(alpha) + lift*d - R at psi = 2 pi
+    bump_w = alpha + 0.6
+    bump = np.where(
+        np.abs(psi - 2 * np.pi) < bump_w,
+        np.cos(0.5 * np.pi * (psi - 2 * np.pi) / bump_w) ** 2,
+        0.0,
+    )
+    # the diagonal crosses the tail heights within |psi - 2 pi| < 0.2 alpha, where the
+    # straight tails are at most R / cos(0.2) from the axis
+    rho = R + (lift * d + R * (1 / np.cos(0.2) - 1)) * bump
+    return psi, z, rho, zt, zw
+
+
 def clove_hitch_curve(
     *,
     post_diameter: float,
@@ -770,35 +808,9 @@ def clove_hitch_curve(
         raise InputError(f"n_nodes must be >= 40, got {n_nodes!r}")
     R = 0.5 * (D + d)
     frame = _post_frame(post_axis)
-    zt = 0.5 * g * d
-    zw = zt + g * d
-    alpha = 0.5  # half angular width of the diagonal [rad]
     m = max(400, int(np.ceil(4 * np.pi * R / (0.05 * d))))
-    psi = np.linspace(0.0, 4 * np.pi, m)
-
-    def smoothstep(u):
-        u = np.clip(u, 0.0, 1.0)
-        return u * u * (3 - 2 * u)
-
-    run = 0.9  # angle over which the ends run in from +-z_t to +-z_w [rad]
-    z = np.where(
-        psi < 2 * np.pi,
-        -zt - (zw - zt) * smoothstep(psi / run),
-        zt + (zw - zt) * smoothstep((4 * np.pi - psi) / run),
-    )
-    diag = np.abs(psi - 2 * np.pi) < alpha
-    u = (psi - 2 * np.pi + alpha) / (2 * alpha)
-    z = np.where(diag, -zw + 2 * zw * smoothstep(u), z)
-    # lift of the diagonal: smooth bump reaching R/cos(alpha) + lift*d - R at psi = 2 pi
-    bump_w = alpha + 0.6
-    bump = np.where(
-        np.abs(psi - 2 * np.pi) < bump_w,
-        np.cos(0.5 * np.pi * (psi - 2 * np.pi) / bump_w) ** 2,
-        0.0,
-    )
-    # the diagonal crosses the tail heights within |psi - 2 pi| < 0.2 alpha, where the
-    # straight tails are at most R / cos(0.2) from the axis
-    rho = R + (lf * d + R * (1 / np.cos(0.2) - 1)) * bump
+    psi, z, rho, zt, zw = _clove_core(R, d, g, lf, m)
+    alpha = _DIAGONAL_HALF_WIDTH
     nodes, svals, n_tail = _wrapped(psi, z, rho, tl, frame, post_center, N)
     L = float(np.sum(np.linalg.norm(np.diff(nodes, axis=0), axis=1)))
     s_core = svals[n_tail - 1 :] - svals[n_tail - 1]

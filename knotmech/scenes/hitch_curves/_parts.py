@@ -24,37 +24,6 @@ __all__ = ["PITCH", "TAIL", "EDGE", "hitch_closure", "hitch_invariants"]
 PITCH = 1.15  #: axial distance [d] per turn of the strands that pass side by side
 
 
-def _smoothstep(u):
-    u = np.clip(u, 0.0, 1.0)
-    return u * u * (3 - 2 * u)
-
-
-def _clove_core(R: float, d: float, gap: float, lift: float, m: int):
-    """(psi, z, rho) of two same-sense wraps joined by a lifted diagonal (as
-    :func:`knotmech.scenes.curves.clove_hitch_curve`, psi in [0, 4 pi])."""
-    zt = 0.5 * gap * d
-    zw = zt + gap * d
-    alpha = 0.5
-    psi = np.linspace(0.0, 4 * np.pi, m)
-    run = 0.9
-    z = np.where(
-        psi < 2 * np.pi,
-        -zt - (zw - zt) * _smoothstep(psi / run),
-        zt + (zw - zt) * _smoothstep((4 * np.pi - psi) / run),
-    )
-    diag = np.abs(psi - 2 * np.pi) < alpha
-    u = (psi - 2 * np.pi + alpha) / (2 * alpha)
-    z = np.where(diag, -zw + 2 * zw * _smoothstep(u), z)
-    bump_w = alpha + 0.6
-    bump = np.where(
-        np.abs(psi - 2 * np.pi) < bump_w,
-        np.cos(0.5 * np.pi * (psi - 2 * np.pi) / bump_w) ** 2,
-        0.0,
-    )
-    rho = R + (lift * d + R * (1 / np.cos(0.2) - 1)) * bump
-    return psi, z, rho, zt, zw
-
-
 def _hermite(p0, t0, p1, t1, n):
     """Cubic Hermite curve from p0 (tangent t0) to p1 (tangent t1), n points."""
     s = np.linspace(0.0, 1.0, n)[:, None]

@@ -19,8 +19,8 @@ from __future__ import annotations
 import numpy as np
 
 from knotmech.errors import InputError, check_positive, check_range
-from knotmech.scenes.curves import KnotCurve
-from knotmech.scenes.hitch_curves._parts import _arc, _finish, _line, _smoothstep
+from knotmech.scenes.curves import KnotCurve, _smoothstep
+from knotmech.scenes.hitch_curves._parts import _arc, _finish, _line
 
 __all__ = ["cow_hitch_curve", "knotted_length"]
 

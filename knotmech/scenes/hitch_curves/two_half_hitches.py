@@ -22,8 +22,8 @@ from __future__ import annotations
 import numpy as np
 
 from knotmech.errors import InputError, check_positive, check_range
-from knotmech.scenes.curves import KnotCurve
-from knotmech.scenes.hitch_curves._parts import PITCH, _arc, _clove_core, _finish, _hermite, _line
+from knotmech.scenes.curves import KnotCurve, _clove_core
+from knotmech.scenes.hitch_curves._parts import PITCH, _arc, _finish, _hermite, _line
 
 __all__ = ["two_half_hitches_curve", "knotted_length"]
 
