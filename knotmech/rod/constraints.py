@@ -18,6 +18,17 @@ from .loads import _index_array
 __all__ = ["Clamp", "MovingNodes", "RotatingEdges", "clamp_end"]
 
 
+def _cached_dofs(constraint, system) -> np.ndarray:
+    """``constraint.dofs(system)``, computed (and its indices checked) once per system: the
+    solver asks for the values of a constraint at every step attempt, and its indices are
+    fixed at construction (the dataclasses are frozen)."""
+    cache = constraint.__dict__.get("_dof_cache")
+    if cache is None or cache[0] is not system:
+        cache = (system, constraint.dofs(system))
+        object.__setattr__(constraint, "_dof_cache", cache)
+    return cache[1]
+
+
 @dataclass(frozen=True)
 class Clamp:
     """Hold nodes (positions) and edges (twist angles) where they are.
@@ -46,7 +57,7 @@ class Clamp:
         )
 
     def values(self, system, t_new, dt, q_old) -> np.ndarray:
-        return q_old[self.dofs(system)]
+        return q_old[_cached_dofs(self, system)]
 
 
 @dataclass(frozen=True)
@@ -81,12 +92,13 @@ class MovingNodes:
         return system.node_dofs[self.node_indices(system)].ravel()
 
     def values(self, system, t_new, dt, q_old) -> np.ndarray:
-        n = self.node_indices(system).size
+        dofs = _cached_dofs(self, system)
+        n = dofs.size // 3
         if self.path is not None:
             x = check_finite("path(t)", self.path(t_new))
             return np.broadcast_to(x, (n, 3)).ravel().copy()
         v = np.broadcast_to(check_finite("velocity", self.velocity), (n, 3)).ravel()
-        return q_old[self.dofs(system)] + v * dt
+        return q_old[dofs] + v * dt
 
 
 @dataclass(frozen=True)
@@ -106,7 +118,7 @@ class RotatingEdges:
         return system.edge_theta_dof[self.edge_indices(system)]
 
     def values(self, system, t_new, dt, q_old) -> np.ndarray:
-        return q_old[self.dofs(system)] + float(check_finite("rate", self.rate)) * dt
+        return q_old[_cached_dofs(self, system)] + float(check_finite("rate", self.rate)) * dt
 
 
 def clamp_end(system, rod: int = 0, end: str = "start", twist: bool = True) -> Clamp:

@@ -31,6 +31,7 @@ from knotmech.rod._kernels.contact_rodrod import (
     align_anchors,
     max_node_speed,
     max_pair_displacement,
+    positions_equal,
     rodrod_anchor_commit,
     rodrod_assemble,
     rodrod_energy,
@@ -443,10 +444,12 @@ class RodContact:
         self._ensure_pairs(system, q)
         if self.pairs.shape[0] == 0:
             return 0.0
-        pos = _positions(system, q)
+        q = np.asarray(q, dtype=float)
+        nd = self._arrays(system)[2]
         cache = getattr(self, "_energy_cache", None)
-        if cache is not None and cache[0] is self.pairs and np.array_equal(cache[1], pos):
+        if cache is not None and cache[0] is self.pairs and positions_equal(q, nd, cache[1]):
             return cache[2]
+        pos = _positions(system, q)
         e = float(
             rodrod_energy(
                 pos,

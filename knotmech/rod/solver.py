@@ -681,7 +681,7 @@ class Stepper:
             reuse = cross if k == 0 else rel <= opt.jacobian_reuse * rel_prev
             dq = self.solve(-self.f, reuse=reuse)
             rel_prev = rel
-            if not np.all(np.isfinite(dq)):
+            if not _asm.all_finite(dq):
                 raise _StepFailed("non-finite Newton step", k)
             q, alpha, scales = self._line_search(q, dq, st, dt, t_new, rel, k)
             if self._step_small(dq, alpha):
@@ -695,7 +695,7 @@ class Stepper:
     def _assess(self, scales, k: int, rel_prev: float) -> tuple[bool, float]:
         """(converged, residual relative to the tolerance) of iteration ``k``; records the
         residual's ratio to the last iteration's (the reuse test of the next step)."""
-        if not np.all(np.isfinite(self.f)):
+        if not _asm.all_finite(self.f):
             raise _StepFailed("non-finite residual", k)
         ok, rel = self._converged(scales)
         if k > 0:
@@ -751,19 +751,15 @@ class Stepper:
         opt = self.opt
         stepx, stept = _asm.max_abs_split(dq, alpha, self.fx, self.ft)
         return (
-            stepx <= opt.xtol * self.length_scale
-            and stept <= opt.xtol
-            and bool(np.all(np.isfinite(self.f)))
+            stepx <= opt.xtol * self.length_scale and stept <= opt.xtol and _asm.all_finite(self.f)
         )
 
 
 def _worst_strain(system, q) -> tuple[int, float]:
     """(edge, strain l/l0 - 1) of the edge strained most at configuration ``q``."""
-    ends = q[system.node_dofs][system.edge_nodes]
-    strain = np.linalg.norm(ends[:, 1] - ends[:, 0], axis=1) / system.rest_length - 1.0
-    with np.errstate(invalid="ignore"):
-        k = int(np.nanargmax(np.abs(strain))) if np.any(np.isfinite(strain)) else 0
-    return k, float(strain[k])
+    k, e = _asm.worst_strain(np.asarray(q, dtype=float), system.node_dofs, system.edge_nodes,
+                             system.rest_length)  # fmt: skip
+    return int(k), float(e)
 
 
 def _strain_message(k: int, e: float, t: float, limit: float, how: str) -> str:

@@ -280,3 +280,37 @@ def max_abs_split(dq, alpha, mask_a, mask_b):
         elif mask_b[i]:
             b = max(b, v)
     return a, b
+
+
+@njit(cache=True)
+def all_finite(a):
+    """True when every entry of the 1-D array ``a`` is finite."""
+    for i in range(a.shape[0]):
+        if not np.isfinite(a[i]):
+            return False
+    return True
+
+
+@njit(cache=True)
+def worst_strain(q, node_dofs, edge_nodes, rest_length):
+    """(edge, strain |e^k| / |ebar^k| - 1) of the edge whose |strain| is largest at ``q``
+    (NaN strains skipped; (0, strain[0]) when no strain is finite). The same arithmetic,
+    and so the same bits, as numpy's row norm of the edge vectors."""
+    n = edge_nodes.shape[0]
+    strain = np.empty(n)
+    k_best, v_best, seen, finite = 0, 0.0, False, False
+    for k in range(n):
+        a, b = edge_nodes[k, 0], edge_nodes[k, 1]
+        s = 0.0
+        for m in range(3):
+            d = q[node_dofs[b, m]] - q[node_dofs[a, m]]
+            s += d * d
+        e = np.sqrt(s) / rest_length[k] - 1.0
+        strain[k] = e
+        finite = finite or np.isfinite(e)
+        v = abs(e)
+        if v == v and (not seen or v > v_best):
+            k_best, v_best, seen = k, v, True
+    if not finite:
+        k_best = 0
+    return k_best, strain[k_best] if n else 0.0

@@ -1100,3 +1100,16 @@ def rodrod_friction_census(
         inside = anc[0] >= 0.0 and anc[0] <= 1.0 and anc[1] >= 0.0 and anc[1] <= 1.0
         out[p, 14] = 1.0 if inside else 0.0
     return rows
+
+
+@njit(cache=True)
+def positions_equal(q, node_dofs, pos):
+    """True when the node positions of ``q`` equal ``pos`` (n_nodes, 3) entry for entry
+    (``np.array_equal(q[node_dofs], pos)`` without gathering them)."""
+    if pos.shape[0] != node_dofs.shape[0]:
+        return False
+    for i in range(node_dofs.shape[0]):
+        for m in range(3):
+            if q[node_dofs[i, m]] != pos[i, m]:
+                return False
+    return True
