@@ -31,6 +31,7 @@ from knotmech.rod._kernels.contact_rodrod import (
     align_anchors,
     max_node_speed,
     max_pair_displacement,
+    pair_path_min_gap,
     positions_equal,
     rodrod_anchor_commit,
     rodrod_assemble,
@@ -41,6 +42,11 @@ from knotmech.rod.broadphase import candidate_edge_pairs
 from knotmech.rod.friction import AnchorFriction, SmoothFriction
 
 __all__ = ["Cylinder", "CylinderContact", "RodContact"]
+
+# tunnel_check "path": a step moving a contact node by more than PATH_LIMIT times
+# max_displacement radii is rejected outright (the broad phase's pairs were found for
+# the motion of a step at the start velocity; a longer jump could meet unlisted edges)
+PATH_LIMIT = 8.0
 
 
 def _emit(rows, cols, vals, r, c, v):
@@ -146,6 +152,18 @@ class RodContact:
         the other between two penalty evaluations (the role of ``colLimit`` in the IMC
         code). It does not stop a penalty that is too soft for the load from being pushed
         through quasi-statically: raise ``stiffness`` for that.
+    tunnel_check : {"displacement", "path"}
+        What the tunnelling guard rejects (default "displacement": any step that moves a
+        node of a candidate pair more than ``max_displacement`` radii, as described
+        above). "path": such a step is kept if no candidate pair passes through itself on
+        the straight path between the two states: the path is sampled so that no node
+        moves more than min(``max_displacement``, 0.5) radii between samples, and the step is
+        rejected only where two edges come closer than half the sum of their radii
+        (a crossing reaches Delta = 0 and cannot hide between samples: the nearest
+        sample has Delta <= (r_i + r_j) / 4), or where a node moved more
+        than PATH_LIMIT ``max_displacement`` radii. This keeps the fast slips of a
+        sticking law (a pair sliding along its partner, no crossing) in one step instead
+        of halving the step for each.
     friction_normal_derivative : bool
         Include the derivative of ``|F_n|`` (through the penalty) in the friction's dF/dq
         (default True; False: only the velocity derivative, ``|F_n|`` and n lagged, as before).
@@ -160,6 +178,7 @@ class RodContact:
     exclusion: int | None = None
     max_displacement: float | None = 0.5
     friction_normal_derivative: bool = True
+    tunnel_check: str = "displacement"
     pairs: np.ndarray = field(default=None, init=False, repr=False)
     last_normal_force: np.ndarray = field(default=None, init=False, repr=False)
 
@@ -170,6 +189,10 @@ class RodContact:
             self.margin = float(check_nonnegative("margin", self.margin))
         if self.max_displacement is not None:
             self.max_displacement = float(check_positive("max_displacement", self.max_displacement))
+        if self.tunnel_check not in ("displacement", "path"):
+            raise InputError(
+                f"tunnel_check must be 'displacement' or 'path', got {self.tunnel_check!r}"
+            )
         if self.friction is not None and not isinstance(
             self.friction, (SmoothFriction, AnchorFriction)
         ):
@@ -389,19 +412,21 @@ class RodContact:
         if self.max_displacement is None or self.pairs is None or self.pairs.shape[0] == 0:
             return None
         rad, en, nd = self._arrays(system)[:3]
-        worst = max_pair_displacement(
-            self.pairs,
-            en,
-            nd,
-            rad,
-            np.asarray(q_new, dtype=float),
-            np.asarray(q_old, dtype=float),
+        q_new = np.asarray(q_new, dtype=float)
+        q_old = np.asarray(q_old, dtype=float)
+        worst = max_pair_displacement(self.pairs, en, nd, rad, q_new, q_old)
+        if worst <= self.max_displacement:
+            return None
+        why = (
+            f"tunnelling guard: a contact node moved {worst:.3g} radii in one step "
+            f"(max_displacement {self.max_displacement:g})"
         )
-        if worst > self.max_displacement:
-            return (
-                f"tunnelling guard: a contact node moved {worst:.3g} radii in one step "
-                f"(max_displacement {self.max_displacement:g})"
-            )
+        if self.tunnel_check == "displacement" or worst > PATH_LIMIT * self.max_displacement:
+            return why
+        n_sub = int(np.ceil(worst / min(self.max_displacement, 0.5)))
+        gap = pair_path_min_gap(self.pairs, en, nd, rad, q_new, q_old, n_sub)
+        if gap < 0.5:
+            return f"{why}, and two edges came within {gap:.3g} of their radii on the way"
         return None
 
     @property

@@ -1113,3 +1113,29 @@ def positions_equal(q, node_dofs, pos):
             if q[node_dofs[i, m]] != pos[i, m]:
                 return False
     return True
+
+
+@njit(cache=True)
+def pair_path_min_gap(pairs, edge_nodes, node_dofs, radius_edge, q_new, q_old, n_sub):
+    """Smallest Delta / (r_i + r_j) of the candidate pairs along the straight path from
+    ``q_old`` to ``q_new``, sampled at ``n_sub + 1`` evenly spaced points (both ends
+    included): the tunnelling guard's test of an actual crossing. Two edges that pass
+    through each other reach Delta = 0 on the path; with samples that move no node by
+    more than m radii between them, the sample nearest the crossing has
+    Delta / (r_i + r_j) <= m / 2."""
+    x = np.empty(12)
+    worst = np.inf
+    for p in range(pairs.shape[0]):
+        e, f = pairs[p, 0], pairs[p, 1]
+        nodes = (edge_nodes[e, 0], edge_nodes[e, 1], edge_nodes[f, 0], edge_nodes[f, 1])
+        inv_r = 1.0 / (radius_edge[e] + radius_edge[f])
+        for j in range(n_sub + 1):
+            lam = j / n_sub
+            for a in range(4):
+                for m in range(3):
+                    d = node_dofs[nodes[a], m]
+                    x[3 * a + m] = (1.0 - lam) * q_old[d] + lam * q_new[d]
+            ratio = edge_distance(x) * inv_r
+            if ratio < worst:
+                worst = ratio
+    return worst
