@@ -40,6 +40,8 @@ rejection, final force 0.07300 N, tight-phase force ratio floored/imc 0.851 / 0.
 from __future__ import annotations
 
 import argparse
+import contextlib
+import functools
 import json
 import statistics
 import time
@@ -64,14 +66,50 @@ def tight_phase_ratio(imc, anchor, fraction=0.25):
     return float(ratio.min()), float(np.median(ratio)), float(ratio.max()), int(sel.sum())
 
 
-def _pull(law, cap_floor, turns, mu, **kw):
-    """One overhand pull with ``law`` ("floored": the anchor law with ``cap_floor``)."""
-    if law != "floored":
-        return overhand(turns, mu, friction=law, **kw)
-    from validation._sticking_census import anchor_cap_floor
+@contextlib.contextmanager
+def _tunnel_check(mode):
+    """Inside the block the overhand scene's RodContact uses ``tunnel_check=mode``."""
+    import knotmech.scenes.overhand as scene
+    from knotmech.rod.contact import RodContact
 
-    with anchor_cap_floor(cap_floor):
-        return overhand(turns, mu, friction="anchor", **kw)
+    orig = scene.RodContact
+    scene.RodContact = functools.partial(RodContact, tunnel_check=mode)
+    try:
+        yield
+    finally:
+        scene.RodContact = orig
+
+
+def _pull(law, cap_floor, turns, mu, tunnel_check="displacement", **kw):
+    """One overhand pull with ``law`` ("floored": the anchor law with ``cap_floor``) and
+    the contact's tunnelling guard ``tunnel_check``."""
+    with _tunnel_check(tunnel_check):
+        if law != "floored":
+            return overhand(turns, mu, friction=law, **kw)
+        from validation._sticking_census import anchor_cap_floor
+
+        with anchor_cap_floor(cap_floor):
+            return overhand(turns, mu, friction="anchor", **kw)
+
+
+def _law_entry(r, walls, cpus):
+    """The JSON entry of one law: median wall and CPU time [s] of its runs, the solver's
+    counts (steps accepted, Newton iterations, rejected attempts) and the end state."""
+    return {
+        "wall_s": statistics.median(walls),
+        "cpu_s": statistics.median(cpus),
+        "wall_s_runs": walls,
+        "cpu_s_runs": cpus,
+        "solver_wall_s": float(r.stats.get("wall_s", 0.0)),
+        "steps": int(r.stats.get("steps", 0)),
+        "newton_iterations": int(r.stats.get("newton_iterations", 0)),
+        "rejected_steps": int(r.stats.get("rejected_steps", 0)),
+        "simulated_s": float(r.times[-1]),
+        "status": r.status,
+        "knot_preserved": bool(r.knot_preserved),
+        "final_pull_force_N": float(r.pull_force[-1]),
+        "final_end_to_end_m": float(r.end_to_end[-1]),
+    }
 
 
 def main() -> None:
@@ -92,6 +130,12 @@ def main() -> None:
         default=1e-2,
         help="cap_floor of the 'floored' law (default 1e-2)",
     )
+    ap.add_argument(
+        "--tunnel-check",
+        default="displacement",
+        choices=("displacement", "path"),
+        help="RodContact.tunnel_check of the scene's contact (default: displacement)",
+    )
     ap.add_argument("--curves", default=None, help="write the force curves to this .npz")
     args = ap.parse_args()
     laws = [x.strip() for x in args.laws.split(",") if x.strip()]
@@ -103,36 +147,20 @@ def main() -> None:
     wait_time = min(base.wait_time, args.t_end)
     # compile the numba kernels outside the timing (a pull long enough for contacts)
     for law in laws:
-        _pull(law, args.cap_floor, args.turns, args.mu, n_nodes=101, wait_time=0.0,
-              pull_time=0.05, dt=0.01)  # fmt: skip
+        _pull(law, args.cap_floor, args.turns, args.mu, args.tunnel_check, n_nodes=101,
+              wait_time=0.0, pull_time=0.05, dt=0.01)  # fmt: skip
     walls = {law: [] for law in laws}
     cpus = {law: [] for law in laws}
     runs = {}
     for _ in range(max(1, args.repeats)):
         for law in laws:  # alternated: both laws see the same load
             t0, c0 = time.perf_counter(), time.process_time()
-            r = _pull(law, args.cap_floor, args.turns, args.mu, wait_time=wait_time,
-                      pull_time=pull_time, n_frames=63)  # fmt: skip
+            r = _pull(law, args.cap_floor, args.turns, args.mu, args.tunnel_check,
+                      wait_time=wait_time, pull_time=pull_time, n_frames=63)  # fmt: skip
             walls[law].append(time.perf_counter() - t0)
             cpus[law].append(time.process_time() - c0)
             runs[law] = r
-    out = {}
-    for law in laws:
-        r = runs[law]
-        out[law] = {
-            "wall_s": statistics.median(walls[law]),
-            "cpu_s": statistics.median(cpus[law]),
-            "wall_s_runs": walls[law],
-            "solver_wall_s": float(r.stats.get("wall_s", 0.0)),
-            "steps": int(r.stats.get("steps", 0)),
-            "newton_iterations": int(r.stats.get("newton_iterations", 0)),
-            "rejected_steps": int(r.stats.get("rejected_steps", 0)),
-            "simulated_s": float(r.times[-1]),
-            "status": r.status,
-            "knot_preserved": bool(r.knot_preserved),
-            "final_pull_force_N": float(r.pull_force[-1]),
-            "final_end_to_end_m": float(r.end_to_end[-1]),
-        }
+    out = {law: _law_entry(runs[law], walls[law], cpus[law]) for law in laws}
     for law in ("anchor", "floored"):
         if "imc" not in laws or law not in laws:
             continue
@@ -144,6 +172,8 @@ def main() -> None:
     if "floored" in laws:
         out["cap_floor"] = args.cap_floor
     out["target_wall_s"] = 30.0
+    out["target_cpu_s"] = 15.0
+    out["tunnel_check"] = args.tunnel_check
     out["mu"] = args.mu
     out["turns"] = args.turns
     print(json.dumps(out))
