@@ -44,9 +44,9 @@ from knotmech.rod.friction import AnchorFriction, SmoothFriction
 __all__ = ["Cylinder", "CylinderContact", "RodContact"]
 
 # tunnel_check "path": a step moving a contact node by more than PATH_LIMIT times
-# max_displacement radii is rejected outright (the broad phase's pairs were found for
-# the motion of a step at the start velocity; a longer jump could meet unlisted edges)
-PATH_LIMIT = 8.0
+# max_displacement radii is rejected outright (bounds the cost of the path test, and
+# keeps a slip of a step within a few rod diameters)
+PATH_LIMIT = 16.0
 
 
 def _emit(rows, cols, vals, r, c, v):
@@ -155,15 +155,16 @@ class RodContact:
     tunnel_check : {"displacement", "path"}
         What the tunnelling guard rejects (default "displacement": any step that moves a
         node of a candidate pair more than ``max_displacement`` radii, as described
-        above). "path": such a step is kept if no candidate pair passes through itself on
-        the straight path between the two states: the path is sampled so that no node
-        moves more than min(``max_displacement``, 0.5) radii between samples, and the step is
-        rejected only where two edges come closer than half the sum of their radii
-        (a crossing reaches Delta = 0 and cannot hide between samples: the nearest
-        sample has Delta <= (r_i + r_j) / 4), or where a node moved more
-        than PATH_LIMIT ``max_displacement`` radii. This keeps the fast slips of a
-        sticking law (a pair sliding along its partner, no crossing) in one step instead
-        of halving the step for each.
+        above). "path": such a step is kept if no edge pair passes through itself on the
+        straight path between the two states (every pair within reach of the step's
+        motion, found by a broad phase of its own, not only the step's candidates): the
+        path is sampled so that no node moves more than min(``max_displacement``, 0.5)
+        radii between samples, and the step is rejected only where two edges come closer
+        than half the sum of their radii (a crossing reaches Delta = 0 and cannot hide
+        between samples: the nearest sample has Delta <= (r_i + r_j) / 4), or where a
+        node moved more than PATH_LIMIT (16) ``max_displacement`` radii. This keeps the
+        fast slips of a sticking law (a pair sliding along its partner, no crossing) in
+        one step instead of halving the step for each.
     friction_normal_derivative : bool
         Include the derivative of ``|F_n|`` (through the penalty) in the friction's dF/dq
         (default True; False: only the velocity derivative, ``|F_n|`` and n lagged, as before).
@@ -423,11 +424,29 @@ class RodContact:
         )
         if self.tunnel_check == "displacement" or worst > PATH_LIMIT * self.max_displacement:
             return why
-        n_sub = int(np.ceil(worst / min(self.max_displacement, 0.5)))
-        gap = pair_path_min_gap(self.pairs, en, nd, rad, q_new, q_old, n_sub)
+        gap = self._path_gap(system, q_new, q_old)
         if gap < 0.5:
             return f"{why}, and two edges came within {gap:.3g} of their radii on the way"
         return None
+
+    def _path_gap(self, system, q_new, q_old) -> float:
+        """Smallest Delta / (r_i + r_j) on the straight path from ``q_old`` to ``q_new``
+        over every edge pair that can meet on it: those within twice the largest node
+        motion D at ``q_old`` (a pair farther apart cannot close its gap), found by a
+        broad phase of margin 2 D, so that edges outside the step's candidate list are
+        checked too. Sampled so that no node of those pairs moves more than 0.5 radii
+        between samples (:func:`pair_path_min_gap`)."""
+        rad, en, nd, rod_of_edge = self._arrays(system)[:4]
+        pos = _positions(system, q_old)
+        reach = 2.0 * max_node_speed(q_new - q_old, nd)
+        pairs = candidate_edge_pairs(pos, en, edge_radius=rad, margin=reach,
+                                     edge_rod=rod_of_edge, exclusion=self._exclusion(system),
+                                     validate=False)  # fmt: skip
+        if pairs.shape[0] == 0:
+            return np.inf
+        worst = max_pair_displacement(pairs, en, nd, rad, q_new, q_old)
+        n_sub = max(int(np.ceil(worst / min(self.max_displacement, 0.5))), 1)
+        return pair_path_min_gap(pairs, en, nd, rad, q_new, q_old, n_sub)
 
     @property
     def sliding(self) -> np.ndarray:

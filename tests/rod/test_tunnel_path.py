@@ -85,3 +85,26 @@ def test_path_guard_keeps_the_crossing_order_of_a_hard_push(monkeypatch):
 def test_tunnel_check_is_checked():
     with pytest.raises(InputError, match="tunnel_check"):
         RodContact(stiffness=1.0, sharpness=1.0, tunnel_check="sweep")
+
+
+def test_path_guard_checks_edges_outside_the_candidate_list():
+    """B slides 3 r along A (trips the displacement bound, crosses nothing) while rod C,
+    5 r above A and no candidate of the step (margin 0), drops 10 r through A: the path
+    test finds the crossing with pairs of its own."""
+    mk = dict(radius=R, youngs_modulus=1e6, density=1000.0)
+    rod_a = Rod(positions=[[0, 0, 0], [0.01, 0, 0], [0.02, 0, 0]], **mk)
+    rod_b = Rod(positions=[[0.015, -0.01, 1.9 * R], [0.015, 0, 1.9 * R],
+                           [0.015, 0.01, 1.9 * R]], **mk)  # fmt: skip
+    rod_c = Rod(positions=[[0.005, -0.01, 5 * R], [0.005, 0, 5 * R], [0.005, 0.01, 5 * R]], **mk)
+    system = RodSystem((rod_a, rod_b, rod_c))
+    q0 = system.initial_state().q
+    c = RodContact(stiffness=1.0, sharpness=1.0 / R, margin=0.0, tunnel_check="path")
+    c.begin_step(system, q0, np.zeros_like(q0), 0.01)
+    rods = system.edge_rod[c.pairs]
+    assert np.any((rods[:, 0] == 0) & (rods[:, 1] == 1))  # A-B listed
+    assert not np.any((rods[:, 0] == 0) & (rods[:, 1] == 2))  # A-C not listed
+    q1 = q0.copy()
+    q1[system.node_dofs[4, 0]] += 3 * R  # B's middle node slides along A
+    assert c.check_step(system, q1, q0, 0.01) is None
+    q1[system.node_dofs[7, 2]] -= 10 * R  # C's middle node drops through A
+    assert "came within" in c.check_step(system, q1, q0, 0.01)
