@@ -12,7 +12,7 @@ a shared machine the CPU time is the steadier of the two). Target: wall_s < 30 o
 for either law.
 
     OPENBLAS_NUM_THREADS=1 python benchmarks/overhand.py --turns 1 [--t-end 62] [--repeats 1]
-        [--laws imc,anchor] [--curves curves.npz]
+        [--laws imc,anchor] [--tunnel-check path] [--curves curves.npz]
 
 ``--t-end`` shortens the run (simulated seconds, the wait included) for a quick estimate;
 the JSON then reports the simulated time so the full cost can be extrapolated. ``--curves``
@@ -35,6 +35,13 @@ rejected, final force 0.07310 N; tight-phase force ratio anchor/imc 0.923 / 0.98
 docs/notes/contact-and-friction/sticking-law-cap-width.md):
 cpu_s 52.7 / 52.3 / 45.5; floored (cap_floor 1e-2) 24800 steps, 38204 iterations, no
 rejection, final force 0.07300 N, tight-phase force ratio floored/imc 0.851 / 0.986 / 1.014.
+Solver glue in numba (issue 24, branch speed; same counts and final force, bit for bit):
+anchor law's process CPU 0.86x the base commit's in alternated pairs (53.1 / 62.4 s at
+load 6-8; about 24-25 s on an idle core). ``--tunnel-check path`` runs the scene with
+``RodContact(tunnel_check="path")`` (the guard tests the path for crossings instead of
+bounding the displacement; docs/notes/contact-and-friction/sticking-law-cap-width.md,
+section 8). Each law's entry reports cpu_s (median) and cpu_s_runs, steps,
+newton_iterations and rejected_steps; target_cpu_s 15 (not met).
 """
 
 from __future__ import annotations
