@@ -160,17 +160,21 @@ def bend_curves(
     """
     if kind not in BEND_CODES:
         raise InputError(f"kind must be one of {', '.join(BEND_CODES)}, got {kind!r}")
-    d = float(check_positive("rod_diameter", rod_diameter))
+    d = float(check_positive("rod_diameter", rod_diameter, scalar=True))
     N = int(n_nodes)
     if N != n_nodes or N < 40:
         raise InputError(f"n_nodes must be an integer >= 40, got {n_nodes!r}")
-    n = float(check_range("spread", spread, 0.6, 10.0)) * d
-    W = float(check_range("bight", bight, 1.0, 20.0)) * d
-    c = float(check_range("overlap", overlap, 1.0, 20.0)) * d
-    h0 = float(check_range("lift", lift, 0.5, 5.0)) * d
+    n = float(check_range("spread", spread, 0.6, 10.0, scalar=True)) * d
+    W = float(check_range("bight", bight, 1.0, 20.0, scalar=True)) * d
+    c = float(check_range("overlap", overlap, 1.0, 20.0, scalar=True)) * d
+    h0 = float(check_range("lift", lift, 0.5, 5.0, scalar=True)) * d
     if W < n + 1.0 * d:
         raise InputError(f"bight must exceed spread + 1 (in rod diameters), got {bight:g}")
-    X = c + (14.0 * d if tail_length is None else float(check_positive("tail_length", tail_length)))
+    X = c + (
+        14.0 * d
+        if tail_length is None
+        else float(check_positive("tail_length", tail_length, scalar=True))
+    )
     p, s, sk = _plane_path(n, W, c, X, 0.02 * d)
     code = BEND_CODES[kind]
     za = np.array([h0 if ch == "O" else -h0 for ch in code])

@@ -276,7 +276,7 @@ def loop_metrics(nodes, *, rod_radius: float, contact_factor: float = 1.3):
         is found.
     """
     x = np.asarray(nodes, dtype=float)
-    h = float(check_positive("rod_radius", rod_radius))
+    h = float(check_positive("rod_radius", rod_radius, scalar=True))
     edge = float(np.mean(np.linalg.norm(np.diff(x, axis=0), axis=1)))
     k = _exclusion(edge, h)
     close = _close_edges(x, k, contact_factor * 2.0 * h)
@@ -476,11 +476,11 @@ def overhand_knot(
     n = int(turns)
     if n != turns or not 1 <= n <= 6:
         raise InputError(f"turns must be an integer in [1, 6], got {turns!r}")
-    L = float(check_positive("rod_length", rod_length))
-    h = float(check_positive("rod_radius", rod_radius))
-    E = float(check_positive("end_to_end_length", end_to_end_length))
-    b = float(check_positive("braid_length", braid_length))
-    c = float(check_range("clearance", clearance, 0.0, 1.0))
+    L = float(check_positive("rod_length", rod_length, scalar=True))
+    h = float(check_positive("rod_radius", rod_radius, scalar=True))
+    E = float(check_positive("end_to_end_length", end_to_end_length, scalar=True))
+    b = float(check_positive("braid_length", braid_length, scalar=True))
+    c = float(check_range("clearance", clearance, 0.0, 1.0, scalar=True))
     N = int(n_nodes)
     if N != n_nodes or N < 20:
         raise InputError(f"n_nodes must be an integer >= 20, got {n_nodes!r}")
@@ -682,11 +682,11 @@ def coil_curve(
     KnotCurve
         Parts ``tail1``, ``wrap``, ``tail2``; ``info["wrap_radius"]`` = R.
     """
-    D = float(check_positive("post_diameter", post_diameter))
-    d = float(check_positive("rod_diameter", rod_diameter))
-    th = float(check_positive("wrap_angle", wrap_angle))
-    tl = float(check_positive("tail_length", tail_length))
-    pf = float(check_range("pitch_factor", pitch_factor, 1.0, 100.0))
+    D = float(check_positive("post_diameter", post_diameter, scalar=True))
+    d = float(check_positive("rod_diameter", rod_diameter, scalar=True))
+    th = float(check_positive("wrap_angle", wrap_angle, scalar=True))
+    tl = float(check_positive("tail_length", tail_length, scalar=True))
+    pf = float(check_range("pitch_factor", pitch_factor, 1.0, 100.0, scalar=True))
     N = int(n_nodes)
     if N < 20:
         raise InputError(f"n_nodes must be >= 20, got {n_nodes!r}")
@@ -798,11 +798,11 @@ def clove_hitch_curve(
     KnotCurve
         Parts ``tail1``, ``wrap1``, ``diagonal``, ``wrap2``, ``tail2``.
     """
-    D = float(check_positive("post_diameter", post_diameter))
-    d = float(check_positive("rod_diameter", rod_diameter))
-    tl = float(check_positive("tail_length", tail_length))
-    g = float(check_range("gap", gap, 1.0, 50.0))
-    lf = float(check_range("lift", lift, 1.0, 10.0))
+    D = float(check_positive("post_diameter", post_diameter, scalar=True))
+    d = float(check_positive("rod_diameter", rod_diameter, scalar=True))
+    tl = float(check_positive("tail_length", tail_length, scalar=True))
+    g = float(check_range("gap", gap, 1.0, 50.0, scalar=True))
+    lf = float(check_range("lift", lift, 1.0, 10.0, scalar=True))
     N = int(n_nodes)
     if N < 40:
         raise InputError(f"n_nodes must be >= 40, got {n_nodes!r}")

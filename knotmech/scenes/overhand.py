@@ -369,7 +369,7 @@ def _friction_law(friction: str, mu: float, setup: OverhandSetup):
         return AnchorFriction(mu_static=mu)
     if setup.slip_speed is None:
         return SmoothFriction(mu)
-    nu = float(check_positive("slip_speed", setup.slip_speed))
+    nu = float(check_positive("slip_speed", setup.slip_speed, scalar=True))
     return SmoothFriction(mu, sharpness=10.0 / nu, threshold=0.5 * nu)
 
 
@@ -387,7 +387,7 @@ class OverhandScene(Scene):
         if n != self.turns or not 1 <= n <= 4:
             raise InputError(f"turns must be an integer in [1, 4], got {self.turns!r}")
         self.n = n
-        self.mu = float(check_nonnegative("mu", self.mu_arg))
+        self.mu = float(check_nonnegative("mu", self.mu_arg, scalar=True))
         self.s = s = _overhand_setup(n, self.params, self.overrides)
         c = self.control
         if int(c.n_frames) < 2 or int(self.n_snapshots) < 1:
