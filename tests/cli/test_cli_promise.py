@@ -511,3 +511,17 @@ def test_hold_verbose_on_a_bend_names_no_post(capsys):
     assert main(argv) == 0
     out = capsys.readouterr().out
     assert "reef: rope d = 6 mm, mu = 0.4, load = 200 N, material nylon" in out
+
+
+@pytest.mark.parametrize("argv", [
+    ["diagnose", "pinch.csv", "--json", "-"],
+    ["simulate", "bend", "--kind", "granny", "--mu", "1", "--json", "-"],
+    ["simulate", "pinch", "--normal-load", "0.3N", "--mu", "0.5", "--csv=-"],
+])  # fmt: skip
+def test_a_dash_for_a_file_output_is_refused(stubbed, argv):
+    """Found by the campaign: ``--json -`` wrote a file named ``-`` (and said so) where
+    ``hold --json -`` prints to standard output; now one line before any work."""
+    code, out, err, _ = _call(argv)
+    assert code == 2 and out == ""
+    assert err.strip().endswith("-: this output is a file, not standard output; give a file name")
+    assert not (stubbed / "-").exists()
