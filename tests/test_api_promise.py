@@ -402,3 +402,88 @@ def test_campaign_closed_forms(name, data):
 @given(data=st.data())
 def test_campaign_parse_quantity(data):
     _check_parse_quantity(data)
+
+
+# ------------------------------------------------------------------ the scene functions
+
+#: a valid call of each public scene function (the README's and the CLI's examples)
+SCENE_CALLS = {
+    "capstan": dict(wrap_angle=np.pi, mu=0.5, rod_diameter=4e-3, post_diameter=16e-3,
+                    youngs_modulus=1.26e6, t_low=0.16),
+    "capstan_two_loops": {},
+    "pinch": dict(normal_load=0.3, mu=0.5),
+    "clove_hitch": dict(mu_rod_post=0.3, t_high=1.47),
+    "two_half_hitches": dict(mu_rod_post=0.6, t_high=0.1),
+    "round_turn_two_half_hitches": dict(mu_rod_post=0.6, t_high=0.1),
+    "cow_hitch": dict(mu_rod_post=0.6, t_high=0.1),
+    "bend": dict(kind="reef"),
+    "overhand": dict(turns=2, mu=0.3),
+    "overhand_knot": dict(turns=2, rod_length=1.0, rod_radius=5e-3, end_to_end_length=0.5,
+                          braid_length=0.1, n_nodes=401),
+    "bend_curves": dict(kind="reef", rod_diameter=4e-3, n_nodes=80),
+    "clove_hitch_curve": dict(post_diameter=0.03, rod_diameter=4e-3, tail_length=0.05,
+                              n_nodes=200),
+    "coil_curve": dict(post_diameter=0.03, rod_diameter=4e-3, tail_length=0.05, n_nodes=200),
+}  # fmt: skip
+
+#: one-number arguments given what is not one number
+NOT_ONE_NUMBER = {
+    "a list": [1e-3, 2e-3],
+    "an array": np.array([1e-3, 2e-3]),
+    "a string": "0.3",
+    "a bool": True,
+}
+
+
+class _Accepted(Exception):
+    """Raised by the stubbed solver: a call got as far as a run."""
+
+
+def _scene_function(name: str):
+    """``knotmech.scenes.<name>``, the function (the attribute becomes the submodule of that
+    name, ``knotmech.scenes.capstan``, once the submodule is imported)."""
+    import knotmech.scenes as scenes
+
+    found = getattr(scenes, name)
+    return found if callable(found) else getattr(found, name)
+
+
+def _scene_cases():
+    for name, call in SCENE_CALLS.items():
+        params = inspect.signature(_scene_function(name)).parameters
+        for p in params.values():
+            numeric = type(p.default) in (int, float) or (
+                p.default is p.empty and p.name in call and type(call[p.name]) in (int, float)
+            )
+            if numeric and p.kind is not p.VAR_KEYWORD:
+                for kind in NOT_ONE_NUMBER:
+                    yield pytest.param(name, p.name, kind, id=f"{name}-{p.name}-{kind}")
+
+
+@pytest.fixture(scope="module")
+def no_runs():
+    """The solver replaced by one that raises :class:`_Accepted` (nothing runs)."""
+    import knotmech.rod as rod
+    import knotmech.rod.solver as solver
+    import knotmech.scenes.pinch as pinch
+
+    def refuse_to_run(*args, **kwargs):
+        raise _Accepted
+
+    with pytest.MonkeyPatch.context() as mp:
+        for module in (rod, solver, pinch):
+            mp.setattr(module, "simulate", refuse_to_run)
+        yield
+
+
+@pytest.mark.parametrize(("name", "arg", "kind"), list(_scene_cases()))
+def test_a_scene_refuses_what_is_not_one_number(no_runs, name, arg, kind):
+    """Issue 27: ``capstan(rod_diameter=[1e-3, 2e-3])`` raised a bare TypeError from
+    ``float()``; every one-number argument of every public scene function now gives one
+    InputError line naming it, before any run."""
+    call = {**SCENE_CALLS[name], arg: NOT_ONE_NUMBER[kind]}
+    with pytest.raises(InputError) as info:
+        _scene_function(name)(**call)
+    message = str(info.value)
+    assert "\n" not in message
+    assert arg in message, message

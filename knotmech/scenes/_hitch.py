@@ -54,7 +54,13 @@ import numpy as np
 
 from knotmech import rod
 from knotmech.analytic.capstan import mu_eff as _mu_eff
-from knotmech.errors import InputError, check_bending_scale, check_nonnegative, check_positive
+from knotmech.errors import (
+    InputError,
+    check_bending_scale,
+    check_count,
+    check_nonnegative,
+    check_positive,
+)
 from knotmech.materials import PHASE_TABLE_DENSITY, VPS32_YOUNGS_MODULUS
 from knotmech.rod.constraints import Clamp, MovingNodes
 from knotmech.rod.contact import RodContact
@@ -716,8 +722,9 @@ class HitchScene(Scene):
         self.E = float(check_positive("youngs_modulus", o.youngs_modulus, scalar=True))
         self.kappa = check_bending_scale(o.bending_scale)
         self.rho = float(check_positive("density", o.density, scalar=True))
-        if o.n_nodes is not None and int(o.n_nodes) != o.n_nodes:
-            raise InputError(f"n_nodes must be an integer, got {o.n_nodes!r}")
+        if o.n_nodes is not None:
+            check_count("n_nodes", o.n_nodes, 2)
+        check_count("n_frames", self.control.n_frames, 2)
         self.ea = self.E * np.pi * self.d * self.d / 4
         if self.D > MAX_POST_RATIO * self.d:  # the start curve alone grows with D/d
             raise InputError(
@@ -771,9 +778,11 @@ class HitchScene(Scene):
                 else float(check_positive("pretension", ld.pretension, scalar=True))
             )
             self.v = ld.pull_speed
+            check_nonnegative("pull_speed", ld.pull_speed, scalar=True)  # unused: checked
+            check_positive("pull_distance", ld.pull_distance, scalar=True)
         for name, val in (("settle_time", ld.settle_time), ("load_time", ld.load_time)):
-            check_positive(name, val)
-        check_nonnegative("hold_time", ld.hold_time)
+            check_positive(name, val, scalar=True)
+        check_nonnegative("hold_time", ld.hold_time, scalar=True)
         self.step = float(check_positive("dt", self.control.dt, scalar=True))
 
     def _check_cost(self) -> None:

@@ -43,7 +43,7 @@ import numpy as np
 from scipy.interpolate import PchipInterpolator
 
 from knotmech import knots
-from knotmech.errors import InputError, check_positive, check_range
+from knotmech.errors import InputError, check_count, check_positive, check_range
 from knotmech.scenes.curves import _edge_distances, min_separation, resample_polyline
 from knotmech.scenes.topology import knot_invariant
 
@@ -161,9 +161,7 @@ def bend_curves(
     if kind not in BEND_CODES:
         raise InputError(f"kind must be one of {', '.join(BEND_CODES)}, got {kind!r}")
     d = float(check_positive("rod_diameter", rod_diameter, scalar=True))
-    N = int(n_nodes)
-    if N != n_nodes or N < 40:
-        raise InputError(f"n_nodes must be an integer >= 40, got {n_nodes!r}")
+    N = check_count("n_nodes", n_nodes, 40)
     n = float(check_range("spread", spread, 0.6, 10.0, scalar=True)) * d
     W = float(check_range("bight", bight, 1.0, 20.0, scalar=True)) * d
     c = float(check_range("overlap", overlap, 1.0, 20.0, scalar=True)) * d

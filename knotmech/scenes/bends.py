@@ -31,7 +31,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from knotmech import rod
-from knotmech.errors import InputError, check_nonnegative, check_positive
+from knotmech.errors import InputError, check_count, check_nonnegative, check_positive
 from knotmech.materials import DEMO_ROD_DENSITY
 from knotmech.rod.constraints import Clamp, MovingNodes
 from knotmech.scenes._common import check_memory, check_run_size, frames_bytes, pair_check_bytes
@@ -303,8 +303,8 @@ class BendScene(Scene):
             if p.slip_draw_in is None
             else float(check_positive("slip_draw_in", p.slip_draw_in, scalar=True))
         )
-        if int(self.control.n_frames) < 10:
-            raise InputError(f"n_frames must be >= 10, got {self.control.n_frames!r}")
+        check_count("n_frames", self.control.n_frames, 10)
+        check_positive("contact_width", o.contact_width, scalar=True)
         self.B = B = self.E * np.pi * d**4 / 64
         self.f_set = (
             0.1 * B / d**2
@@ -329,10 +329,7 @@ class BendScene(Scene):
     def _check_cost(self) -> None:
         """Steps x nodes of settle, set and pull, and the memory of the overlap watch."""
         n = self.ropes.n_nodes
-        try:
-            N = int(n)
-        except (TypeError, ValueError, OverflowError):
-            raise InputError(f"n_nodes must be an integer >= 40, got {n!r}") from None
+        N = check_count("n_nodes", n, 40)
         t_end = self.settle_time + (self.set_travel + self.dist) / self.v
         check_run_size(
             n_nodes=2 * N,

@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from knotmech.errors import InputError, check_nonnegative, check_positive
+from knotmech.errors import InputError, check_count, check_nonnegative, check_positive, check_range
 from knotmech.materials import VPS32_DENSITY, VPS32_YOUNGS_MODULUS
 from knotmech.rod.constraints import Clamp, MovingNodes
 from knotmech.rod.contact import Cylinder, CylinderContact
@@ -302,10 +302,12 @@ class PinchScene(Scene):
         # free length between the pulled end and the pinch
         self.stretch = 2 * mu * fn * 0.3 * L / self.ea
         self.dist = self._pull_distance()
-        self.n_el = int(round(L / (d / 8))) if o.n_elements is None else int(o.n_elements)
+        n_el = o.n_elements
+        self.n_el = int(round(L / (d / 8))) if n_el is None else check_count("n_elements", n_el)
         if self.n_el < 8:
             raise InputError(f"n_elements must be >= 8, got {o.n_elements}")
-        self.t_start = ld.ramp_time + 0.05
+        check_range("plateau", ld.plateau, 0.0, 1.0, low_open=True, scalar=True)
+        self.t_start = float(check_nonnegative("ramp_time", ld.ramp_time, scalar=True)) + 0.05
         self.t_final = self.t_start + self.dist / self.v
         dt = self.control.dt
         step = (
