@@ -487,3 +487,12 @@ def test_a_scene_refuses_what_is_not_one_number(no_runs, name, arg, kind):
     message = str(info.value)
     assert "\n" not in message
     assert arg in message, message
+
+
+def test_a_fraction_of_a_count_is_refused():
+    """Issue 27: ``imc_setup(1.5)`` was read as one turn (``int(1.5)``)."""
+    from knotmech.scenes import imc_setup
+
+    with pytest.raises(InputError, match=r"^turns must be an integer in \[1, 4\], got 1.5$"):
+        imc_setup(1.5)
+    assert imc_setup(2.0) == imc_setup(2)
