@@ -34,6 +34,7 @@ import io
 import json
 import math
 import re
+import signal
 import time
 from dataclasses import replace
 
@@ -373,11 +374,27 @@ def _strict_json(text: str):
     return json.loads(text, parse_constant=refuse)
 
 
+class _TooLong(Exception):
+    """Raised by the alarm in :func:`_call` when a command runs past :data:`BOUND_S`."""
+
+
+def _alarm(signum, frame):
+    raise _TooLong(f"still running after {BOUND_S:g} s")
+
+
 def _call(argv: list[str]) -> tuple[int, str, str, float]:
+    """(exit status, stdout, stderr, seconds) of ``knotmech argv``, stopped by an alarm
+    (a :class:`_TooLong` failure) after :data:`BOUND_S` seconds."""
     out, err = io.StringIO(), io.StringIO()
     start = time.perf_counter()
-    with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
-        code = main(list(argv))
+    previous = signal.signal(signal.SIGALRM, _alarm)
+    signal.setitimer(signal.ITIMER_REAL, BOUND_S)
+    try:
+        with contextlib.redirect_stdout(out), contextlib.redirect_stderr(err):
+            code = main(list(argv))
+    finally:
+        signal.setitimer(signal.ITIMER_REAL, 0)
+        signal.signal(signal.SIGALRM, previous)
     return code, out.getvalue(), err.getvalue(), time.perf_counter() - start
 
 
