@@ -208,7 +208,7 @@ _BASES = {
     "hold": ["--rod-diameter", "6mm", "--post-diameter", "40mm", "--mu", "0.4", "--load",
              "200N", "--material", "nylon"],
     "diagnose": ["pinch.csv", "--json", "out.json"],
-    "validate": ["--quick", "--out", "vout", "--only", "capstan"],
+    "validate": ["--quick", "--out", "vout", "--only", "capstan_decay"],
 }  # fmt: skip
 
 
@@ -354,7 +354,7 @@ def _diagnose_argv() -> st.SearchStrategy:
 def _validate_argv() -> st.SearchStrategy:
     options = {
         "--out": st.sampled_from(("vout", "out.json", "adir", "", "nodir/deeper")),
-        "--only": st.sampled_from(("capstan", "pinch", "nope", "", "\u00e9", "--list")),
+        "--only": st.sampled_from(("capstan_decay", "coating", "nope", "", "\u00e9", "--list")),
         "--scheduler": st.sampled_from(("tcp://127.0.0.1:1", "", "\u00e9")),
         "--cases-dir": st.sampled_from(("adir", "missing", "pinch.csv", "")),
     }
