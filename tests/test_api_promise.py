@@ -14,7 +14,9 @@ strings, unicode, lists, None, complex numbers), either
 no other exception escapes, numpy emits no overflow or invalid-value RuntimeWarning (a NaN
 masked inside a formula is a silently wrong answer), and every call returns within
 :data:`CALL_SECONDS`. Deterministic companions: every knot name, and array arguments
-that do not broadcast.
+that do not broadcast; and every one-number argument of 13 public scene functions
+(:data:`SCENE_CALLS`) given a list, an array, a string or a bool, which must give one
+InputError line naming it before any run (the solver is stubbed: nothing runs).
 
 The default run is derandomized and small (20 examples per function, about 20 s in
 all); ``-m slow`` runs a random campaign of 100 examples per function and 600 texts for
