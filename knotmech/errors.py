@@ -32,6 +32,7 @@ from __future__ import annotations
 
 import functools
 import inspect
+import math
 import numbers
 
 import numpy as np
@@ -46,6 +47,7 @@ __all__ = [
     "check_nonnegative",
     "check_finite",
     "check_bending_scale",
+    "check_count",
     "check_range",
     "check_broadcast",
     "vectorised",
@@ -251,6 +253,39 @@ def check_bending_scale(value) -> float:
     if not (np.isfinite(k) and 0.0 < k <= 1.0):
         raise InputError(f"bending_scale must be a number in (0, 1], got {value!r}")
     return k
+
+
+def check_count(name: str, value, minimum: int = 0, maximum: int | None = None) -> int:
+    """``value`` as an int: a whole number (``80``, ``80.0``, a numpy integer) in
+    [minimum, maximum], else InputError.
+
+    Follows the rule of the module docstring: bools, strings, None, lists, arrays, NaN,
+    infinity and fractions are refused, each in one line starting with ``name``
+    (``n_nodes must be an integer >= 40, got a list [80, 90]``).
+
+    Parameters
+    ----------
+    name : str
+        Argument name, the first word of any message.
+    value : int
+        The count.
+    minimum, maximum : int
+        Its allowed range (``maximum`` None: no upper bound).
+    """
+    rule = f">= {minimum}" if maximum is None else f"in [{minimum}, {maximum}]"
+    if isinstance(value, (list, tuple, np.ndarray)) and np.ndim(value) > 0:
+        raise InputError(
+            f"{name} must be an integer {rule}, got a {type(value).__name__} {_short(value)}"
+        )
+    if not _is_real_scalar(value) and not (isinstance(value, np.ndarray) and value.ndim == 0):
+        raise InputError(f"{name} must be an integer {rule}, got {_kind_of(value)}")
+    x = float(value)
+    if not (math.isfinite(x) and x == int(x)):
+        raise InputError(f"{name} must be an integer {rule}, got {_short(value)}")
+    n = int(x)
+    if n < minimum or (maximum is not None and n > maximum):
+        raise InputError(f"{name} must be {rule}, got {n}")
+    return n
 
 
 def _shape(value):

@@ -14,7 +14,9 @@ strings, unicode, lists, None, complex numbers), either
 no other exception escapes, numpy emits no overflow or invalid-value RuntimeWarning (a NaN
 masked inside a formula is a silently wrong answer), and every call returns within
 :data:`CALL_SECONDS`. Deterministic companions: every knot name, and array arguments
-that do not broadcast.
+that do not broadcast; and every one-number argument of 13 public scene functions
+(:data:`SCENE_CALLS`) given a list, an array, a string or a bool, which must give one
+InputError line naming it before any run (the solver is stubbed: nothing runs).
 
 The default run is derandomized and small (20 examples per function, about 20 s in
 all); ``-m slow`` runs a random campaign of 100 examples per function and 600 texts for
@@ -402,3 +404,97 @@ def test_campaign_closed_forms(name, data):
 @given(data=st.data())
 def test_campaign_parse_quantity(data):
     _check_parse_quantity(data)
+
+
+# ------------------------------------------------------------------ the scene functions
+
+#: a valid call of each public scene function (the README's and the CLI's examples)
+SCENE_CALLS = {
+    "capstan": dict(wrap_angle=np.pi, mu=0.5, rod_diameter=4e-3, post_diameter=16e-3,
+                    youngs_modulus=1.26e6, t_low=0.16),
+    "capstan_two_loops": {},
+    "pinch": dict(normal_load=0.3, mu=0.5),
+    "clove_hitch": dict(mu_rod_post=0.3, t_high=1.47),
+    "two_half_hitches": dict(mu_rod_post=0.6, t_high=0.1),
+    "round_turn_two_half_hitches": dict(mu_rod_post=0.6, t_high=0.1),
+    "cow_hitch": dict(mu_rod_post=0.6, t_high=0.1),
+    "bend": dict(kind="reef"),
+    "overhand": dict(turns=2, mu=0.3),
+    "overhand_knot": dict(turns=2, rod_length=1.0, rod_radius=5e-3, end_to_end_length=0.5,
+                          braid_length=0.1, n_nodes=401),
+    "bend_curves": dict(kind="reef", rod_diameter=4e-3, n_nodes=80),
+    "clove_hitch_curve": dict(post_diameter=0.03, rod_diameter=4e-3, tail_length=0.05,
+                              n_nodes=200),
+    "coil_curve": dict(post_diameter=0.03, rod_diameter=4e-3, tail_length=0.05, n_nodes=200),
+}  # fmt: skip
+
+#: one-number arguments given what is not one number
+NOT_ONE_NUMBER = {
+    "a list": [1e-3, 2e-3],
+    "an array": np.array([1e-3, 2e-3]),
+    "a string": "0.3",
+    "a bool": True,
+}
+
+
+class _Accepted(Exception):
+    """Raised by the stubbed solver: a call got as far as a run."""
+
+
+def _scene_function(name: str):
+    """``knotmech.scenes.<name>``, the function (the attribute becomes the submodule of that
+    name, ``knotmech.scenes.capstan``, once the submodule is imported)."""
+    import knotmech.scenes as scenes
+
+    found = getattr(scenes, name)
+    return found if callable(found) else getattr(found, name)
+
+
+def _scene_cases():
+    for name, call in SCENE_CALLS.items():
+        params = inspect.signature(_scene_function(name)).parameters
+        for p in params.values():
+            numeric = type(p.default) in (int, float) or (
+                p.default is p.empty and p.name in call and type(call[p.name]) in (int, float)
+            )
+            if numeric and p.kind is not p.VAR_KEYWORD:
+                for kind in NOT_ONE_NUMBER:
+                    yield pytest.param(name, p.name, kind, id=f"{name}-{p.name}-{kind}")
+
+
+@pytest.fixture(scope="module")
+def no_runs():
+    """The solver replaced by one that raises :class:`_Accepted` (nothing runs)."""
+    import knotmech.rod as rod
+    import knotmech.rod.solver as solver
+    import knotmech.scenes.pinch as pinch
+
+    def refuse_to_run(*args, **kwargs):
+        raise _Accepted
+
+    with pytest.MonkeyPatch.context() as mp:
+        for module in (rod, solver, pinch):
+            mp.setattr(module, "simulate", refuse_to_run)
+        yield
+
+
+@pytest.mark.parametrize(("name", "arg", "kind"), list(_scene_cases()))
+def test_a_scene_refuses_what_is_not_one_number(no_runs, name, arg, kind):
+    """Issue 27: ``capstan(rod_diameter=[1e-3, 2e-3])`` raised a bare TypeError from
+    ``float()``; every one-number argument of every public scene function now gives one
+    InputError line naming it, before any run."""
+    call = {**SCENE_CALLS[name], arg: NOT_ONE_NUMBER[kind]}
+    with pytest.raises(InputError) as info:
+        _scene_function(name)(**call)
+    message = str(info.value)
+    assert "\n" not in message
+    assert arg in message, message
+
+
+def test_a_fraction_of_a_count_is_refused():
+    """Issue 27: ``imc_setup(1.5)`` was read as one turn (``int(1.5)``)."""
+    from knotmech.scenes import imc_setup
+
+    with pytest.raises(InputError, match=r"^turns must be an integer in \[1, 4\], got 1.5$"):
+        imc_setup(1.5)
+    assert imc_setup(2.0) == imc_setup(2)

@@ -76,7 +76,8 @@ def check_output_path(path, *, formats: Iterable[str] | None = None, option: str
     Raises
     ------
     InputError
-        One line naming the option and the path, when: the name is empty; it is an
+        One line naming the option and the path, when: the name is empty or ``-``
+        (standard output, which only ``hold --json`` writes to); it is an
         existing directory (or ends in a path separator); its folder does not exist,
         is not a folder or is not writable; it exists but is not a regular file
         (``/dev/full``, a FIFO) or is not writable; or, with ``formats``, its
@@ -87,6 +88,10 @@ def check_output_path(path, *, formats: Iterable[str] | None = None, option: str
     text = os.fspath(path)
     if not isinstance(text, str) or not text.strip():
         raise InputError(f"{option}: empty file name")
+    if text == "-":  # read by check_distinct and hold --json as standard output
+        raise InputError(
+            f"{option} -: this output is a file, not standard output; give a file name"
+        )
     p = Path(text)
     where = f"{option} {text}"
     if text.endswith(("/", os.sep)) or p.is_dir():

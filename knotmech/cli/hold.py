@@ -340,13 +340,15 @@ def _others_line(verdict) -> list:
 def _inputs_line(verdict) -> str:
     """The inputs in one line (``--verbose``)."""
     i = verdict.inputs
-    head = (
-        f"{verdict.knot}: rope d = {format_quantity(i['rod_diameter'], 'length')}, "
-        f"post D = {format_quantity(i['post_diameter'], 'length')}, mu = {i['mu']:g}"
-    )
+    head = f"{verdict.knot}: rope d = {format_quantity(i['rod_diameter'], 'length')}, "
+    if "post_diameter" in i:  # a bend has no post and no free end
+        head += f"post D = {format_quantity(i['post_diameter'], 'length')}, "
+    head += f"mu = {i['mu']:g}"
     if "mu_rr" in i:
         head += f", mu_rr = {i['mu_rr']:g}"
-    head += f", load = {_force(i['load'])}, free end = {_force(i['free_end_load'])}"
+    head += f", load = {_force(i['load'])}"
+    if "free_end_load" in i:
+        head += f", free end = {_force(i['free_end_load'])}"
     if "wrap_angle" in i:
         head += f", wrap = {_wrap(i['wrap_angle'])}"
     if "material" in i:

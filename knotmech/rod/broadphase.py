@@ -74,7 +74,7 @@ def candidate_edge_pairs(
     if en.ndim != 2 or en.shape[1] != 2:
         raise InputError(f"edge_nodes must have shape (n_edges, 2), got {en.shape}")
     n_edges = en.shape[0]
-    margin = float(check_nonnegative("margin", margin))
+    margin = float(check_nonnegative("margin", margin, scalar=True))
     rad = np.broadcast_to(check_nonnegative("edge_radius", edge_radius), (n_edges,))
     rod = (
         np.zeros(n_edges, dtype=np.int64)

@@ -118,7 +118,10 @@ class RotatingEdges:
         return system.edge_theta_dof[self.edge_indices(system)]
 
     def values(self, system, t_new, dt, q_old) -> np.ndarray:
-        return q_old[_cached_dofs(self, system)] + float(check_finite("rate", self.rate)) * dt
+        return (
+            q_old[_cached_dofs(self, system)]
+            + float(check_finite("rate", self.rate, scalar=True)) * dt
+        )
 
 
 def clamp_end(system, rod: int = 0, end: str = "start", twist: bool = True) -> Clamp:

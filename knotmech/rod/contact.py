@@ -94,7 +94,9 @@ class Cylinder:
             raise InputError("axis must be a non-zero vector")
         object.__setattr__(self, "point", p)
         object.__setattr__(self, "axis", a / na)
-        object.__setattr__(self, "radius", float(check_positive("radius", self.radius)))
+        object.__setattr__(
+            self, "radius", float(check_positive("radius", self.radius, scalar=True))
+        )
         if not (self.length > 0):
             raise InputError(f"length must be > 0 (or inf), got {self.length}")
         object.__setattr__(self, "length", float(self.length))
@@ -184,12 +186,14 @@ class RodContact:
     last_normal_force: np.ndarray = field(default=None, init=False, repr=False)
 
     def __post_init__(self):
-        self.stiffness = float(check_positive("stiffness", self.stiffness))
-        self.sharpness = float(check_positive("sharpness", self.sharpness))
+        self.stiffness = float(check_positive("stiffness", self.stiffness, scalar=True))
+        self.sharpness = float(check_positive("sharpness", self.sharpness, scalar=True))
         if self.margin is not None:
-            self.margin = float(check_nonnegative("margin", self.margin))
+            self.margin = float(check_nonnegative("margin", self.margin, scalar=True))
         if self.max_displacement is not None:
-            self.max_displacement = float(check_positive("max_displacement", self.max_displacement))
+            self.max_displacement = float(
+                check_positive("max_displacement", self.max_displacement, scalar=True)
+            )
         if self.tunnel_check not in ("displacement", "path"):
             raise InputError(
                 f"tunnel_check must be 'displacement' or 'path', got {self.tunnel_check!r}"
@@ -564,12 +568,12 @@ class CylinderContact:
         if len(cyl) == 0 or not all(isinstance(c, Cylinder) for c in cyl):
             raise InputError("cylinders must be a non-empty sequence of Cylinder")
         self.cylinders = cyl
-        self.stiffness = float(check_positive("stiffness", self.stiffness))
-        self.sharpness = float(check_positive("sharpness", self.sharpness))
+        self.stiffness = float(check_positive("stiffness", self.stiffness, scalar=True))
+        self.sharpness = float(check_positive("sharpness", self.sharpness, scalar=True))
         if self.friction is not None and not isinstance(self.friction, AnchorFriction):
             raise InputError("friction must be an AnchorFriction or None")
         if self.rod_radius is not None:
-            self.rod_radius = float(check_positive("rod_radius", self.rod_radius))
+            self.rod_radius = float(check_positive("rod_radius", self.rod_radius, scalar=True))
         self._cp = np.array([c.point for c in cyl])
         self._ca = np.array([c.axis for c in cyl])
         self._cr = np.array([c.radius for c in cyl])

@@ -51,7 +51,7 @@ def stick_slip_weight(tangential_speed, *, sharpness, threshold):
 
 def default_stick_slip_parameters(rod_radius):
     """The coated-rod paper's choice k = 50/r0 [s/m], c = 0.15 r0 [m/s] (after eq. 12)."""
-    r0 = float(check_positive("rod_radius", rod_radius))
+    r0 = float(check_positive("rod_radius", rod_radius, scalar=True))
     return 50.0 / r0, 0.15 * r0
 
 

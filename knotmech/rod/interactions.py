@@ -95,7 +95,7 @@ class PointSpring:
         return system.node_dofs[_index_array("nodes", self.nodes, system.n_nodes)]
 
     def assemble(self, system, q, q_old, dt, force, triplets) -> None:
-        k = float(check_nonnegative("stiffness", self.stiffness))
+        k = float(check_nonnegative("stiffness", self.stiffness, scalar=True))
         d = self._idx(system)
         eye = np.arange(3)
         if self.pair:

@@ -50,7 +50,9 @@ class Gravity:
         if g.shape != (3,):
             raise InputError(f"acceleration must be a 3-vector, got shape {g.shape}")
         object.__setattr__(self, "acceleration", tuple(float(x) for x in g))
-        object.__setattr__(self, "ramp_time", float(check_nonnegative("ramp_time", self.ramp_time)))
+        object.__setattr__(
+            self, "ramp_time", float(check_nonnegative("ramp_time", self.ramp_time, scalar=True))
+        )
 
     def _weights(self, system) -> np.ndarray:
         """Full-load generalized force m_i g on every dof (cached per system)."""
@@ -146,10 +148,12 @@ class ViscousDamping:
 
     def __post_init__(self):
         object.__setattr__(
-            self, "coefficient", float(check_nonnegative("coefficient", self.coefficient))
+            self,
+            "coefficient",
+            float(check_nonnegative("coefficient", self.coefficient, scalar=True)),
         )
         object.__setattr__(
-            self, "rotational", float(check_nonnegative("rotational", self.rotational))
+            self, "rotational", float(check_nonnegative("rotational", self.rotational, scalar=True))
         )
 
     def _weights(self, system) -> np.ndarray:

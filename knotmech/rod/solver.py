@@ -902,7 +902,7 @@ def _checked_start(system, state0, dt, t_end):
     st = system.initial_state() if state0 is None else state0
     if not isinstance(st, State) or st.q.shape != (system.n_dof,):
         raise InputError(f"state0 must be a State with q of shape ({system.n_dof},)")
-    dt = float(check_positive("dt", dt))
+    dt = float(check_positive("dt", dt, scalar=True))
     t_end = float(t_end)
     if not np.isfinite(t_end) or t_end < st.t:
         raise InputError(f"t_end must be finite and >= the start time {st.t:g}, got {t_end!r}")

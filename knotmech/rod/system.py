@@ -77,11 +77,13 @@ class Rod:
             raise InputError("positions must not repeat a node (zero-length edge)")
         object.__setattr__(self, "positions", _frozen(pos))
         for name in ("radius", "youngs_modulus", "density"):
-            object.__setattr__(self, name, float(check_positive(name, getattr(self, name))))
-        nu = float(check_range("poisson_ratio", self.poisson_ratio, -1.0, 0.5))
+            object.__setattr__(
+                self, name, float(check_positive(name, getattr(self, name), scalar=True))
+            )
+        nu = float(check_range("poisson_ratio", self.poisson_ratio, -1.0, 0.5, scalar=True))
         object.__setattr__(self, "poisson_ratio", nu)
         if self.shear_modulus is not None:
-            g = float(check_positive("shear_modulus", self.shear_modulus))
+            g = float(check_positive("shear_modulus", self.shear_modulus, scalar=True))
             object.__setattr__(self, "shear_modulus", g)
         n_edges = pos.shape[0] - 1
         th = np.zeros(n_edges) if self.thetas is None else check_finite("thetas", self.thetas)
@@ -122,7 +124,7 @@ class Rod:
         **kwargs,
     ) -> Rod:
         """A straight rod of ``length`` [m] from ``start`` along ``direction``, n_nodes nodes."""
-        length = float(check_positive("length", length))
+        length = float(check_positive("length", length, scalar=True))
         if int(n_nodes) != n_nodes or n_nodes < 3:
             raise InputError(f"n_nodes must be an integer >= 3, got {n_nodes!r}")
         d = check_finite("direction", direction)

@@ -59,12 +59,12 @@ def equivalent_section(*, diameter, youngs_modulus, density, bending_stiffness=N
     -------
     radius [m], youngs_modulus [Pa], density [kg/m^3] for :class:`knotmech.rod.Rod`.
     """
-    d = float(check_positive("rod_diameter", diameter))
-    e = float(check_positive("youngs_modulus", youngs_modulus))
-    rho = float(check_positive("density", density))
+    d = float(check_positive("rod_diameter", diameter, scalar=True))
+    e = float(check_positive("youngs_modulus", youngs_modulus, scalar=True))
+    rho = float(check_positive("density", density, scalar=True))
     if bending_stiffness is None:
         return 0.5 * d, e, rho
-    b = float(check_positive("bending_stiffness", bending_stiffness))
+    b = float(check_positive("bending_stiffness", bending_stiffness, scalar=True))
     area = np.pi * d**2 / 4
     ea = e * area
     # a section of area A inside the diameter d has a radius of gyration of at most d/(2

@@ -54,7 +54,13 @@ import numpy as np
 
 from knotmech import rod
 from knotmech.analytic.capstan import mu_eff as _mu_eff
-from knotmech.errors import InputError, check_bending_scale, check_nonnegative, check_positive
+from knotmech.errors import (
+    InputError,
+    check_bending_scale,
+    check_count,
+    check_nonnegative,
+    check_positive,
+)
 from knotmech.materials import PHASE_TABLE_DENSITY, VPS32_YOUNGS_MODULUS
 from knotmech.rod.constraints import Clamp, MovingNodes
 from knotmech.rod.contact import RodContact
@@ -646,15 +652,15 @@ _LOADINGS = ("symmetric", "asymmetric", "free", "pull")
 def _end_loads(loading: str, t_high: float, t_low) -> tuple[float, float]:
     """(T_high, T_low) [N] checked for ``loading``: T_low defaults to T_high (symmetric),
     is required (asymmetric), is 0 (free) or the paper's 0.069 N (pull)."""
-    th = float(check_positive("t_high", t_high))
+    th = float(check_positive("t_high", t_high, scalar=True))
     if loading == "symmetric":
-        return th, th if t_low is None else float(check_positive("t_low", t_low))
+        return th, th if t_low is None else float(check_positive("t_low", t_low, scalar=True))
     if loading == "asymmetric":
         if t_low is None:
             raise InputError("t_low is required for the asymmetric loading")
-        return th, float(check_nonnegative("t_low", t_low))
+        return th, float(check_nonnegative("t_low", t_low, scalar=True))
     if loading == "pull":
-        return th, 0.069 if t_low is None else float(check_positive("t_low", t_low))
+        return th, 0.069 if t_low is None else float(check_positive("t_low", t_low, scalar=True))
     if t_low not in (None, 0, 0.0):
         raise InputError("t_low must be 0 (or omitted) for the free-end loading")
     return th, 0.0
@@ -706,16 +712,19 @@ class HitchScene(Scene):
 
     def _check_rod(self) -> None:
         o = self.rod_opts
-        self.d = float(check_positive("rod_diameter", o.rod_diameter))
-        self.D = float(check_positive("post_diameter", o.post_diameter))
+        self.d = float(check_positive("rod_diameter", o.rod_diameter, scalar=True))
+        self.D = float(check_positive("post_diameter", o.post_diameter, scalar=True))
         self.L_arg = (
-            None if o.rod_length is None else float(check_positive("rod_length", o.rod_length))
+            None
+            if o.rod_length is None
+            else float(check_positive("rod_length", o.rod_length, scalar=True))
         )
-        self.E = float(check_positive("youngs_modulus", o.youngs_modulus))
+        self.E = float(check_positive("youngs_modulus", o.youngs_modulus, scalar=True))
         self.kappa = check_bending_scale(o.bending_scale)
-        self.rho = float(check_positive("density", o.density))
-        if o.n_nodes is not None and int(o.n_nodes) != o.n_nodes:
-            raise InputError(f"n_nodes must be an integer, got {o.n_nodes!r}")
+        self.rho = float(check_positive("density", o.density, scalar=True))
+        if o.n_nodes is not None:
+            check_count("n_nodes", o.n_nodes, 2)
+        check_count("n_frames", self.control.n_frames, 2)
         self.ea = self.E * np.pi * self.d * self.d / 4
         if self.D > MAX_POST_RATIO * self.d:  # the start curve alone grows with D/d
             raise InputError(
@@ -726,12 +735,12 @@ class HitchScene(Scene):
 
     def _check_friction(self) -> None:
         f = self.fric
-        self.mrc = float(check_nonnegative("mu_rod_post", f.mu_rod_post))
-        self.mrr = float(check_nonnegative("mu_rod_rod", f.mu_rod_rod))
+        self.mrc = float(check_nonnegative("mu_rod_post", f.mu_rod_post, scalar=True))
+        self.mrr = float(check_nonnegative("mu_rod_rod", f.mu_rod_rod, scalar=True))
         self.mk = (
             self.mrc
             if f.mu_kinetic is None
-            else float(check_nonnegative("mu_kinetic", f.mu_kinetic))
+            else float(check_nonnegative("mu_kinetic", f.mu_kinetic, scalar=True))
         )
         if self.mk > self.mrc:
             raise InputError(f"mu_kinetic must be <= mu_rod_post ({self.mrc:g}), got {self.mk:g}")
@@ -739,15 +748,19 @@ class HitchScene(Scene):
             raise InputError(f"friction must be 'anchor' or 'imc', got {f.law!r}")
         r = self.rule
         self.climit = (
-            None if r.creep_limit is None else float(check_positive("creep_limit", r.creep_limit))
+            None
+            if r.creep_limit is None
+            else float(check_positive("creep_limit", r.creep_limit, scalar=True))
         )
         self.cwin = (
-            1.0 if r.creep_window is None else float(check_positive("creep_window", r.creep_window))
+            1.0
+            if r.creep_window is None
+            else float(check_positive("creep_window", r.creep_window, scalar=True))
         )
         self.slip = (
             self.d
             if r.slip_distance is None
-            else float(check_positive("slip_distance", r.slip_distance))
+            else float(check_positive("slip_distance", r.slip_distance, scalar=True))
         )
 
     def _check_loading(self) -> None:
@@ -755,20 +768,22 @@ class HitchScene(Scene):
         self.th, self.tl = _end_loads(ld.loading, ld.t_high, ld.t_low)
         if self.pull:
             pre = PAPER_PRETENSION if ld.pretension is None else ld.pretension
-            self.pre = float(check_positive("pretension", pre))
-            self.v = float(check_positive("pull_speed", ld.pull_speed))
-            self.dist = float(check_positive("pull_distance", ld.pull_distance))
+            self.pre = float(check_positive("pretension", pre, scalar=True))
+            self.v = float(check_positive("pull_speed", ld.pull_speed, scalar=True))
+            self.dist = float(check_positive("pull_distance", ld.pull_distance, scalar=True))
         else:
             self.pre = (
                 0.1 * self.th
                 if ld.pretension is None
-                else float(check_positive("pretension", ld.pretension))
+                else float(check_positive("pretension", ld.pretension, scalar=True))
             )
             self.v = ld.pull_speed
+            check_nonnegative("pull_speed", ld.pull_speed, scalar=True)  # unused: checked
+            check_positive("pull_distance", ld.pull_distance, scalar=True)
         for name, val in (("settle_time", ld.settle_time), ("load_time", ld.load_time)):
-            check_positive(name, val)
-        check_nonnegative("hold_time", ld.hold_time)
-        self.step = float(check_positive("dt", self.control.dt))
+            check_positive(name, val, scalar=True)
+        check_nonnegative("hold_time", ld.hold_time, scalar=True)
+        self.step = float(check_positive("dt", self.control.dt, scalar=True))
 
     def _check_cost(self) -> None:
         """The node-steps bound, and the pull step (one edge at most per step)."""
@@ -782,13 +797,13 @@ class HitchScene(Scene):
                 else ld.pull_dt
             )
             pstep = min(0.25 * h, 0.1 * self.d) / self.v if ld.pull_dt is None else ld.pull_dt
-            self.pstep = float(check_positive("pull_dt", pstep))
+            self.pstep = float(check_positive("pull_dt", pstep, scalar=True))
         else:
             t_work, dt_work = ld.settle_time + ld.load_time + ld.hold_time, self.control.dt
         check_run_size(
             n_nodes=self.N,
             t_end=t_work,
-            dt=float(check_positive("dt", dt_work)),
+            dt=float(check_positive("dt", dt_work, scalar=True)),
             max_node_steps=self.control.max_node_steps,
             hint="use a larger dt, fewer nodes or a lower pull speed",
         )

@@ -157,7 +157,7 @@ def grip_path(start, direction, speed: float, t_start: float = 0.0):
     x0 = np.array(start, dtype=float)
     u = np.asarray(direction, dtype=float)
     u = u / np.linalg.norm(u)
-    v = float(check_nonnegative("pull_speed", speed))
+    v = float(check_nonnegative("pull_speed", speed, scalar=True))
 
     def path(t):
         return x0 + u * v * max(t - t_start, 0.0)
@@ -185,14 +185,18 @@ def rod_contact(
     width : float
         Range of the penalty in rod diameters (its force rises over about w d).
     """
-    d = float(check_positive("rod_diameter", rod_diameter))
-    f = float(check_positive("force_scale", force_scale))
-    ms = float(check_nonnegative("mu_rod_rod", mu_static))
-    mk = ms if mu_kinetic is None else float(check_nonnegative("mu_kinetic", mu_kinetic))
+    d = float(check_positive("rod_diameter", rod_diameter, scalar=True))
+    f = float(check_positive("force_scale", force_scale, scalar=True))
+    ms = float(check_nonnegative("mu_rod_rod", mu_static, scalar=True))
+    mk = (
+        ms
+        if mu_kinetic is None
+        else float(check_nonnegative("mu_kinetic", mu_kinetic, scalar=True))
+    )
     if mk > ms:
         raise InputError(f"mu_kinetic must be <= mu_rod_rod ({ms:g}), got {mk:g}")
     fr = AnchorFriction(mu_static=ms, mu_kinetic=mk) if ms > 0 else None
-    w = float(check_positive("width", width))
+    w = float(check_positive("width", width, scalar=True))
     return RodContact(stiffness=20.0 * f / d, sharpness=15.0 / (w * d), friction=fr)
 
 
@@ -213,11 +217,15 @@ def post_contact(
     ``surface_friction`` False applies the friction at the centreline (the ideal rope's
     :math:`e^{\mu\theta}`) instead of the rod surface.
     """
-    D = float(check_positive("post_diameter", post_diameter))
-    d = float(check_positive("rod_diameter", rod_diameter))
-    f = float(check_positive("force_scale", force_scale))
-    ms = float(check_nonnegative("mu_rod_post", mu_static))
-    mk = ms if mu_kinetic is None else float(check_nonnegative("mu_kinetic", mu_kinetic))
+    D = float(check_positive("post_diameter", post_diameter, scalar=True))
+    d = float(check_positive("rod_diameter", rod_diameter, scalar=True))
+    f = float(check_positive("force_scale", force_scale, scalar=True))
+    ms = float(check_nonnegative("mu_rod_post", mu_static, scalar=True))
+    mk = (
+        ms
+        if mu_kinetic is None
+        else float(check_nonnegative("mu_kinetic", mu_kinetic, scalar=True))
+    )
     if mk > ms:
         raise InputError(f"mu_kinetic must be <= mu_rod_post ({ms:g}), got {mk:g}")
     K = 200.0 * f / (0.5 * (D + d) * d) if stiffness is None else float(stiffness)
@@ -337,9 +345,13 @@ class SceneRun:
         """
         if not self.ok:
             return False
-        dur = float(check_positive(f"{name} duration", duration))
+        dur = float(check_positive(f"{name} duration", duration, scalar=True))
         t0 = self.t
-        every = dur / 50 if save_every is None else float(check_positive("save_every", save_every))
+        every = (
+            dur / 50
+            if save_every is None
+            else float(check_positive("save_every", save_every, scalar=True))
+        )
         opts = replace(self.options, save_every=every)
         verdict = {"msg": None}
 
@@ -357,7 +369,7 @@ class SceneRun:
             self.system,
             self.state,
             t_end=t0 + dur,
-            dt=float(check_positive("dt", dt)),
+            dt=float(check_positive("dt", dt, scalar=True)),
             loads=list(loads),
             constraints=list(constraints),
             interactions=list(self.interactions),

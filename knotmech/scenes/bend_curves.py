@@ -43,7 +43,7 @@ import numpy as np
 from scipy.interpolate import PchipInterpolator
 
 from knotmech import knots
-from knotmech.errors import InputError, check_positive, check_range
+from knotmech.errors import InputError, check_count, check_positive, check_range
 from knotmech.scenes.curves import _edge_distances, min_separation, resample_polyline
 from knotmech.scenes.topology import knot_invariant
 
@@ -160,17 +160,19 @@ def bend_curves(
     """
     if kind not in BEND_CODES:
         raise InputError(f"kind must be one of {', '.join(BEND_CODES)}, got {kind!r}")
-    d = float(check_positive("rod_diameter", rod_diameter))
-    N = int(n_nodes)
-    if N != n_nodes or N < 40:
-        raise InputError(f"n_nodes must be an integer >= 40, got {n_nodes!r}")
-    n = float(check_range("spread", spread, 0.6, 10.0)) * d
-    W = float(check_range("bight", bight, 1.0, 20.0)) * d
-    c = float(check_range("overlap", overlap, 1.0, 20.0)) * d
-    h0 = float(check_range("lift", lift, 0.5, 5.0)) * d
+    d = float(check_positive("rod_diameter", rod_diameter, scalar=True))
+    N = check_count("n_nodes", n_nodes, 40)
+    n = float(check_range("spread", spread, 0.6, 10.0, scalar=True)) * d
+    W = float(check_range("bight", bight, 1.0, 20.0, scalar=True)) * d
+    c = float(check_range("overlap", overlap, 1.0, 20.0, scalar=True)) * d
+    h0 = float(check_range("lift", lift, 0.5, 5.0, scalar=True)) * d
     if W < n + 1.0 * d:
         raise InputError(f"bight must exceed spread + 1 (in rod diameters), got {bight:g}")
-    X = c + (14.0 * d if tail_length is None else float(check_positive("tail_length", tail_length)))
+    X = c + (
+        14.0 * d
+        if tail_length is None
+        else float(check_positive("tail_length", tail_length, scalar=True))
+    )
     p, s, sk = _plane_path(n, W, c, X, 0.02 * d)
     code = BEND_CODES[kind]
     za = np.array([h0 if ch == "O" else -h0 for ch in code])

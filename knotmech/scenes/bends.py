@@ -31,7 +31,7 @@ from dataclasses import dataclass, field
 import numpy as np
 
 from knotmech import rod
-from knotmech.errors import InputError, check_nonnegative, check_positive
+from knotmech.errors import InputError, check_count, check_nonnegative, check_positive
 from knotmech.materials import DEMO_ROD_DENSITY
 from knotmech.rod.constraints import Clamp, MovingNodes
 from knotmech.scenes._common import check_memory, check_run_size, frames_bytes, pair_check_bytes
@@ -288,49 +288,48 @@ class BendScene(Scene):
         if self.kind not in BEND_CODES:
             raise InputError(f"kind must be one of {', '.join(BEND_CODES)}, got {self.kind!r}")
         o, p = self.ropes, self.pull
-        self.d = d = float(check_positive("rod_diameter", o.rod_diameter))
-        self.E = float(check_positive("youngs_modulus", o.youngs_modulus))
-        self.rho = float(check_positive("density", o.density))
-        self.mu = float(check_nonnegative("mu_rod_rod", o.mu_rod_rod))
-        self.v = float(check_positive("pull_speed", p.pull_speed))
+        self.d = d = float(check_positive("rod_diameter", o.rod_diameter, scalar=True))
+        self.E = float(check_positive("youngs_modulus", o.youngs_modulus, scalar=True))
+        self.rho = float(check_positive("density", o.density, scalar=True))
+        self.mu = float(check_nonnegative("mu_rod_rod", o.mu_rod_rod, scalar=True))
+        self.v = float(check_positive("pull_speed", p.pull_speed, scalar=True))
         self.dist = (
             12 * d
             if p.pull_distance is None
-            else float(check_positive("pull_distance", p.pull_distance))
+            else float(check_positive("pull_distance", p.pull_distance, scalar=True))
         )
         self.slip = (
             2 * d
             if p.slip_draw_in is None
-            else float(check_positive("slip_draw_in", p.slip_draw_in))
+            else float(check_positive("slip_draw_in", p.slip_draw_in, scalar=True))
         )
-        if int(self.control.n_frames) < 10:
-            raise InputError(f"n_frames must be >= 10, got {self.control.n_frames!r}")
+        check_count("n_frames", self.control.n_frames, 10)
+        check_positive("contact_width", o.contact_width, scalar=True)
         self.B = B = self.E * np.pi * d**4 / 64
         self.f_set = (
             0.1 * B / d**2
             if p.set_tension is None
-            else float(check_positive("set_tension", p.set_tension))
+            else float(check_positive("set_tension", p.set_tension, scalar=True))
         )
         self.set_travel = (
-            10 * d if p.set_travel is None else float(check_positive("set_travel", p.set_travel))
+            10 * d
+            if p.set_travel is None
+            else float(check_positive("set_travel", p.set_travel, scalar=True))
         )
         self.fs = (
             2 * B / d**2
             if o.force_scale is None
-            else float(check_positive("force_scale", o.force_scale))
+            else float(check_positive("force_scale", o.force_scale, scalar=True))
         )
-        self.settle_time = float(check_positive("settle_time", p.settle_time))
-        self.dt = float(check_positive("dt", self.control.dt))
+        self.settle_time = float(check_positive("settle_time", p.settle_time, scalar=True))
+        self.dt = float(check_positive("dt", self.control.dt, scalar=True))
         self._check_cost()
         self.curves = bend_curves(self.kind, rod_diameter=d, n_nodes=o.n_nodes)
 
     def _check_cost(self) -> None:
         """Steps x nodes of settle, set and pull, and the memory of the overlap watch."""
         n = self.ropes.n_nodes
-        try:
-            N = int(n)
-        except (TypeError, ValueError, OverflowError):
-            raise InputError(f"n_nodes must be an integer >= 40, got {n!r}") from None
+        N = check_count("n_nodes", n, 40)
         t_end = self.settle_time + (self.set_travel + self.dist) / self.v
         check_run_size(
             n_nodes=2 * N,

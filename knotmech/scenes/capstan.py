@@ -398,12 +398,12 @@ class CapstanScene(Scene):
 
     def _check_inputs(self) -> None:
         o, ld = self.opts, self.load
-        self.theta = float(check_positive("wrap_angle", o.wrap_angle))
-        self.mu = float(check_nonnegative("mu", o.mu))
-        self.d = float(check_positive("rod_diameter", o.rod_diameter))
-        self.D = float(check_positive("post_diameter", o.post_diameter))
-        self.E = float(check_positive("youngs_modulus", o.youngs_modulus))
-        self.t_low = float(check_positive("t_low", ld.t_low))
+        self.theta = float(check_positive("wrap_angle", o.wrap_angle, scalar=True))
+        self.mu = float(check_nonnegative("mu", o.mu, scalar=True))
+        self.d = float(check_positive("rod_diameter", o.rod_diameter, scalar=True))
+        self.D = float(check_positive("post_diameter", o.post_diameter, scalar=True))
+        self.E = float(check_positive("youngs_modulus", o.youngs_modulus, scalar=True))
+        self.t_low = float(check_positive("t_low", ld.t_low, scalar=True))
         if ld.mode not in ("pull", "hold"):
             raise InputError(f"mode must be 'pull' or 'hold', got {ld.mode!r}")
         self.hold = ld.mode == "hold"
@@ -411,14 +411,14 @@ class CapstanScene(Scene):
         if self.hold:
             if ld.t_high is None:
                 raise InputError("t_high is required in hold mode")
-            self.t_high = float(check_positive("t_high", ld.t_high))
+            self.t_high = float(check_positive("t_high", ld.t_high, scalar=True))
             if self.t_high < self.t_low:
                 raise InputError(
                     f"t_high ({self.t_high:g} N) must be >= t_low ({self.t_low:g} N) in hold "
                     "mode: the high end carries the larger load (swap them to load the other "
                     "end)"
                 )
-        self.plateau = float(check_positive("plateau", ld.plateau))
+        self.plateau = float(check_positive("plateau", ld.plateau, scalar=True))
 
     def _strain_warnings(self) -> list[str]:
         """Up-front strain check: the sliding tension (pull; a static peak above it is
@@ -443,17 +443,19 @@ class CapstanScene(Scene):
         self.lead = (
             2.0 * R
             if o.lead_length is None
-            else float(check_positive("lead_length", o.lead_length))
+            else float(check_positive("lead_length", o.lead_length, scalar=True))
         )
         self.arc = float(np.hypot(theta * R, self.rise))
         self.v = (
-            0.02 if ld.pull_speed is None else float(check_positive("pull_speed", ld.pull_speed))
+            0.02
+            if ld.pull_speed is None
+            else float(check_positive("pull_speed", ld.pull_speed, scalar=True))
         )
         dist = ld.pull_distance
         if dist is None:
             stretch = self.t_max * (self.arc + 2 * self.lead) / self.ea
             dist = 3.0 * stretch + 0.3 * R
-        self.pull_distance = float(check_positive("pull_distance", dist))
+        self.pull_distance = float(check_positive("pull_distance", dist, scalar=True))
         self.lead_low = self.lead + (self.pull_distance if not self.hold else 0.0)
         if o.n_elements is None:
             self.h = 1.0 / (24.0 / R)
@@ -468,9 +470,11 @@ class CapstanScene(Scene):
         otherwise asks for petabytes or days); a pull faster than the rod's axial wave is
         refused as such first."""
         ld, c = self.load, self.control
-        dt_est = None if c.dt is None else float(check_positive("dt", c.dt))
+        dt_est = None if c.dt is None else float(check_positive("dt", c.dt, scalar=True))
         ramp_est = (
-            0.1 if ld.ramp_time is None else float(check_nonnegative("ramp_time", ld.ramp_time))
+            0.1
+            if ld.ramp_time is None
+            else float(check_nonnegative("ramp_time", ld.ramp_time, scalar=True))
         )
         if not self.hold:
             t_est = ramp_est + 0.05 + self.pull_distance / self.v
@@ -525,7 +529,9 @@ class CapstanScene(Scene):
             surface_friction=o.surface_friction,
         )
         self.ramp = (
-            0.1 if ld.ramp_time is None else float(check_nonnegative("ramp_time", ld.ramp_time))
+            0.1
+            if ld.ramp_time is None
+            else float(check_nonnegative("ramp_time", ld.ramp_time, scalar=True))
         )
         low_load = NodeForce(nodes=-1, force=self.t_low * t_end_dir, ramp_time=self.ramp)
         self.x0 = pts[0].copy()
@@ -559,7 +565,9 @@ class CapstanScene(Scene):
         self.damping = 1e-3 * self.t_low / (self.total_len * v)
         h_mean = float(np.mean(self.system.rest_length))
         dt = self.control.dt
-        self.step = h_mean / (4.0 * v) if dt is None else float(check_positive("dt", dt))
+        self.step = (
+            h_mean / (4.0 * v) if dt is None else float(check_positive("dt", dt, scalar=True))
+        )
         check_pull_step(self.step, speed=v, edge_length=h_mean)
         return [low_load]
 
@@ -567,13 +575,17 @@ class CapstanScene(Scene):
         """End 0's edge clamped in direction, a dead load T_high on it; critical-ish
         damping of the slowest axial mode (time scale ~ the ramp)."""
         ld = self.load
-        hold = 2.0 if ld.hold_time is None else float(check_positive("hold_time", ld.hold_time))
+        hold = (
+            2.0
+            if ld.hold_time is None
+            else float(check_positive("hold_time", ld.hold_time, scalar=True))
+        )
         self.t_final = self.ramp + hold
         high_load = NodeForce(nodes=0, force=self.t_high * _PULL_DIR, ramp_time=self.ramp)
         self.constraints = (Clamp(edges=[0]),)
         self.damping = 2.0 * self.mass_per_length / max(self.ramp, 1e-3)
         dt = self.control.dt
-        self.step = 5e-3 if dt is None else float(check_positive("dt", dt))
+        self.step = 5e-3 if dt is None else float(check_positive("dt", dt, scalar=True))
         return [low_load, high_load]
 
     def _quasi_static(self) -> None:

@@ -428,23 +428,23 @@ class CentrelineScene(Scene):
 
     def _check_numbers(self) -> None:
         o, p = self.rod_opts, self.pull_opts
-        self.d = d = float(check_positive("rod_diameter", o.rod_diameter))
-        self.E = float(check_positive("youngs_modulus", o.youngs_modulus))
-        self.rho = float(check_positive("density", o.density))
-        self.mu = float(check_nonnegative("mu_rod_rod", o.mu_rod_rod))
-        self.v = float(check_positive("pull_speed", p.pull_speed))
+        self.d = d = float(check_positive("rod_diameter", o.rod_diameter, scalar=True))
+        self.E = float(check_positive("youngs_modulus", o.youngs_modulus, scalar=True))
+        self.rho = float(check_positive("density", o.density, scalar=True))
+        self.mu = float(check_nonnegative("mu_rod_rod", o.mu_rod_rod, scalar=True))
+        self.v = float(check_positive("pull_speed", p.pull_speed, scalar=True))
         self.dist = (
             12 * d
             if p.pull_distance is None
-            else float(check_positive("pull_distance", p.pull_distance))
+            else float(check_positive("pull_distance", p.pull_distance, scalar=True))
         )
         self.slip = (
             4 * d
             if p.slip_draw_in is None
-            else float(check_positive("slip_draw_in", p.slip_draw_in))
+            else float(check_positive("slip_draw_in", p.slip_draw_in, scalar=True))
         )
-        self.settle_time = float(check_positive("settle_time", p.settle_time))
-        self.dt = float(check_positive("dt", self.control.dt))
+        self.settle_time = float(check_positive("settle_time", p.settle_time, scalar=True))
+        self.dt = float(check_positive("dt", self.control.dt, scalar=True))
         n = o.n_nodes
         try:
             self.N = int(n)
@@ -497,7 +497,7 @@ class CentrelineScene(Scene):
         fs = (
             20 * self.B / d**2
             if o.force_scale is None
-            else float(check_positive("force_scale", o.force_scale))
+            else float(check_positive("force_scale", o.force_scale, scalar=True))
         )
         interactions = [rod_contact(rod_diameter=d, force_scale=fs, mu_static=self.mu)]
         if o.post_diameter is not None:
@@ -519,7 +519,7 @@ class CentrelineScene(Scene):
 
     def _post(self, fs):
         d, o = self.d, self.rod_opts
-        D = float(check_positive("post_diameter", o.post_diameter))
+        D = float(check_positive("post_diameter", o.post_diameter, scalar=True))
         for k, x in enumerate(self.rods_x):
             rmin = float(np.min(np.hypot(x[:, 0], x[:, 1])))
             if rmin < 0.5 * D + 0.25 * d:
@@ -530,7 +530,7 @@ class CentrelineScene(Scene):
         mrp = (
             self.mu
             if o.mu_rod_post is None
-            else float(check_nonnegative("mu_rod_post", o.mu_rod_post))
+            else float(check_nonnegative("mu_rod_post", o.mu_rod_post, scalar=True))
         )
         return post_contact(post_diameter=D, rod_diameter=d, force_scale=fs, mu_static=mrp)
 

@@ -34,7 +34,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from knotmech.errors import InputError, check_positive, check_range
+from knotmech.errors import InputError, check_count, check_positive, check_range
 
 __all__ = [
     "KnotCurve",
@@ -105,8 +105,7 @@ def resample_polyline(points, n_nodes: int) -> np.ndarray:
     (n_nodes, 3) array [m]
     """
     p = np.asarray(points, dtype=float)
-    if int(n_nodes) < 2:
-        raise InputError(f"n_nodes must be >= 2, got {n_nodes}")
+    n_nodes = check_count("n_nodes", n_nodes, 2)
     seg = np.linalg.norm(np.diff(p, axis=0), axis=1)
     s = np.concatenate([[0.0], np.cumsum(seg)])
     target = np.linspace(0.0, s[-1], int(n_nodes))
@@ -276,7 +275,7 @@ def loop_metrics(nodes, *, rod_radius: float, contact_factor: float = 1.3):
         is found.
     """
     x = np.asarray(nodes, dtype=float)
-    h = float(check_positive("rod_radius", rod_radius))
+    h = float(check_positive("rod_radius", rod_radius, scalar=True))
     edge = float(np.mean(np.linalg.norm(np.diff(x, axis=0), axis=1)))
     k = _exclusion(edge, h)
     close = _close_edges(x, k, contact_factor * 2.0 * h)
@@ -473,17 +472,13 @@ def overhand_knot(
     values (e.g. table 1 of the coated-rod paper) are met to within the helix's
     axial shortening.
     """
-    n = int(turns)
-    if n != turns or not 1 <= n <= 6:
-        raise InputError(f"turns must be an integer in [1, 6], got {turns!r}")
-    L = float(check_positive("rod_length", rod_length))
-    h = float(check_positive("rod_radius", rod_radius))
-    E = float(check_positive("end_to_end_length", end_to_end_length))
-    b = float(check_positive("braid_length", braid_length))
-    c = float(check_range("clearance", clearance, 0.0, 1.0))
-    N = int(n_nodes)
-    if N != n_nodes or N < 20:
-        raise InputError(f"n_nodes must be an integer >= 20, got {n_nodes!r}")
+    n = check_count("turns", turns, 1, 6)
+    L = float(check_positive("rod_length", rod_length, scalar=True))
+    h = float(check_positive("rod_radius", rod_radius, scalar=True))
+    E = float(check_positive("end_to_end_length", end_to_end_length, scalar=True))
+    b = float(check_positive("braid_length", braid_length, scalar=True))
+    c = float(check_range("clearance", clearance, 0.0, 1.0, scalar=True))
+    N = check_count("n_nodes", n_nodes, 20)
     a, loop_len, edge = _overhand_design(n, L, h, E, b, h * (1.0 + c), N)
     nodes, sj, geo, design, a = _overhand_clear(n, L, h, E, b, a, loop_len, edge, N)
     bx, t = geo["bx"], geo["tail"]
@@ -577,9 +572,7 @@ def overhand_coated(turns: int, *, n_nodes: int | None = None, clearance: float 
     0.600 m for n = 3, 4), braid b and end-to-end distance as tabulated. Default
     ``n_nodes`` gives an edge of about 1.5 mm (0.94 d).
     """
-    n = int(turns)
-    if n not in OVERHAND_COATED_TABLE1:
-        raise InputError(f"turns must be 1, 2, 3 or 4 for table 1, got {turns!r}")
+    n = check_count("turns", turns, 1, 4)  # table 1's rows
     t, b, lo, e2e = OVERHAND_COATED_TABLE1[n]
     L = 2 * t + 2 * b + lo
     if n_nodes is None:
@@ -603,9 +596,7 @@ def overhand_imc(turns: int, *, n_nodes: int = 301, clearance: float = 0.05):
     End-to-end 0.280 m (n = 1) and 0.330 m (n = 2-4), braid strands from
     :data:`OVERHAND_IMC`, 301 nodes by default (edge 3.33 mm).
     """
-    n = int(turns)
-    if n not in OVERHAND_IMC:
-        raise InputError(f"turns must be 1, 2, 3 or 4, got {turns!r}")
+    n = check_count("turns", turns, 1, 4)  # OVERHAND_IMC's rows
     e2e, b = OVERHAND_IMC[n]
     curve = overhand_knot(
         n,
@@ -682,14 +673,12 @@ def coil_curve(
     KnotCurve
         Parts ``tail1``, ``wrap``, ``tail2``; ``info["wrap_radius"]`` = R.
     """
-    D = float(check_positive("post_diameter", post_diameter))
-    d = float(check_positive("rod_diameter", rod_diameter))
-    th = float(check_positive("wrap_angle", wrap_angle))
-    tl = float(check_positive("tail_length", tail_length))
-    pf = float(check_range("pitch_factor", pitch_factor, 1.0, 100.0))
-    N = int(n_nodes)
-    if N < 20:
-        raise InputError(f"n_nodes must be >= 20, got {n_nodes!r}")
+    D = float(check_positive("post_diameter", post_diameter, scalar=True))
+    d = float(check_positive("rod_diameter", rod_diameter, scalar=True))
+    th = float(check_positive("wrap_angle", wrap_angle, scalar=True))
+    tl = float(check_positive("tail_length", tail_length, scalar=True))
+    pf = float(check_range("pitch_factor", pitch_factor, 1.0, 100.0, scalar=True))
+    N = check_count("n_nodes", n_nodes, 20)
     R = 0.5 * (D + d)
     frame = _post_frame(post_axis)
     m = max(64, int(np.ceil(th * R / (0.1 * d))))
@@ -798,14 +787,12 @@ def clove_hitch_curve(
     KnotCurve
         Parts ``tail1``, ``wrap1``, ``diagonal``, ``wrap2``, ``tail2``.
     """
-    D = float(check_positive("post_diameter", post_diameter))
-    d = float(check_positive("rod_diameter", rod_diameter))
-    tl = float(check_positive("tail_length", tail_length))
-    g = float(check_range("gap", gap, 1.0, 50.0))
-    lf = float(check_range("lift", lift, 1.0, 10.0))
-    N = int(n_nodes)
-    if N < 40:
-        raise InputError(f"n_nodes must be >= 40, got {n_nodes!r}")
+    D = float(check_positive("post_diameter", post_diameter, scalar=True))
+    d = float(check_positive("rod_diameter", rod_diameter, scalar=True))
+    tl = float(check_positive("tail_length", tail_length, scalar=True))
+    g = float(check_range("gap", gap, 1.0, 50.0, scalar=True))
+    lf = float(check_range("lift", lift, 1.0, 10.0, scalar=True))
+    N = check_count("n_nodes", n_nodes, 40)
     R = 0.5 * (D + d)
     frame = _post_frame(post_axis)
     m = max(400, int(np.ceil(4 * np.pi * R / (0.05 * d))))

@@ -31,7 +31,7 @@ from dataclasses import asdict, dataclass, field, replace
 import numpy as np
 
 from knotmech import rod
-from knotmech.errors import InputError, check_nonnegative, check_positive
+from knotmech.errors import InputError, check_count, check_nonnegative, check_positive
 from knotmech.materials import IMC_DENSITY
 from knotmech.rod.contact import RodContact
 from knotmech.rod.friction import AnchorFriction, SmoothFriction
@@ -125,9 +125,7 @@ class OverhandSetup:
 
 def imc_setup(turns: int = 1, **overrides) -> OverhandSetup:
     """Parameters of the implicit-contact-model paper's knot tying (see module docstring)."""
-    n = int(turns)
-    if n not in OVERHAND_IMC:
-        raise InputError(f"turns must be 1, 2, 3 or 4, got {turns!r}")
+    n = check_count("turns", turns, 1, 4)  # OVERHAND_IMC's rows
     e2e, b = OVERHAND_IMC[n]
     base = OverhandSetup(
         rod_length=1.0,
@@ -152,9 +150,7 @@ def imc_setup(turns: int = 1, **overrides) -> OverhandSetup:
 
 def coated_setup(turns: int = 1, **overrides) -> OverhandSetup:
     """Parameters of the coated-rod paper's knot pulls (table 1, natural rubber)."""
-    n = int(turns)
-    if n not in OVERHAND_COATED_TABLE1:
-        raise InputError(f"turns must be 1, 2, 3 or 4, got {turns!r}")
+    n = check_count("turns", turns, 1, 4)  # table 1's rows
     t, b, lo, e2e = OVERHAND_COATED_TABLE1[n]
     L = 2 * t + 2 * b + lo
     h = 0.5 * 1.59e-3
@@ -369,7 +365,7 @@ def _friction_law(friction: str, mu: float, setup: OverhandSetup):
         return AnchorFriction(mu_static=mu)
     if setup.slip_speed is None:
         return SmoothFriction(mu)
-    nu = float(check_positive("slip_speed", setup.slip_speed))
+    nu = float(check_positive("slip_speed", setup.slip_speed, scalar=True))
     return SmoothFriction(mu, sharpness=10.0 / nu, threshold=0.5 * nu)
 
 
@@ -383,15 +379,12 @@ class OverhandScene(Scene):
 
     def setup(self) -> None:
         """Turns, mu, the parameter set, frames and the cost checked."""
-        n = int(self.turns)
-        if n != self.turns or not 1 <= n <= 4:
-            raise InputError(f"turns must be an integer in [1, 4], got {self.turns!r}")
-        self.n = n
-        self.mu = float(check_nonnegative("mu", self.mu_arg))
+        self.n = n = check_count("turns", self.turns, 1, 4)
+        self.mu = float(check_nonnegative("mu", self.mu_arg, scalar=True))
         self.s = s = _overhand_setup(n, self.params, self.overrides)
         c = self.control
-        if int(c.n_frames) < 2 or int(self.n_snapshots) < 1:
-            raise InputError("n_frames must be >= 2 and n_snapshots >= 1")
+        check_count("n_frames", c.n_frames, 2)
+        check_count("n_snapshots", self.n_snapshots, 1)
         check_run_size(
             n_nodes=s.n_nodes,
             t_end=s.wait_time + s.pull_time,

@@ -21,7 +21,7 @@ from dataclasses import dataclass, field
 
 import numpy as np
 
-from knotmech.errors import InputError, check_nonnegative, check_positive
+from knotmech.errors import InputError, check_count, check_nonnegative, check_positive, check_range
 from knotmech.materials import VPS32_DENSITY, VPS32_YOUNGS_MODULUS
 from knotmech.rod.constraints import Clamp, MovingNodes
 from knotmech.rod.contact import Cylinder, CylinderContact
@@ -87,10 +87,10 @@ class LoadedCylinderContact(CylinderContact):
     def __init__(self, cylinders, *, loaded, load, load_direction, ramp_time=0.0, **kw):
         super().__init__(cylinders, **kw)
         self.loaded = int(loaded)
-        self.load = float(check_nonnegative("load", load))
+        self.load = float(check_nonnegative("load", load, scalar=True))
         u = np.asarray(load_direction, dtype=float)
         self.load_direction = u / np.linalg.norm(u)
-        self.ramp_time = float(check_nonnegative("ramp_time", ramp_time))
+        self.ramp_time = float(check_nonnegative("ramp_time", ramp_time, scalar=True))
         self._origin = self._cp[self.loaded].copy()
         self.offset = 0.0
         self.t = 0.0
@@ -291,24 +291,30 @@ class PinchScene(Scene):
     def setup(self) -> None:
         """Inputs, pull distance, mesh and the cost, before anything is allocated."""
         o, ld = self.opts, self.load
-        self.fn = fn = float(check_positive("normal_load", ld.normal_load))
-        self.mu = mu = float(check_nonnegative("mu", ld.mu))
-        self.d = d = float(check_positive("rod_diameter", o.rod_diameter))
-        self.D = float(check_positive("cylinder_diameter", o.cylinder_diameter))
-        self.E = float(check_positive("youngs_modulus", o.youngs_modulus))
-        self.L = L = float(check_positive("rod_length", o.rod_length))
-        self.v = float(check_positive("pull_speed", ld.pull_speed))
+        self.fn = fn = float(check_positive("normal_load", ld.normal_load, scalar=True))
+        self.mu = mu = float(check_nonnegative("mu", ld.mu, scalar=True))
+        self.d = d = float(check_positive("rod_diameter", o.rod_diameter, scalar=True))
+        self.D = float(check_positive("cylinder_diameter", o.cylinder_diameter, scalar=True))
+        self.E = float(check_positive("youngs_modulus", o.youngs_modulus, scalar=True))
+        self.L = L = float(check_positive("rod_length", o.rod_length, scalar=True))
+        self.v = float(check_positive("pull_speed", ld.pull_speed, scalar=True))
         self.ea = self.E * np.pi * d**2 / 4
         # free length between the pulled end and the pinch
         self.stretch = 2 * mu * fn * 0.3 * L / self.ea
         self.dist = self._pull_distance()
-        self.n_el = int(round(L / (d / 8))) if o.n_elements is None else int(o.n_elements)
+        n_el = o.n_elements
+        self.n_el = int(round(L / (d / 8))) if n_el is None else check_count("n_elements", n_el)
         if self.n_el < 8:
             raise InputError(f"n_elements must be >= 8, got {o.n_elements}")
-        self.t_start = ld.ramp_time + 0.05
+        check_range("plateau", ld.plateau, 0.0, 1.0, low_open=True, scalar=True)
+        self.t_start = float(check_nonnegative("ramp_time", ld.ramp_time, scalar=True)) + 0.05
         self.t_final = self.t_start + self.dist / self.v
         dt = self.control.dt
-        step = (L / self.n_el) / (4.0 * self.v) if dt is None else float(check_positive("dt", dt))
+        step = (
+            (L / self.n_el) / (4.0 * self.v)
+            if dt is None
+            else float(check_positive("dt", dt, scalar=True))
+        )
         check_run_size(
             n_nodes=self.n_el + 1,
             t_end=self.t_final,
@@ -322,7 +328,7 @@ class PinchScene(Scene):
         """The pull's travel [m]; at most 0.4 L (the rod must stay in the pinch)."""
         ld, L = self.load, self.L
         if ld.pull_distance is not None:
-            dist = float(check_positive("pull_distance", ld.pull_distance))
+            dist = float(check_positive("pull_distance", ld.pull_distance, scalar=True))
             if dist > 0.4 * L:
                 raise InputError(
                     f"pull_distance must be <= 0.4 rod_length ({0.4 * L:g} m), got {dist}"

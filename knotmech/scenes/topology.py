@@ -91,7 +91,7 @@ def close_curve(points, *, extension: float = 3.0) -> np.ndarray:
     knot under tension), which is the case for every curve this package builds.
     """
     x = _as_nodes("points", points)
-    ext = float(check_positive("extension", extension))
+    ext = float(check_positive("extension", extension, scalar=True))
     if ext <= 1.5:
         raise InputError(f"extension must be > 1.5, got {ext:g}")
     c = x.mean(axis=0)

@@ -69,9 +69,9 @@ def hitch_rod_length(knot: str, *, post_diameter: float, rod_diameter: float,
                      tail: float = TAIL) -> float:  # fmt: skip
     """Default rod length [m] of a hitch: its knotted part (the standing part's run past the
     half hitches included), 4 d at each end and ``tail`` [m] more at each end."""
-    D = float(check_positive("post_diameter", post_diameter))
-    d = float(check_positive("rod_diameter", rod_diameter))
-    t = float(check_positive("tail", tail))
+    D = float(check_positive("post_diameter", post_diameter, scalar=True))
+    d = float(check_positive("rod_diameter", rod_diameter, scalar=True))
+    t = float(check_positive("tail", tail, scalar=True))
     k = _record(knot)
     module = importlib.import_module(k.curve.partition(":")[0])
     core = module.knotted_length(D, d, **k.curve_params)

@@ -54,12 +54,12 @@ def cow_hitch_curve(
         Parts ``leg0``, ``wrap1``, ``bight``, ``wrap2``, ``leg1``; both legs leave along
         +x at heights -/+ gap d/2.
     """
-    D = float(check_positive("post_diameter", post_diameter))
-    d = float(check_positive("rod_diameter", rod_diameter))
-    L = float(check_positive("rod_length", rod_length))
-    g = float(check_range("gap", gap, 1.0, 50.0))
-    lf = float(check_range("lift", lift, 1.0, 10.0))
-    b = float(check_range("beta", beta, 0.5, 3.0))
+    D = float(check_positive("post_diameter", post_diameter, scalar=True))
+    d = float(check_positive("rod_diameter", rod_diameter, scalar=True))
+    L = float(check_positive("rod_length", rod_length, scalar=True))
+    g = float(check_range("gap", gap, 1.0, 50.0, scalar=True))
+    lf = float(check_range("lift", lift, 1.0, 10.0, scalar=True))
+    b = float(check_range("beta", beta, 0.5, 3.0, scalar=True))
     N = int(n_nodes)
     if N < 40:
         raise InputError(f"n_nodes must be >= 40, got {n_nodes!r}")

@@ -58,12 +58,12 @@ def two_half_hitches_curve(
         Parts ``standing``, ``wrap``, ``connector``, ``hitches``, ``tail`` (the working
         end); ``info``: ``wrap_radius`` R, ``wrap_angle``, ``hitch_center`` [m].
     """
-    D = float(check_positive("post_diameter", post_diameter))
-    d = float(check_positive("rod_diameter", rod_diameter))
-    L = float(check_positive("rod_length", rod_length))
-    th = float(check_positive("wrap_angle", wrap_angle))
-    g = float(check_range("gap", gap, 1.0, 50.0))
-    lf = float(check_range("lift", lift, 1.0, 10.0))
+    D = float(check_positive("post_diameter", post_diameter, scalar=True))
+    d = float(check_positive("rod_diameter", rod_diameter, scalar=True))
+    L = float(check_positive("rod_length", rod_length, scalar=True))
+    th = float(check_positive("wrap_angle", wrap_angle, scalar=True))
+    g = float(check_range("gap", gap, 1.0, 50.0, scalar=True))
+    lf = float(check_range("lift", lift, 1.0, 10.0, scalar=True))
     N = int(n_nodes)
     if N < 40:
         raise InputError(f"n_nodes must be >= 40, got {n_nodes!r}")

@@ -88,7 +88,7 @@ class TiedKnot:
 
 def check_sizes(rod_diameter, n_nodes, min_nodes: int = 60) -> tuple[float, int]:
     """(d [m], n_nodes) checked: d > 0, n_nodes an integer >= ``min_nodes``."""
-    d = float(check_positive("rod_diameter", rod_diameter))
+    d = float(check_positive("rod_diameter", rod_diameter, scalar=True))
     if isinstance(n_nodes, bool) or not float(n_nodes).is_integer() or int(n_nodes) < min_nodes:
         raise InputError(f"n_nodes must be an integer >= {min_nodes}, got {n_nodes!r}")
     return d, int(n_nodes)
@@ -97,7 +97,7 @@ def check_sizes(rod_diameter, n_nodes, min_nodes: int = 60) -> tuple[float, int]
 def check_pin(pin_diameter, d: float, low: float, high: float) -> float:
     """D [m] of the pin or pole, checked to lie in [low d, high d] (the range the knot's
     start shape is built for)."""
-    D = float(check_positive("pin_diameter", pin_diameter))
+    D = float(check_positive("pin_diameter", pin_diameter, scalar=True))
     if not low * d <= D <= high * d:
         lo, hi = (("d" if k == 1 else f"{k:g} d") for k in (low, high))
         raise InputError(

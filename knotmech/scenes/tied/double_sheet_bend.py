@@ -70,7 +70,7 @@ def double_sheet_bend(*, rod_diameter: float, n_nodes: int = 250, spread: float 
         node 0 of each; ``expected`` (module docstring).
     """
     d, n = check_sizes(rod_diameter, n_nodes, 120)
-    s = float(check_range("spread", spread, 1.0, 2.0))
+    s = float(check_range("spread", spread, 1.0, 2.0, scalar=True))
     a_ctrl, b_ctrl = double_sheet_controls(spread=s)
     (a, b), _ = build_ropes([a_ctrl, b_ctrl])
     a, b = finish([a, b], d, n)
