@@ -266,24 +266,99 @@ def _verdict(c: _Case, wrap_angle) -> Verdict:
     i = decide(answers)
     if i is not None:
         answers[i] = replace(answers[i], decides=True)
+    cap = _capacity(c, answers, der)
+    holds, fails_by = _settle(c, answers, i, cap)
+    if i is not None and holds is None:  # a self-locking closed form that nothing bounds
+        answers[i] = replace(answers[i], decides=False)
+        i = None
     dec = None if i is None else answers[i]
     return Verdict(
         knot=c.key,
-        holds=None if dec is None else bool(dec.holds),
-        margin=math.nan if dec is None else float(dec.margin),
+        holds=holds,
+        margin=_margin(dec, cap, c.load),
         decided_by=None if dec is None else dec.model,
         inside_validity=dec is not None,
         answers=tuple(answers),
         validity=() if dec is None else tuple(dec.validity),
         assumptions=tuple(assumptions),
         warnings=_warnings(c.mu, c.mu_rr, c.d, c.D, c.load, c.E, inputs.get("wrap_angle")),
-        next_step=_next_step(c, dec, der, cmd),
+        next_step=_next_step(c, dec, der, cmd, cap),
         creep=creep,
         inputs=inputs,
         der=der,
         notes=tuple(base.notes),
         shape=shape,
+        capacity=cap,
+        fails_by=fails_by,
     )
+
+
+def _slip_table(c: _Case, der):
+    """The 3-axis DER hold table that gives this case's slip load, None where none applies
+    (no DER answer, a loaded free end, no E, a table refused for its kappa or its rod)."""
+    from knotmech.verdict.der import BENDING_SCALE_FACTOR, load_user_table, shipped_hold_table
+    from knotmech.verdict.tables import HoldTable
+
+    if not has_der_answer(c.key) or c.free > 0 or c.E is None or (der or {}).get("refused"):
+        return None
+    if c.phase_table is not None:
+        t = load_user_table(c.phase_table)
+        return t if isinstance(t, HoldTable) else None
+    t = shipped_hold_table(c.key, c.kappa)
+    if t is None or max(t.bending_scale / c.kappa, c.kappa / t.bending_scale) > BENDING_SCALE_FACTOR:
+        return None
+    return t
+
+
+def _capacity(c: _Case, answers: list, der):
+    """The load the knot takes (:func:`knotmech.verdict.capacity.capacity_of`): the slip load
+    from the DER hold table at the user's d/2R and friction, else from the deciding closed
+    form, and the knot's breaking load."""
+    from knotmech.verdict import capacity as _cap
+    from knotmech.verdict.criterion import CREEP_LIMIT
+
+    EA = math.nan if c.E is None else c.E * math.pi * c.d * c.d / 4
+    slip = None
+    table = _slip_table(c, der)
+    if table is not None:
+        lim = CREEP_LIMIT if c.creep_limit is None else c.creep_limit
+        row = _cap.slip_from_table(table, x=c.d / (c.D + c.d), mu=c.mu,
+                                   mu_rr=None if c.mu_rr is None else float(c.mu_rr),
+                                   creep_limit=lim)  # fmt: skip
+        slip = _cap.band_newtons(row, EA)
+    closed = _cap.slip_from_answers(answers, strain_limit_load=STRAIN_LIMIT * EA)
+    if slip is None or (not slip.bounded and closed is not None and closed.low > slip.low):
+        slip = closed
+    dec = next((a for a in answers if a.decides), None)
+    slip = _cap.agree_with_verdict(slip, None if dec is None else dec.holds, c.load)
+    return _cap.capacity_of(knot=c.key, slip=slip, material=c.mat, d=c.d, D=c.D, load=c.load)
+
+
+def _settle(c: _Case, answers: list, i, cap) -> tuple:
+    """(holds, fails_by) from the deciding answer and the capacity: a self-locking closed
+    form holds only up to the capacity's lower bound (undecided when nothing bounds it,
+    or between the bound and the break); at or above the breaking load the knot breaks."""
+    if i is None:
+        return None, None
+    dec = answers[i]
+    holds = bool(dec.holds)
+    brk = cap.breaking
+    if math.isinf(dec.margin) and dec.margin > 0:
+        if not cap.decided or c.load > cap.low:
+            holds = None
+    if brk is not None and c.load >= brk.value and holds is not False:
+        return False, "break"
+    return holds, (None if holds is not False else "slip")
+
+
+def _margin(dec, cap, load: float) -> float:
+    """The deciding model's margin ``capacity/load - 1``; where it is self-locking (inf), the
+    capacity's (:attr:`Verdict.capacity`, the breaking load) instead; NaN when undecided."""
+    if dec is None:
+        return math.nan
+    if math.isinf(dec.margin) and cap is not None and cap.decided:
+        return cap.value / load - 1
+    return float(dec.margin) if math.isfinite(dec.margin) else math.nan
 
 
 def _inputs(c: _Case, base) -> dict:
@@ -354,10 +429,12 @@ def _der_part(c: _Case, answers: list, assumptions: list, cmd: str):
     return der, creep, shape
 
 
-def _next_step(c: _Case, dec, der, cmd: str) -> str:
+def _next_step(c: _Case, dec, der, cmd: str, cap=None) -> str:
     """What to do next: the command that decides an undecided case, the input that lets the
     DER answer, or the run that checks a case the DER did not decide."""
     if dec is None:
+        if cap is not None and not cap.decided and not c.simulable:
+            return f"next: {cap.message}; test the knot (no model bounds its slip load)"
         if c.simulable:
             return (
                 f"next: {cmd} (one DER run of this geometry, {SIMULATE_COST}) decides it"
@@ -369,6 +446,11 @@ def _next_step(c: _Case, dec, der, cmd: str) -> str:
         return (
             "next: give --material or --youngs-modulus (material=, youngs_modulus=) to "
             "check against the DER phase table"
+        )
+    if cap is not None and not cap.decided and c.simulable and not c.simulate:
+        return (
+            f"next: the slip load is not bounded ({cap.message}); {cmd} with heavier "
+            "--load values finds where it slips"
         )
     der_silent = der is not None and der.get("holds") is None and c.free == 0
     if c.simulable and der_silent and not c.simulate and dec.model != "DER-table":
