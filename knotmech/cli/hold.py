@@ -264,7 +264,9 @@ def _force(value: float) -> str:
 
     if math.isnan(value):
         return "not computed"
-    return "unbounded" if math.isinf(value) else format_quantity(value, "force")
+    if math.isinf(value):
+        return "no limit from friction alone (self-locking)"
+    return format_quantity(value, "force")
 
 
 def _mu(value: float) -> str:
@@ -340,13 +342,17 @@ def _others_line(verdict) -> list:
 def _inputs_line(verdict) -> str:
     """The inputs in one line (``--verbose``)."""
     i = verdict.inputs
+    post = i.get("post_diameter")
     head = (
         f"{verdict.knot}: rope d = {format_quantity(i['rod_diameter'], 'length')}, "
-        f"post D = {format_quantity(i['post_diameter'], 'length')}, mu = {i['mu']:g}"
+        + ("" if post is None else f"post D = {format_quantity(post, 'length')}, ")
+        + f"mu = {i['mu']:g}"
     )
     if "mu_rr" in i:
         head += f", mu_rr = {i['mu_rr']:g}"
-    head += f", load = {_force(i['load'])}, free end = {_force(i['free_end_load'])}"
+    head += f", load = {_force(i['load'])}"
+    if "free_end_load" in i:
+        head += f", free end = {_force(i['free_end_load'])}"
     if "wrap_angle" in i:
         head += f", wrap = {_wrap(i['wrap_angle'])}"
     if "material" in i:

@@ -135,7 +135,8 @@ class Verdict:
                 "notes": list(self.notes),
                 "fails_by": self.fails_by,
                 "capacity": (
-                    None if self.capacity is None
+                    None
+                    if self.capacity is None
                     else self.capacity.to_dict(float(self.inputs.get("load", math.nan)))
                 ),
             }
@@ -208,11 +209,12 @@ def capacity_words(cap, load) -> str:
 
 
 def format_margin(margin: float) -> str:
-    """``+12.3 %``, ``unbounded (self-locking)`` or ``not computed``."""
+    """``+12.3 %``, ``self-locking (friction alone cannot unlock it)`` or ``not computed``
+    (issue 23: never "unbounded": the load a self-locking knot takes is its capacity)."""
     if math.isnan(margin):
         return "not computed"
     if math.isinf(margin):
-        return "unbounded (self-locking)" if margin > 0 else "-inf"
+        return "self-locking (friction alone cannot unlock it)" if margin > 0 else "-inf"
     pct = margin * 100
     return f"{pct:+.1f} %" if abs(pct) < 1e5 else f"{pct:+.3g} %"
 

@@ -236,8 +236,8 @@ def slip_from_answers(answers, *, strain_limit_load: float) -> LoadBand | None:
     cap = float(dec.capacity)
     if math.isinf(cap):
         low = strain_limit_load if math.isfinite(strain_limit_load) else 0.0
-        return LoadBand(math.inf, low, math.inf,
-                        f"{dec.model} model: self-locking, friction alone cannot unlock it")  # fmt: skip
+        why = f"{dec.model} model: self-locking, friction alone cannot unlock it"
+        return LoadBand(math.inf, low, math.inf, why)
     if not math.isfinite(cap):
         return None
     return LoadBand(cap, cap, cap, f"{dec.model} model (a point value, no band)")

@@ -123,12 +123,13 @@ def hold(
     if key in BENDS:
         from knotmech.verdict.bend import hold_bend
 
-        return hold_bend(
+        v = hold_bend(
             key, rod_diameter=rod_diameter, post_diameter=post_diameter, mu=mu, load=load,
             free_end_load=free_end_load, mu_rr=mu_rr, wrap_angle=wrap_angle, material=material,
             youngs_modulus=youngs_modulus, simulate=simulate, phase_table=phase_table,
             progress=progress, bending_scale=bending_scale,
         )  # fmt: skip
+        return _bend_capacity(v, material)
     c = _case(
         key, rod_diameter=rod_diameter, post_diameter=post_diameter, mu=mu, load=load,
         free_end_load=free_end_load, mu_rr=mu_rr, material=material,
@@ -293,6 +294,24 @@ def _verdict(c: _Case, wrap_angle) -> Verdict:
     )
 
 
+def _bend_capacity(v: Verdict, material) -> Verdict:
+    """A bend's verdict with its capacity: the slip load of its DER pull (a point value) when
+    one ran, and the bend's breaking load; at or above the breaking load it breaks."""
+    from knotmech.verdict import capacity as _cap
+
+    dec = v.deciding
+    slip = None
+    if dec is not None and math.isfinite(dec.capacity):
+        slip = _cap.LoadBand(dec.capacity, dec.capacity, dec.capacity, "DER pull of the bend")
+    load = v.inputs["load"]
+    cap = _cap.capacity_of(knot=v.knot, slip=slip, material=v.inputs.get("material", material),
+                           d=v.inputs["rod_diameter"], D=None, load=load)  # fmt: skip
+    brk = cap.breaking
+    if v.holds is not None and brk is not None and load >= brk.value:
+        return replace(v, capacity=cap, holds=False, fails_by="break")
+    return replace(v, capacity=cap, fails_by="slip" if v.holds is False else None)
+
+
 def _slip_table(c: _Case, der):
     """The 3-axis DER hold table that gives this case's slip load, None where none applies
     (no DER answer, a loaded free end, no E, a table refused for its kappa or its rod)."""
@@ -305,7 +324,10 @@ def _slip_table(c: _Case, der):
         t = load_user_table(c.phase_table)
         return t if isinstance(t, HoldTable) else None
     t = shipped_hold_table(c.key, c.kappa)
-    if t is None or max(t.bending_scale / c.kappa, c.kappa / t.bending_scale) > BENDING_SCALE_FACTOR:
+    if (
+        t is None
+        or max(t.bending_scale / c.kappa, c.kappa / t.bending_scale) > BENDING_SCALE_FACTOR
+    ):
         return None
     return t
 
@@ -431,17 +453,10 @@ def _der_part(c: _Case, answers: list, assumptions: list, cmd: str):
 
 def _next_step(c: _Case, dec, der, cmd: str, cap=None) -> str:
     """What to do next: the command that decides an undecided case, the input that lets the
-    DER answer, or the run that checks a case the DER did not decide."""
+    DER answer, the runs that find an unbounded slip load, or the run that checks a case the
+    DER did not decide."""
     if dec is None:
-        if cap is not None and not cap.decided and not c.simulable:
-            return f"next: {cap.message}; test the knot (no model bounds its slip load)"
-        if c.simulable:
-            return (
-                f"next: {cmd} (one DER run of this geometry, {SIMULATE_COST}) decides it"
-                + ("" if c.E is not None else "; MATERIAL: one of the presets, or give "
-                   "--youngs-modulus")
-            )  # fmt: skip
-        return "next: no model here applies inside its validity; test the knot"
+        return _undecided_step(c, cmd, cap)
     if has_der_answer(c.key) and c.free == 0 and c.E is None:
         return (
             "next: give --material or --youngs-modulus (material=, youngs_modulus=) to "
@@ -456,6 +471,19 @@ def _next_step(c: _Case, dec, der, cmd: str, cap=None) -> str:
     if c.simulable and der_silent and not c.simulate and dec.model != "DER-table":
         return f"next: {cmd} checks it with one DER run of this geometry"
     return ""
+
+
+def _undecided_step(c: _Case, cmd: str, cap) -> str:
+    """The next step of an undecided case: the DER run that decides it, or a test."""
+    if c.simulable:
+        return (
+            f"next: {cmd} (one DER run of this geometry, {SIMULATE_COST}) decides it"
+            + ("" if c.E is not None else "; MATERIAL: one of the presets, or give "
+               "--youngs-modulus")
+        )  # fmt: skip
+    if cap is not None and not cap.decided and cap.slip is not None:
+        return f"next: {cap.message}; test the knot (no model bounds its slip load)"
+    return "next: no model here applies inside its validity; test the knot"
 
 
 def hold_verdict(

@@ -215,7 +215,8 @@ def test_other_knots(knot, capsys):
     cap = data["capacity"]
     if knot == "round-turn":  # no knot efficiency is published for it
         assert cap["breaking"] is None and cap["breaking_note"] == (
-            "breaking load: no published knot efficiency for round-turn; source needed")
+            "breaking load: no published knot efficiency for round-turn; source needed"
+        )
     else:  # polyester 6 mm MBS (Robline) x the knot's efficiency, a few kN
         assert data["holds"] is True and 1e3 < cap["breaking"]["value_N"] < 1e4
 

@@ -1,0 +1,189 @@
+"""The load a knot takes (issue 23): slip load from the DER hold tables, breaking load from
+:mod:`knotmech.strength`, never "unbounded"."""
+
+from __future__ import annotations
+
+import itertools
+import math
+
+import numpy as np
+import pytest
+
+import knotmech
+from knotmech.cli.hold import format_verdict
+from knotmech.verdict import capacity as cap
+from knotmech.verdict.tables import HoldPoint, HoldTable
+
+# --------------------------------------------------------------------------- the bracket
+
+
+@pytest.mark.parametrize(
+    ("votes", "expected"),
+    [
+        ("HHsHs", (1e-3, 1e-2)),  # the first hold-to-slip step above the first hold
+        ("sHHHs", (0.1, 0.3)),  # a light-load slip below (the rod does not seat) is skipped
+        ("ssHHH", (0.3, math.inf)),  # nothing slipped above the holds
+        ("sssss", (0.0, 1e-4)),  # slipped at the lightest load
+        ("HH?HH", (1e-3, 1e-2)),  # a failed run counts as a slip
+    ],
+)
+def test_column_bracket(votes, expected):
+    loads = [1e-4, 1e-3, 1e-2, 0.1, 0.3]
+    v = [{"H": True, "s": False, "?": None}[c] for c in votes]
+    assert cap.column_bracket(loads, v) == expected
+
+
+def _table(pattern: dict) -> HoldTable:
+    """A hold table on d/2R (0.1, 0.2) x T/EA (1e-3, 1e-2, 0.1) x mu (0.2, 0.4) from a
+    {(x, mu): "HHs"} pattern (held: creep 0; slipped: ran off)."""
+    pts = []
+    for (x, m), col in pattern.items():
+        for y, c in zip((1e-3, 1e-2, 0.1), col, strict=True):
+            pts.append(HoldPoint(x, y, m, 0.0 if c == "H" else math.nan, c == "H", True))
+    return HoldTable("clove-hitch", pts)
+
+
+def test_slip_from_table_interpolates_in_logs_and_keeps_the_widest_band():
+    t = _table({(0.1, 0.2): "Hss", (0.1, 0.4): "HHs", (0.2, 0.2): "HHs", (0.2, 0.4): "HHs"})
+    # on a column: the geometric mid-point of (1e-3, 1e-2)
+    v, lo, hi, _ = cap.slip_from_table(t, x=0.1, mu=0.2)
+    assert (v, lo, hi) == (pytest.approx(math.sqrt(1e-5), rel=1e-12), 1e-3, 1e-2)
+    # half way in d/2R and in mu: exp of the mean of the logs of the four mid-points
+    v, lo, hi, _ = cap.slip_from_table(t, x=0.15, mu=0.3)
+    mids = [math.sqrt(1e-5)] + [math.sqrt(1e-3)] * 3
+    assert v == pytest.approx(math.exp(np.mean(np.log(mids))), rel=1e-12)
+    assert (lo, hi) == (1e-3, 0.1)
+    # below the table's friction: less friction slips earlier, the band opens to 0
+    assert cap.slip_from_table(t, x=0.1, mu=0.1)[1] == 0.0
+    # above it: more friction slips later, the band opens above
+    assert math.isinf(cap.slip_from_table(t, x=0.1, mu=0.6)[2])
+    # outside the d/2R range: nothing
+    assert cap.slip_from_table(t, x=0.3, mu=0.3) is None
+
+
+def test_capacity_is_the_lower_of_slip_and_break():
+    slip = cap.LoadBand(1400.0, 1100.0, 1900.0, "table")
+    c = cap.capacity_of(knot="clove-hitch", slip=slip, material="nylon", d=0.0102, D=0.04,
+                        load=200.0)  # fmt: skip
+    # nylon 10.2 mm: 3-strand table, interpolated in d^2, x clove hitch 0.75
+    assert c.limited_by == "slip" and c.value == 1400.0 and c.fraction(200.0) == 200 / 1400
+    assert c.breaking.value == pytest.approx(0.75 * 16.4e3, rel=0.01)
+    assert c.efficiency[0] == pytest.approx(0.75)
+    strong = cap.LoadBand(50e3, 40e3, 60e3, "table")
+    c = cap.capacity_of(knot="clove-hitch", slip=strong, material="nylon", d=0.0102, D=0.04,
+                        load=200.0)  # fmt: skip
+    assert c.limited_by == "break" and c.value == c.breaking.value
+    # open above and no breaking load (HMPE has no table): undecided
+    open_ = cap.LoadBand(math.inf, 500.0, math.inf, "table")
+    c = cap.capacity_of(knot="clove-hitch", slip=open_, material="hmpe", d=0.006, D=0.04,
+                        load=200.0)  # fmt: skip
+    assert not c.decided and math.isnan(c.fraction(200.0))
+    assert (
+        c.breaking_note == "breaking load: no published data for clove-hitch in hmpe; source needed"
+    )
+
+
+# --------------------------------------------------------------------------- real numbers
+
+
+def test_issue_example_gives_the_load_it_takes():
+    """The issue's command: 6 mm nylon (E 0.25 GPa, EA 7.07 kN) on a 40 mm post, mu 0.4,
+    200 N. The kappa-0.01 clove-hitch table held up to its heaviest load (0.01 EA = 70.7 N)
+    at every neighbour; the thick nip is self-locking up to its validity's 0.1 EA = 707 N;
+    the rope breaks near 5.95 kN x 0.75 = 4.46 kN (nylon 3-strand table x Plymouth/Avery)."""
+    v = knotmech.hold("clove-hitch", rod_diameter=6e-3, post_diameter=40e-3, mu=0.4, load=200,
+                      material="nylon")  # fmt: skip
+    c = v.capacity
+    assert v.holds is True and c.limited_by == "break"
+    assert c.slip.low == pytest.approx(0.1 * 0.25e9 * math.pi * 0.006**2 / 4, rel=1e-12)
+    assert c.value == pytest.approx(4462.17, rel=1e-5)
+    assert v.summary() == (
+        "verdict: HOLDS: friction alone cannot unlock it up to 707 N, breaks near 4.5 kN (knot "
+        "efficiency 75 %); 200 N is 4.5 % of the breaking load; decided by the thick-nip model "
+        "(inputs inside its validity)"
+    )
+
+
+def test_solid_rod_table_gives_a_bracketed_slip_load():
+    """The solid-rod clove-hitch table at d/2R = 0.2308 (4 mm on 13.3 mm), mu 0.3: the column
+    reads slip, hold, hold, hold, slip over 1e-4 ... 0.3 EA, so the slip load lies between
+    0.1 and 0.3 EA (geometric mid-point sqrt(0.03) EA); VPS32 E = 1.26 MPa, EA = 15.8 N."""
+    EA = 1.26e6 * math.pi * 0.004**2 / 4
+    v = knotmech.hold("clove-hitch", rod_diameter=4e-3, post_diameter=4e-3 / 0.2308 - 4e-3,
+                      mu=0.3, load=1.0, material="vps32")  # fmt: skip
+    s = v.capacity.slip
+    assert (s.low, s.high) == (pytest.approx(0.1 * EA, rel=1e-3), pytest.approx(0.3 * EA, rel=1e-3))
+    assert s.value == pytest.approx(math.sqrt(0.03) * EA, rel=2e-3)
+    assert v.capacity.limited_by == "slip" and v.holds is True
+    assert "slips near 2.74 N (1.58-4.75 N)" in v.summary()
+
+
+# --------------------------------------------------------------------------- the grids
+KNOTS = ("clove-hitch", "two-half-hitches", "round-turn-two-half-hitches")
+SIZES = ((4, 30), (6, 40), (8, 60), (10, 80), (12, 100))
+MUS = (0.1, 0.2, 0.3, 0.5)
+LOADS = (50.0, 200.0, 1000.0, 5000.0)
+MATERIALS = ("nylon", "polyester", "hmpe")
+ISSUE_GRID = list(itertools.product(KNOTS, SIZES, MUS, LOADS, MATERIALS))
+
+
+def _check(v) -> None:
+    """Never unbounded; a finite capacity with its band, or undecided with a command."""
+    text = format_verdict(v, verbose=True)
+    assert "unbounded" not in text and not math.isinf(v.margin)
+    d = v.to_dict()
+    assert d["margin_unbounded"] is False
+    c = v.capacity
+    if c.decided:
+        assert math.isfinite(c.value) and c.low <= c.value <= c.high < math.inf
+        assert d["capacity"]["value_N"] == c.value
+    else:
+        assert d["capacity"]["value_N"] is None
+        assert "next:" in v.next_step and ("--simulate" in v.next_step or "test the knot" in
+                                           v.next_step)  # fmt: skip
+    if v.holds is None:
+        assert v.next_step
+    if c.slip is not None and c.slip.bounded:
+        assert c.slip.low <= c.slip.value <= c.slip.high
+
+
+def _ask(knot, dD, mu, load, mat, free=0.0):
+    return knotmech.hold(knot, rod_diameter=dD[0] * 1e-3, post_diameter=dD[1] * 1e-3, mu=mu,
+                         load=load, material=mat, free_end_load=free)  # fmt: skip
+
+
+@pytest.mark.parametrize("case", ISSUE_GRID[::37])
+def test_issue_grid_sample(case):
+    """A deterministic twentieth of the issue's 720 questions (the full grid is slow)."""
+    _check(_ask(*case))
+
+
+@pytest.mark.slow
+def test_issue_grid_full():
+    """The issue's 720 questions (3 hitches x 5 sizes x 4 mu x 4 loads x 3 materials, free
+    end): none unbounded; a finite capacity or undecided with the command (about 25 s)."""
+    states = set()
+    for case in ISSUE_GRID:
+        v = _ask(*case)
+        _check(v)
+        states.add(v.state)
+    assert {"HOLDS", "SLIPS", "UNDECIDED"} <= states
+
+
+def test_wider_random_grid():
+    """Random questions over a wider range (every hitch, the capstan and a bend; rope 1-30
+    mm, post 1-100 d, mu 0-1.5, loads 0.01 N-50 kN, loaded free ends, every material)."""
+    rng = np.random.default_rng(23)
+    knots = ("clove-hitch", "two-half-hitches", "round-turn-two-half-hitches", "cow-hitch",
+             "round-turn", "capstan", "reef")  # fmt: skip
+    mats = (None, "nylon", "polyester", "hmpe", "manila", "polypropylene", "steel-wire", "vps32")
+    for _ in range(80):
+        knot = knots[rng.integers(len(knots))]
+        d = 10 ** rng.uniform(-3, math.log10(0.03))
+        D = None if knot == "reef" else d * 10 ** rng.uniform(0, 2)
+        load = 10 ** rng.uniform(-2, math.log10(5e4))
+        free = 0.0 if rng.random() < 0.7 or knot == "reef" else load * rng.uniform(0, 0.5)
+        v = knotmech.hold(knot, rod_diameter=d, post_diameter=D, mu=rng.uniform(0, 1.5),
+                          load=load, free_end_load=free, material=mats[rng.integers(len(mats))],
+                          wrap_angle=2 * math.pi if knot == "capstan" else None)  # fmt: skip
+        _check(v)
