@@ -187,3 +187,54 @@ def test_wider_random_grid():
                           load=load, free_end_load=free, material=mats[rng.integers(len(mats))],
                           wrap_angle=2 * math.pi if knot == "capstan" else None)  # fmt: skip
         _check(v)
+
+
+# --------------------------------------------------------------------------- friction
+
+
+def test_mu_from_the_material_and_post():
+    """No mu: polyester on steel (default) is 0.19-0.25 (Delaney, RopeLab p. 88); the verdict
+    is at 0.19 and holds over the range (the thick nip locks above mu* = 0.169 at d/D 1/8)."""
+    v = knotmech.hold("two-half-hitches", rod_diameter=10e-3, post_diameter=80e-3, load=1000,
+                      material="polyester")  # fmt: skip
+    f = v.friction
+    assert f["range"] == [0.19, 0.25] and f["post_material"] == "steel"
+    assert f["default_post_material"] is True and "Delaney" in f["source"]
+    assert v.inputs["mu"] == 0.19 and v.holds is True and f["holds_at_high"] is True
+    assert f["words"] == "holds for any mu in [0.19, 0.25]"
+    nip = next(a for a in v.answers if a.model == "thick-nip")
+    assert f["critical_mu"] == nip.critical_mu and 0.16 < f["critical_mu"] < 0.19
+    # on aluminium (0.14-0.221) the low end is below mu*: it holds only above it
+    a = knotmech.hold("clove-hitch", rod_diameter=10e-3, post_diameter=80e-3, load=1000,
+                      material="polyester", post_material="aluminium")  # fmt: skip
+    assert a.holds is False and a.friction["holds_at_high"] is True
+    assert a.friction["words"].startswith("holds only for mu above mu* = 0.169")
+    # mu overrides the post material
+    m = knotmech.hold("clove-hitch", rod_diameter=10e-3, post_diameter=80e-3, load=1000, mu=0.4,
+                      material="polyester", post_material="aluminium")  # fmt: skip
+    assert m.inputs["mu"] == 0.4 and m.friction["range"] is None
+
+
+def test_no_published_friction_is_one_line():
+    with pytest.raises(knotmech.InputError, match="no published friction coefficient for "
+                       "nylon on steel \\(published: aluminium, rope\\): give mu or "
+                       "post_material$"):  # fmt: skip
+        knotmech.hold("clove-hitch", rod_diameter=6e-3, post_diameter=40e-3, load=200,
+                      material="nylon")  # fmt: skip
+    with pytest.raises(knotmech.InputError, match="mu is required unless material is given"):
+        knotmech.hold("clove-hitch", rod_diameter=6e-3, post_diameter=40e-3, load=200)
+
+
+def test_json_carries_the_capacity_and_friction():
+    import json
+
+    v = knotmech.hold("clove-hitch", rod_diameter=6e-3, post_diameter=40e-3, mu=0.4, load=200,
+                      material="nylon")  # fmt: skip
+    d = json.loads(v.to_json())
+    c = d["capacity"]
+    assert c["limited_by"] == "break" and c["value_N"] == pytest.approx(4462.17, rel=1e-5)
+    assert c["load_fraction"] == pytest.approx(200 / 4462.17, rel=1e-5)
+    assert c["knot_efficiency"] == [0.75, 0.75, 0.75] and "Plymouth" in c["breaking"]["source"]
+    assert c["slip"]["unbounded_above"] is True and c["slip"]["high_N"] is None
+    assert d["friction"]["critical_mu"] == pytest.approx(0.166, abs=1e-3)
+    assert d["critical_mu_none"] is False and d["margin_unbounded"] is False

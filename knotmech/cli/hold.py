@@ -39,6 +39,7 @@ _FLAGS = {
     "free_end_load": "--free-end-load",
     "wrap_angle": "--wrap-angle",
     "material": "--material",
+    "post_material": "--post-material",
     "youngs_modulus": "--youngs-modulus",
     "bending_scale": "--bending-scale",
 }
@@ -73,7 +74,21 @@ def register(subparsers) -> None:
         help="post diameter D, e.g. 40mm (required except for the bends reef, granny, thief, "
         "grief)",
     )
-    p.add_argument("--mu", required=True, help="rope-post friction coefficient, e.g. 0.3")
+    p.add_argument(
+        "--mu",
+        default=None,
+        help="rope-post friction coefficient, e.g. 0.3 (bends: rope-rope). Optional with "
+        "--material: the published range of the rope on --post-material is used, the verdict "
+        "given at its low end and scanned over it; overrides --post-material",
+    )
+    p.add_argument(
+        "--post-material",
+        default=None,
+        metavar="NAME",
+        help="the post's material for the friction range when --mu is not given: steel "
+        "(default), aluminium, wood or rope (aliases: stainless, galvanised-steel, "
+        "aluminum, timber, another-rope); the output names the range and its source",
+    )
     p.add_argument(
         "--mu-rr", default=None, help="hitches: rope-rope friction coefficient (default: --mu)"
     )
@@ -172,7 +187,8 @@ def run(args) -> int:
         check_distinct([("--json", json_path), ("--plot", args.plot)])
     try:
         verdict = hold(
-            knot, **inputs, material=args.material, simulate=bool(args.simulate),
+            knot, **inputs, material=args.material, post_material=args.post_material,
+            simulate=bool(args.simulate),
             phase_table=args.phase_table, progress=bool(args.simulate) and args.json != "-",
         )  # fmt: skip
     except InputError as exc:
@@ -251,11 +267,12 @@ def _flag_names(message: str) -> str:
     import re
 
     names = ("rod_diameter", "post_diameter", "mu_rr", "free_end_load", "wrap_angle",
-             "material", "youngs_modulus", "simulate", "phase_table", "creep_limit",
-             "bending_scale")  # fmt: skip
+             "post_material", "material", "youngs_modulus", "simulate", "phase_table",
+             "creep_limit", "bending_scale")  # fmt: skip
     pattern = r"(?<![\w-])(" + "|".join(names) + r")(?!\w)"
     message = re.sub(pattern, lambda m: "--" + m.group(1).replace("_", "-"), message)
     # "load" and "mu" are words too: an option only where a message starts with them
+    message = re.sub(r"\bgive mu\b", "give --mu", message)
     return re.sub(r"^(load|mu) (must|is|applies)", r"--\1 \2", message)
 
 
@@ -309,6 +326,8 @@ def format_verdict(verdict, *, verbose: bool = False) -> str:
     references), the DER details and the measured creep.
     """
     lines = [verdict.summary()]
+    if verdict.friction_line():
+        lines.append(verdict.friction_line())
     lines += [f"warning: {_FLAGS.get(w.name, w.name)}: {w.message}" for w in verdict.warnings]
     lines += [f"assumed: {s}" for s in verdict.assumptions]
     if verdict.creep is not None:

@@ -67,6 +67,12 @@ class Verdict:
     capacity : Capacity or None
         The load the knot takes (:class:`knotmech.verdict.capacity.Capacity`): the lower of
         its slip load and its breaking load [N], with bands and sources.
+    friction : dict or None
+        The friction: ``range`` [low, high] of the material on ``post_material`` when mu was
+        not given (with its ``source``; the verdict is at the low end), the verdict over it
+        (``words``, ``holds_at_low``, ``holds_at_high``) and ``critical_mu``, the least mu
+        at which the knot holds at this load (0: without friction; inf, null in JSON with
+        ``critical_mu_none``: none up to 1.5).
     fails_by : str or None
         ``"slip"`` or ``"break"`` when it does not hold (``"break"``: the load is at or above
         the knot's breaking load; the state is then ``BREAKS``).
@@ -91,6 +97,7 @@ class Verdict:
     shape: dict | None = field(default=None, repr=False, compare=False)
     capacity: object = None
     fails_by: str | None = None
+    friction: dict | None = None
 
     @property
     def deciding(self):
@@ -134,6 +141,11 @@ class Verdict:
                 "der": self.der,
                 "notes": list(self.notes),
                 "fails_by": self.fails_by,
+                "friction": self.friction,
+                "critical_mu_none": bool(
+                    self.friction is not None
+                    and math.isinf(self.friction.get("critical_mu", math.nan))
+                ),
                 "capacity": (
                     None
                     if self.capacity is None
@@ -141,6 +153,29 @@ class Verdict:
                 ),
             }
         )
+
+    def friction_line(self) -> str:
+        """The friction in one line: the range and where it comes from, the verdict over it
+        and the critical mu ("" when not computed)."""
+        f = self.friction
+        if not f:
+            return ""
+        parts = []
+        if f.get("range"):
+            lo, hi = f["range"]
+            mat = self.inputs.get("material", "the rope")
+            dflt = " (default post material)" if f.get("default_post_material") else ""
+            rng = f"{lo:.3g}" if lo == hi else f"{lo:.3g}-{hi:.3g}"
+            parts.append(f"mu {rng} for {mat} on {f['post_material']}{dflt}, "
+                         f"verdict at mu = {lo:.3g}")  # fmt: skip
+            if "words" in f:
+                parts.append(f["words"])
+        m = f.get("critical_mu", math.nan)
+        if math.isinf(m):
+            parts.append(f"critical mu: none ({f.get('critical_mu_text', '')})")
+        elif not math.isnan(m):
+            parts.append(f"critical mu {m:.3g} ({f.get('critical_mu_text', '')})")
+        return "friction: " + "; ".join(parts) if parts else ""
 
     def to_json(self) -> str:
         """:meth:`to_dict` as strict JSON text (``allow_nan=False``)."""
@@ -169,7 +204,7 @@ def _slip_words(slip) -> str:
         return "slip load not known"
     if slip.bounded:
         if slip.value == 0:
-            return "slips at any load (no friction holds it)"
+            return "slips at any load at this friction"
         if slip.low == slip.high:
             return f"slips near {format_force(slip.value)} ({slip.source.split(' (')[0]})"
         if slip.low == 0:
@@ -205,7 +240,12 @@ def capacity_words(cap, load) -> str:
         return f"{text}; any load exceeds the {which}"
     if f >= 10:
         return f"{text}; {format_force(float(load))} is {f:.3g} times the {which}"
-    return f"{text}; {format_force(float(load))} is {f * 100:.2g} % of the {which}"
+    pct = f * 100
+    return (
+        f"{text}; {format_force(float(load))} is {pct:.0f} % of the {which}"
+        if pct >= 10
+        else (f"{text}; {format_force(float(load))} is {pct:.2g} % of the {which}")
+    )
 
 
 def format_margin(margin: float) -> str:

@@ -243,6 +243,17 @@ def slip_from_answers(answers, *, strain_limit_load: float) -> LoadBand | None:
     return LoadBand(cap, cap, cap, f"{dec.model} model (a point value, no band)")
 
 
+def better_slip(table: LoadBand | None, closed: LoadBand | None) -> LoadBand | None:
+    """The slip load to report: the DER table's when bounded, else the closed form's when
+    bounded, else the one that bounds it from below the furthest."""
+    for s in (table, closed):
+        if s is not None and s.bounded:
+            return s
+    if table is None or (closed is not None and closed.low > table.low):
+        return closed
+    return table
+
+
 def band_newtons(row, EA: float) -> LoadBand | None:
     """A (value, low, high, text) slip band in T/EA as a :class:`LoadBand` in newtons."""
     if row is None:

@@ -13,6 +13,7 @@ from dataclasses import dataclass, replace
 from knotmech.errors import InputError, check_nonnegative, check_positive
 from knotmech.verdict.answer import Verdict
 from knotmech.verdict.command import SIMULATE_COST, simulate_command
+from knotmech.verdict.friction import critical_mu, friction_preset, range_words
 from knotmech.verdict.inputs import STRAIN_LIMIT, _bending_scale, _warnings, _youngs_modulus
 from knotmech.verdict.rule import decide, with_validity
 from knotmech.verdict.scope import BENDS, can_simulate, has_der_answer, knot_key
@@ -25,7 +26,7 @@ def hold(
     *,
     rod_diameter,
     post_diameter=None,
-    mu,
+    mu=None,
     load,
     free_end_load=0.0,
     mu_rr=None,
@@ -37,6 +38,7 @@ def hold(
     progress=False,
     creep_limit=None,
     bending_scale=None,
+    post_material=None,
 ) -> Verdict:
     r"""Does a rope tied to a post hold a load? The verdict, every model's answer and why.
 
@@ -50,8 +52,15 @@ def hold(
         :class:`~knotmech.errors.InputError` listing these.
     rod_diameter, post_diameter : float
         Rope diameter d and post diameter D [m], > 0 (no post for a bend: None).
-    mu : float
-        Rope-post friction coefficient [-], >= 0.
+    mu : float, optional
+        Rope-post friction coefficient [-], >= 0 (a bend: rope-rope). Without it, the
+        published range of ``material`` on ``post_material``
+        (:func:`knotmech.strength.friction_range`): the verdict is given at its low end and
+        scanned over the range (:attr:`Verdict.friction`).
+    post_material : str, optional
+        The post's material for the friction range when ``mu`` is not given: ``steel``
+        (default, :data:`knotmech.verdict.friction.DEFAULT_POST_MATERIAL`), ``aluminium``,
+        ``wood``, ``rope`` (:func:`knotmech.strength.counterface_names`). ``mu`` overrides.
     load : float
         Tension on the loaded end :math:`T_\mathrm{high}` [N], > 0.
     free_end_load : float
@@ -120,6 +129,12 @@ def hold(
     6.21e-05
     """
     key = knot_key(knot)
+    friction = None
+    if mu is None:
+        lo, hi, face, src = friction_preset(key, material, post_material)
+        mu = lo
+        friction = {"post_material": face, "default_post_material": post_material is None,
+                    "range": [lo, hi], "source": src}  # fmt: skip
     if key in BENDS:
         from knotmech.verdict.bend import hold_bend
 
@@ -129,14 +144,68 @@ def hold(
             youngs_modulus=youngs_modulus, simulate=simulate, phase_table=phase_table,
             progress=progress, bending_scale=bending_scale,
         )  # fmt: skip
-        return _bend_capacity(v, material)
+        v = _bend_capacity(v, material)
+        return v if friction is None else replace(v, friction=friction)
     c = _case(
         key, rod_diameter=rod_diameter, post_diameter=post_diameter, mu=mu, load=load,
         free_end_load=free_end_load, mu_rr=mu_rr, material=material,
         youngs_modulus=youngs_modulus, simulate=simulate, phase_table=phase_table,
         progress=progress, creep_limit=creep_limit, bending_scale=bending_scale,
     )  # fmt: skip
-    return _verdict(c, wrap_angle)
+    v = _verdict(c, wrap_angle)
+    return replace(v, friction=_friction_part(c, wrap_angle, v, friction))
+
+
+def _friction_part(c, wrap_angle, v: Verdict, friction) -> dict:
+    """The critical mu and, when mu came from the material (``friction``: the preset), the
+    verdict at the range's high end and over the range (the verdict itself is at its low
+    end); assumes more friction never turns a hold into a slip."""
+    out = dict(friction or {"range": None})
+    m, text = _critical_mu(c, v)
+    out.update(critical_mu=m, critical_mu_text=text)
+    if friction is None:
+        return out
+    lo, hi = friction["range"]
+    at_high = v.holds if c.simulate else _verdict(replace(c, mu=hi), wrap_angle).holds
+    out.update(holds_at_low=v.holds, holds_at_high=at_high,
+               words=range_words(v.holds, at_high, lo, hi, m))  # fmt: skip
+    if c.simulate:
+        out["words"] = f"simulated at mu = {lo:.3g} only (range {lo:.3g}-{hi:.3g})"
+    return out
+
+
+def _critical_mu(c, v: Verdict) -> tuple:
+    """(mu*, how): the least mu at which the knot holds at this load: the deciding closed
+    form's own critical mu, or a bisection in mu of the DER hold table's lookup; none when
+    the load breaks the rope."""
+    from knotmech.verdict.criterion import CREEP_LIMIT
+
+    if v.fails_by == "break":
+        return math.inf, "the load breaks the rope whatever the friction"
+    dec = v.deciding or next((a for a in v.answers if a.inside_validity and
+                              math.isfinite(a.critical_mu)), None)  # fmt: skip
+    if dec is None:
+        return math.nan, "no model inside its validity gives one"
+    if dec.model == "DER-table":
+        table = _slip_table(c, v.der)
+        if table is not None:
+            x, y = c.d / (c.D + c.d), c.load / (c.E * math.pi * c.d * c.d / 4)
+            lim = CREEP_LIMIT if c.creep_limit is None else c.creep_limit
+            mr = None if c.mu_rr is None else float(c.mu_rr)
+
+            def ask(m):
+                return table.lookup(x, y, mu=m, mu_rr=mr if mr is not None else m,
+                                    creep_limit=lim).holds  # fmt: skip
+
+            m, how = critical_mu(ask, c.mu, v.holds)
+            return m, how.replace("the verdict", "the DER table's verdict")
+    if dec.model.startswith("DER"):
+        return math.nan, f"not searched for the {dec.model} answer"
+    m = float(dec.critical_mu)
+    tag = "" if dec.decides else ", which does not decide here"
+    if math.isinf(m):
+        return m, f"the {dec.model} model's: no friction coefficient holds it{tag}"
+    return m, f"the {dec.model} model's{tag}"
 
 
 @dataclass
@@ -349,8 +418,7 @@ def _capacity(c: _Case, answers: list, der):
                                    creep_limit=lim)  # fmt: skip
         slip = _cap.band_newtons(row, EA)
     closed = _cap.slip_from_answers(answers, strain_limit_load=STRAIN_LIMIT * EA)
-    if slip is None or (not slip.bounded and closed is not None and closed.low > slip.low):
-        slip = closed
+    slip = _cap.better_slip(slip, closed)
     dec = next((a for a in answers if a.decides), None)
     slip = _cap.agree_with_verdict(slip, None if dec is None else dec.holds, c.load)
     return _cap.capacity_of(knot=c.key, slip=slip, material=c.mat, d=c.d, D=c.D, load=c.load)
