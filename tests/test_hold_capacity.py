@@ -238,3 +238,22 @@ def test_json_carries_the_capacity_and_friction():
     assert c["slip"]["unbounded_above"] is True and c["slip"]["high_N"] is None
     assert d["friction"]["critical_mu"] == pytest.approx(0.166, abs=1e-3)
     assert d["critical_mu_none"] is False and d["margin_unbounded"] is False
+
+
+def test_plot_draws_the_capacity_panel(tmp_path):
+    """The capacity panel is drawn even where the table refuses (two half hitches in nylon,
+    kappa 0.01, against solid-rod tables): the breaking load, load and mu alone."""
+    import matplotlib.image
+
+    from knotmech.verdict import plot_verdict
+
+    v = knotmech.hold("two-half-hitches", rod_diameter=6e-3, post_diameter=40e-3, mu=0.4,
+                      load=200, material="nylon")  # fmt: skip
+    assert v.der["refused"] == "bending_scale"
+    p = plot_verdict(v, tmp_path / "cap.png")
+    assert matplotlib.image.imread(p).shape[1] == pytest.approx(5.2 * 100, rel=0.05)
+    w = knotmech.hold("clove-hitch", rod_diameter=6e-3, post_diameter=40e-3, mu=0.4, load=200,
+                      material="nylon")  # fmt: skip
+    # two friction slices and the capacity panel side by side
+    q = plot_verdict(w, tmp_path / "cap3.png")
+    assert matplotlib.image.imread(q).shape[1] == pytest.approx(3 * 5.2 * 100, rel=0.05)
