@@ -257,3 +257,19 @@ def test_plot_draws_the_capacity_panel(tmp_path):
     # two friction slices and the capacity panel side by side
     q = plot_verdict(w, tmp_path / "cap3.png")
     assert matplotlib.image.imread(q).shape[1] == pytest.approx(3 * 5.2 * 100, rel=0.05)
+
+
+def test_published_clove_hitch_drop_test_load_is_beyond_every_model():
+    """Sterling's 10.2 mm dynamic-rope clove hitch slipped through at a 4.8 kN peak
+    (slip_tests.json). On a 12 mm bar, nylon on aluminium (mu 0.221): 4.8 kN is 0.235 EA,
+    beyond the thick nip's 10 % strain (it bounds the slip load from below by 0.1 EA =
+    2.04 kN) and below the knot's breaking load (0.75 x 16.4 kN): undecided, with the
+    command; 2 kN (issue 23's example) holds."""
+    kw = dict(rod_diameter=10.2e-3, post_diameter=12e-3, material="nylon",
+              post_material="aluminium")  # fmt: skip
+    EA = 0.25e9 * math.pi * 0.0102**2 / 4
+    v = knotmech.hold("clove-hitch", load=4800, **kw)
+    assert v.holds is None and "--simulate" in v.next_step
+    assert v.capacity.slip.low == pytest.approx(0.1 * EA, rel=1e-12)
+    assert v.capacity.limited_by == "break" and 1.2e4 < v.capacity.value < 1.25e4
+    assert knotmech.hold("clove-hitch", load=2000, **kw).holds is True

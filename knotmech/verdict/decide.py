@@ -233,6 +233,9 @@ class _Case:
     simulate: bool
     phase_table: object
     progress: bool
+    #: the thick nip is self-locking and inside its own validity but for the strain (set
+    #: by :func:`_closed_form_answers`): it then bounds the slip load from below by 0.1 EA
+    nip_locks: bool = False
 
     @property
     def simulable(self) -> bool:
@@ -418,6 +421,10 @@ def _capacity(c: _Case, answers: list, der):
                                    creep_limit=lim)  # fmt: skip
         slip = _cap.band_newtons(row, EA)
     closed = _cap.slip_from_answers(answers, strain_limit_load=STRAIN_LIMIT * EA)
+    if closed is None and c.nip_locks and math.isfinite(EA):  # a load beyond its strain
+        closed = _cap.LoadBand(math.inf, STRAIN_LIMIT * EA, math.inf,
+                               "thick-nip model: self-locking, friction alone cannot unlock it "
+                               "up to its validity's strain")  # fmt: skip
     slip = _cap.better_slip(slip, closed)
     dec = next((a for a in answers if a.decides), None)
     slip = _cap.agree_with_verdict(slip, None if dec is None else dec.holds, c.load)
@@ -472,6 +479,7 @@ def _closed_form_answers(c: _Case, base) -> list:
     for a in base.answers:
         a = replace(a, decides=False)
         if a.model == "thick-nip":
+            c.nip_locks = bool(a.inside_validity and math.isinf(a.capacity) and c.d <= c.D)
             ok = c.d <= c.D and (strain is None or strain <= STRAIN_LIMIT)
             a = with_validity(
                 a,
