@@ -13,8 +13,10 @@ Example::
 
 The command parses quantities (:mod:`knotmech.units`), calls :func:`knotmech.verdict.hold`
 (which holds the whole policy: which model decides, what is assumed, what is
-implausible) and prints its answer: one line first (verdict, margin, deciding model),
-then warnings, assumptions and the next step; every model's answer under
+implausible) and prints its answer: one line first (verdict, slip load, breaking load, the
+load as a fraction of the capacity, deciding model), the friction line (the material's
+friction range without ``--mu``, the critical mu), then warnings, assumptions and the next
+step; every model's answer under
 ``--verbose``. Exit status 0 whether the knot holds, slips or is undecided (read the
 verdict or the JSON key ``holds``: true, false or null); 2 on bad input.
 """
@@ -54,8 +56,10 @@ def register(subparsers) -> None:
         help="does a rope tied to a post hold a load? (closed forms; DER tables and runs for "
         "the hitches, DER pulls for the bends)",
         description=(
-            "Verdict (holds / slips / undecided) for a rope tied to a rigid post: the margin "
-            "and the model that decided (the most faithful one inside its validity), then "
+            "Verdict (holds / slips / breaks / undecided) for a rope tied to a rigid post: the "
+            "load it takes (slip load from the DER tables or a closed form, breaking load "
+            "from published rope strengths and knot efficiencies), the critical mu and the "
+            "model that decided (the most faithful one inside its validity), then "
             "warnings and the next step; --verbose for every model's answer. For the hitches "
             "with a free end (clove hitch, two half hitches, round turn and two half hitches, "
             "cow hitch loaded on one leg) it also answers from the DER hold tables (shipped, "

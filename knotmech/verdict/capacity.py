@@ -23,7 +23,17 @@ from knotmech.errors import InputError
 from knotmech.verdict.criterion import CREEP_LIMIT
 from knotmech.verdict.tables import MU_TOL, _axis
 
-__all__ = ["Capacity", "LoadBand", "capacity_of", "column_bracket", "slip_from_table"]
+__all__ = [
+    "Capacity",
+    "LoadBand",
+    "agree_with_verdict",
+    "band_newtons",
+    "better_slip",
+    "capacity_of",
+    "column_bracket",
+    "slip_from_answers",
+    "slip_from_table",
+]
 
 
 @dataclass(frozen=True)
