@@ -279,12 +279,16 @@ def _clamped(value: float, low: float, high: float, source: str) -> LoadBand:
 
 def agree_with_verdict(slip: LoadBand | None, holds, load: float) -> LoadBand | None:
     """The slip band narrowed by a decided answer at ``load`` [N]: a hold there puts the slip
-    load at or above it, a slip at or below it."""
+    load at or above it, a slip at or below it (a value on the wrong side of the load moves
+    to the geometric mid-point of the narrowed band; an open band keeps an open value)."""
     if slip is None or holds is None:
         return slip
     if holds and load > slip.low:
-        return _clamped(max(slip.value, load), load, max(slip.high, load), slip.source)
+        high = max(slip.high, load)
+        value = slip.value if slip.value > load else _mid(load, high)
+        return _clamped(value, load, high, slip.source)
     if not holds and load < slip.high:
         low = min(slip.low, load)
-        return _clamped(min(slip.value, load), low, load, slip.source)
+        value = slip.value if slip.value < load else (math.sqrt(low * load) if low > 0 else load)
+        return _clamped(value, low, load, slip.source)
     return slip
