@@ -58,6 +58,25 @@ def plot_verdict(verdict: Verdict, path, *, phase_table=None) -> Path:
     matplotlib.use("Agg", force=False)
     import matplotlib.pyplot as plt
 
+    from knotmech.verdict.tables import HoldTable
+
+    tables, used, lim = _tables_used(verdict, der, has_table, phase_table)
+    n = len(used) + (verdict.capacity is not None)
+    fig, axes = plt.subplots(1, n, figsize=(5.2 * n, 4.2), squeeze=False)
+    for ax, t in zip(axes[0], used, strict=False):
+        _draw_slice(ax, t, der, verdict)
+    if verdict.capacity is not None:
+        hold_table = tables if isinstance(tables, HoldTable) else None
+        _draw_capacity(axes[0][-1], verdict, hold_table, lim)
+    fig.tight_layout()
+    fig.savefig(p)
+    plt.close(fig)
+    return p
+
+
+def _tables_used(verdict: Verdict, der: dict, has_table: bool, phase_table):
+    """(the DER table the verdict read or None, the (d/2R, T/EA) slices to draw, the creep
+    limit [d per protocol s] they are judged at)."""
     from knotmech.verdict.criterion import CREEP_LIMIT
     from knotmech.verdict.der import load_user_table, shipped_hold_table
     from knotmech.verdict.tables import HoldTable
@@ -72,17 +91,7 @@ def plot_verdict(verdict: Verdict, path, *, phase_table=None) -> Path:
         used = [tables.slice(m, creep_limit=lim) for m in der["mu_tables"]]
     elif has_table and tables is not None:
         used = [tables.table(m) for m in der["mu_tables"]]
-    n = len(used) + (verdict.capacity is not None)
-    fig, axes = plt.subplots(1, n, figsize=(5.2 * n, 4.2), squeeze=False)
-    for ax, t in zip(axes[0], used, strict=False):
-        _draw_slice(ax, t, der, verdict)
-    if verdict.capacity is not None:
-        hold_table = tables if isinstance(tables, HoldTable) else None
-        _draw_capacity(axes[0][-1], verdict, hold_table, lim)
-    fig.tight_layout()
-    fig.savefig(p)
-    plt.close(fig)
-    return p
+    return tables, used, lim
 
 
 def _draw_slice(ax, t, der: dict, verdict: Verdict) -> None:
