@@ -13,8 +13,10 @@ Example::
 
 The command parses quantities (:mod:`knotmech.units`), calls :func:`knotmech.verdict.hold`
 (which holds the whole policy: which model decides, what is assumed, what is
-implausible) and prints its answer: one line first (verdict, margin, deciding model),
-then warnings, assumptions and the next step; every model's answer under
+implausible) and prints its answer: one line first (verdict, slip load, breaking load, the
+load as a fraction of the capacity, deciding model), the friction line (the material's
+friction range without ``--mu``, the critical mu), then warnings, assumptions and the next
+step; every model's answer under
 ``--verbose``. Exit status 0 whether the knot holds, slips or is undecided (read the
 verdict or the JSON key ``holds``: true, false or null); 2 on bad input.
 """
@@ -39,6 +41,7 @@ _FLAGS = {
     "free_end_load": "--free-end-load",
     "wrap_angle": "--wrap-angle",
     "material": "--material",
+    "post_material": "--post-material",
     "youngs_modulus": "--youngs-modulus",
     "bending_scale": "--bending-scale",
 }
@@ -53,8 +56,10 @@ def register(subparsers) -> None:
         help="does a rope tied to a post hold a load? (closed forms; DER tables and runs for "
         "the hitches, DER pulls for the bends)",
         description=(
-            "Verdict (holds / slips / undecided) for a rope tied to a rigid post: the margin "
-            "and the model that decided (the most faithful one inside its validity), then "
+            "Verdict (holds / slips / breaks / undecided) for a rope tied to a rigid post: the "
+            "load it takes (slip load from the DER tables or a closed form, breaking load "
+            "from published rope strengths and knot efficiencies), the critical mu and the "
+            "model that decided (the most faithful one inside its validity), then "
             "warnings and the next step; --verbose for every model's answer. For the hitches "
             "with a free end (clove hitch, two half hitches, round turn and two half hitches, "
             "cow hitch loaded on one leg) it also answers from the DER hold tables (shipped, "
@@ -73,7 +78,21 @@ def register(subparsers) -> None:
         help="post diameter D, e.g. 40mm (required except for the bends reef, granny, thief, "
         "grief)",
     )
-    p.add_argument("--mu", required=True, help="rope-post friction coefficient, e.g. 0.3")
+    p.add_argument(
+        "--mu",
+        default=None,
+        help="rope-post friction coefficient, e.g. 0.3 (bends: rope-rope). Optional with "
+        "--material: the published range of the rope on --post-material is used, the verdict "
+        "given at its low end and scanned over it; overrides --post-material",
+    )
+    p.add_argument(
+        "--post-material",
+        default=None,
+        metavar="NAME",
+        help="the post's material for the friction range when --mu is not given: steel "
+        "(default), aluminium, wood or rope (aliases: stainless, galvanised-steel, "
+        "aluminum, timber, another-rope); the output names the range and its source",
+    )
     p.add_argument(
         "--mu-rr", default=None, help="hitches: rope-rope friction coefficient (default: --mu)"
     )
@@ -172,7 +191,8 @@ def run(args) -> int:
         check_distinct([("--json", json_path), ("--plot", args.plot)])
     try:
         verdict = hold(
-            knot, **inputs, material=args.material, simulate=bool(args.simulate),
+            knot, **inputs, material=args.material, post_material=args.post_material,
+            simulate=bool(args.simulate),
             phase_table=args.phase_table, progress=bool(args.simulate) and args.json != "-",
         )  # fmt: skip
     except InputError as exc:
@@ -251,11 +271,12 @@ def _flag_names(message: str) -> str:
     import re
 
     names = ("rod_diameter", "post_diameter", "mu_rr", "free_end_load", "wrap_angle",
-             "material", "youngs_modulus", "simulate", "phase_table", "creep_limit",
-             "bending_scale")  # fmt: skip
+             "post_material", "material", "youngs_modulus", "simulate", "phase_table",
+             "creep_limit", "bending_scale")  # fmt: skip
     pattern = r"(?<![\w-])(" + "|".join(names) + r")(?!\w)"
     message = re.sub(pattern, lambda m: "--" + m.group(1).replace("_", "-"), message)
     # "load" and "mu" are words too: an option only where a message starts with them
+    message = re.sub(r"\bgive mu\b", "give --mu", message)
     return re.sub(r"^(load|mu) (must|is|applies)", r"--\1 \2", message)
 
 
@@ -264,7 +285,9 @@ def _force(value: float) -> str:
 
     if math.isnan(value):
         return "not computed"
-    return "unbounded" if math.isinf(value) else format_quantity(value, "force")
+    if math.isinf(value):
+        return "no limit from friction alone (self-locking)"
+    return format_quantity(value, "force")
 
 
 def _mu(value: float) -> str:
@@ -307,6 +330,8 @@ def format_verdict(verdict, *, verbose: bool = False) -> str:
     references), the DER details and the measured creep.
     """
     lines = [verdict.summary()]
+    if verdict.friction_line():
+        lines.append(verdict.friction_line())
     lines += [f"warning: {_FLAGS.get(w.name, w.name)}: {w.message}" for w in verdict.warnings]
     lines += [f"assumed: {s}" for s in verdict.assumptions]
     if verdict.creep is not None:
@@ -340,10 +365,12 @@ def _others_line(verdict) -> list:
 def _inputs_line(verdict) -> str:
     """The inputs in one line (``--verbose``)."""
     i = verdict.inputs
-    head = f"{verdict.knot}: rope d = {format_quantity(i['rod_diameter'], 'length')}, "
-    if "post_diameter" in i:  # a bend has no post and no free end
-        head += f"post D = {format_quantity(i['post_diameter'], 'length')}, "
-    head += f"mu = {i['mu']:g}"
+    post = i.get("post_diameter")
+    head = (
+        f"{verdict.knot}: rope d = {format_quantity(i['rod_diameter'], 'length')}, "
+        + ("" if post is None else f"post D = {format_quantity(post, 'length')}, ")
+        + f"mu = {i['mu']:g}"
+    )
     if "mu_rr" in i:
         head += f", mu_rr = {i['mu_rr']:g}"
     head += f", load = {_force(i['load'])}"

@@ -133,7 +133,7 @@ def section_hold(ctx: TourContext) -> list[str]:
             knot, rod_diameter=4e-3, post_diameter=30e-3, mu=0.3, load=1.47, free_end_load=free,
             material="vps32",
         )  # fmt: skip
-        m = "unbounded" if math.isinf(v.margin) else f"{v.margin * 100:+.0f} %"
+        m = "not computed" if not math.isfinite(v.margin) else f"{v.margin * 100:+.0f} %"
         others = ", ".join(
             f"{a.model} {'holds' if a.holds else 'slips'}"
             for a in v.answers

@@ -23,6 +23,14 @@ answer and decides by one rule (:data:`RULE`):
   the command that decides, or with ``simulate=True`` one DER pull of the bend (its slip
   load against the load).
 
+**The capacity** (issue 23; :mod:`~knotmech.verdict.capacity`): every verdict carries the
+load the knot takes, the lower of its slip load (the DER hold table's critical load at the
+user's d/2R and friction, with its band, or the deciding closed form's) and its breaking
+load (:func:`knotmech.strength.knot_breaking_load`); a self-locking closed form bounds the
+slip load from below only, so without a table or a breaking load above it the verdict is
+undecided, never "unbounded". Without ``mu``, the material's published friction range on
+``post_material`` (:mod:`~knotmech.verdict.friction`); the critical mu is always given.
+
 **The rule.** The most faithful model whose inputs lie inside its validity and that
 gives a definite answer decides, in the order DER simulation, DER table, then the
 closed forms (hitches: ideal rope, then thick nip; capstan: finite-thickness, then

@@ -9,7 +9,7 @@ from dataclasses import dataclass, field
 
 from knotmech import _json
 
-__all__ = ["InputWarning", "Verdict", "format_margin"]
+__all__ = ["InputWarning", "Verdict", "format_force", "format_margin"]
 
 
 @dataclass(frozen=True)
@@ -64,6 +64,18 @@ class Verdict:
     der : dict or None
         The DER answer's details (clove hitch), None for other knots.
     notes : tuple of str
+    capacity : Capacity or None
+        The load the knot takes (:class:`knotmech.verdict.capacity.Capacity`): the lower of
+        its slip load and its breaking load [N], with bands and sources.
+    friction : dict or None
+        The friction: ``range`` [low, high] of the material on ``post_material`` when mu was
+        not given (with its ``source``; the verdict is at the low end), the verdict over it
+        (``words``, ``holds_at_low``, ``holds_at_high``) and ``critical_mu``, the least mu
+        at which the knot holds at this load (0: without friction; inf, null in JSON with
+        ``critical_mu_none``: none up to 1.5).
+    fails_by : str or None
+        ``"slip"`` or ``"break"`` when it does not hold (``"break"``: the load is at or above
+        the knot's breaking load; the state is then ``BREAKS``).
     """
 
     knot: str
@@ -83,6 +95,9 @@ class Verdict:
     #: the simulated knot (``positions`` (n, 3) [m], ``tension`` (n - 1,) [N], ``rod_diameter``,
     #: ``post_diameter``) when a DER simulation answered; not part of :meth:`to_dict`
     shape: dict | None = field(default=None, repr=False, compare=False)
+    capacity: object = None
+    fails_by: str | None = None
+    friction: dict | None = None
 
     @property
     def deciding(self):
@@ -91,17 +106,19 @@ class Verdict:
 
     @property
     def state(self) -> str:
-        """``"HOLDS"``, ``"SLIPS"`` or ``"UNDECIDED"``."""
+        """``"HOLDS"``, ``"SLIPS"``, ``"BREAKS"`` or ``"UNDECIDED"``."""
+        if self.holds is False and self.fails_by == "break":
+            return "BREAKS"
         return {True: "HOLDS", False: "SLIPS", None: "UNDECIDED"}[self.holds]
 
     def summary(self) -> str:
-        """The answer in one line: verdict, margin, deciding model."""
+        """The answer in one line: verdict, slip load, breaking load, the load's fraction of
+        the capacity and the deciding model (or, undecided, the next step)."""
+        head = f"verdict: {self.state}: " + capacity_words(self.capacity, self.inputs.get("load"))
         if self.holds is None:
-            return f"verdict: UNDECIDED (no model inside its validity answers); {self.next_step}"
-        return (
-            f"verdict: {self.state}  margin {format_margin(self.margin)}; decided by the "
-            f"{self.decided_by} model (inputs inside its validity)"
-        )
+            why = "" if self.decided_by is not None else " (no model inside its validity decides)"
+            return f"{head}{why}; {self.next_step}" if self.next_step else head + why
+        return f"{head}; decided by the {self.decided_by} model (inputs inside its validity)"
 
     def to_dict(self) -> dict:
         """Strict JSON-ready dict: non-finite numbers are null (with a flag where it matters)."""
@@ -123,20 +140,121 @@ class Verdict:
                 "answers": [_answer_dict(a) for a in self.answers],
                 "der": self.der,
                 "notes": list(self.notes),
+                "fails_by": self.fails_by,
+                "friction": self.friction,
+                "critical_mu_none": bool(
+                    self.friction is not None
+                    and math.isinf(self.friction.get("critical_mu", math.nan))
+                ),
+                "capacity": (
+                    None
+                    if self.capacity is None
+                    else self.capacity.to_dict(float(self.inputs.get("load", math.nan)))
+                ),
             }
         )
+
+    def friction_line(self) -> str:
+        """The friction in one line: the range and where it comes from, the verdict over it
+        and the critical mu ("" when not computed)."""
+        f = self.friction
+        if not f:
+            return ""
+        parts = []
+        if f.get("range"):
+            lo, hi = f["range"]
+            mat = self.inputs.get("material", "the rope")
+            dflt = " (default post material)" if f.get("default_post_material") else ""
+            rng = f"{lo:.3g}" if lo == hi else f"{lo:.3g}-{hi:.3g}"
+            parts.append(f"mu {rng} for {mat} on {f['post_material']}{dflt}, "
+                         f"verdict at mu = {lo:.3g}")  # fmt: skip
+            if "words" in f:
+                parts.append(f["words"])
+        m = f.get("critical_mu", math.nan)
+        if math.isinf(m):
+            parts.append(f"critical mu: none ({f.get('critical_mu_text', '')})")
+        elif not math.isnan(m):
+            parts.append(f"critical mu {m:.3g} ({f.get('critical_mu_text', '')})")
+        return "friction: " + "; ".join(parts) if parts else ""
 
     def to_json(self) -> str:
         """:meth:`to_dict` as strict JSON text (``allow_nan=False``)."""
         return _json.dumps(self.to_dict(), indent=2)
 
 
+def format_force(value: float) -> str:
+    """A load in words: ``0.5 N``, ``200 N``, ``1.4 kN``, ``13 kN`` (three figures below
+    1 kN, two above)."""
+    v = float(value)
+    if abs(v) < 1e3:
+        return f"{v:.3g} N"
+    return f"{v / 1e3:.2g} kN" if abs(v) < 1e5 else f"{v / 1e3:.3g} kN"
+
+
+def _band(lo: float, hi: float) -> str:
+    """``1.1-1.9 kN`` (one unit when both are in kN or both in N)."""
+    a, b = format_force(lo), format_force(hi)
+    if a.split()[1] == b.split()[1]:
+        return f"{a.split()[0]}-{b}"
+    return f"{a} to {b}"
+
+
+def _slip_words(slip) -> str:
+    if slip is None:
+        return "slip load not known"
+    if slip.bounded:
+        if slip.value == 0:
+            return "slips at any load at this friction"
+        if slip.low == slip.high:
+            return f"slips near {format_force(slip.value)} ({slip.source.split(' (')[0]})"
+        if slip.low == 0:
+            return f"slips at or below {format_force(slip.high)}"
+        return f"slips near {format_force(slip.value)} ({_band(slip.low, slip.high)})"
+    if "self-locking" in slip.source:
+        up = f" up to {format_force(slip.low)}" if slip.low > 0 else ""
+        return f"friction alone cannot unlock it{up}"
+    return f"no slip up to {format_force(slip.low)} (nothing slipped in the DER table)"
+
+
+def _break_words(cap) -> str:
+    b = cap.breaking
+    if b is None:
+        return cap.breaking_note
+    if cap.efficiency is None:
+        return f"breaks near {format_force(b.value)} (the rope's own strength)"
+    eta = cap.efficiency[0] * 100
+    return f"breaks near {format_force(b.value)} (knot efficiency {eta:.0f} %)"
+
+
+def capacity_words(cap, load) -> str:
+    """The capacity in words: slip load and band, breaking load and knot efficiency, and the
+    load as a percentage of whichever comes first."""
+    if cap is None:
+        return "capacity not computed"
+    text = f"{_slip_words(cap.slip)}, {_break_words(cap)}"
+    if not cap.decided or load is None:
+        return text
+    f = cap.fraction(float(load))
+    which = "slip load" if cap.limited_by == "slip" else "breaking load"
+    if math.isinf(f):
+        return f"{text}; any load exceeds the {which}"
+    if f >= 10:
+        return f"{text}; {format_force(float(load))} is {f:.3g} times the {which}"
+    pct = f * 100
+    return (
+        f"{text}; {format_force(float(load))} is {pct:.0f} % of the {which}"
+        if pct >= 10
+        else (f"{text}; {format_force(float(load))} is {pct:.2g} % of the {which}")
+    )
+
+
 def format_margin(margin: float) -> str:
-    """``+12.3 %``, ``unbounded (self-locking)`` or ``not computed``."""
+    """``+12.3 %``, ``self-locking (friction alone cannot unlock it)`` or ``not computed``
+    (issue 23: never "unbounded": the load a self-locking knot takes is its capacity)."""
     if math.isnan(margin):
         return "not computed"
     if math.isinf(margin):
-        return "unbounded (self-locking)" if margin > 0 else "-inf"
+        return "self-locking (friction alone cannot unlock it)" if margin > 0 else "-inf"
     pct = margin * 100
     return f"{pct:+.1f} %" if abs(pct) < 1e5 else f"{pct:+.3g} %"
 

@@ -13,6 +13,7 @@ from dataclasses import dataclass, replace
 from knotmech.errors import InputError, check_nonnegative, check_positive
 from knotmech.verdict.answer import Verdict
 from knotmech.verdict.command import SIMULATE_COST, simulate_command
+from knotmech.verdict.friction import critical_mu, friction_preset, range_words
 from knotmech.verdict.inputs import STRAIN_LIMIT, _bending_scale, _warnings, _youngs_modulus
 from knotmech.verdict.rule import decide, with_validity
 from knotmech.verdict.scope import BENDS, can_simulate, has_der_answer, knot_key
@@ -25,7 +26,7 @@ def hold(
     *,
     rod_diameter,
     post_diameter=None,
-    mu,
+    mu=None,
     load,
     free_end_load=0.0,
     mu_rr=None,
@@ -37,6 +38,7 @@ def hold(
     progress=False,
     creep_limit=None,
     bending_scale=None,
+    post_material=None,
 ) -> Verdict:
     r"""Does a rope tied to a post hold a load? The verdict, every model's answer and why.
 
@@ -50,8 +52,15 @@ def hold(
         :class:`~knotmech.errors.InputError` listing these.
     rod_diameter, post_diameter : float
         Rope diameter d and post diameter D [m], > 0 (no post for a bend: None).
-    mu : float
-        Rope-post friction coefficient [-], >= 0.
+    mu : float, optional
+        Rope-post friction coefficient [-], >= 0 (a bend: rope-rope). Without it, the
+        published range of ``material`` on ``post_material``
+        (:func:`knotmech.strength.friction_range`): the verdict is given at its low end and
+        scanned over the range (:attr:`Verdict.friction`).
+    post_material : str, optional
+        The post's material for the friction range when ``mu`` is not given: ``steel``
+        (default, :data:`knotmech.verdict.friction.DEFAULT_POST_MATERIAL`), ``aluminium``,
+        ``wood``, ``rope`` (:func:`knotmech.strength.counterface_names`). ``mu`` overrides.
     load : float
         Tension on the loaded end :math:`T_\mathrm{high}` [N], > 0.
     free_end_load : float
@@ -120,22 +129,83 @@ def hold(
     6.21e-05
     """
     key = knot_key(knot)
+    friction = None
+    if mu is None:
+        lo, hi, face, src = friction_preset(key, material, post_material)
+        mu = lo
+        friction = {"post_material": face, "default_post_material": post_material is None,
+                    "range": [lo, hi], "source": src}  # fmt: skip
     if key in BENDS:
         from knotmech.verdict.bend import hold_bend
 
-        return hold_bend(
+        v = hold_bend(
             key, rod_diameter=rod_diameter, post_diameter=post_diameter, mu=mu, load=load,
             free_end_load=free_end_load, mu_rr=mu_rr, wrap_angle=wrap_angle, material=material,
             youngs_modulus=youngs_modulus, simulate=simulate, phase_table=phase_table,
             progress=progress, bending_scale=bending_scale,
         )  # fmt: skip
+        v = _bend_capacity(v, material)
+        return v if friction is None else replace(v, friction=friction)
     c = _case(
         key, rod_diameter=rod_diameter, post_diameter=post_diameter, mu=mu, load=load,
         free_end_load=free_end_load, mu_rr=mu_rr, material=material,
         youngs_modulus=youngs_modulus, simulate=simulate, phase_table=phase_table,
         progress=progress, creep_limit=creep_limit, bending_scale=bending_scale,
     )  # fmt: skip
-    return _verdict(c, wrap_angle)
+    v = _verdict(c, wrap_angle)
+    return replace(v, friction=_friction_part(c, wrap_angle, v, friction))
+
+
+def _friction_part(c, wrap_angle, v: Verdict, friction) -> dict:
+    """The critical mu and, when mu came from the material (``friction``: the preset), the
+    verdict at the range's high end and over the range (the verdict itself is at its low
+    end); assumes more friction never turns a hold into a slip."""
+    out = dict(friction or {"range": None})
+    m, text = _critical_mu(c, v)
+    out.update(critical_mu=m, critical_mu_text=text)
+    if friction is None:
+        return out
+    lo, hi = friction["range"]
+    at_high = v.holds if c.simulate else _verdict(replace(c, mu=hi), wrap_angle).holds
+    out.update(holds_at_low=v.holds, holds_at_high=at_high,
+               words=range_words(v.holds, at_high, lo, hi, m))  # fmt: skip
+    if c.simulate:
+        out["words"] = f"simulated at mu = {lo:.3g} only (range {lo:.3g}-{hi:.3g})"
+    return out
+
+
+def _critical_mu(c, v: Verdict) -> tuple:
+    """(mu*, how): the least mu at which the knot holds at this load: the deciding closed
+    form's own critical mu, or a bisection in mu of the DER hold table's lookup; none when
+    the load breaks the rope."""
+    from knotmech.verdict.criterion import CREEP_LIMIT
+
+    if v.fails_by == "break":
+        return math.inf, "the load breaks the rope whatever the friction"
+    dec = v.deciding or next((a for a in v.answers if a.inside_validity and
+                              math.isfinite(a.critical_mu)), None)  # fmt: skip
+    if dec is None:
+        return math.nan, "no model inside its validity gives one"
+    if dec.model == "DER-table":
+        table = _slip_table(c, v.der)
+        if table is not None:
+            x, y = c.d / (c.D + c.d), c.load / (c.E * math.pi * c.d * c.d / 4)
+            lim = CREEP_LIMIT if c.creep_limit is None else c.creep_limit
+            mr = None if c.mu_rr is None else float(c.mu_rr)
+
+            def ask(m):
+                return table.lookup(x, y, mu=m, mu_rr=mr if mr is not None else m,
+                                    creep_limit=lim).holds  # fmt: skip
+
+            m, how = critical_mu(ask, c.mu, v.holds)
+            return m, how.replace("the verdict", "the DER table's verdict")
+    if dec.model.startswith("DER"):
+        return math.nan, f"not searched for the {dec.model} answer"
+    m = float(dec.critical_mu)
+    tag = "" if dec.decides else ", which does not decide here"
+    if math.isinf(m):
+        return m, f"the {dec.model} model's: no friction coefficient holds it{tag}"
+    return m, f"the {dec.model} model's{tag}"
 
 
 @dataclass
@@ -163,6 +233,9 @@ class _Case:
     simulate: bool
     phase_table: object
     progress: bool
+    #: the thick nip is self-locking and inside its own validity but for the strain (set
+    #: by :func:`_closed_form_answers`): it then bounds the slip load from below by 0.1 EA
+    nip_locks: bool = False
 
     @property
     def simulable(self) -> bool:
@@ -266,24 +339,123 @@ def _verdict(c: _Case, wrap_angle) -> Verdict:
     i = decide(answers)
     if i is not None:
         answers[i] = replace(answers[i], decides=True)
+    cap = _capacity(c, answers, der)
+    holds, fails_by = _settle(c, answers, i, cap)
+    if i is not None and holds is None:  # a self-locking closed form that nothing bounds
+        answers[i] = replace(answers[i], decides=False)
+        i = None
     dec = None if i is None else answers[i]
     return Verdict(
         knot=c.key,
-        holds=None if dec is None else bool(dec.holds),
-        margin=math.nan if dec is None else float(dec.margin),
+        holds=holds,
+        margin=_margin(dec, cap, c.load),
         decided_by=None if dec is None else dec.model,
         inside_validity=dec is not None,
         answers=tuple(answers),
         validity=() if dec is None else tuple(dec.validity),
         assumptions=tuple(assumptions),
         warnings=_warnings(c.mu, c.mu_rr, c.d, c.D, c.load, c.E, inputs.get("wrap_angle")),
-        next_step=_next_step(c, dec, der, cmd),
+        next_step=_next_step(c, dec, der, cmd, cap),
         creep=creep,
         inputs=inputs,
         der=der,
         notes=tuple(base.notes),
         shape=shape,
+        capacity=cap,
+        fails_by=fails_by,
     )
+
+
+def _bend_capacity(v: Verdict, material) -> Verdict:
+    """A bend's verdict with its capacity: the slip load of its DER pull (a point value) when
+    one ran, and the bend's breaking load; at or above the breaking load it breaks."""
+    from knotmech.verdict import capacity as _cap
+
+    dec = v.deciding
+    slip = None
+    if dec is not None and math.isfinite(dec.capacity):
+        slip = _cap.LoadBand(dec.capacity, dec.capacity, dec.capacity, "DER pull of the bend")
+    load = v.inputs["load"]
+    cap = _cap.capacity_of(knot=v.knot, slip=slip, material=v.inputs.get("material", material),
+                           d=v.inputs["rod_diameter"], D=None, load=load)  # fmt: skip
+    brk = cap.breaking
+    if v.holds is not None and brk is not None and load >= brk.value:
+        return replace(v, capacity=cap, holds=False, fails_by="break")
+    return replace(v, capacity=cap, fails_by="slip" if v.holds is False else None)
+
+
+def _slip_table(c: _Case, der):
+    """The 3-axis DER hold table that gives this case's slip load, None where none applies
+    (no DER answer, a loaded free end, no E, a table refused for its kappa or its rod)."""
+    from knotmech.verdict.der import BENDING_SCALE_FACTOR, load_user_table, shipped_hold_table
+    from knotmech.verdict.tables import HoldTable
+
+    if not has_der_answer(c.key) or c.free > 0 or c.E is None or (der or {}).get("refused"):
+        return None
+    if c.phase_table is not None:
+        t = load_user_table(c.phase_table)
+        return t if isinstance(t, HoldTable) else None
+    t = shipped_hold_table(c.key, c.kappa)
+    if (
+        t is None
+        or max(t.bending_scale / c.kappa, c.kappa / t.bending_scale) > BENDING_SCALE_FACTOR
+    ):
+        return None
+    return t
+
+
+def _capacity(c: _Case, answers: list, der):
+    """The load the knot takes (:func:`knotmech.verdict.capacity.capacity_of`): the slip load
+    from the DER hold table at the user's d/2R and friction, else from the deciding closed
+    form, and the knot's breaking load."""
+    from knotmech.verdict import capacity as _cap
+    from knotmech.verdict.criterion import CREEP_LIMIT
+
+    EA = math.nan if c.E is None else c.E * math.pi * c.d * c.d / 4
+    slip = None
+    table = _slip_table(c, der)
+    if table is not None:
+        lim = CREEP_LIMIT if c.creep_limit is None else c.creep_limit
+        row = _cap.slip_from_table(table, x=c.d / (c.D + c.d), mu=c.mu,
+                                   mu_rr=None if c.mu_rr is None else float(c.mu_rr),
+                                   creep_limit=lim)  # fmt: skip
+        slip = _cap.band_newtons(row, EA)
+    closed = _cap.slip_from_answers(answers, strain_limit_load=STRAIN_LIMIT * EA)
+    if closed is None and c.nip_locks and math.isfinite(EA):  # a load beyond its strain
+        closed = _cap.LoadBand(math.inf, STRAIN_LIMIT * EA, math.inf,
+                               "thick-nip model: self-locking, friction alone cannot unlock it "
+                               "up to its validity's strain")  # fmt: skip
+    slip = _cap.better_slip(slip, closed)
+    dec = next((a for a in answers if a.decides), None)
+    slip = _cap.agree_with_verdict(slip, None if dec is None else dec.holds, c.load)
+    return _cap.capacity_of(knot=c.key, slip=slip, material=c.mat, d=c.d, D=c.D, load=c.load)
+
+
+def _settle(c: _Case, answers: list, i, cap) -> tuple:
+    """(holds, fails_by) from the deciding answer and the capacity: a self-locking closed
+    form holds only up to the capacity's lower bound (undecided when nothing bounds it,
+    or between the bound and the break); at or above the breaking load the knot breaks."""
+    if i is None:
+        return None, None
+    dec = answers[i]
+    holds = bool(dec.holds)
+    brk = cap.breaking
+    if math.isinf(dec.margin) and dec.margin > 0:
+        if not cap.decided or c.load > cap.low:
+            holds = None
+    if brk is not None and c.load >= brk.value and holds is not False:
+        return False, "break"
+    return holds, (None if holds is not False else "slip")
+
+
+def _margin(dec, cap, load: float) -> float:
+    """The deciding model's margin ``capacity/load - 1``; where it is self-locking (inf), the
+    capacity's (:attr:`Verdict.capacity`, the breaking load) instead; NaN when undecided."""
+    if dec is None:
+        return math.nan
+    if math.isinf(dec.margin) and cap is not None and cap.decided:
+        return cap.value / load - 1
+    return float(dec.margin) if math.isfinite(dec.margin) else math.nan
 
 
 def _inputs(c: _Case, base) -> dict:
@@ -307,6 +479,7 @@ def _closed_form_answers(c: _Case, base) -> list:
     for a in base.answers:
         a = replace(a, decides=False)
         if a.model == "thick-nip":
+            c.nip_locks = bool(a.inside_validity and math.isinf(a.capacity) and c.d <= c.D)
             ok = c.d <= c.D and (strain is None or strain <= STRAIN_LIMIT)
             a = with_validity(
                 a,
@@ -354,26 +527,39 @@ def _der_part(c: _Case, answers: list, assumptions: list, cmd: str):
     return der, creep, shape
 
 
-def _next_step(c: _Case, dec, der, cmd: str) -> str:
+def _next_step(c: _Case, dec, der, cmd: str, cap=None) -> str:
     """What to do next: the command that decides an undecided case, the input that lets the
-    DER answer, or the run that checks a case the DER did not decide."""
+    DER answer, the runs that find an unbounded slip load, or the run that checks a case the
+    DER did not decide."""
     if dec is None:
-        if c.simulable:
-            return (
-                f"next: {cmd} (one DER run of this geometry, {SIMULATE_COST}) decides it"
-                + ("" if c.E is not None else "; MATERIAL: one of the presets, or give "
-                   "--youngs-modulus")
-            )  # fmt: skip
-        return "next: no model here applies inside its validity; test the knot"
+        return _undecided_step(c, cmd, cap)
     if has_der_answer(c.key) and c.free == 0 and c.E is None:
         return (
             "next: give --material or --youngs-modulus (material=, youngs_modulus=) to "
             "check against the DER phase table"
         )
+    if cap is not None and not cap.decided and c.simulable and not c.simulate:
+        return (
+            f"next: the slip load is not bounded ({cap.message}); {cmd} with heavier "
+            "--load values finds where it slips"
+        )
     der_silent = der is not None and der.get("holds") is None and c.free == 0
     if c.simulable and der_silent and not c.simulate and dec.model != "DER-table":
         return f"next: {cmd} checks it with one DER run of this geometry"
     return ""
+
+
+def _undecided_step(c: _Case, cmd: str, cap) -> str:
+    """The next step of an undecided case: the DER run that decides it, or a test."""
+    if c.simulable:
+        return (
+            f"next: {cmd} (one DER run of this geometry, {SIMULATE_COST}) decides it"
+            + ("" if c.E is not None else "; MATERIAL: one of the presets, or give "
+               "--youngs-modulus")
+        )  # fmt: skip
+    if cap is not None and not cap.decided and cap.slip is not None:
+        return f"next: {cap.message}; test the knot (no model bounds its slip load)"
+    return "next: no model here applies inside its validity; test the knot"
 
 
 def hold_verdict(

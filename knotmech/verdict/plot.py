@@ -27,12 +27,16 @@ def check_plot_path(path) -> Path:
 
 
 def plot_verdict(verdict: Verdict, path, *, phase_table=None) -> Path:
-    """Draw the DER answer: the query on the phase diagram, or the simulated knot.
+    """Draw the DER answer: the query on the phase diagram, or the simulated knot; and the
+    capacity against friction.
 
     Table answer: one panel per friction table used, grid points held (dots) and
     slipped (crosses), the interpolated upper boundary and the query (star, labelled with
-    the verdict). Simulation: the knot's centreline at the end of the hold in 3-D,
-    coloured by the tension T(s), with the post (axis z through the origin).
+    the verdict); then the capacity panel (:func:`_draw_capacity`): the slip band of the
+    hold table at the user's d/2R against mu, the breaking load and the user's load and
+    friction. Without a table answer, the capacity panel alone. Simulation: the knot's
+    centreline at the end of the hold in 3-D, coloured by the tension T(s), with the post
+    (axis z through the origin).
 
     Raises
     ------
@@ -43,7 +47,8 @@ def plot_verdict(verdict: Verdict, path, *, phase_table=None) -> Path:
     if verdict.shape is not None:
         return _plot_knot(verdict, p)
     der = verdict.der or {}
-    if der.get("source") != "table" or not der.get("mu_tables"):
+    has_table = der.get("source") == "table" and bool(der.get("mu_tables"))
+    if not has_table and verdict.capacity is None:
         raise InputError(
             "plot: there is no DER answer to draw (a hitch with a DER table, free end, E "
             "given, inside the table's reach, or simulate)"
@@ -53,24 +58,40 @@ def plot_verdict(verdict: Verdict, path, *, phase_table=None) -> Path:
     matplotlib.use("Agg", force=False)
     import matplotlib.pyplot as plt
 
-    from knotmech.verdict.criterion import CREEP_LIMIT
-    from knotmech.verdict.der import load_user_table, shipped_hold_table
     from knotmech.verdict.tables import HoldTable
 
-    tables = (shipped_hold_table(verdict.knot, der.get("table_bending_scale", 1.0))
-              if phase_table is None else load_user_table(phase_table))  # fmt: skip
-    if isinstance(tables, HoldTable):
-        lim = (verdict.creep or {}).get("limit_d_per_protocol_s") or CREEP_LIMIT
-        used = [tables.slice(m, creep_limit=lim) for m in der["mu_tables"]]
-    else:
-        used = [tables.table(m) for m in der["mu_tables"]]
-    fig, axes = plt.subplots(1, len(used), figsize=(5.2 * len(used), 4.2), squeeze=False)
-    for ax, t in zip(axes[0], used, strict=True):
+    tables, used, lim = _tables_used(verdict, der, has_table, phase_table)
+    n = len(used) + (verdict.capacity is not None)
+    fig, axes = plt.subplots(1, n, figsize=(5.2 * n, 4.2), squeeze=False)
+    for ax, t in zip(axes[0], used, strict=False):
         _draw_slice(ax, t, der, verdict)
+    if verdict.capacity is not None:
+        hold_table = tables if isinstance(tables, HoldTable) else None
+        _draw_capacity(axes[0][-1], verdict, hold_table, lim)
     fig.tight_layout()
     fig.savefig(p)
     plt.close(fig)
     return p
+
+
+def _tables_used(verdict: Verdict, der: dict, has_table: bool, phase_table):
+    """(the DER table the verdict read or None, the (d/2R, T/EA) slices to draw, the creep
+    limit [d per protocol s] they are judged at)."""
+    from knotmech.verdict.criterion import CREEP_LIMIT
+    from knotmech.verdict.der import load_user_table, shipped_hold_table
+    from knotmech.verdict.tables import HoldTable
+
+    tables = None
+    if der.get("source") == "table" and "refused" not in der:
+        tables = (shipped_hold_table(verdict.knot, der.get("table_bending_scale", 1.0))
+                  if phase_table is None else load_user_table(phase_table))  # fmt: skip
+    lim = (verdict.creep or {}).get("limit_d_per_protocol_s") or CREEP_LIMIT
+    used = []
+    if has_table and isinstance(tables, HoldTable):
+        used = [tables.slice(m, creep_limit=lim) for m in der["mu_tables"]]
+    elif has_table and tables is not None:
+        used = [tables.table(m) for m in der["mu_tables"]]
+    return tables, used, lim
 
 
 def _draw_slice(ax, t, der: dict, verdict: Verdict) -> None:
@@ -101,6 +122,46 @@ def _draw_slice(ax, t, der: dict, verdict: Verdict) -> None:
     ax.set_ylabel("T_high/EA")
     ax.set_title(f"{verdict.knot}, free end, mu = mu_rr = {t.mu:g}", fontsize=10)
     ax.legend(loc="best", fontsize=8, framealpha=0.6)
+
+
+def _draw_capacity(ax, verdict: Verdict, table, limit: float) -> None:
+    """Capacity against friction at the user's d/2R: the hold table's slip band and its
+    interpolated value [N] (where bounded), the knot's breaking load (line and band), the
+    user's load (dashed), mu (dotted) and the material's friction range (shaded)."""
+    import math
+
+    import numpy as np
+
+    from knotmech.verdict.capacity import slip_from_table
+
+    i = verdict.inputs
+    mus = np.linspace(0.05, 1.0, 39)
+    if table is not None and "youngs_modulus" in i:
+        d, D = i["rod_diameter"], i["post_diameter"]
+        EA = i["youngs_modulus"] * math.pi * d * d / 4
+        rows = [slip_from_table(table, x=d / (D + d), mu=float(m), creep_limit=limit) for m in mus]
+        val = np.array([r[0] if r else np.nan for r in rows]) * EA
+        lo = np.array([r[1] if r else np.nan for r in rows]) * EA
+        hi = np.array([r[2] if r else np.nan for r in rows]) * EA
+        top = np.nanmax(np.where(np.isfinite(hi), hi, lo))
+        ax.fill_between(mus, lo, np.where(np.isfinite(hi), hi, 10 * top), color="tab:orange",
+                        alpha=0.25, label="slip band (DER table)")  # fmt: skip
+        ax.plot(mus, np.where(np.isfinite(val), val, np.nan), color="tab:orange", label="slip load")
+    cap = verdict.capacity
+    if cap.breaking is not None:
+        b = cap.breaking
+        ax.axhspan(b.low, b.high, color="tab:purple", alpha=0.15)
+        ax.axhline(b.value, color="tab:purple", label="breaking load")
+    ax.axhline(i["load"], color="k", ls="--", lw=1, label=f"load {i['load']:.4g} N")
+    ax.axvline(i["mu"], color="tab:blue", ls=":", label=f"mu = {i['mu']:.3g}")
+    rng = (verdict.friction or {}).get("range")
+    if rng:
+        ax.axvspan(rng[0], rng[1], color="tab:blue", alpha=0.1, label="material's mu range")
+    ax.set_yscale("log")
+    ax.set_xlabel("mu = mu_rr")
+    ax.set_ylabel("load [N]")
+    ax.set_title(f"{verdict.knot}: capacity against friction ({verdict.state})", fontsize=10)
+    ax.legend(loc="best", fontsize=7, framealpha=0.6)
 
 
 def _plot_knot(verdict: Verdict, p: Path) -> Path:

@@ -75,10 +75,16 @@ def test_papers_case_with_its_material_is_decided_by_the_der_table(capsys, tmp_p
 
 
 def test_without_a_material_nothing_is_assumed_and_the_der_is_not_consulted(capsys):
-    """No E: the DER tables (in T_high/EA) are not read, the verdict says so, and the
-    thick-nip model (inside its validity) decides; the ideal rope (outside) does not."""
+    """No E: the DER tables (in T_high/EA) are not read, the verdict says so. The thick-nip
+    model (inside its validity) says self-locking, but with no material nothing bounds the
+    slip load (no table, no breaking load): undecided (issue 23), never "unbounded"."""
     data = _json(CLOVE, capsys)
-    assert data["holds"] is True and data["decided_by"] == "thick-nip"
+    assert data["holds"] is None and data["decided_by"] is None
+    nip = next(a for a in data["answers"] if a["model"] == "thick-nip")
+    assert nip["inside_validity"] is True and nip["capacity_unbounded"] is True
+    assert data["capacity"]["limited_by"] is None and data["capacity"]["value_N"] is None
+    assert data["capacity"]["breaking_note"] == "breaking load: no material given (--material)"
+    assert "--simulate" in data["next_step"]
     assert data["der"]["source"] == "none" and "not consulted" in data["der"]["message"]
     assert any("E was not given" in s for s in data["assumptions"])
     assert "--material" in data["next_step"]
@@ -91,7 +97,10 @@ def test_issue_example_no_longer_decided_by_a_model_outside_its_validity(capsys)
     assert main(ISSUE) == 0
     out = capsys.readouterr().out
     first = out.splitlines()[0]
-    assert first.startswith("verdict: HOLDS") and "thick-nip" in first
+    # issue 23: the thick nip (inside its validity) is self-locking, but without a material
+    # nothing bounds the slip load: undecided with the command, never "unbounded"
+    assert first.startswith("verdict: UNDECIDED: friction alone cannot unlock it up to 200 N")
+    assert "unbounded" not in out and "--simulate" in first
     assert "ideal-rope slips (outside its validity)" in out
     # with the rope's material: nylon kernmantle E = 0.25 GPa, EA = 7.07 kN, 200 N is
     # 0.0283 EA at d/2R = 6/46 = 0.130, mu 0.4: inside the anchor-law hold table; as a
@@ -182,7 +191,13 @@ def test_short_answer_first_detail_under_verbose(capsys):
     assert main(CLOVE + ["--material", "vps32", "--verbose"]) == 0
     long = capsys.readouterr().out.splitlines()
     assert short[0] == long[0] and short[0].startswith("verdict: HOLDS")
-    assert len(short) <= 6 < len(long)
+    # the friction line second: the DER table's critical mu at 1.47 N (0.0928 EA, d/2R
+    # 0.1176): slips at mu 0.2, holds at 0.3, bisected to the table's tolerance
+    assert short[1] == (
+        "friction: critical mu 0.295 (holds for mu >= 0.295 (bisection of the DER table's "
+        "verdict))"
+    )
+    assert len(short) <= 7 < len(long)
     assert not any("assumes:" in s for s in short)
 
 
@@ -191,7 +206,25 @@ def test_other_knots(knot, capsys):
     args = ["hold", knot, "--rod-diameter", "4mm", "--post-diameter", "30mm", "--mu", "0.3"]
     args += ["--load", "1N", "--free-end-load", "0.5N", "--mu-rr", "0.2"]
     assert main(args) == 0
-    assert capsys.readouterr().out.startswith("verdict: HOLDS")
+    out = capsys.readouterr().out
+    if knot == "round-turn":
+        # the thick nip's capacity 2.6 N for 0.5 N on the free end: a point value
+        assert out.startswith("verdict: HOLDS: slips near 2.6 N (thick-nip model)")
+        assert "1 N is 38 % of the slip load" in out
+    else:
+        # self-locking, no material: nothing bounds the slip load (issue 23)
+        assert out.startswith("verdict: UNDECIDED: friction alone cannot unlock it up to 1 N")
+    # a 6 mm polyester rope on a 40 mm post: the breaking load bounds it
+    args = ["hold", knot, "--rod-diameter", "6mm", "--post-diameter", "40mm", "--mu", "0.3",
+            "--load", "100N", "--free-end-load", "50N", "--material", "polyester"]  # fmt: skip
+    data = _json(args, capsys)
+    cap = data["capacity"]
+    if knot == "round-turn":  # no knot efficiency is published for it
+        assert cap["breaking"] is None and cap["breaking_note"] == (
+            "breaking load: no published knot efficiency for round-turn; source needed"
+        )
+    else:  # polyester 6 mm MBS (Robline) x the knot's efficiency, a few kN
+        assert data["holds"] is True and 1e3 < cap["breaking"]["value_N"] < 1e4
 
 
 def test_half_hitches_are_never_thin_for_the_ideal_rope(capsys):
@@ -201,7 +234,10 @@ def test_half_hitches_are_never_thin_for_the_ideal_rope(capsys):
             "--mu", "0.3", "--load", "100N"]  # fmt: skip
     data = _json(args, capsys)
     ideal = next(a for a in data["answers"] if a["model"] == "ideal-rope")
-    assert ideal["inside_validity"] is False and data["decided_by"] == "thick-nip"
+    nip = next(a for a in data["answers"] if a["model"] == "thick-nip")
+    assert ideal["inside_validity"] is False and nip["inside_validity"] is True
+    # self-locking, but no material bounds the slip load: undecided (issue 23)
+    assert data["decided_by"] is None and data["holds"] is None
 
 
 @pytest.mark.parametrize(
@@ -235,7 +271,12 @@ def test_wrap_beyond_20_turns_warns(capsys):
 
 def test_self_locking_margin_is_strict_json(capsys):
     data = _json(ISSUE, capsys)
-    assert data["margin"] is None and data["margin_unbounded"] is True
+    # issue 23: never unbounded: undecided (no material), the margin null and not flagged
+    assert data["margin"] is None and data["margin_unbounded"] is False
+    nylon = _json(ISSUE + ["--material", "nylon"], capsys)
+    # nylon 6 mm: 3-strand MBS 5.95 kN x clove-hitch efficiency 0.75 = 4.46 kN
+    assert nylon["margin"] == pytest.approx(4462.17 / 200 - 1, rel=1e-5)
+    assert nylon["margin_unbounded"] is False
     nip = next(a for a in data["answers"] if a["model"] == "thick-nip")
     assert nip["capacity"] is None and nip["capacity_unbounded"] is True
 
@@ -379,16 +420,19 @@ def test_huge_friction_does_not_overflow(knot, free, capsys):
     data = _json(args, capsys)
     assert [w["input"] for w in data["warnings"]] == ["mu"]
     if knot == "clove-hitch" and free == "0N":
-        # thick nip self-locks (any load holds); the ideal rope is outside its validity
-        assert data["holds"] is True and data["decided_by"] == "thick-nip"
+        # thick nip self-locks; the ideal rope is outside its validity; no material:
+        # nothing bounds the slip load, undecided (issue 23)
+        assert data["holds"] is None and data["decided_by"] is None
         # with the table's material: beyond the table's friction range (0.1-0.8), both
         # neighbouring points at mu = 0.8 held (1 N = 0.063 EA, d/2R 0.1176), and more
         # friction keeps a hold
         data = _json(args + ["--material", "vps32"], capsys)
         assert data["decided_by"] == "DER-table" and data["der"]["mu_tables"] == [0.8]
         assert data["der"]["rule"] == "more-friction-holds"
-    else:
+    elif knot == "capstan":
         assert data["holds"] is (free != "0N")
+    else:  # self-locking with 0.1 N on the free end, no material: undecided (issue 23)
+        assert data["holds"] is None
 
 
 def test_nylon_rope_is_answered_by_the_kappa_001_table(capsys):
@@ -399,7 +443,13 @@ def test_nylon_rope_is_answered_by_the_kappa_001_table(capsys):
     neighbours (d/2R 0.1176, 0.2308 x 1e-3, 1e-2 EA x mu 0.3, 0.5) held, and it decides."""
     assert main(ISSUE + ["--material", "nylon"]) == 0
     out = capsys.readouterr().out
-    assert out.splitlines()[0].startswith("verdict: HOLDS") and "thick-nip" in out
+    # the thick nip holds up to its validity's 0.1 EA = 707 N; the 3-strand nylon MBS 5.95 kN
+    # x 0.75 breaks near 4.5 kN (issue 23)
+    assert out.splitlines()[0] == (
+        "verdict: HOLDS: friction alone cannot unlock it up to 707 N, breaks near 4.5 kN "
+        "(knot efficiency 75 %); 200 N is 4.5 % of the breaking load; decided by the thick-nip "
+        "model (inputs inside its validity)"
+    )
     assert "assumed: bending scale kappa = 0.01" in out
     nxt = next(x for x in out.splitlines() if x.startswith("next:"))
     assert "--material nylon --simulate" in nxt
@@ -423,5 +473,6 @@ def test_bending_scale_factor_three_is_the_edge(capsys):
     ok = _json(sil + ["--bending-scale", str(1 / 3)], capsys)
     assert ok["decided_by"] == "DER-table"
     no = _json(sil + ["--bending-scale", "0.33"], capsys)
-    assert no["decided_by"] == "thick-nip" and no["der"]["refused"] == "bending_scale"
+    # the thick nip is self-locking; no material bounds the slip load: undecided (issue 23)
+    assert no["decided_by"] is None and no["der"]["refused"] == "bending_scale"
     assert "--bending-scale 0.33 --simulate" in no["der"]["message"]

@@ -1,0 +1,294 @@
+r"""The load a knot takes: its slip load (from the DER hold table, or a closed form) and its
+breaking load (:func:`knotmech.strength.knot_breaking_load`), whichever is lower.
+
+The slip load is the clove-hitch paper's critical load (Extreme Mech. Lett., DOI
+10.1016/j.eml.2022.101788, sec. 8 and Fig. 4) in the user's units: in each column of the
+hold table at the grid values of d/2R and mu around the user's (the corners the lookup
+uses), the load :math:`T_\mathrm{high}/EA` where the column goes from hold to slip, above
+the lightest load that held; bracketed by the last load held and the first that slipped.
+The value is interpolated in d/2R and mu (linearly, on the logarithm of each column's
+geometric mid-point), the band is the widest bracket of the corners, and both are
+converted to newtons with :math:`EA = E\pi d^2/4`. A closed form that says the knot is
+self-locking bounds the slip load from below only (friction alone cannot unlock it, up to
+the end of the closed form's validity); the capacity is then the breaking load, and
+without one the capacity is undecided.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+from knotmech.errors import InputError
+from knotmech.verdict.criterion import CREEP_LIMIT
+from knotmech.verdict.tables import MU_TOL, _axis
+
+__all__ = [
+    "Capacity",
+    "LoadBand",
+    "agree_with_verdict",
+    "band_newtons",
+    "better_slip",
+    "capacity_of",
+    "column_bracket",
+    "slip_from_answers",
+    "slip_from_table",
+]
+
+
+@dataclass(frozen=True)
+class LoadBand:
+    """A load [N] with its band ``low <= value <= high`` and where it comes from.
+
+    ``high`` is inf when nothing bounds it from above (nothing slipped up to ``low``)."""
+
+    value: float
+    low: float
+    high: float
+    source: str
+
+    @property
+    def bounded(self) -> bool:
+        """Whether the band is finite."""
+        return math.isfinite(self.high) and math.isfinite(self.value)
+
+    def to_dict(self) -> dict:
+        return {
+            "value_N": self.value if math.isfinite(self.value) else None,
+            "low_N": self.low,
+            "high_N": self.high if math.isfinite(self.high) else None,
+            "unbounded_above": not math.isfinite(self.high),
+            "source": self.source,
+        }
+
+
+@dataclass(frozen=True)
+class Capacity:
+    """The load a knot takes [N]: ``value`` in ``[low, high]``, the lower of the slip and
+    breaking loads (``limited_by`` ``"slip"`` or ``"break"``); NaN and ``limited_by`` None
+    when nothing inside its validity bounds it (undecided).
+
+    ``slip``: the slip load (None when no model gives one); ``breaking``: the knot's breaking
+    load (None when no published data: ``breaking_note`` says so); ``efficiency`` the knot
+    efficiency (nominal, low, high) or None; ``message`` the capacity in words.
+    """
+
+    value: float
+    low: float
+    high: float
+    limited_by: str | None
+    slip: LoadBand | None
+    breaking: LoadBand | None
+    efficiency: tuple | None
+    breaking_note: str
+    message: str
+
+    @property
+    def decided(self) -> bool:
+        return self.limited_by is not None
+
+    def fraction(self, load: float) -> float:
+        """The load as a fraction of the capacity (NaN when undecided)."""
+        if not self.decided:
+            return math.nan
+        return load / self.value if self.value > 0 else math.inf
+
+    def to_dict(self, load: float) -> dict:
+        f = self.fraction(load)
+        return {
+            "value_N": self.value if self.decided else None,
+            "low_N": self.low if self.decided else None,
+            "high_N": self.high if self.decided else None,
+            "limited_by": self.limited_by,
+            "load_fraction": f if math.isfinite(f) else None,
+            "slip": None if self.slip is None else self.slip.to_dict(),
+            "breaking": None if self.breaking is None else self.breaking.to_dict(),
+            "knot_efficiency": None if self.efficiency is None else list(self.efficiency),
+            "breaking_note": self.breaking_note,
+            "message": self.message,
+        }
+
+
+# ----------------------------------------------------------------------- the DER table
+def column_bracket(loads, votes) -> tuple:
+    """(last load held, first load slipped) above the lightest load held in one column.
+
+    ``loads`` ascending [T/EA], ``votes`` True/False/None (a failed run counts as a slip).
+    (0, lightest) when nothing held; (heaviest, inf) when nothing slipped above the first
+    hold.
+    """
+    held = [i for i, v in enumerate(votes) if v]
+    if not held:
+        return 0.0, float(loads[0])
+    for j in range(held[0] + 1, len(loads)):
+        if not votes[j]:
+            return float(loads[j - 1]), float(loads[j])
+    return float(loads[-1]), math.inf
+
+
+def _mid(lo: float, hi: float) -> float:
+    """Geometric mid-point of a bracket on a log-spaced grid (hi when lo is 0)."""
+    if not math.isfinite(hi):
+        return math.inf
+    return math.sqrt(lo * hi) if lo > 0 else hi
+
+
+def _weights(values, idx, q: float) -> list:
+    """Linear interpolation weights of ``q`` over the grid values ``values[idx]``."""
+    if len(idx) == 1:
+        return [1.0]
+    a, b = float(values[idx[0]]), float(values[idx[1]])
+    w = min(max((q - a) / (b - a), 0.0), 1.0)
+    return [1 - w, w]
+
+
+def slip_from_table(table, *, x, mu, mu_rr=None, creep_limit=CREEP_LIMIT):
+    """The slip load of a :class:`~knotmech.verdict.tables.HoldTable` at (d/2R, mu, mu_rr).
+
+    Returns
+    -------
+    (value, low, high, text) in T_high/EA, or None when d/2R lies outside the table.
+    ``high`` is inf where a corner column slipped nowhere above its holds; below the
+    smallest mu the band starts at 0 (less friction slips earlier); above the largest, it
+    is open above (more friction slips later).
+    """
+    mr = mu if mu_rr is None else mu_rr
+    ax = table.axes
+    xi, xw = _axis(ax["d_over_2R"], x, x)
+    if xw in ("below", "above"):
+        return None
+    lo_m, hi_m = min(mu, mr), max(mu, mr)
+    mi, mw = _axis(ax["mu"], lo_m, hi_m, rel=MU_TOL / max(hi_m, 1e-9))
+    ys = ax["t_over_EA"]
+    wx = _weights(ax["d_over_2R"], xi, x)
+    wm = _weights(ax["mu"], mi, 0.5 * (lo_m + hi_m))
+    logv, lows, highs = 0.0, [], []
+    for i, a in zip(xi, wx, strict=True):
+        for k, b in zip(mi, wm, strict=True):
+            votes = [table.point(ax["d_over_2R"][i], y, ax["mu"][k]).holds(creep_limit) for y in ys]
+            lo, hi = column_bracket(ys, votes)
+            lows.append(lo)
+            highs.append(hi)
+            logv += a * b * math.log(_mid(lo, hi)) if math.isfinite(hi) else math.inf
+    low, high = min(lows), max(highs)
+    value = math.exp(logv) if math.isfinite(logv) else math.inf
+    if mw == "below":
+        low = 0.0
+    if mw == "above":
+        high = math.inf
+    mus = ", ".join(f"{float(ax['mu'][k]):g}" for k in mi)
+    xs = ", ".join(f"{float(ax['d_over_2R'][i]):.4g}" for i in xi)
+    text = f"DER {table.knot} hold table, columns d/2R = {xs}, mu = mu_rr = {mus}"
+    return value, low, high, text
+
+
+# ----------------------------------------------------------------------- the capacity
+def _breaking(knot: str, material, d: float, D: float | None):
+    """(LoadBand or None, efficiency (nominal, low, high) or None, note) of the knot's
+    breaking load; a capstan is the rope's own strength (no knot)."""
+    from knotmech import strength
+
+    if material is None:
+        return None, None, "breaking load: no material given (--material)"
+    name = getattr(material, "key", material)
+    if knot != "capstan" and knot not in strength.knot_names():
+        return None, None, f"breaking load: no published knot efficiency for {knot}; source needed"
+    try:
+        if knot == "capstan":
+            e = strength.breaking_load(material, d)
+            return LoadBand(float(e.nominal), float(e.low), float(e.high),
+                            "rope breaking load (no knot): " + e.source), None, ""  # fmt: skip
+        e = strength.knot_breaking_load(knot, material, d, D)
+        eta = strength.knot_efficiency(knot, material, D)
+    except strength.NoDataError:
+        return None, None, f"breaking load: no published data for {knot} in {name}; source needed"
+    except InputError as exc:  # a diameter outside the published tables
+        return None, None, f"breaking load: no published data ({exc}); source needed"
+    band = LoadBand(float(e.nominal), float(e.low), float(e.high), e.source)
+    return band, (float(eta.nominal), float(eta.low), float(eta.high)), ""
+
+
+def capacity_of(*, knot, slip, material, d, D, load) -> Capacity:
+    """The capacity from a slip load (``LoadBand`` or None) and the knot's breaking load.
+
+    - a bounded slip load: the lower of it and the breaking load (nominal values);
+    - a slip load open above (nothing slipped up to ``slip.low``): the breaking load, its
+      band widened down to ``slip.low`` where that is below the break (it may slip in
+      between); without a breaking load, undecided;
+    - no slip load: the breaking load alone is not a capacity (undecided).
+    """
+    brk, eta, note = _breaking(knot, material, d, D)
+    common = dict(slip=slip, breaking=brk, efficiency=eta, breaking_note=note)
+    if slip is not None and slip.bounded:
+        if brk is not None and brk.value < slip.value:
+            return Capacity(brk.value, brk.low, brk.high, "break", message="breaks before it slips",
+                            **common)  # fmt: skip
+        return Capacity(slip.value, slip.low, slip.high, "slip", message="slips first", **common)
+    if slip is not None and brk is not None:
+        low = min(slip.low, brk.low)
+        msg = ("breaks before it slips" if slip.low >= brk.value else
+               f"no slip up to {slip.low:.4g} N ({slip.source}); it may slip between that and "
+               "the break")  # fmt: skip
+        return Capacity(brk.value, low, max(brk.high, brk.value), "break", message=msg, **common)
+    why = ("no model inside its validity gives a slip load" if slip is None else
+           f"nothing slipped up to {slip.low:.4g} N ({slip.source})")  # fmt: skip
+    return Capacity(math.nan, math.nan, math.nan, None,
+                    message=why + ("" if brk is not None else "; " + (note or "no breaking load")),
+                    **common)  # fmt: skip
+
+
+def slip_from_answers(answers, *, strain_limit_load: float) -> LoadBand | None:
+    """The slip load from the deciding closed form (a point value; self-locking: open
+    above, from ``strain_limit_load`` [N], the end of its validity, or 0 when unknown)."""
+    dec = next((a for a in answers if a.decides), None)
+    if dec is None or dec.model.startswith("DER"):
+        return None
+    cap = float(dec.capacity)
+    if math.isinf(cap):
+        low = strain_limit_load if math.isfinite(strain_limit_load) else 0.0
+        why = f"{dec.model} model: self-locking, friction alone cannot unlock it"
+        return LoadBand(math.inf, low, math.inf, why)
+    if not math.isfinite(cap):
+        return None
+    return LoadBand(cap, cap, cap, f"{dec.model} model (a point value, no band)")
+
+
+def better_slip(table: LoadBand | None, closed: LoadBand | None) -> LoadBand | None:
+    """The slip load to report: the DER table's when bounded, else the closed form's when
+    bounded, else the one that bounds it from below the furthest."""
+    for s in (table, closed):
+        if s is not None and s.bounded:
+            return s
+    if table is None or (closed is not None and closed.low > table.low):
+        return closed
+    return table
+
+
+def band_newtons(row, EA: float) -> LoadBand | None:
+    """A (value, low, high, text) slip band in T/EA as a :class:`LoadBand` in newtons."""
+    if row is None:
+        return None
+    v, lo, hi, text = row
+    return _clamped(v * EA, lo * EA, hi * EA, text)
+
+
+def _clamped(value: float, low: float, high: float, source: str) -> LoadBand:
+    """A band with its value inside it (interpolation in logarithms may step an ulp out)."""
+    return LoadBand(min(max(value, low), high), low, high, source)
+
+
+def agree_with_verdict(slip: LoadBand | None, holds, load: float) -> LoadBand | None:
+    """The slip band narrowed by a decided answer at ``load`` [N]: a hold there puts the slip
+    load at or above it, a slip at or below it (a value on the wrong side of the load moves
+    to the geometric mid-point of the narrowed band; an open band keeps an open value)."""
+    if slip is None or holds is None:
+        return slip
+    if holds and load > slip.low:
+        high = max(slip.high, load)
+        value = slip.value if slip.value > load else _mid(load, high)
+        return _clamped(value, load, high, slip.source)
+    if not holds and load < slip.high:
+        low = min(slip.low, load)
+        value = slip.value if slip.value < load else (math.sqrt(low * load) if low > 0 else load)
+        return _clamped(value, low, load, slip.source)
+    return slip
