@@ -322,7 +322,14 @@ class BendScene(Scene):
         self.settle_time = float(check_positive("settle_time", p.settle_time))
         self.dt = float(check_positive("dt", self.control.dt))
         self._check_cost()
-        self.curves = bend_curves(self.kind, rod_diameter=d, n_nodes=o.n_nodes)
+        self._tie()
+
+    def _tie(self) -> None:
+        """The start curves and the directions of the grips: A's ends pulled along -x, B's
+        along +x (set: standing part and tail of each; pull: the standing parts)."""
+        self.curves = bend_curves(self.kind, rod_diameter=self.d, n_nodes=self.ropes.n_nodes)
+        self.set_dirs = (-_EX, -_EX, _EX, _EX)
+        self.pull_dirs = (-_EX, _EX)
 
     def _check_cost(self) -> None:
         """Steps x nodes of settle, set and pull, and the memory of the overlap watch."""
@@ -437,8 +444,8 @@ class BendScene(Scene):
         x_set = system.positions(run.state.q)
         t_set = run.t
         moving = [
-            MovingNodes(nodes=g[0], path=grip_path(x_set[g[0]], sign * _EX, self.v, t_set))
-            for g, sign in ((ga, -1), (self.tail_a, -1), (gb, 1), (self.tail_b, 1))
+            MovingNodes(nodes=g[0], path=grip_path(x_set[g[0]], u, self.v, t_set))
+            for g, u in zip((ga, self.tail_a, gb, self.tail_b), self.set_dirs, strict=True)
         ]
         if run.ok:
             # the tails' twist is left free: twist stored against a held tail would whirl
@@ -454,15 +461,15 @@ class BendScene(Scene):
 
     def _pull(self, run: SceneRun) -> None:
         """The standing ends pulled apart, the tails free; stops when a tail runs out."""
-        ga, gb, d, v = self.ga, self.gb, self.d, self.v
+        ga, gb, v = self.ga, self.gb, self.v
+        ua, ub = self.pull_dirs
         x_settled = self.system.positions(run.state.q)
         self.t0 = t0 = run.t
         grips = [
-            MovingNodes(nodes=ga[0], path=grip_path(x_settled[ga[0]], -_EX, v, t0)),
-            MovingNodes(nodes=gb[0], path=grip_path(x_settled[gb[0]], _EX, v, t0)),
+            MovingNodes(nodes=ga[0], path=grip_path(x_settled[ga[0]], ua, v, t0)),
+            MovingNodes(nodes=gb[0], path=grip_path(x_settled[gb[0]], ub, v, t0)),
             Clamp(edges=[ga[1], gb[1]]),
         ]
-        ta, tb = self.ta, self.tb
         if run.ok:
             run.phase(
                 "pull",
@@ -471,8 +478,21 @@ class BendScene(Scene):
                 loads=[self.drag],
                 constraints=grips,
                 save_every=self.dist / v / int(self.control.n_frames),
-                stop=lambda x: (abs(x[ta, 0]) < 1.0 * d) or (abs(x[tb, 0]) < 1.0 * d),
+                stop=self._tail_out,
             )
+
+    def _tail_out(self, x) -> bool:
+        """Whether a tail end has run into the knot (within 1 d of its middle along x)."""
+        d = self.d
+        return (abs(x[self.ta, 0]) < 1.0 * d) or (abs(x[self.tb, 0]) < 1.0 * d)
+
+    def _draw_in(self, pm, x0):
+        """Draw-in [m] of A's and B's tail ends along x on each pull frame, and whether a
+        tail has run out (its end within 1 d of the knot's middle)."""
+        ta, tb, d = self.ta, self.tb, self.d
+        draw = np.column_stack([pm[:, ta, 0] - x0[ta, 0], -(pm[:, tb, 0] - x0[tb, 0])])
+        out = (np.abs(pm[:, ta, 0]) < 1.0 * d) | (np.abs(pm[:, tb, 0]) < 1.0 * d)
+        return draw, out
 
     # -- measure ---------------------------------------------------------------------
     def measure(self, run: SceneRun) -> BendResult:
@@ -482,9 +502,7 @@ class BendScene(Scene):
         tp, pm = times[m], pos[m]
         force = self._force(run, tp)
         k0 = int(np.argmax(m))
-        ta, tb = self.ta, self.tb
-        draw = np.column_stack([pm[:, ta, 0] - pos[k0][ta, 0], -(pm[:, tb, 0] - pos[k0][tb, 0])])
-        out = (np.abs(pm[:, ta, 0]) < 1.0 * self.d) | (np.abs(pm[:, tb, 0]) < 1.0 * self.d)
+        draw, out = self._draw_in(pm, pos[k0])
         verdict, slip_load, k_check = _bend_verdict(force, draw, out, self.slip)
         max_force = float(np.nanmax(force)) if force.size else float("nan")
         alex0, lk0 = bend_invariants(self.curves.rope_a, self.curves.rope_b)
@@ -520,10 +538,9 @@ class BendScene(Scene):
         """Mean of the two grips' reactions along the pull [N]; both gripped nodes of an
         end carry part of the pull: their reactions are summed."""
         ga, gb = self.ga, self.gb
-        force = 0.5 * (run.reaction([ga[0][0]], tp) @ (-_EX) + run.reaction([gb[0][0]], tp) @ _EX)
-        return force + 0.5 * (
-            run.reaction([ga[0][1]], tp) @ (-_EX) + run.reaction([gb[0][1]], tp) @ _EX
-        )
+        ua, ub = self.pull_dirs
+        force = 0.5 * (run.reaction([ga[0][0]], tp) @ ua + run.reaction([gb[0][0]], tp) @ ub)
+        return force + 0.5 * (run.reaction([ga[0][1]], tp) @ ua + run.reaction([gb[0][1]], tp) @ ub)
 
     def _topology(self, run, pm, tp, k_check, start):
         """Status, message and the invariants at the last frame checked (every recorded
