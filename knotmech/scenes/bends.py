@@ -26,20 +26,37 @@ Every accepted step also checks that no two strands overlap by more than half a 
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
+from functools import partial
 
 import numpy as np
 
-from knotmech import rod
+from knotmech import knots, rod
 from knotmech.errors import InputError, check_nonnegative, check_positive
 from knotmech.materials import DEMO_ROD_DENSITY
 from knotmech.rod.constraints import Clamp, MovingNodes
 from knotmech.scenes._common import check_memory, check_run_size, frames_bytes, pair_check_bytes
 from knotmech.scenes._scene import RunControl, Scene, SceneRun, grip_path, rod_contact
-from knotmech.scenes.bend_curves import BEND_CODES, bend_curves, bend_invariants
+from knotmech.scenes.bend_curves import BEND_CODES, BendCurves, bend_curves, bend_invariants
 from knotmech.scenes.curves import _edge_distances
+from knotmech.scenes.tied.pulled import (
+    end_direction,
+    frame_invariants,
+    invariants_changed,
+    tail_free_lengths,
+    tail_nodes,
+)
 
-__all__ = ["BendResult", "BendScene", "BendRopes", "BendPull", "bend", "PATIL_ORDER"]
+__all__ = [
+    "BendResult",
+    "BendScene",
+    "BendRopes",
+    "BendPull",
+    "TiedBendResult",
+    "TiedBendScene",
+    "bend",
+    "PATIL_ORDER",
+]
 
 #: Stability order of the four bends attributed to Patil et al. (2020), most secure first,
 #: as recalled in docs/notes/knots.md. Only reef above granny is confirmed by a source we
@@ -174,14 +191,14 @@ def bend(
     pull_speed: float = 0.04,
     pull_distance: float | None = None,
     settle_time: float = 0.2,
-    n_nodes: int = 80,
+    n_nodes: int | None = None,
     dt: float = 4e-3,
     slip_draw_in: float | None = None,
     set_tension: float | None = None,
     set_travel: float | None = None,
     force_scale: float | None = None,
     contact_width: float = 0.2,
-    n_frames: int = 120,
+    n_frames: int | None = None,
     options: rod.SolverOptions | None = None,
     progress: bool = False,
 ) -> BendResult:
@@ -248,7 +265,16 @@ def bend(
     Cost at the defaults (80 nodes per rope, 2 x 48 mm at 40 mm/s): about 800 steps and
     6000 Newton iterations, 1-2 minutes on a free core (docs/notes/knots.md gives the times).
     """
-    return BendScene(
+    record = _record(kind)
+    defaults = {"n_nodes": 80, "n_frames": 120, **record.scene_defaults}
+    n_nodes = defaults["n_nodes"] if n_nodes is None else n_nodes
+    n_frames = defaults["n_frames"] if n_frames is None else n_frames
+    if pull_distance is None and "pull_distance_d" in defaults:
+        pull_distance = defaults["pull_distance_d"] * check_positive("rod_diameter", rod_diameter)
+    if set_travel is None and "set_travel_d" in defaults:
+        set_travel = defaults["set_travel_d"] * check_positive("rod_diameter", rod_diameter)
+    scene = BendScene if kind in BEND_CODES else partial(TiedBendScene, record=record)
+    return scene(
         kind,
         ropes=BendRopes(
             rod_diameter=rod_diameter,
@@ -285,8 +311,7 @@ class BendScene(Scene):
     # -- setup -----------------------------------------------------------------------
     def setup(self) -> None:
         """Inputs and cost checked; the start curves tied."""
-        if self.kind not in BEND_CODES:
-            raise InputError(f"kind must be one of {', '.join(BEND_CODES)}, got {self.kind!r}")
+        self._check_kind()
         o, p = self.ropes, self.pull
         self.d = d = float(check_positive("rod_diameter", o.rod_diameter))
         self.E = float(check_positive("youngs_modulus", o.youngs_modulus))
@@ -331,6 +356,10 @@ class BendScene(Scene):
         self.set_dirs = (-_EX, -_EX, _EX, _EX)
         self.pull_dirs = (-_EX, _EX)
 
+    def _check_kind(self) -> None:
+        if self.kind not in BEND_CODES:
+            raise InputError(f"kind must be one of {', '.join(BEND_CODES)}, got {self.kind!r}")
+
     def _check_cost(self) -> None:
         """Steps x nodes of settle, set and pull, and the memory of the overlap watch."""
         n = self.ropes.n_nodes
@@ -368,13 +397,7 @@ class BendScene(Scene):
         ]
         self.system = system = rod.RodSystem(rods)
         self.N = N = int(o.n_nodes)
-        contact = rod_contact(
-            rod_diameter=d,
-            force_scale=self.fs,
-            mu_static=self.mu,
-            mu_kinetic=o.mu_kinetic,
-            width=o.contact_width,
-        )
+        contact = self._contact()
         idx = np.arange(2 * N - 2)
         far = np.abs(idx[:, None] - idx[None, :]) >= 3
         far[N - 1 :, : N - 1] = far[: N - 1, N - 1 :] = True  # edges of different ropes
@@ -391,6 +414,17 @@ class BendScene(Scene):
             options=ctl.options,
             watch=self._watch,
             progress=ctl.progress,
+        )
+
+    def _contact(self):
+        """Rod-rod contact with the anchor (sticking) friction law as shipped."""
+        o = self.ropes
+        return rod_contact(
+            rod_diameter=self.d,
+            force_scale=self.fs,
+            mu_static=self.mu,
+            mu_kinetic=o.mu_kinetic,
+            width=o.contact_width,
         )
 
     def _ends(self) -> None:
@@ -505,7 +539,7 @@ class BendScene(Scene):
         draw, out = self._draw_in(pm, pos[k0])
         verdict, slip_load, k_check = _bend_verdict(force, draw, out, self.slip)
         max_force = float(np.nanmax(force)) if force.size else float("nan")
-        alex0, lk0 = bend_invariants(self.curves.rope_a, self.curves.rope_b)
+        alex0, lk0 = self._start_invariants()
         status, message, (alex1, lk1) = self._topology(run, pm, tp, k_check, (alex0, lk0))
         if status == "success" and not force.size:
             status, message = "failed", "no pull frames recorded"
@@ -542,6 +576,10 @@ class BendScene(Scene):
         force = 0.5 * (run.reaction([ga[0][0]], tp) @ ua + run.reaction([gb[0][0]], tp) @ ub)
         return force + 0.5 * (run.reaction([ga[0][1]], tp) @ ua + run.reaction([gb[0][1]], tp) @ ub)
 
+    def _start_invariants(self):
+        """(Alexander polynomial of the closed bend, linking number) of the start shape."""
+        return bend_invariants(self.curves.rope_a, self.curves.rope_b)
+
     def _topology(self, run, pm, tp, k_check, start):
         """Status, message and the invariants at the last frame checked (every recorded
         frame up to the slip, at most about 30)."""
@@ -556,6 +594,188 @@ class BendScene(Scene):
                 msg = f"topology changed at t = {tp[k]:.3f} s: a strand passed through another"
                 return "failed", msg, got
         return status, message, got
+
+
+#: the tied bends' friction law: the anchor law with its cap floored at 1e-2 (r_i + r_j),
+#: several times fewer steps in tight knots
+#: (docs/notes/contact-and-friction/sticking-law-cap-width.md)
+TIED_CAP_FLOOR = 1e-2
+
+
+def _record(kind):
+    """The registry record of a bend ``kind`` with a scene here; a one-line InputError
+    naming the bends otherwise."""
+    names = knots.names(family="bend")
+    key = knots.key(kind) if isinstance(kind, str) else ""
+    if key not in names or knots.get(key).scene != "knotmech.scenes.bends:bend":
+        raise InputError(f"kind must be one of {', '.join(names)}, got {kind!r}")
+    return knots.get(key)
+
+
+@dataclass
+class TiedBendResult(BendResult):
+    """A tied bend's pull: :class:`BendResult` and what the tied knots add (SI units).
+
+    ``alexander_*`` are the pair (rope A alone, rope B alone) and ``linking_*`` the ropes'
+    linking number; ``draw_in`` is material (the decrease of each tail's length outside
+    the knot, :func:`knotmech.scenes.tied.pulled.tail_free_lengths`).
+
+    Attributes
+    ----------
+    tail_drawn : {"A", "B", "both", ""}
+        The tail drawn in more (by more than d/2) at the last pull frame, or both.
+    roll : float [m]
+        The smaller of the two tails' draw-in at the last pull frame: how far the knot
+        moved along both ropes towards the tails (the flat overhand bend "rolls").
+    invariants_start, invariants_checked : dict
+        :func:`knotmech.scenes.tied.measure` of the start shape and the last values
+        defined on the frames checked.
+    frames_checked : int
+        Pull frames whose invariants were computed (all of them, unless the topology
+        changed).
+    law : str
+        The rod-rod friction law.
+    """
+
+    tail_drawn: str = ""
+    roll: float = float("nan")
+    invariants_start: dict = field(default_factory=dict)
+    invariants_checked: dict = field(default_factory=dict)
+    frames_checked: int = 0
+    law: str = ""
+
+    @property
+    def topology_preserved(self) -> bool:
+        """Each rope's knot type the same at the start and on every frame checked (the
+        linking number of two ropes with free tails is not invariant: see ``message``)."""
+        return self.alexander_start == self.alexander_checked
+
+    def to_dict(self) -> dict:
+        """:meth:`BendResult.to_dict` and the tied bend's fields."""
+        out = super().to_dict()
+        out.update(
+            tail_drawn=self.tail_drawn,
+            roll=float(self.roll) if np.isfinite(self.roll) else None,
+            frames_checked=int(self.frames_checked),
+            law=self.law,
+            invariants_start=_plain(self.invariants_start),
+            invariants_checked=_plain(self.invariants_checked),
+        )
+        return out
+
+
+def _plain(inv: dict) -> dict:
+    return {k: (list(v) if isinstance(v, tuple) else v) for k, v in inv.items()}
+
+
+class TiedBendScene(BendScene):
+    """A bend of :mod:`knotmech.scenes.tied` set and pulled: :class:`BendScene`'s phases
+    with the tied knot's start curves, its grips along the ropes' end tangents (the flat
+    overhand bend: its standing parts pulled apart sideways, ring-loaded), the tails'
+    draw-in measured along the rope and every pull frame's invariants checked."""
+
+    def __init__(self, kind, *, ropes, pull, control, record):
+        super().__init__(record.name, ropes=ropes, pull=pull, control=control)
+        self.record = record
+
+    def _check_kind(self) -> None:
+        """The kind is the record's (checked by :func:`bend`)."""
+
+    def _tie(self) -> None:
+        """The tied knot, its start invariants and the grips' directions."""
+        self.knot = knot = self.record.curve_function()(
+            rod_diameter=self.d, n_nodes=self.ropes.n_nodes
+        )
+        a, b = knot.ropes["A"], knot.ropes["B"]
+        self.curves = BendCurves(self.kind, a, b, 0.5 * self.d, ("start", "start"), "", knot.info)
+        self.inv_start = frame_invariants(knot, a, b)
+        self.tails = tail_nodes(np.vstack([a, b]), len(a), self.d)
+        ends = [end_direction(r, e) for r in (a, b) for e in ("start", "end")]
+        self.set_dirs = tuple(ends)
+        if self.record.curve_params.get("pull") == "apart":
+            u = (a[0] - b[0]) / np.linalg.norm(a[0] - b[0])
+            self.pull_dirs = (u, -u)
+        else:
+            self.pull_dirs = (ends[0], ends[2])
+
+    def _contact(self):
+        """Rod-rod contact with the anchor law, its cap floored (:data:`TIED_CAP_FLOOR`)."""
+        o = self.ropes
+        mk = (
+            self.mu
+            if o.mu_kinetic is None
+            else float(check_nonnegative("mu_kinetic", o.mu_kinetic))
+        )
+        if mk > self.mu:
+            raise InputError(f"mu_kinetic must be <= mu_rod_rod ({self.mu:g}), got {mk:g}")
+        fr = None
+        if self.mu > 0:
+            fr = rod.AnchorFriction(mu_static=self.mu, mu_kinetic=mk, cap_floor=TIED_CAP_FLOOR)
+        w = float(check_positive("contact_width", o.contact_width))
+        return rod.RodContact(stiffness=20.0 * self.fs / self.d, sharpness=15.0 / (w * self.d),
+                              friction=fr)  # fmt: skip
+
+    def _tail_out(self, x) -> bool:
+        """Whether a tail has less than 1 d left outside the knot."""
+        return bool(tail_free_lengths(x, self.N, self.d, self.tails).min() < 1.0 * self.d)
+
+    def _draw_in(self, pm, x0):
+        """Material draw-in [m] of A's and B's tails on each pull frame, and whether a
+        tail has run out (less than 1 d outside the knot)."""
+        free0 = tail_free_lengths(x0, self.N, self.d, self.tails)
+        free = np.array([tail_free_lengths(x, self.N, self.d, self.tails) for x in pm]).reshape(
+            -1, 2
+        )
+        return free0 - free, free.min(axis=1) < 1.0 * self.d
+
+    def _start_invariants(self):
+        inv = self.inv_start
+        return (inv["alexander_A"], inv["alexander_B"]), inv["linking"]
+
+    def _topology(self, run, pm, tp, k_check, start):
+        """Every pull frame's invariants against the start shape's: a rope whose knot type
+        changed fails the run; a changed linking number or joined closure is reported (the
+        two ropes' tails are free: an end winding round the other rope, or the knot
+        capsizing, changes them without a strand passing through another, which the
+        overlap watch of every step excludes)."""
+        self.inv_checked = got = dict(self.inv_start)
+        self.frames_checked, moved = 0, {}
+        for k in range(len(pm)):
+            try:
+                now = frame_invariants(self.knot, pm[k][: self.N], pm[k][self.N :])
+            except InputError as e:
+                return "failed", f"t = {tp[k]:.3f} s: the frame does not close ({e})", start
+            self.frames_checked += 1
+            changed = invariants_changed(self.inv_start, now)
+            got.update({key: v for key, v in now.items() if v is not None})
+            pair = (got["alexander_A"], got["alexander_B"]), got["linking"]
+            for key in changed:
+                moved.setdefault(key, (tp[k], now[key]))
+            if {"alexander_A", "alexander_B"} & set(changed):
+                return "failed", (
+                    f"knot type of a rope changed at t = {tp[k]:.3f} s "
+                    f"({', '.join(changed)}): a strand passed through another"), pair  # fmt: skip
+        note = "; ".join(
+            f"{key} {self.inv_start[key]} -> {v} at t = {t:.3f} s (free tails wound round)"
+            for key, (t, v) in moved.items()
+        )
+        return run.status, run.message or note, pair
+
+    def measure(self, run: SceneRun) -> TiedBendResult:
+        """:meth:`BendScene.measure`, the tail drawn in and the roll."""
+        res = super().measure(run)
+        base = {f.name: getattr(res, f.name) for f in fields(BendResult)}
+        draw = np.asarray(res.draw_in)
+        tail, roll = "", float("nan")
+        if draw.size:
+            da, db = draw[-1]
+            roll = float(min(da, db))
+            tail = "A" if da > db + 0.5 * self.d else "B" if db > da + 0.5 * self.d else "both"
+        law = f"anchor (sticking) friction, cap floor {TIED_CAP_FLOOR:g} (r_i + r_j)"
+        return TiedBendResult(**base, tail_drawn=tail, roll=roll, law=law,
+                              invariants_start=self.inv_start,
+                              invariants_checked=getattr(self, "inv_checked", {}),
+                              frames_checked=getattr(self, "frames_checked", 0))  # fmt: skip
 
 
 def _bend_verdict(force, draw, out, slip) -> tuple[str, float, int]:

@@ -53,7 +53,7 @@ def stub(monkeypatch):
 def test_bend_kinds_are_the_library_bends():
     from knotmech.scenes.bend_curves import BEND_CODES
 
-    assert set(sim.BEND_KINDS) == set(BEND_CODES)
+    assert set(sim.BEND_KINDS) == set(BEND_CODES) | set(sim.TIED_BENDS)
 
 
 def test_bend_options_reach_the_scene_in_si(stub, capsys):
