@@ -121,7 +121,7 @@ def _pull(key, *, d, E, mu, load, mat, kappa, progress):
     der["holds"] = holds
     if holds is None:
         return der, ()
-    return der, (_pull_answer(r, holds, capacity, load, kappa, der["message"]),)
+    return der, (_pull_answer(key, r, holds, capacity, load, kappa, der["message"]),)
 
 
 def _pull_outcome(key, r, load):
@@ -141,11 +141,11 @@ def _pull_outcome(key, r, load):
     )  # fmt: skip
 
 
-def _pull_answer(r, holds, capacity, load, kappa, message):
+def _pull_answer(key, r, holds, capacity, load, kappa, message):
     """The pull's deciding :class:`~knotmech.analytic.hitch.ModelAnswer`."""
     from knotmech.analytic.hitch import ModelAnswer
 
-    rec = knots.get(r.kind)
+    rec = knots.get(key)
     law = getattr(r, "law", "") or "sticking rod-rod friction"
     loading = rec.loading or "set by hand then pulled apart"
     reference = (PATIL + "; knotmech.scenes.bends" if _patil(rec)
