@@ -715,18 +715,28 @@ class TiedBendScene(BendScene):
         return rod.RodContact(stiffness=20.0 * self.fs / self.d, sharpness=15.0 / (w * self.d),
                               friction=fr)  # fmt: skip
 
+    def _pull(self, run: SceneRun) -> None:
+        """:meth:`BendScene._pull`, the tails' free lengths at its start kept."""
+        x = self.system.positions(run.state.q)
+        self.free0 = tail_free_lengths(x, self.N, self.d, self.tails)
+        super()._pull(run)
+
+    def _ran_out(self, free) -> np.ndarray:
+        """(..., 2) bool: a tail with less than 1 d outside the knot, drawn in by more than
+        the slip draw-in since the pull began (a tail that lay against a crossing strand
+        from the start has not run out)."""
+        return (free < 1.0 * self.d) & (self.free0 - free > self.slip)
+
     def _tail_out(self, x) -> bool:
-        """Whether a tail has less than 1 d left outside the knot."""
-        return bool(tail_free_lengths(x, self.N, self.d, self.tails).min() < 1.0 * self.d)
+        """Whether a tail has run out of the knot (:meth:`_ran_out`)."""
+        return bool(self._ran_out(tail_free_lengths(x, self.N, self.d, self.tails)).any())
 
     def _draw_in(self, pm, x0):
-        """Material draw-in [m] of A's and B's tails on each pull frame, and whether a
-        tail has run out (less than 1 d outside the knot)."""
-        free0 = tail_free_lengths(x0, self.N, self.d, self.tails)
-        free = np.array([tail_free_lengths(x, self.N, self.d, self.tails) for x in pm]).reshape(
-            -1, 2
-        )
-        return free0 - free, free.min(axis=1) < 1.0 * self.d
+        """Material draw-in [m] of A's and B's tails on each pull frame (from the pull's
+        start), and whether a tail has run out (:meth:`_ran_out`)."""
+        free = np.array([tail_free_lengths(x, self.N, self.d, self.tails) for x in pm])
+        free = free.reshape(-1, 2)
+        return self.free0 - free, self._ran_out(free).any(axis=1)
 
     def _start_invariants(self):
         inv = self.inv_start
@@ -754,7 +764,8 @@ class TiedBendScene(BendScene):
             if {"alexander_A", "alexander_B"} & set(changed):
                 return "failed", (
                     f"knot type of a rope changed at t = {tp[k]:.3f} s "
-                    f"({', '.join(changed)}): a strand passed through another"), pair  # fmt: skip
+                    f"({', '.join(changed)}): a tail drawn out through a loop, or a strand "
+                    "through another; not a result"), pair  # fmt: skip
         note = "; ".join(
             f"{key} {self.inv_start[key]} -> {v} at t = {t:.3f} s (free tails wound round)"
             for key, (t, v) in moved.items()
