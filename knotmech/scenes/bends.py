@@ -1,4 +1,6 @@
-r"""Two ropes joined by a bend (reef, granny, thief, grief) and pulled apart until it slips.
+r"""Two ropes joined by a bend and pulled apart until it slips: the four bends of Patil et
+al. (reef, granny, thief, grief) and the bends of :mod:`knotmech.scenes.tied` (sheet bend,
+double sheet bend, flat overhand bend, figure-eight bend, double fisherman's).
 
 The experiment of Patil, Sandt, Kolle & Dunkel (Science 367, 71, 2020), on the DER solver:
 the bend is tied loosely from :func:`knotmech.scenes.bend_curves.bend_curves` (two naturally
@@ -21,6 +23,18 @@ the two ropes joined around the outside (:func:`~knotmech.scenes.bend_curves.ben
 and the linking number of the ropes closed each on its own side must stay those of the
 start shape; a change means a strand passed through another and the run is ``failed``.
 Every accepted step also checks that no two strands overlap by more than half a diameter.
+
+The tied bends (:class:`TiedBendScene`, a registry record each in :mod:`knotmech.knots`)
+run the same phases from their tied start curves, with these differences: every grip
+moves along its rope's outward end tangent (the flat overhand bend's standing parts, which
+leave the knot side by side, are pulled apart sideways: ring-loaded, as on an abseil
+anchor); a tail's draw-in is material (the decrease of its length outside the knot,
+:func:`knotmech.scenes.tied.pulled.tail_free_lengths`), so that a knot that rolls along
+its ropes draws both tails in (``roll``); every pull frame's invariants are checked
+(each rope's knot type must stay: a change fails the run; the two ropes' linking number
+and joined closure are reported when they change, since free tails can wind round the
+other rope without any strand passing through another); the friction is the anchor law
+with its cap floored at :data:`TIED_CAP_FLOOR` (stated in the result's ``law``).
 """
 
 from __future__ import annotations
@@ -206,7 +220,11 @@ def bend(
 
     Parameters
     ----------
-    kind : {"reef", "granny", "thief", "grief"}
+    kind : str
+        A bend of the registry with this scene: ``"reef"``, ``"granny"``, ``"thief"``,
+        ``"grief"``, or a tied bend (``"sheet-bend"``, ``"double-sheet-bend"``,
+        ``"flat-overhand-bend"``, ``"figure-eight-bend"``, ``"double-fishermans"``, or
+        an alias), which returns a :class:`TiedBendResult`.
     rod_diameter : float [m]
         Diameter d of both ropes (default 4 mm).
     youngs_modulus : float [Pa]
@@ -221,11 +239,11 @@ def bend(
     pull_speed : float [m/s]
         Speed of each grip (the ends separate at twice this).
     pull_distance : float [m], optional
-        Travel of each grip (default 12 d).
+        Travel of each grip (default 12 d; a tied bend 20 d).
     settle_time : float [s]
         All four ends held while the contacts settle.
-    n_nodes : int
-        Nodes per rope.
+    n_nodes : int, optional
+        Nodes per rope (default 80; a tied bend: its record's, 100-150).
     dt : float [s]
         Nominal step (the solver halves it when Newton fails).
     slip_draw_in : float [m], optional
@@ -236,14 +254,14 @@ def bend(
         (default :math:`0.1 B/d^2`, a hand-set bend), or for ``set_travel``; then the
         tails are let go.
     set_travel : float [m], optional
-        Largest travel of each end while setting (default 10 d).
+        Largest travel of each end while setting (default 10 d; a tied bend 20 d).
     force_scale : float [N], optional
         Sizes the contact penalty (default :math:`2 B/d^2`; overlap d/40 under B/d^2).
     contact_width : float
         Range of the contact penalty in rod diameters (see
         :func:`knotmech.scenes._scene.rod_contact`).
-    n_frames : int
-        Recorded frames of the pull (>= 10).
+    n_frames : int, optional
+        Recorded frames of the pull (>= 10; default 120, a tied bend 20: each is checked).
     options : knotmech.rod.SolverOptions, optional
     progress : bool
 
@@ -264,6 +282,8 @@ def bend(
     -----
     Cost at the defaults (80 nodes per rope, 2 x 48 mm at 40 mm/s): about 800 steps and
     6000 Newton iterations, 1-2 minutes on a free core (docs/notes/knots.md gives the times).
+    A tied bend at its defaults: 15-55 s of CPU (``benchmarks/tied.py``;
+    docs/notes/knots-and-curves/tied-knots-pulled.md).
     """
     record = _record(kind)
     defaults = {"n_nodes": 80, "n_frames": 120, **record.scene_defaults}
