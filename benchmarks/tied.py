@@ -41,6 +41,7 @@ def _one(kind: str, mu: float) -> dict:
         "rejected_steps": int(r.stats.get("rejected_steps", 0)),
         "nodes": int(r.positions.shape[1]),
         "status": r.status,
+        "message": r.message,
         "verdict": r.verdict,
         "slip_load_N": r.slip_load if r.verdict == "slips" else None,
         "max_force_N": r.max_force,
