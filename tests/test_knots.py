@@ -31,6 +31,8 @@ def test_hold_answers_the_answered_records():
     assert KNOT_NAMES == knots.names() == (
         "capstan", "clove-hitch", "two-half-hitches", "round-turn",
         "round-turn-two-half-hitches", "cow-hitch", "reef", "granny", "thief", "grief",
+        "sheet-bend", "double-sheet-bend", "flat-overhand-bend", "figure-eight-bend",
+        "double-fishermans",
     )  # fmt: skip
     for k in knots.records(answered=False):
         with pytest.raises(InputError, match=re.escape(f"is {k.unanswered}")):
@@ -81,7 +83,9 @@ def test_simulate_commands_and_bends_come_from_the_registry():
     from knotmech.scenes.bend_curves import BEND_CODES, BEND_ENDS
 
     assert sim.HITCH_SCENES == ("two-half-hitches", "round-turn-two-half-hitches", "cow-hitch")
-    assert sim.BEND_KINDS == ("reef", "granny", "thief", "grief")
+    assert sim.BEND_KINDS == ("reef", "granny", "thief", "grief", *sim.TIED_BENDS)
+    assert sim.TIED_BENDS == ("sheet-bend", "double-sheet-bend", "flat-overhand-bend",
+                              "figure-eight-bend", "double-fishermans")  # fmt: skip
     # Patil et al. (2020): reef and thief share a shape, granny and grief the other; the
     # thief and grief pull the diagonal ends
     assert BEND_CODES["reef"] == BEND_CODES["thief"] != BEND_CODES["granny"] == BEND_CODES["grief"]

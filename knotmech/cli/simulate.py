@@ -49,11 +49,18 @@ __all__ = ["register", "run"]
 #: curve, :mod:`knotmech.knots`): same options and outputs as clove-hitch
 HITCH_SCENES = tuple(k.name for k in knots.records(family="hitch") if k.has_scene and not k.scene)
 
-SCENES = ("capstan", "two-loops", "pinch", "overhand", "clove-hitch", *HITCH_SCENES, "bend",
-          "centreline")  # fmt: skip
-
 #: The bends of :func:`knotmech.scenes.bend` (the registry's bends with a scene).
 BEND_KINDS = tuple(k.name for k in knots.records(family="bend") if k.has_scene)
+#: the bends tied from :mod:`knotmech.scenes.tied`: each its own command, ``simulate NAME``
+#: being ``simulate bend --kind NAME``
+TIED_BENDS = tuple(
+    k.name
+    for k in knots.records(family="bend")
+    if k.has_scene and k.curve.startswith("knotmech.scenes.tied.")
+)
+
+SCENES = ("capstan", "two-loops", "pinch", "overhand", "clove-hitch", *HITCH_SCENES, "bend",
+          *TIED_BENDS, "centreline")  # fmt: skip
 
 REQUIRED = "required"
 
@@ -222,8 +229,9 @@ _BEND = (  # knotmech.scenes.bends.bend
     Opt("--force-scale", "force_scale", "force", "sizes the contact penalty", "2 B/d^2"),
     Opt("--contact-width", "contact_width", "dimensionless",
         "range of the contact penalty in rod diameters", "0.2"),
-    Opt("--n-nodes", "n_nodes", "count", "nodes per rope", "80"),
-    Opt("--n-frames", "n_frames", "count", "recorded frames of the pull (>= 10)", "120"),
+    Opt("--n-nodes", "n_nodes", "count", "nodes per rope", "80; a tied bend: its record's"),
+    Opt("--n-frames", "n_frames", "count", "recorded frames of the pull (>= 10)",
+        "120; a tied bend: 20"),
     Opt("--dt", "dt", "time", "nominal time step (halved when Newton fails)", "4ms"),
 )  # fmt: skip
 
@@ -258,6 +266,7 @@ SCENE_OPTIONS: dict[str, tuple[Opt, ...]] = {
     "clove-hitch": _CLOVE,
     **{name: _HITCH for name in HITCH_SCENES},
     "bend": _BEND,
+    **{name: tuple(o for o in _BEND if o.kwarg != "kind") for name in TIED_BENDS},
     "centreline": _CENTRELINE,
 }
 
@@ -272,6 +281,12 @@ _DESCRIPTIONS = {
     **{k.name: k.simulate_help for k in knots.records(family="hitch") if k.simulate_help},
     "bend": "two ropes joined by a reef, granny, thief or grief bend, set and pulled apart "
     "until it slips (Patil et al., Science 2020): verdict and slip load",
+    **{
+        k.name: f"{k.summary}; set, then pulled apart ({k.loading}) until it slips: slip "
+        "load, the tail drawn in, its knot type checked on every frame"
+        for k in knots.records(family="bend")
+        if k.name in TIED_BENDS
+    },
     "centreline": "your own knot from a CSV of centreline points (one or two rods), relaxed "
     "and pulled by the ends you choose: verdict and slip load",
 }
@@ -674,6 +689,8 @@ def _plot(path: Path, scene: str, res, kw: dict) -> str:
 
 def run(args) -> int:
     scene = args.scene
+    if scene in TIED_BENDS:  # simulate NAME is simulate bend --kind NAME
+        args.kind, scene = scene, "bend"
     paths = _check_outputs(scene, args)  # before any work
     kw = _parse(args, scene)
     _check_combination(scene, args, kw)
@@ -836,6 +853,11 @@ def _run_pulled_knot(scene, kw, args, progress):
     else:
         verdict = "no verdict"
     kept = "kept" if res.topology_preserved else "CHANGED (a strand passed through another)"
+    if getattr(res, "frames_checked", 0):
+        kept += f" on {res.frames_checked} frames"
+    if getattr(res, "tail_drawn", ""):
+        verdict += (f"; tail drawn in: {res.tail_drawn}; the knot moved {res.roll * 1e3:.3g} mm"
+                    " towards both tails")  # fmt: skip
     peak = f"{res.max_force:.4g} N" if math.isfinite(res.max_force) else "none"
     print(
         f"{name}: status {res.status}; {verdict}; max force {peak}; knot type {kept}; "

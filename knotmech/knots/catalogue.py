@@ -26,6 +26,36 @@ BAYMAN = "Bayman, Am. J. Phys. 45 (1977) 185; Maddocks & Keller, SIAM J. Appl. M
 #: the half hitches, made scenes: the defaults that differ from the clove hitch's
 _MADE_HITCH = {"loading": "free", "rod_length": None, "n_nodes": None}
 
+#: the tied bends' start curves and pulls (issue 25)
+TIED_NOTE = "this work: docs/notes/knots-and-curves/tied-knots-pulled.md"
+_ENDS = "the two standing parts pulled apart along their end tangents, the tails free"
+#: (name, aliases, summary, pull, scene defaults, loading) of the bends of
+#: knotmech.scenes.tied: pull "ends" along the standing parts' end tangents, "apart" the
+#: standing parts (which leave the knot side by side) pulled apart sideways
+_TIED_PULL = {"n_frames": 20, "pull_distance_d": 20.0, "set_travel_d": 20.0}
+_TIED_BENDS = (
+    ("sheet-bend", ("sheet", "beckets-bend", "weavers-knot"),
+     "a bight in one rope, the other through it, round both legs and under itself",
+     "ends", {"n_nodes": 100, **_TIED_PULL}, _ENDS),
+    ("double-sheet-bend", ("double-sheet",),
+     "the sheet bend with two turns round the bight", "ends",
+     {"n_nodes": 120, **_TIED_PULL}, _ENDS),
+    ("flat-overhand-bend", ("offset-overhand-bend", "offset-water-knot", "edk",
+                            "european-death-knot", "flat-overhand"),
+     "two ropes side by side tied in one overhand (the climbers' offset knot for abseil "
+     "ropes): loaded, it rolls towards its tails", "apart",
+     {"n_nodes": 100, **_TIED_PULL},
+     "ring-loaded: the standing parts, which leave the knot side by side, pulled apart "
+     "sideways (as on an abseil anchor), the tails free"),
+    ("figure-eight-bend", ("figure-8-bend", "flemish-bend"),
+     "one rope ties a figure-eight, the other retraces it from the opposite end", "ends",
+     {"n_nodes": 150, **_TIED_PULL}, _ENDS),
+    ("double-fishermans", ("double-fisherman", "double-fishermans-bend", "grapevine-bend",
+                           "grapevine"),
+     "each rope ties a double overhand (strangle) round the other", "ends",
+     {"n_nodes": 150, **_TIED_PULL}, _ENDS),
+)  # fmt: skip
+
 _THH_DOC = r"""Tie {what} on a post and load them.
 
     Same keywords as :func:`knotmech.scenes.clove_hitch.clove_hitch` (see
@@ -225,9 +255,19 @@ CATALOGUE = (
         aliases=("figure-8",),
         unanswered="a stopper / loop knot (no post, no closed form or DER table here)",
     ),
-    Knot(
-        name="sheet-bend",
-        family="bend",
-        unanswered="a bend joining two ropes (no post, no closed form or DER table here)",
+    *(
+        Knot(
+            name=name,
+            family="bend",
+            aliases=aliases,
+            summary=summary,
+            curve=f"knotmech.scenes.tied.{name.replace('-', '_')}:{name.replace('-', '_')}",
+            curve_params={"pull": pull},
+            scene="knotmech.scenes.bends:bend",
+            scene_defaults=defaults,
+            loading=loading,
+            sources=(TIED_NOTE,),
+        )
+        for name, aliases, summary, pull, defaults, loading in _TIED_BENDS
     ),
 )

@@ -1,4 +1,6 @@
-r"""Two ropes joined by a bend (reef, granny, thief, grief) and pulled apart until it slips.
+r"""Two ropes joined by a bend and pulled apart until it slips: the four bends of Patil et
+al. (reef, granny, thief, grief) and the bends of :mod:`knotmech.scenes.tied` (sheet bend,
+double sheet bend, flat overhand bend, figure-eight bend, double fisherman's).
 
 The experiment of Patil, Sandt, Kolle & Dunkel (Science 367, 71, 2020), on the DER solver:
 the bend is tied loosely from :func:`knotmech.scenes.bend_curves.bend_curves` (two naturally
@@ -21,25 +23,54 @@ the two ropes joined around the outside (:func:`~knotmech.scenes.bend_curves.ben
 and the linking number of the ropes closed each on its own side must stay those of the
 start shape; a change means a strand passed through another and the run is ``failed``.
 Every accepted step also checks that no two strands overlap by more than half a diameter.
+
+The tied bends (:class:`TiedBendScene`, a registry record each in :mod:`knotmech.knots`)
+run the same phases from their tied start curves, with these differences: every grip
+moves along its rope's outward end tangent (the flat overhand bend's standing parts, which
+leave the knot side by side, are pulled apart sideways: ring-loaded, as on an abseil
+anchor); a tail's draw-in is material (the decrease of its length outside the knot,
+:func:`knotmech.scenes.tied.pulled.tail_free_lengths`), so that a knot that rolls along
+its ropes draws both tails in (``roll``); every pull frame's invariants are checked
+(each rope's knot type must stay: a change fails the run; the two ropes' linking number
+and joined closure are reported when they change, since free tails can wind round the
+other rope without any strand passing through another); the friction is the anchor law
+with its cap floored at :data:`TIED_CAP_FLOOR` (stated in the result's ``law``).
 """
 
 from __future__ import annotations
 
 import time
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, fields
+from functools import partial
 
 import numpy as np
 
-from knotmech import rod
+from knotmech import knots, rod
 from knotmech.errors import InputError, check_count, check_nonnegative, check_positive
 from knotmech.materials import DEMO_ROD_DENSITY
 from knotmech.rod.constraints import Clamp, MovingNodes
 from knotmech.scenes._common import check_memory, check_run_size, frames_bytes, pair_check_bytes
 from knotmech.scenes._scene import RunControl, Scene, SceneRun, grip_path, rod_contact
-from knotmech.scenes.bend_curves import BEND_CODES, bend_curves, bend_invariants
+from knotmech.scenes.bend_curves import BEND_CODES, BendCurves, bend_curves, bend_invariants
 from knotmech.scenes.curves import _edge_distances
+from knotmech.scenes.tied.pulled import (
+    end_direction,
+    frame_invariants,
+    invariants_changed,
+    tail_free_lengths,
+    tail_nodes,
+)
 
-__all__ = ["BendResult", "BendScene", "BendRopes", "BendPull", "bend", "PATIL_ORDER"]
+__all__ = [
+    "BendResult",
+    "BendScene",
+    "BendRopes",
+    "BendPull",
+    "TiedBendResult",
+    "TiedBendScene",
+    "bend",
+    "PATIL_ORDER",
+]
 
 #: Stability order of the four bends attributed to Patil et al. (2020), most secure first,
 #: as recalled in docs/notes/knots.md. Only reef above granny is confirmed by a source we
@@ -174,14 +205,14 @@ def bend(
     pull_speed: float = 0.04,
     pull_distance: float | None = None,
     settle_time: float = 0.2,
-    n_nodes: int = 80,
+    n_nodes: int | None = None,
     dt: float = 4e-3,
     slip_draw_in: float | None = None,
     set_tension: float | None = None,
     set_travel: float | None = None,
     force_scale: float | None = None,
     contact_width: float = 0.2,
-    n_frames: int = 120,
+    n_frames: int | None = None,
     options: rod.SolverOptions | None = None,
     progress: bool = False,
 ) -> BendResult:
@@ -189,7 +220,11 @@ def bend(
 
     Parameters
     ----------
-    kind : {"reef", "granny", "thief", "grief"}
+    kind : str
+        A bend of the registry with this scene: ``"reef"``, ``"granny"``, ``"thief"``,
+        ``"grief"``, or a tied bend (``"sheet-bend"``, ``"double-sheet-bend"``,
+        ``"flat-overhand-bend"``, ``"figure-eight-bend"``, ``"double-fishermans"``, or
+        an alias), which returns a :class:`TiedBendResult`.
     rod_diameter : float [m]
         Diameter d of both ropes (default 4 mm).
     youngs_modulus : float [Pa]
@@ -204,11 +239,11 @@ def bend(
     pull_speed : float [m/s]
         Speed of each grip (the ends separate at twice this).
     pull_distance : float [m], optional
-        Travel of each grip (default 12 d).
+        Travel of each grip (default 12 d; a tied bend 20 d).
     settle_time : float [s]
         All four ends held while the contacts settle.
-    n_nodes : int
-        Nodes per rope.
+    n_nodes : int, optional
+        Nodes per rope (default 80; a tied bend: its record's, 100-150).
     dt : float [s]
         Nominal step (the solver halves it when Newton fails).
     slip_draw_in : float [m], optional
@@ -219,14 +254,14 @@ def bend(
         (default :math:`0.1 B/d^2`, a hand-set bend), or for ``set_travel``; then the
         tails are let go.
     set_travel : float [m], optional
-        Largest travel of each end while setting (default 10 d).
+        Largest travel of each end while setting (default 10 d; a tied bend 20 d).
     force_scale : float [N], optional
         Sizes the contact penalty (default :math:`2 B/d^2`; overlap d/40 under B/d^2).
     contact_width : float
         Range of the contact penalty in rod diameters (see
         :func:`knotmech.scenes._scene.rod_contact`).
-    n_frames : int
-        Recorded frames of the pull (>= 10).
+    n_frames : int, optional
+        Recorded frames of the pull (>= 10; default 120, a tied bend 20: each is checked).
     options : knotmech.rod.SolverOptions, optional
     progress : bool
 
@@ -247,8 +282,19 @@ def bend(
     -----
     Cost at the defaults (80 nodes per rope, 2 x 48 mm at 40 mm/s): about 800 steps and
     6000 Newton iterations, 1-2 minutes on a free core (docs/notes/knots.md gives the times).
+    A tied bend at its defaults: 15-55 s of CPU (``benchmarks/tied.py``;
+    docs/notes/knots-and-curves/tied-knots-pulled.md).
     """
-    return BendScene(
+    record = _record(kind)
+    defaults = {"n_nodes": 80, "n_frames": 120, **record.scene_defaults}
+    n_nodes = defaults["n_nodes"] if n_nodes is None else n_nodes
+    n_frames = defaults["n_frames"] if n_frames is None else n_frames
+    if pull_distance is None and "pull_distance_d" in defaults:
+        pull_distance = defaults["pull_distance_d"] * check_positive("rod_diameter", rod_diameter)
+    if set_travel is None and "set_travel_d" in defaults:
+        set_travel = defaults["set_travel_d"] * check_positive("rod_diameter", rod_diameter)
+    scene = BendScene if kind in BEND_CODES else partial(TiedBendScene, record=record)
+    return scene(
         kind,
         ropes=BendRopes(
             rod_diameter=rod_diameter,
@@ -285,8 +331,7 @@ class BendScene(Scene):
     # -- setup -----------------------------------------------------------------------
     def setup(self) -> None:
         """Inputs and cost checked; the start curves tied."""
-        if self.kind not in BEND_CODES:
-            raise InputError(f"kind must be one of {', '.join(BEND_CODES)}, got {self.kind!r}")
+        self._check_kind()
         o, p = self.ropes, self.pull
         self.d = d = float(check_positive("rod_diameter", o.rod_diameter, scalar=True))
         self.E = float(check_positive("youngs_modulus", o.youngs_modulus, scalar=True))
@@ -324,7 +369,18 @@ class BendScene(Scene):
         self.settle_time = float(check_positive("settle_time", p.settle_time, scalar=True))
         self.dt = float(check_positive("dt", self.control.dt, scalar=True))
         self._check_cost()
-        self.curves = bend_curves(self.kind, rod_diameter=d, n_nodes=o.n_nodes)
+        self._tie()
+
+    def _tie(self) -> None:
+        """The start curves and the directions of the grips: A's ends pulled along -x, B's
+        along +x (set: standing part and tail of each; pull: the standing parts)."""
+        self.curves = bend_curves(self.kind, rod_diameter=self.d, n_nodes=self.ropes.n_nodes)
+        self.set_dirs = (-_EX, -_EX, _EX, _EX)
+        self.pull_dirs = (-_EX, _EX)
+
+    def _check_kind(self) -> None:
+        if self.kind not in BEND_CODES:
+            raise InputError(f"kind must be one of {', '.join(BEND_CODES)}, got {self.kind!r}")
 
     def _check_cost(self) -> None:
         """Steps x nodes of settle, set and pull, and the memory of the overlap watch."""
@@ -360,13 +416,7 @@ class BendScene(Scene):
         ]
         self.system = system = rod.RodSystem(rods)
         self.N = N = int(o.n_nodes)
-        contact = rod_contact(
-            rod_diameter=d,
-            force_scale=self.fs,
-            mu_static=self.mu,
-            mu_kinetic=o.mu_kinetic,
-            width=o.contact_width,
-        )
+        contact = self._contact()
         idx = np.arange(2 * N - 2)
         far = np.abs(idx[:, None] - idx[None, :]) >= 3
         far[N - 1 :, : N - 1] = far[: N - 1, N - 1 :] = True  # edges of different ropes
@@ -383,6 +433,17 @@ class BendScene(Scene):
             options=ctl.options,
             watch=self._watch,
             progress=ctl.progress,
+        )
+
+    def _contact(self):
+        """Rod-rod contact with the anchor (sticking) friction law as shipped."""
+        o = self.ropes
+        return rod_contact(
+            rod_diameter=self.d,
+            force_scale=self.fs,
+            mu_static=self.mu,
+            mu_kinetic=o.mu_kinetic,
+            width=o.contact_width,
         )
 
     def _ends(self) -> None:
@@ -436,8 +497,8 @@ class BendScene(Scene):
         x_set = system.positions(run.state.q)
         t_set = run.t
         moving = [
-            MovingNodes(nodes=g[0], path=grip_path(x_set[g[0]], sign * _EX, self.v, t_set))
-            for g, sign in ((ga, -1), (self.tail_a, -1), (gb, 1), (self.tail_b, 1))
+            MovingNodes(nodes=g[0], path=grip_path(x_set[g[0]], u, self.v, t_set))
+            for g, u in zip((ga, self.tail_a, gb, self.tail_b), self.set_dirs, strict=True)
         ]
         if run.ok:
             # the tails' twist is left free: twist stored against a held tail would whirl
@@ -453,15 +514,15 @@ class BendScene(Scene):
 
     def _pull(self, run: SceneRun) -> None:
         """The standing ends pulled apart, the tails free; stops when a tail runs out."""
-        ga, gb, d, v = self.ga, self.gb, self.d, self.v
+        ga, gb, v = self.ga, self.gb, self.v
+        ua, ub = self.pull_dirs
         x_settled = self.system.positions(run.state.q)
         self.t0 = t0 = run.t
         grips = [
-            MovingNodes(nodes=ga[0], path=grip_path(x_settled[ga[0]], -_EX, v, t0)),
-            MovingNodes(nodes=gb[0], path=grip_path(x_settled[gb[0]], _EX, v, t0)),
+            MovingNodes(nodes=ga[0], path=grip_path(x_settled[ga[0]], ua, v, t0)),
+            MovingNodes(nodes=gb[0], path=grip_path(x_settled[gb[0]], ub, v, t0)),
             Clamp(edges=[ga[1], gb[1]]),
         ]
-        ta, tb = self.ta, self.tb
         if run.ok:
             run.phase(
                 "pull",
@@ -470,8 +531,21 @@ class BendScene(Scene):
                 loads=[self.drag],
                 constraints=grips,
                 save_every=self.dist / v / int(self.control.n_frames),
-                stop=lambda x: (abs(x[ta, 0]) < 1.0 * d) or (abs(x[tb, 0]) < 1.0 * d),
+                stop=self._tail_out,
             )
+
+    def _tail_out(self, x) -> bool:
+        """Whether a tail end has run into the knot (within 1 d of its middle along x)."""
+        d = self.d
+        return (abs(x[self.ta, 0]) < 1.0 * d) or (abs(x[self.tb, 0]) < 1.0 * d)
+
+    def _draw_in(self, pm, x0):
+        """Draw-in [m] of A's and B's tail ends along x on each pull frame, and whether a
+        tail has run out (its end within 1 d of the knot's middle)."""
+        ta, tb, d = self.ta, self.tb, self.d
+        draw = np.column_stack([pm[:, ta, 0] - x0[ta, 0], -(pm[:, tb, 0] - x0[tb, 0])])
+        out = (np.abs(pm[:, ta, 0]) < 1.0 * d) | (np.abs(pm[:, tb, 0]) < 1.0 * d)
+        return draw, out
 
     # -- measure ---------------------------------------------------------------------
     def measure(self, run: SceneRun) -> BendResult:
@@ -481,12 +555,10 @@ class BendScene(Scene):
         tp, pm = times[m], pos[m]
         force = self._force(run, tp)
         k0 = int(np.argmax(m))
-        ta, tb = self.ta, self.tb
-        draw = np.column_stack([pm[:, ta, 0] - pos[k0][ta, 0], -(pm[:, tb, 0] - pos[k0][tb, 0])])
-        out = (np.abs(pm[:, ta, 0]) < 1.0 * self.d) | (np.abs(pm[:, tb, 0]) < 1.0 * self.d)
+        draw, out = self._draw_in(pm, pos[k0])
         verdict, slip_load, k_check = _bend_verdict(force, draw, out, self.slip)
         max_force = float(np.nanmax(force)) if force.size else float("nan")
-        alex0, lk0 = bend_invariants(self.curves.rope_a, self.curves.rope_b)
+        alex0, lk0 = self._start_invariants()
         status, message, (alex1, lk1) = self._topology(run, pm, tp, k_check, (alex0, lk0))
         if status == "success" and not force.size:
             status, message = "failed", "no pull frames recorded"
@@ -519,10 +591,13 @@ class BendScene(Scene):
         """Mean of the two grips' reactions along the pull [N]; both gripped nodes of an
         end carry part of the pull: their reactions are summed."""
         ga, gb = self.ga, self.gb
-        force = 0.5 * (run.reaction([ga[0][0]], tp) @ (-_EX) + run.reaction([gb[0][0]], tp) @ _EX)
-        return force + 0.5 * (
-            run.reaction([ga[0][1]], tp) @ (-_EX) + run.reaction([gb[0][1]], tp) @ _EX
-        )
+        ua, ub = self.pull_dirs
+        force = 0.5 * (run.reaction([ga[0][0]], tp) @ ua + run.reaction([gb[0][0]], tp) @ ub)
+        return force + 0.5 * (run.reaction([ga[0][1]], tp) @ ua + run.reaction([gb[0][1]], tp) @ ub)
+
+    def _start_invariants(self):
+        """(Alexander polynomial of the closed bend, linking number) of the start shape."""
+        return bend_invariants(self.curves.rope_a, self.curves.rope_b)
 
     def _topology(self, run, pm, tp, k_check, start):
         """Status, message and the invariants at the last frame checked (every recorded
@@ -538,6 +613,199 @@ class BendScene(Scene):
                 msg = f"topology changed at t = {tp[k]:.3f} s: a strand passed through another"
                 return "failed", msg, got
         return status, message, got
+
+
+#: the tied bends' friction law: the anchor law with its cap floored at 1e-2 (r_i + r_j),
+#: several times fewer steps in tight knots
+#: (docs/notes/contact-and-friction/sticking-law-cap-width.md)
+TIED_CAP_FLOOR = 1e-2
+
+
+def _record(kind):
+    """The registry record of a bend ``kind`` with a scene here; a one-line InputError
+    naming the bends otherwise."""
+    names = knots.names(family="bend")
+    key = knots.key(kind) if isinstance(kind, str) else ""
+    if key not in names or knots.get(key).scene != "knotmech.scenes.bends:bend":
+        raise InputError(f"kind must be one of {', '.join(names)}, got {kind!r}")
+    return knots.get(key)
+
+
+@dataclass
+class TiedBendResult(BendResult):
+    """A tied bend's pull: :class:`BendResult` and what the tied knots add (SI units).
+
+    ``alexander_*`` are the pair (rope A alone, rope B alone) and ``linking_*`` the ropes'
+    linking number; ``draw_in`` is material (the decrease of each tail's length outside
+    the knot, :func:`knotmech.scenes.tied.pulled.tail_free_lengths`).
+
+    Attributes
+    ----------
+    tail_drawn : {"A", "B", "both", ""}
+        The tail drawn in more (by more than d/2) at the last pull frame, or both.
+    roll : float [m]
+        The smaller of the two tails' draw-in at the last pull frame: how far the knot
+        moved along both ropes towards the tails (the flat overhand bend "rolls").
+    invariants_start, invariants_checked : dict
+        :func:`knotmech.scenes.tied.measure` of the start shape and the last values
+        defined on the frames checked.
+    frames_checked : int
+        Pull frames whose invariants were computed (all of them, unless the topology
+        changed).
+    law : str
+        The rod-rod friction law.
+    """
+
+    tail_drawn: str = ""
+    roll: float = float("nan")
+    invariants_start: dict = field(default_factory=dict)
+    invariants_checked: dict = field(default_factory=dict)
+    frames_checked: int = 0
+    law: str = ""
+
+    @property
+    def topology_preserved(self) -> bool:
+        """Each rope's knot type the same at the start and on every frame checked (the
+        linking number of two ropes with free tails is not invariant: see ``message``)."""
+        return self.alexander_start == self.alexander_checked
+
+    def to_dict(self) -> dict:
+        """:meth:`BendResult.to_dict` and the tied bend's fields."""
+        out = super().to_dict()
+        out.update(
+            tail_drawn=self.tail_drawn,
+            roll=float(self.roll) if np.isfinite(self.roll) else None,
+            frames_checked=int(self.frames_checked),
+            law=self.law,
+            invariants_start=_plain(self.invariants_start),
+            invariants_checked=_plain(self.invariants_checked),
+        )
+        return out
+
+
+def _plain(inv: dict) -> dict:
+    return {k: (list(v) if isinstance(v, tuple) else v) for k, v in inv.items()}
+
+
+class TiedBendScene(BendScene):
+    """A bend of :mod:`knotmech.scenes.tied` set and pulled: :class:`BendScene`'s phases
+    with the tied knot's start curves, its grips along the ropes' end tangents (the flat
+    overhand bend: its standing parts pulled apart sideways, ring-loaded), the tails'
+    draw-in measured along the rope and every pull frame's invariants checked."""
+
+    def __init__(self, kind, *, ropes, pull, control, record):
+        super().__init__(record.name, ropes=ropes, pull=pull, control=control)
+        self.record = record
+
+    def _check_kind(self) -> None:
+        """The kind is the record's (checked by :func:`bend`)."""
+
+    def _tie(self) -> None:
+        """The tied knot, its start invariants and the grips' directions."""
+        self.knot = knot = self.record.curve_function()(
+            rod_diameter=self.d, n_nodes=self.ropes.n_nodes
+        )
+        a, b = knot.ropes["A"], knot.ropes["B"]
+        self.curves = BendCurves(self.kind, a, b, 0.5 * self.d, ("start", "start"), "", knot.info)
+        self.inv_start = frame_invariants(knot, a, b)
+        self.tails = tail_nodes(np.vstack([a, b]), len(a), self.d)
+        ends = [end_direction(r, e) for r in (a, b) for e in ("start", "end")]
+        self.set_dirs = tuple(ends)
+        if self.record.curve_params.get("pull") == "apart":
+            u = (a[0] - b[0]) / np.linalg.norm(a[0] - b[0])
+            self.pull_dirs = (u, -u)
+        else:
+            self.pull_dirs = (ends[0], ends[2])
+
+    def _contact(self):
+        """Rod-rod contact with the anchor law, its cap floored (:data:`TIED_CAP_FLOOR`)."""
+        o = self.ropes
+        mk = (
+            self.mu
+            if o.mu_kinetic is None
+            else float(check_nonnegative("mu_kinetic", o.mu_kinetic))
+        )
+        if mk > self.mu:
+            raise InputError(f"mu_kinetic must be <= mu_rod_rod ({self.mu:g}), got {mk:g}")
+        fr = None
+        if self.mu > 0:
+            fr = rod.AnchorFriction(mu_static=self.mu, mu_kinetic=mk, cap_floor=TIED_CAP_FLOOR)
+        w = float(check_positive("contact_width", o.contact_width))
+        return rod.RodContact(stiffness=20.0 * self.fs / self.d, sharpness=15.0 / (w * self.d),
+                              friction=fr)  # fmt: skip
+
+    def _pull(self, run: SceneRun) -> None:
+        """:meth:`BendScene._pull`, the tails' free lengths at its start kept."""
+        x = self.system.positions(run.state.q)
+        self.free0 = tail_free_lengths(x, self.N, self.d, self.tails)
+        super()._pull(run)
+
+    def _ran_out(self, free) -> np.ndarray:
+        """(..., 2) bool: a tail with less than 1 d outside the knot, drawn in by more than
+        the slip draw-in since the pull began (a tail that lay against a crossing strand
+        from the start has not run out)."""
+        return (free < 1.0 * self.d) & (self.free0 - free > self.slip)
+
+    def _tail_out(self, x) -> bool:
+        """Whether a tail has run out of the knot (:meth:`_ran_out`)."""
+        return bool(self._ran_out(tail_free_lengths(x, self.N, self.d, self.tails)).any())
+
+    def _draw_in(self, pm, x0):
+        """Material draw-in [m] of A's and B's tails on each pull frame (from the pull's
+        start), and whether a tail has run out (:meth:`_ran_out`)."""
+        free = np.array([tail_free_lengths(x, self.N, self.d, self.tails) for x in pm])
+        free = free.reshape(-1, 2)
+        return self.free0 - free, self._ran_out(free).any(axis=1)
+
+    def _start_invariants(self):
+        inv = self.inv_start
+        return (inv["alexander_A"], inv["alexander_B"]), inv["linking"]
+
+    def _topology(self, run, pm, tp, k_check, start):
+        """Every pull frame's invariants against the start shape's: a rope whose knot type
+        changed fails the run; a changed linking number or joined closure is reported (the
+        two ropes' tails are free: an end winding round the other rope, or the knot
+        capsizing, changes them without a strand passing through another, which the
+        overlap watch of every step excludes)."""
+        self.inv_checked = got = dict(self.inv_start)
+        self.frames_checked, moved = 0, {}
+        for k in range(len(pm)):
+            try:
+                now = frame_invariants(self.knot, pm[k][: self.N], pm[k][self.N :])
+            except InputError as e:
+                return "failed", f"t = {tp[k]:.3f} s: the frame does not close ({e})", start
+            self.frames_checked += 1
+            changed = invariants_changed(self.inv_start, now)
+            got.update({key: v for key, v in now.items() if v is not None})
+            pair = (got["alexander_A"], got["alexander_B"]), got["linking"]
+            for key in changed:
+                moved.setdefault(key, (tp[k], now[key]))
+            if {"alexander_A", "alexander_B"} & set(changed):
+                return "failed", (
+                    f"knot type of a rope changed at t = {tp[k]:.3f} s "
+                    f"({', '.join(changed)}): a tail drawn out through a loop, or a strand "
+                    "through another; not a result"), pair  # fmt: skip
+        note = "; ".join(
+            f"{key} {self.inv_start[key]} -> {v} at t = {t:.3f} s (free tails wound round)"
+            for key, (t, v) in moved.items()
+        )
+        return run.status, run.message or note, pair
+
+    def measure(self, run: SceneRun) -> TiedBendResult:
+        """:meth:`BendScene.measure`, the tail drawn in and the roll."""
+        res = super().measure(run)
+        base = {f.name: getattr(res, f.name) for f in fields(BendResult)}
+        draw = np.asarray(res.draw_in)
+        tail, roll = "", float("nan")
+        if draw.size:
+            da, db = draw[-1]
+            roll = float(min(da, db))
+            tail = "A" if da > db + 0.5 * self.d else "B" if db > da + 0.5 * self.d else "both"
+        law = f"anchor (sticking) friction, cap floor {TIED_CAP_FLOOR:g} (r_i + r_j)"
+        return TiedBendResult(**base, tail_drawn=tail, roll=roll, law=law,
+                              invariants_start=self.inv_start,
+                              invariants_checked=getattr(self, "inv_checked", {}),
+                              frames_checked=getattr(self, "frames_checked", 0))  # fmt: skip
 
 
 def _bend_verdict(force, draw, out, slip) -> tuple[str, float, int]:

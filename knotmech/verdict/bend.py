@@ -6,7 +6,9 @@ from __future__ import annotations
 
 import math
 
+from knotmech import knots
 from knotmech.errors import InputError, check_nonnegative, check_positive
+from knotmech.knots.catalogue import PATIL
 from knotmech.verdict.answer import Verdict
 from knotmech.verdict.command import simulate_command
 from knotmech.verdict.inputs import _bending_scale, _warnings, _youngs_modulus
@@ -39,15 +41,12 @@ def hold_bend(
     common = dict(
         knot=key, assumptions=tuple(([e_source] if e_source else []) + [k_source]),
         warnings=_warnings(mu, None, d, math.inf, load, E, None), inputs=inputs,
-        notes=(
-            f"{key} is a bend (Patil et al., Science 2020): no closed form and no DER table; "
-            "one DER pull of the bend scene (knotmech.scenes.bends.bend) gives its slip load",
-        ),
+        notes=(_note(key),),
     )  # fmt: skip
     if not simulate:
         return Verdict(
             holds=None, margin=math.nan, decided_by=None, inside_validity=False, answers=(),
-            next_step=f"next: {cmd} (one DER pull of the bend, 1-3 minutes) decides it",
+            next_step=f"next: {cmd} (one DER pull of the bend, {_cost(key)}) decides it",
             **common,
         )  # fmt: skip
     if E is None:
@@ -66,6 +65,24 @@ def hold_bend(
         next_step="" if answers else "next: test the knot (the DER pull did not decide)",
         der=der, **common,
     )  # fmt: skip
+
+
+def _cost(key) -> str:
+    """What one pull costs (benchmarks/tied.py for the tied bends)."""
+    return "1-3 minutes" if _patil(knots.get(key)) else "under a minute of CPU"
+
+
+def _patil(rec) -> bool:
+    """Whether the record is one of the four bends of Patil et al. (tied from bend_curves)."""
+    return rec.curve.endswith(":bend_curves")
+
+
+def _note(key) -> str:
+    """What answers for bend ``key``: its source and the scene."""
+    rec = knots.get(key)
+    where = "Patil et al., Science 2020" if _patil(rec) else rec.summary
+    return (f"{key} is a bend ({where}): no closed form and no DER table; one DER pull of "
+            "the bend scene (knotmech.scenes.bends.bend) gives its slip load")  # fmt: skip
 
 
 def _refuse_post_inputs(key, *, post_diameter, mu_rr, wrap_angle, phase_table, free_end_load):
@@ -89,18 +106,22 @@ def _pull(key, *, d, E, mu, load, mat, kappa, progress):
     if kappa != 1.0:
         kw["bending_scale"] = kappa
     r = bend(key, rod_diameter=d, youngs_modulus=E, mu_rod_rod=mu, progress=progress, **kw)
+    tied = {
+        "tail_drawn": r.tail_drawn, "roll": r.roll, "law": r.law,
+        "frames_checked": r.frames_checked,
+    } if hasattr(r, "tail_drawn") else {}  # fmt: skip
     der = {
         "source": "simulation", "scene": "knotmech.scenes.bends.bend", "kind": key,
         "verdict": r.verdict, "slip_load": r.slip_load, "max_force": r.max_force,
         "pull_speed": r.pull_speed, "status": r.status, "message": r.message,
         "topology_preserved": bool(r.topology_preserved),
-        "wall_s": float(r.stats.get("wall_s", math.nan)),
+        "wall_s": float(r.stats.get("wall_s", math.nan)), **tied,
     }  # fmt: skip
     holds, capacity, der["message"] = _pull_outcome(key, r, load)
     der["holds"] = holds
     if holds is None:
         return der, ()
-    return der, (_pull_answer(r, holds, capacity, load, kappa, der["message"]),)
+    return der, (_pull_answer(key, r, holds, capacity, load, kappa, der["message"]),)
 
 
 def _pull_outcome(key, r, load):
@@ -120,22 +141,25 @@ def _pull_outcome(key, r, load):
     )  # fmt: skip
 
 
-def _pull_answer(r, holds, capacity, load, kappa, message):
+def _pull_answer(key, r, holds, capacity, load, kappa, message):
     """The pull's deciding :class:`~knotmech.analytic.hitch.ModelAnswer`."""
     from knotmech.analytic.hitch import ModelAnswer
 
+    rec = knots.get(key)
+    law = getattr(r, "law", "") or "sticking rod-rod friction"
+    loading = rec.loading or "set by hand then pulled apart"
+    reference = (PATIL + "; knotmech.scenes.bends" if _patil(rec)
+                 else "; ".join(rec.sources) + "; knotmech.scenes.bends")  # fmt: skip
     return ModelAnswer(
         model="DER-simulation", holds=bool(holds), margin=capacity / load - 1,
         capacity=capacity, critical_mu=math.nan, decides=True, inside_validity=True,
         assumptions=(
-            f"two elastic rods (B = kappa E pi d^4/64, kappa = {kappa:g}), sticking "
-            "rod-rod friction, "
-            f"set by hand then pulled apart at {r.pull_speed * 1e3:g} mm/s",
+            f"two elastic rods (B = kappa E pi d^4/64, kappa = {kappa:g}), {law}, "
+            f"{loading} at {r.pull_speed * 1e3:g} mm/s",
             "slip: a tail draws in by more than 2 d while the pull force stays "
             "within 10 % of its largest value",
         ),
         validity=("one DER pull of the bend at this d, E and mu",),
-        reference="Patil, Sandt, Kolle & Dunkel, Science 367, 71 (2020); "
-        "knotmech.scenes.bends",
+        reference=reference,
         notes=(message,),
     )  # fmt: skip

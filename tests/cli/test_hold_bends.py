@@ -89,3 +89,53 @@ def test_creep_limit_must_be_positive(capsys):
     args = ["hold", "clove-hitch", "--post-diameter", "30mm", *BEND, "--creep-limit", "0"]
     assert main(args) == 2
     assert "--creep-limit must be > 0" in capsys.readouterr().err
+
+
+TIED = ["sheet-bend", "double-sheet-bend", "flat-overhand-bend", "figure-eight-bend",
+        "double-fishermans"]  # fmt: skip
+
+
+@pytest.mark.parametrize("knot", [*TIED, "Flemish bend", "EDK", "grapevine"])
+def test_tied_bends_without_simulate_are_undecided_with_the_command(knot, capsys):
+    assert main(["hold", knot, *BEND, "--json", "-"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["holds"] is None and data["decided_by"] is None
+    key = {"Flemish bend": "figure-eight-bend", "EDK": "flat-overhand-bend",
+           "grapevine": "double-fishermans"}.get(knot, knot)  # fmt: skip
+    cmd = f"knotmech hold {key} --rod-diameter 4mm --mu 0.3 --load 2N --material vps32 --simulate"
+    assert cmd in data["next_step"] and "under a minute of CPU" in data["next_step"]
+
+
+def test_tied_bend_simulate_answers_in_the_bend_form(monkeypatch):
+    """The tied bend's pull (stubbed) decides as the Patil bends' does, with its own
+    loading, friction law and source in the assumptions."""
+    from knotmech.scenes import bends
+
+    seen = {}
+    fake = _fake_bend("slips", 0.5, 0.5, seen)
+
+    def tied(kind, **kw):
+        r = fake(kind, **kw)
+        r.tail_drawn, r.roll, r.frames_checked = "A", 2e-3, 20
+        r.law = "anchor (sticking) friction, cap floor 0.01 (r_i + r_j)"
+        return r
+
+    monkeypatch.setattr(bends, "bend", tied)
+    v = knotmech.hold("flat overhand bend", rod_diameter=4e-3, mu=0.3, load=0.4,
+                      material="vps32", simulate=True)  # fmt: skip
+    assert seen["kind"] == "flat-overhand-bend"
+    assert v.holds is True and v.margin == pytest.approx(0.5 / 0.4 - 1)
+    assert v.der["tail_drawn"] == "A" and v.der["roll"] == 2e-3
+    text = " ".join(v.answers[0].assumptions)
+    assert "cap floor 0.01" in text and "ring-loaded" in text
+    assert "tied-knots-pulled.md" in v.answers[0].reference
+    assert knotmech.hold("flat overhand bend", rod_diameter=4e-3, mu=0.3, load=0.6,
+                         material="vps32", simulate=True).holds is False  # fmt: skip
+
+
+@pytest.mark.parametrize("knot", ["zeppelin-bend", "hunters-bend"])
+def test_unknown_bend_is_one_line_exit_2(knot, capsys):
+    assert main(["hold", knot, *BEND]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and f"unknown knot '{knot}'" in err
+    assert "sheet-bend" in err

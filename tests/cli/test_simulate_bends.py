@@ -53,7 +53,7 @@ def stub(monkeypatch):
 def test_bend_kinds_are_the_library_bends():
     from knotmech.scenes.bend_curves import BEND_CODES
 
-    assert set(sim.BEND_KINDS) == set(BEND_CODES)
+    assert set(sim.BEND_KINDS) == set(BEND_CODES) | set(sim.TIED_BENDS)
 
 
 def test_bend_options_reach_the_scene_in_si(stub, capsys):
@@ -83,6 +83,28 @@ def test_bend_options_reach_the_scene_in_si(stub, capsys):
 ])  # fmt: skip
 def test_bend_bad_input_is_one_line_and_exit_2(extra, message, capsys):
     assert main(BEND + extra) == 2
+    assert message in _err(capsys)
+
+
+@pytest.mark.parametrize("name", ["sheet-bend", "double_fishermans", "flat-overhand-bend"])
+def test_tied_bend_command_is_bend_with_its_kind(name, stub, capsys):
+    """``simulate NAME`` reaches the bend scene as ``bend --kind NAME`` (options in SI)."""
+    seen = stub("knotmech.scenes.bends", "bend")
+    argv = ["simulate", name, "--no-progress", "--mu", "0.6", "--pull-distance", "3cm"]
+    assert main(argv) == 2 and "stub reached" in _err(capsys)
+    assert seen["args"] == (name.replace("_", "-"),)
+    assert seen["kwargs"]["mu_rod_rod"] == 0.6
+    assert seen["kwargs"]["pull_distance"] == pytest.approx(0.03)
+    assert "n_nodes" not in seen["kwargs"]  # the record's default
+
+
+@pytest.mark.parametrize("extra, message", [
+    (["--kind", "reef"], "unrecognized arguments: --kind reef"),
+    (["--n-nodes", "20"], "n_nodes must be an integer >= 100, got 20"),
+    (["--mu", "-1"], "mu_rod_rod"),
+])  # fmt: skip
+def test_tied_bend_bad_input_is_one_line_and_exit_2(extra, message, capsys):
+    assert main(["simulate", "sheet-bend", "--no-progress", *extra]) == 2
     assert message in _err(capsys)
 
 

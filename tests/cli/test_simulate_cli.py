@@ -165,7 +165,7 @@ def test_defaults_shown_are_the_scene_functions_defaults(scene):
             assert shown == pytest.approx(default, rel=1e-12), o.flag
         checked += 1
     assert (
-        checked >= {"capstan": 1, "pinch": 5, "clove-hitch": 9, "bend": 9, "centreline": 5}[scene]
+        checked >= {"capstan": 1, "pinch": 5, "clove-hitch": 9, "bend": 7, "centreline": 5}[scene]
     )
 
 
@@ -290,7 +290,7 @@ def test_max_node_steps_default_shown_is_the_library_bound():
     from knotmech.scenes._common import MAX_NODE_STEPS
 
     for scene, opts in sim.SCENE_OPTIONS.items():
-        if scene in ("bend", "centreline"):  # these scenes have no up-front work bound
+        if scene in ("bend", "centreline", *sim.TIED_BENDS):  # no up-front work bound
             assert "--max-node-steps" not in [o.flag for o in opts]
             continue
         (o,) = [o for o in opts if o.flag == "--max-node-steps"]
@@ -305,6 +305,7 @@ _SCENE_FUNCS = {
     "clove-hitch": ("knotmech.scenes.clove_hitch", "clove_hitch"),
     **{name: ("knotmech.scenes.hitches", "hitch_function") for name in sim.HITCH_SCENES},
     "bend": ("knotmech.scenes.bends", "bend"),
+    **{name: ("knotmech.scenes.bends", "bend") for name in sim.TIED_BENDS},
     "centreline": ("knotmech.scenes.centreline", "centreline"),
 }
 _VALUE = st.text(st.sampled_from(list("0123456789.,_-+e mMNkgs/^*%\u2212\uff14")), max_size=8)

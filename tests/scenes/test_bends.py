@@ -19,7 +19,7 @@ from knotmech.scenes.bends import PATIL_ORDER, bend
 
 def test_bad_bend_arguments_are_one_line_errors():
     with pytest.raises(InputError, match="kind must be one of"):
-        bend("sheet")
+        bend("zeppelin")
     with pytest.raises(InputError, match="pull_speed"):
         bend("reef", pull_speed=-1.0)
     with pytest.raises(InputError, match="mu_rod_rod"):
