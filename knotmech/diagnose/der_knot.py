@@ -291,15 +291,18 @@ class DERKnotLaw:
     def d_reach(self) -> float:
         """The end-to-end distance every run of the surface reached [m] (the surface is
         judged on rows up to there)."""
-        return min(r[0] for mu, r in self.reach.items() if mu in self._raw)
+        return min(self._reach_of(mu)[0] for mu in self._raw)
+
+    def _reach_of(self, mu) -> tuple:
+        """(largest D reached [m], why it stopped short or None) of the run at ``mu``
+        (a run stored without its reach: the largest D among its frames)."""
+        return self.reach.get(mu, (float(np.max(self._raw[mu][0])), None))
 
     def stop_reason(self) -> str | None:
         """Why the runs stopped short of the recording's last row (None: they did not)."""
         if self.d_reach >= self.d_need - 1e-9:
             return None
-        mu, (dr, why) = min(
-            ((m, r) for m, r in self.reach.items() if m in self._raw), key=lambda t: t[1][0]
-        )
+        mu, (dr, why) = min(((m, self._reach_of(m)) for m in self._raw), key=lambda t: t[1][0])
         return (
             f"the DER knot ({self.turns} turns, {self.n_nodes} nodes) stops at "
             f"end_to_end_m = {dr:.5g} at mu = {mu:.4g}: {why or 'the end of its pull'}"
