@@ -868,6 +868,12 @@ def _summary(report: Report, rec, fin_mis, base_mis, effect) -> str:
             f"  closed form judged {valid['rows_judged']} of {valid['rows']} rows "
             f"({valid['reason']})"
         )
+    reached = report.details.get("der", {}).get("rows_judged")
+    if reached:
+        lines.append(
+            f"  DER baseline judged {reached['rows_used']} of {reached['rows']} rows "
+            f"({reached['reason']})"
+        )
     out = report.details.get("outliers")
     if out:
         shown = ", ".join(

@@ -396,6 +396,7 @@ def test_der_runs_that_stop_short_judge_the_rows_they_reached(monkeypatch):
     assert 0.985 < reach <= 0.99
     assert note["rows"] == 200 and note["rows_used"] == int(np.sum(rec.x <= reach)) == rep.x.size
     assert "ran away" in note["reason"] and f"{200 - note['rows_used']} rows" in note["reason"]
+    assert f"DER baseline judged {note['rows_used']} of 200 rows" in rep.summary
     assert abs(rep.final["parameters"]["mu"] - 0.3) < 0.05
 
 
