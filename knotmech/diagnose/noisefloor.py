@@ -430,6 +430,17 @@ def _n_eff_coloured(nf: NoiseFloor) -> float:
     return float(min(nf.ar.n_eff, nf.n_eff)) if nf.ar is not None else nf.n_eff
 
 
+def _rescued(nf: NoiseFloor, alpha: float) -> bool:
+    """A noise model explains the remainder (:func:`noise_floor_verdict`): the final
+    AR(1) or the AR(p) fit, neither when the high frequencies are too white for the
+    level, each only when it would produce the remainder's best ripple."""
+    if nf.p_consistent < alpha:
+        return False
+    if nf.p_model >= alpha and nf.n_eff >= N_EFF_MIN and nf.p_ripple >= alpha:
+        return True
+    return _ar_explains(nf, alpha) and nf.p_ripple_ar >= alpha
+
+
 def _ripple(nf: NoiseFloor, alpha: float) -> bool:
     """A ripple no candidate noise model produces: both ripple tests reject."""
     return nf.p_ripple < alpha and nf.p_ripple_ar < alpha
@@ -454,6 +465,10 @@ def noise_floor_verdict(nf: NoiseFloor, alpha: float) -> tuple[str, str]:
       needs (``p_consistent < alpha``: a narrow bump absorbed by a fitted correlation
       near 1; 10-sd bumps of 120 rows give p = 0.0025-0.04, AR(1), AR(2) and 1/f nulls
       at least 0.01);
+    - neither rescue when a growing ripple explains more of the remainder than that noise
+      model produces (``p_ripple``, ``p_ripple_ar``; :mod:`knotmech.diagnose.ripple`);
+      when both reject, ``unexplained`` (a deterministic ripple: stick-slip chatter on a
+      short recording, issue 26);
     - otherwise ``unexplained`` when the high-frequency noise is white
       (``p_hf_white >= alpha``: the excess cannot be correlated noise), else
       ``undetermined`` (a smooth mismatch and correlated noise both fit; the reason
@@ -474,15 +489,13 @@ def noise_floor_verdict(nf: NoiseFloor, alpha: float) -> tuple[str, str]:
     whiter = nf.p_consistent < alpha
     if nf.level > NONE_LEVEL_MAX:
         head += f" (above the {NONE_LEVEL_MAX:g} no fitted noise model may absorb)"
-    elif not whiter and nf.p_model >= alpha and nf.n_eff >= N_EFF_MIN and nf.p_ripple >= alpha:
-        return "none", ""
-    elif not whiter and _ar_explains(nf, alpha) and nf.p_ripple_ar >= alpha:
+    elif _rescued(nf, alpha):
         return "none", ""
     if _ripple(nf, alpha):
         return "unexplained", (
             f"{head}; a growing ripple explains more of it than the noise models that "
-            f"would (AR(1) at rho {nf.n and _rho_of(nf):.3g}: p = {nf.p_ripple:.2g}; "
-            f"AR(p): p = {nf.p_ripple_ar:.2g}) produce, so the excess is structure"
+            f"would rescue it produce (AR(1) at rho {_rho_of(nf):.3g}: p = "
+            f"{nf.p_ripple:.2g}; AR(p): p = {nf.p_ripple_ar:.2g}), so the excess is structure"
         )
     if whiter:
         why = (
