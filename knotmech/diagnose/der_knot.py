@@ -36,8 +36,19 @@ Settings (chosen for speed; the pull is quasi-static):
   matches the recording's level (F is close to proportional to mu; the first run is left
   out of the surface when far from it), more runs if the fit leaves the grid (at most
   :data:`DER_KNOT_MAX_RUNS`);
-- a run whose force runs away (a coarse knot pulled too tight jams) is cut there; if it no
-  longer covers the recording, :class:`~knotmech.errors.SolverError` says where it jammed.
+- a run whose force runs away (a coarse knot pulled too tight jams) is cut there, and a
+  run whose solver fails keeps the frames it recorded; the baseline then judges the rows
+  up to the end-to-end distance every run reached (:func:`reached_recording`: the report's
+  ``details.der.rows_judged`` says how many, where and why), and
+  :class:`~knotmech.errors.SolverError` only when fewer than 8 rows lie before it;
+- a pull to tight (rows beyond the Jawed closure's validity, such as the coated-rod
+  paper's whole pulls to 0.998 L): an edge of at most :data:`_TIGHT_EDGE_H` h (the
+  coarse mesh's force near tight is 1.65x the 301-node one), a cubic B-spline in
+  :math:`\ln e` in place of the cubic (:data:`_TIGHT_KNOTS` interior knots), the grid's
+  first mu at least :data:`_TIGHT_FIRST_MU` and its second step from
+  :math:`F \propto \mu^{1/2}` (:data:`_TIGHT_MU_POWER`). Measured on a 301-node pull at
+  mu = 0.3 (``validation/_make_imc_pull.py``): mu = 0.286 from 4 runs of 299 nodes, 43 s
+  of CPU in all (docs/notes/diagnose-noise-and-statistics/issue26-tight-pull-prior-ripple.md).
 
 **The surrogate's own error.** Two runs of the same knot from slightly different start
 shapes give smoothed curves 2-7 % apart in shape, so the surface is the DER knot's law
@@ -100,7 +111,7 @@ _DEGREE = 3
 #: many rod radii (measured on the implicit-contact-model paper's rod at mu = 0.3, the
 #: force near tight against its 301-node pull: 79 nodes (edge 7.9 h) 1.65x, 151 nodes
 #: 1.2x, 201 nodes 1.08x, 301 nodes 1.00-1.015x; docs/notes/diagnose-noise-and-statistics/
-#: der-knot-tight.md)
+#: issue26-tight-pull-prior-ripple.md)
 _TIGHT_EDGE_H = 2.1
 #: on a pull to tight F grows as mu to about this power (299 nodes, runs at mu = 0.2 and
 #: 0.3: 0.43 at D = 0.99 L, 0.73 at 0.9 L); the grid's second step uses it
@@ -323,8 +334,9 @@ class DERKnotLaw:
     def _refit(self) -> None:
         """Fit the surface ln F = P(ln e) + (b0 + b1 ln e) ln mu to every run.
 
-        ``P`` a cubic; the boxcar-averaged positive forces of all runs enter with equal
-        weight, so the ripple of one run is averaged with the others'.
+        ``P`` a cubic (on a pull to tight a cubic B-spline, :meth:`_spline`); the
+        boxcar-averaged positive forces of all runs enter with equal weight, so the
+        ripple of one run is averaged with the others'.
         """
         zs, ms, ls = [], [], []
         for mu, (d, f) in self._raw.items():
