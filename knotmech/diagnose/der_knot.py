@@ -36,8 +36,19 @@ Settings (chosen for speed; the pull is quasi-static):
   matches the recording's level (F is close to proportional to mu; the first run is left
   out of the surface when far from it), more runs if the fit leaves the grid (at most
   :data:`DER_KNOT_MAX_RUNS`);
-- a run whose force runs away (a coarse knot pulled too tight jams) is cut there; if it no
-  longer covers the recording, :class:`~knotmech.errors.SolverError` says where it jammed.
+- a run whose force runs away (a coarse knot pulled too tight jams) is cut there, and a
+  run whose solver fails keeps the frames it recorded; the baseline then judges the rows
+  up to the end-to-end distance every run reached (:func:`reached_recording`: the report's
+  ``details.der.rows_judged`` says how many, where and why), and
+  :class:`~knotmech.errors.SolverError` only when fewer than 8 rows lie before it;
+- a pull to tight (rows beyond the Jawed closure's validity, such as the coated-rod
+  paper's whole pulls to 0.998 L): an edge of at most :data:`_TIGHT_EDGE_H` h (the
+  coarse mesh's force near tight is 1.65x the 301-node one), a cubic B-spline in
+  :math:`\ln e` in place of the cubic (:data:`_TIGHT_KNOTS` interior knots), the grid's
+  first mu at least :data:`_TIGHT_FIRST_MU` and its second step from
+  :math:`F \propto \mu^{1/2}` (:data:`_TIGHT_MU_POWER`). Measured on a 301-node pull at
+  mu = 0.3 (``validation/_make_imc_pull.py``): mu = 0.286 from 4 runs of 299 nodes, 43 s
+  of CPU in all (docs/notes/diagnose-noise-and-statistics/issue26-tight-pull-prior-ripple.md).
 
 **The surrogate's own error.** Two runs of the same knot from slightly different start
 shapes give smoothed curves 2-7 % apart in shape, so the surface is the DER knot's law
@@ -86,6 +97,7 @@ __all__ = [
     "der_recording",
     "extend_grid",
     "fit_knot_der_baseline",
+    "reached_recording",
     "der_made_recording",
     "DER_KNOT_MAX_RUNS",
 ]
@@ -95,6 +107,24 @@ DER_KNOT_DT = 1e-2
 DER_KNOT_WAIT = 0.2
 DER_KNOT_MAX_RUNS = 6
 _DEGREE = 3
+#: a pull to tight (rows beyond the Jawed closure's validity): an edge of at most this
+#: many rod radii (measured on the implicit-contact-model paper's rod at mu = 0.3, the
+#: force near tight against its 301-node pull: 79 nodes (edge 7.9 h) 1.65x, 151 nodes
+#: 1.2x, 201 nodes 1.08x, 301 nodes 1.00-1.015x; docs/notes/diagnose-noise-and-statistics/
+#: issue26-tight-pull-prior-ripple.md)
+_TIGHT_EDGE_H = 2.1
+#: on a pull to tight F grows as mu to about this power (299 nodes, runs at mu = 0.2 and
+#: 0.3: 0.43 at D = 0.99 L, 0.73 at 0.9 L); the grid's second step uses it
+_TIGHT_MU_POWER = 0.5
+#: on a pull to tight the grid's first mu is at least this: the closed form fitted to
+#: such a pull gives mu ~ 1e-18 (clipped to 0.05), where the DER knot's force near tight
+#: hardly depends on mu (299 nodes: F(0.05) about 0.75 F(0.3)) and one run cannot place
+#: the level; from 0.05 the grid ended at 0.08-0.21 and the fit at mu = 0.17 for a pull
+#: made at 0.3
+_TIGHT_FIRST_MU = 0.2
+#: interior knots of the surface's cubic spline in ln e on a pull to tight (a cubic in
+#: ln e misses the rise to tight by up to 2x)
+_TIGHT_KNOTS = 6
 #: a simulated force this many times the median of the run's first half is a runaway
 _RUNAWAY = 1e3
 #: carry the surrogate's own error (module docstring); False (the default): the surface
@@ -138,6 +168,8 @@ class DERKnotLaw:
         self.d_need = float(np.max(rec.x))
         # pulled 1 % of L beyond it, or half-way to L when it is closer (a pull to tight)
         self.d1 = min(self.d_need + 0.01 * self.L, self.d_need + 0.5 * (self.L - self.d_need))
+        #: rows beyond the Jawed closure's validity: a pull to tight (finer mesh, spline)
+        self.tight = get_experiment("knot_pull").validity(rec) is not None
         self.B = self.E * np.pi * self.h**4 / 4.0
         self.braid = float(
             overhand_knot(
@@ -151,6 +183,11 @@ class DERKnotLaw:
         self.n_nodes = self._mesh() if n_nodes is None else int(n_nodes)
         self._raw: dict = {}  # mu -> raw (D, F) of the run (in the surface)
         self._dropped: dict = {}  # runs left out of the surface (far from the data's mu)
+        #: mu -> (the largest end-to-end distance the run reached [m], why it stopped
+        #: short or None)
+        self.reach: dict = {}
+        #: the rows judged when the runs stop short of the recording (None: all)
+        self.rows_note = None
         self.seconds = 0.0
         #: the surrogate-error correction (:meth:`set_correction`), None: none
         self.correction = None
@@ -159,7 +196,8 @@ class DERKnotLaw:
         # imported here for start-up speed: knotmech.scenes loads the numba solver
         from knotmech.scenes.curves import overhand_knot as knot_curve
 
-        n = max(int(round(self.L / (8.0 * self.h))) + 1, 41)
+        edge = _TIGHT_EDGE_H * self.h if self.tight else 8.0 * self.h
+        n = max(int(round(self.L / edge)) + 1, 41)
         for _ in range(12):
             try:
                 knot_curve(
@@ -188,6 +226,7 @@ class DERKnotLaw:
             "simulations": len(self._raw) + len(self._dropped),
             "simulation_seconds": float(f"{self.seconds:.3g}"),
             **({"surrogate_error": self.correction.describe()} if self.correction else {}),
+            **({"rows_judged": self.rows_note} if self.rows_note else {}),
         }
 
     @property
@@ -228,29 +267,61 @@ class DERKnotLaw:
             options=SolverOptions(throw=False, rtol=1e-6),
         )
         self.seconds += time.perf_counter() - t0
-        if res.status != "success":
-            raise SolverError(f"DER knot baseline failed at mu = {mu:.4g}: {res.message}")
+        d, f, why = self._usable(res)
+        if d.size < 2 * (_DEGREE + 3):
+            raise SolverError(
+                f"DER knot baseline failed at mu = {mu:.4g} ({self.turns} turns, "
+                f"{self.n_nodes} nodes): {why or 'too few frames'}"
+            )
+        self.reach[mu] = (float(np.max(d)), why)
+        self._raw[mu] = (d, f)
+        self._refit()
+        return d, f
+
+    def _usable(self, res):
+        """The frames of a run the surface may use: (D [m], F [N], why it stopped short).
+
+        The pull's start-up is left out; a run whose solver failed keeps the frames it
+        recorded, and one whose force runs away (a coarse knot pulled too tight jams) is
+        cut there. ``why`` is None when the run was not cut.
+        """
         d = np.asarray(res.end_to_end, float)
         f = np.asarray(res.pull_force, float)
         keep = res.times > DER_KNOT_WAIT + 0.25 * (0.03 * self.L) / self.v
         d, f = d[keep], f[keep]
-        # a coarse knot pulled too tight jams and the contact force runs away: cut there
-        ref = float(np.median(np.abs(f[: max(len(f) // 2, 1)])))
-        bad = ~np.isfinite(f) | (np.abs(f) > _RUNAWAY * ref)
+        why = None if res.status == "success" else f"the solver failed ({res.message})"
+        ref = float(np.median(np.abs(f[: max(len(f) // 2, 1)]))) if f.size else 0.0
+        bad = ~np.isfinite(f) | ~np.isfinite(d) | (np.abs(f) > _RUNAWAY * ref)
         if np.any(bad):
             cut = int(np.argmax(bad))
             d, f = d[:cut], f[:cut]
-        need = self.d_need
-        if d.size < 2 * (_DEGREE + 3) or d[-1] < need - 1e-9:
-            reached = d[-1] if d.size else self.d0
-            raise SolverError(
-                f"DER knot baseline: the simulated knot ({self.turns} turns, {self.n_nodes} "
-                f"nodes, mu = {mu:.4g}) jams at end_to_end_m = {reached:.4g}, before the "
-                f"recording's {need:.4g}; use the closed-form baseline"
-            )
-        self._raw[mu] = (d, f)
-        self._refit()
-        return d, f
+            why = why or "the contact force ran away (the coarse knot jams)"
+        return d, f, why
+
+    @property
+    def d_reach(self) -> float:
+        """The end-to-end distance every run of the surface reached [m] (the surface is
+        judged on rows up to there)."""
+        return min(self._reach_of(mu)[0] for mu in self._raw)
+
+    def _reach_of(self, mu) -> tuple:
+        """(largest D reached [m], why it stopped short or None) of the run at ``mu``
+        (a run stored without its reach: the largest D among its frames)."""
+        return self.reach.get(mu, (float(np.max(self._raw[mu][0])), None))
+
+    def stop_reason(self) -> str | None:
+        """Why the runs stopped short of the recording's last row (None: they did not)."""
+        if self.d_reach >= self.d_need - 1e-9:
+            return None
+        mu, (dr, why) = min(((m, self._reach_of(m)) for m in self._raw), key=lambda t: t[1][0])
+        return (
+            f"the DER knot ({self.turns} turns, {self.n_nodes} nodes) stops at "
+            f"end_to_end_m = {dr:.5g} at mu = {mu:.4g}: {why or 'the end of its pull'}"
+        )
+
+    def reached_rows(self, x) -> np.ndarray:
+        """Bool mask of the rows at end-to-end distances ``x`` [m] the runs reached."""
+        return np.asarray(x, float) <= self.d_reach + 1e-12
 
     def _boxcar(self, d, f) -> np.ndarray:
         """Force averaged over a window of two edges in D (the mesh passing the knot)."""
@@ -263,8 +334,9 @@ class DERKnotLaw:
     def _refit(self) -> None:
         """Fit the surface ln F = P(ln e) + (b0 + b1 ln e) ln mu to every run.
 
-        ``P`` a cubic; the boxcar-averaged positive forces of all runs enter with equal
-        weight, so the ripple of one run is averaged with the others'.
+        ``P`` a cubic (on a pull to tight a cubic B-spline, :meth:`_spline`); the
+        boxcar-averaged positive forces of all runs enter with equal weight, so the
+        ripple of one run is averaged with the others'.
         """
         zs, ms, ls = [], [], []
         for mu, (d, f) in self._raw.items():
@@ -278,12 +350,23 @@ class DERKnotLaw:
         z, lm, lf = (np.concatenate(v) for v in (zs, ms, ls))
         if z.size < 2 * (_DEGREE + 3):
             raise SolverError("DER knot baseline: the simulated pull force is not positive")
-        cols = [z**j for j in range(_DEGREE + 1)]
+        self._zrange = (float(z.min()), float(z.max()))
+        cols = [z**j for j in range(_DEGREE + 1)] if not self.tight else list(self._spline(z).T)
         if len(self._raw) >= 2:
             cols += [lm, lm * z]
         a = np.column_stack(cols)
         self._coef = np.linalg.lstsq(a, lf, rcond=None)[0]
-        self._zrange = (float(z.min()), float(z.max()))
+
+    def _spline(self, z) -> np.ndarray:
+        """(n, k) cubic B-spline basis in z = ln e over the runs' range (a pull to tight),
+        :data:`_TIGHT_KNOTS` interior knots evenly spaced in z."""
+        from scipy.interpolate import BSpline
+
+        lo, hi = self._zrange
+        inner = np.linspace(lo, hi, _TIGHT_KNOTS + 2)
+        t = np.r_[[lo] * _DEGREE, inner, [hi] * _DEGREE]
+        zz = np.clip(np.asarray(z, float), lo, hi)
+        return BSpline.design_matrix(zz, t, _DEGREE).toarray()
 
     def log_force(self, d, mu) -> np.ndarray:
         """ln F of the fitted surface at distances ``d`` [m] and ``mu`` (scalar or per row)."""
@@ -309,10 +392,15 @@ class DERKnotLaw:
     def _log_surface(self, d, mu) -> np.ndarray:
         z = self._z(d)
         c = self._coef
-        out = sum(c[j] * z**j for j in range(_DEGREE + 1))
-        if c.size > _DEGREE + 1:
+        if self.tight:
+            k = _TIGHT_KNOTS + _DEGREE + 1
+            out = self._spline(z) @ c[:k]
+        else:
+            k = _DEGREE + 1
+            out = sum(c[j] * z**j for j in range(k))
+        if c.size > k:
             lm = np.log(np.maximum(np.asarray(mu, float), 1e-6))
-            out = out + (c[_DEGREE + 1] + c[_DEGREE + 2] * z) * lm
+            out = out + (c[k] + c[k + 1] * z) * lm
         return out
 
     def run_scatter(self, basis) -> tuple[float, int]:
@@ -354,13 +442,16 @@ class DERKnotLaw:
         return np.exp(self.log_force(d, mu))
 
     def fit_grid(self, rec, mu_closed: float) -> None:
-        """Run the grid: at ``mu_closed``, then at 0.85 and 1.15 times the mu that matches
-        ``rec``'s level (F close to proportional to mu); the first run is dropped from the
+        r"""Run the grid: at ``mu_closed``, then at 0.85 and 1.15 times the mu that matches
+        ``rec``'s level (F close to proportional to mu; on a pull to tight to
+        :math:`\mu^{1/2}`, :data:`_TIGHT_MU_POWER`); the first run is dropped from the
         surface when it lies outside [0.7, 1.4] times that mu."""
         self.run(mu_closed)
-        f = self.smooth_force(mu_closed, rec.x)
-        ratio = float(np.dot(f, rec.y) / np.dot(f, f))
-        mu1 = float(np.clip(mu_closed * ratio, 0.02, 3.0))
+        ok = self.reached_rows(rec.x)
+        f = self.smooth_force(mu_closed, rec.x[ok])
+        ratio = float(np.dot(f, rec.y[ok]) / np.dot(f, f))
+        power = _TIGHT_MU_POWER if self.tight else 1.0
+        mu1 = float(np.clip(mu_closed * ratio ** (1.0 / power), 0.02, 3.0))
         for m in (0.85 * mu1, 1.15 * mu1):
             self.run(m)
         if not 0.7 * mu1 <= mu_closed <= 1.4 * mu1:
@@ -480,40 +571,98 @@ def fit_knot_der_baseline(rec, data, starts, gs):
     mu of the grid, then the DER law is fitted (one free parameter, mu), the grid
     extended while the fit leaves it.
 
+    A whole pull to tight may end beyond what the DER knot's coarse mesh reaches (it
+    jams a few millimetres short of tight): the baseline then judges the rows up to the
+    end-to-end distance every run reached, and the report's ``details.der.rows_judged``
+    says how many, up to where and why (:func:`reached_recording`). ``data``,
+    ``starts`` and ``gs`` are those of ``rec``; the reduced recording's own are used.
+
     Returns
     -------
     rec : DERKnotRecording
-        The recording with the DER law attached (use it for everything that follows).
+        The recording with the DER law attached, cut to the rows the runs reached (use
+        it for everything that follows).
     fit : Fit
     """
     if getattr(rec, "force_law", None) is not None:  # the law is already run
         drec = rec
     else:
-        drec = der_recording(rec, _closed_form_mu(rec, gs))
+        mu0 = _closed_form_mu(rec, gs)
+        if get_experiment("knot_pull").validity(rec) is not None:  # a pull to tight
+            mu0 = max(mu0, _TIGHT_FIRST_MU)
+        drec = der_recording(rec, mu0)
+    full = drec
     for _ in range(DER_KNOT_MAX_RUNS):
-        fit = fit_baseline(drec, data, starts, given_sigma=gs)
-        if not extend_grid(drec, float(fit.params["mu"])):
+        drec = reached_recording(full)
+        fit = _fit_reached(drec)
+        if not extend_grid(full, float(fit.params["mu"])):
             break
+    drec = reached_recording(full)
+    fit = _fit_reached(drec)
     law = drec.force_law
     if SURROGATE_ERROR and law.correction is None:
-        corr = surrogate_correction(drec, fit, starts)
+        corr = surrogate_correction(drec, fit, trial_starts(drec.trial))
         if corr is not None:
             law.set_correction(corr)
-            fit = fit_baseline(drec, data, starts, given_sigma=gs)
+            fit = _fit_reached(drec)
     return drec, fit
+
+
+def _fit_reached(rec):
+    """The baseline fitted to ``rec`` with its own data, trial starts and sigma."""
+    data = Data(rec.y, rec.mu_nominal, rec.mu_nominal_sigma)
+    return fit_baseline(rec, data, trial_starts(rec.trial), given_sigma=rec.sigma)
+
+
+def reached_recording(drec):
+    """``drec`` cut to the rows its DER runs reached, the law's ``rows_note`` set.
+
+    Raises
+    ------
+    SolverError
+        Fewer than the kind's ``min_rows`` rows were reached.
+    """
+    law = drec.force_law
+    ok = law.reached_rows(drec.x)
+    law.rows_note = None
+    if np.all(ok):
+        return drec
+    k = int(np.sum(ok))
+    need = get_experiment("knot_pull").min_rows
+    why = law.stop_reason()
+    if k < need:
+        raise SolverError(
+            f"DER knot baseline: {why}; only {k} of {drec.n} rows lie before it (at least "
+            f"{need} needed); use the closed-form baseline"
+        )
+    law.rows_note = {
+        "rows_used": k,
+        "rows": int(drec.n),
+        "judged_range_m": [float(np.min(drec.x[ok])), float(np.max(drec.x[ok]))],
+        "stopped_at_end_to_end_m": float(f"{law.d_reach:.6g}"),
+        "reason": f"{drec.n - k} rows beyond it left out: {why}",
+    }
+    return without_rows(drec, np.flatnonzero(~ok))
+
+
+#: the range the first mu of the DER grid is clipped into
+_FIRST_MU = (0.05, 2.0)
 
 
 def _closed_form_mu(rec, given_sigma) -> float:
     """The closed form's mu, the first of the DER grid: fitted to the rows inside the
     closure's validity (a pull to tight ends beyond it, where the clipped closure's force
-    is far too large and would drag mu towards 0)."""
+    is far too large and would drag mu towards 0), clipped into :data:`_FIRST_MU` (a
+    DER pull to tight fitted with the closed form gives mu ~ 1e-18: the closure's force
+    rises far too fast near its limit; the grid's next runs start from the DER run's own
+    match to the recording)."""
     valid = get_experiment("knot_pull").validity(rec)
     if valid is not None and np.sum(valid[0]) >= get_experiment("knot_pull").min_rows:
         rec = without_rows(rec, np.flatnonzero(~valid[0]))
         given_sigma = rec.sigma
     data = Data(rec.y, rec.mu_nominal, rec.mu_nominal_sigma)
     closed = fit_baseline(rec, data, trial_starts(rec.trial), given_sigma=given_sigma)
-    return float(closed.params["mu"])
+    return float(np.clip(closed.params["mu"], *_FIRST_MU))
 
 
 #: speeds of the DER-made recordings with rate-dependent friction [m/s]

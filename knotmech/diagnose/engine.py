@@ -60,6 +60,7 @@ from knotmech.diagnose.fitting import (
     fit_with_effect,
     heldout_errors,
     heldout_innovation_rms,
+    prior_heldout_z,
     thinned_null,
 )
 from knotmech.diagnose.locate import flexible_mismatch, regions_from_mask, smooth_mismatch
@@ -683,6 +684,11 @@ def _select_closed_form(base, rec, data, starts, gs, rng, alpha, effects, max_ef
             # the raw RMS falls
             tol = 1.01 if _n_new(current, alt, eff) == 0 else 1.0
             held_ok = inn_alt < inn_cur * tol or held_alt < held_cur * tol
+            prior_z = _prior_check(current, alt, eff, data, starts, gs)
+            if prior_z is not None:
+                # such an effect improves the prediction of the held-out prior or is not
+                # claimed (the curve alone cannot show it: issue 26)
+                held_ok = held_ok and abs(prior_z[1]) < abs(prior_z[0])
             ev = {
                 "effect": eff.name,
                 "delta_bic": float(f"{dbic:.4g}"),
@@ -692,6 +698,7 @@ def _select_closed_form(base, rec, data, starts, gs, rng, alpha, effects, max_ef
                 **_p_provenance(p, b, lr),
                 "heldout_rms": float(f"{held_alt:.4g}"),
                 "heldout_innovation_rms": [float(f"{inn_cur:.4g}"), float(f"{inn_alt:.4g}")],
+                **({"heldout_prior_z": [float(f"{z:.4g}") for z in prior_z]} if prior_z else {}),
                 "accepted": bool(p < alpha_each and held_ok),
             }
             tested.append(ev)
@@ -704,6 +711,25 @@ def _select_closed_form(base, rec, data, starts, gs, rng, alpha, effects, max_ef
         accepted.append((eff, ev, lr_gain(current, alt)))
         current, held_cur = alt, held_alt
     return current, accepted, tested, steps, skipped, held_before, held_cur
+
+
+def _prior_check(current, alt, eff, data, starts, gs):
+    """(z before, z after) of the held-out prior (:func:`prior_heldout_z`) for an effect
+    that adds no free parameter and so acts through the ``mu_nominal`` prior; None for
+    other effects or without a prior."""
+    if data.mu_nominal is None or _n_new(current, alt, eff) != 0:
+        return None
+    z_cur = prior_heldout_z(current, data, starts, given_sigma=gs)
+    z_alt = prior_heldout_z(alt, data, starts, given_sigma=gs)
+    return z_cur, z_alt
+
+
+def _prior_text(ev) -> str:
+    """The held-out prior check of a candidate, for the summary ('' when not run)."""
+    z = ev.get("heldout_prior_z")
+    if not z:
+        return ""
+    return f", mu_nominal predicted from the data at z = {z[0]} -> {z[1]} sd"
 
 
 def _p_provenance(p, draws, lr) -> dict:
@@ -831,7 +857,8 @@ def _summary(report: Report, rec, fin_mis, base_mis, effect) -> str:
     for ev in report.details["candidates"]:
         lines.append(
             f"  tested {ev['effect']}: delta BIC {ev['delta_bic']}, {_p_text(ev)}, "
-            f"held-out rms {ev['heldout_rms']} -> {'accepted' if ev['accepted'] else 'rejected'}"
+            f"held-out rms {ev['heldout_rms']}{_prior_text(ev)} -> "
+            f"{'accepted' if ev['accepted'] else 'rejected'}"
         )
     for name, why in report.details["skipped_effects"].items():
         lines.append(f"  skipped {name}: {why}")
@@ -840,6 +867,12 @@ def _summary(report: Report, rec, fin_mis, base_mis, effect) -> str:
         lines.append(
             f"  closed form judged {valid['rows_judged']} of {valid['rows']} rows "
             f"({valid['reason']})"
+        )
+    reached = report.details.get("der", {}).get("rows_judged")
+    if reached:
+        lines.append(
+            f"  DER baseline judged {reached['rows_used']} of {reached['rows']} rows "
+            f"({reached['reason']})"
         )
     out = report.details.get("outliers")
     if out:

@@ -54,6 +54,7 @@ from scipy import ndimage, stats
 
 from knotmech.diagnose.arnoise import ARFit, fit_ar
 from knotmech.diagnose.recording import Recording
+from knotmech.diagnose.ripple import RIPPLE_MAX_ROWS, ripple_p_value
 from knotmech.diagnose.stats import NoiseModel
 
 __all__ = [
@@ -227,6 +228,11 @@ class NoiseFloor:
         Small: the high frequencies are too white for any AR(1) noise that would explain
         the level, so the excess is structure (a narrow bump that a fitted correlation
         near 1 absorbs).
+    p_ripple, p_ripple_ar : float
+        P(a growing ripple explains at least this share of the standardised remainder |
+        the final AR(1) noise model; | the AR(p) fit ``ar``)
+        (:mod:`knotmech.diagnose.ripple`; 1 beyond its row limit). Small: that noise
+        model would not produce the ripple, so it may not rescue a ``none``.
     """
 
     sigma_hf: float
@@ -241,6 +247,8 @@ class NoiseFloor:
     n: int
     ar: ARFit | None = None
     p_consistent: float = 1.0
+    p_ripple: float = 1.0
+    p_ripple_ar: float = 1.0
 
     def describe(self) -> dict:
         """JSON-ready numbers (3 significant digits)."""
@@ -326,6 +334,7 @@ def noise_floor(
         sdm = noise.sd(mean)
         u = (resid / (sdm / np.mean(sdm)))[o][:, None]
         p_cons = _p_consistent(u, seg, draws, rng)
+    p_rip, p_rip_ar = _ripple_p(resid / noise.sd(mean), x, o, seg, noise, ar, rng)
     return NoiseFloor(
         sigma_hf=float(sd),
         level=level,
@@ -339,7 +348,27 @@ def noise_floor(
         n=int(n),
         ar=ar,
         p_consistent=float(p_cons),
+        p_ripple=float(p_rip),
+        p_ripple_ar=float(p_rip_ar),
     )
+
+
+def _ripple_p(u, x, o, seg, noise, ar, rng) -> tuple[float, float]:
+    """(p_ripple, p_ripple_ar) of :class:`NoiseFloor` (``u`` the standardised remainder
+    in row order, ``o`` the sorted order, ``seg`` the sorted rows' trials)."""
+    if u.size > RIPPLE_MAX_ROWS:
+        return 1.0, 1.0
+    xs = np.asarray(x, float)[o]
+    t = np.empty_like(xs)
+    for g in np.unique(seg):
+        m = seg == g
+        span = np.ptp(xs[m])
+        t[m] = (xs[m] - xs[m].min()) / span if span > 0 else 0.0
+    us = np.asarray(u, float)[o]
+    rho = float(noise.rho)
+    p1 = ripple_p_value(us, t, seg, (rho,) if rho > 0 else (), rng)
+    p_ar = ripple_p_value(us, t, seg, tuple(ar.phi), rng) if ar is not None else 1.0
+    return p1, p_ar
 
 
 def _ar1_draws(seg, rho, draws, rng):
@@ -401,6 +430,28 @@ def _n_eff_coloured(nf: NoiseFloor) -> float:
     return float(min(nf.ar.n_eff, nf.n_eff)) if nf.ar is not None else nf.n_eff
 
 
+def _rescued(nf: NoiseFloor, alpha: float) -> bool:
+    """A noise model explains the remainder (:func:`noise_floor_verdict`): the final
+    AR(1) or the AR(p) fit, neither when the high frequencies are too white for the
+    level, each only when it would produce the remainder's best ripple."""
+    if nf.p_consistent < alpha:
+        return False
+    if nf.p_model >= alpha and nf.n_eff >= N_EFF_MIN and nf.p_ripple >= alpha:
+        return True
+    return _ar_explains(nf, alpha) and nf.p_ripple_ar >= alpha
+
+
+def _ripple(nf: NoiseFloor, alpha: float) -> bool:
+    """A ripple no candidate noise model produces: both ripple tests reject."""
+    return nf.p_ripple < alpha and nf.p_ripple_ar < alpha
+
+
+def _rho_of(nf: NoiseFloor) -> float:
+    """The final AR(1) noise model's rho, from its n_eff = n (1 - rho)/(1 + rho)."""
+    r = nf.n_eff / nf.n
+    return (1.0 - r) / (1.0 + r)
+
+
 def noise_floor_verdict(nf: NoiseFloor, alpha: float) -> tuple[str, str]:
     """``none``, ``unexplained`` or ``undetermined`` for a remainder, and the reason.
 
@@ -414,6 +465,10 @@ def noise_floor_verdict(nf: NoiseFloor, alpha: float) -> tuple[str, str]:
       needs (``p_consistent < alpha``: a narrow bump absorbed by a fitted correlation
       near 1; 10-sd bumps of 120 rows give p = 0.0025-0.04, AR(1), AR(2) and 1/f nulls
       at least 0.01);
+    - neither rescue when a growing ripple explains more of the remainder than that noise
+      model produces (``p_ripple``, ``p_ripple_ar``; :mod:`knotmech.diagnose.ripple`);
+      when both reject, ``unexplained`` (a deterministic ripple: stick-slip chatter on a
+      short recording, issue 26);
     - otherwise ``unexplained`` when the high-frequency noise is white
       (``p_hf_white >= alpha``: the excess cannot be correlated noise), else
       ``undetermined`` (a smooth mismatch and correlated noise both fit; the reason
@@ -434,10 +489,14 @@ def noise_floor_verdict(nf: NoiseFloor, alpha: float) -> tuple[str, str]:
     whiter = nf.p_consistent < alpha
     if nf.level > NONE_LEVEL_MAX:
         head += f" (above the {NONE_LEVEL_MAX:g} no fitted noise model may absorb)"
-    elif not whiter and nf.p_model >= alpha and nf.n_eff >= N_EFF_MIN:
+    elif _rescued(nf, alpha):
         return "none", ""
-    elif not whiter and _ar_explains(nf, alpha):
-        return "none", ""
+    if _ripple(nf, alpha):
+        return "unexplained", (
+            f"{head}; a growing ripple explains more of it than the noise models that "
+            f"would rescue it produce (AR(1) at rho {_rho_of(nf):.3g}: p = "
+            f"{nf.p_ripple:.2g}; AR(p): p = {nf.p_ripple_ar:.2g}), so the excess is structure"
+        )
     if whiter:
         why = (
             f"its high frequencies are whiter (lag-one correlation of differences "
