@@ -62,14 +62,23 @@ def hold_bend(
         holds=der["holds"], margin=answers[0].margin if answers else math.nan,
         decided_by="DER-simulation" if answers else None, inside_validity=bool(answers),
         answers=answers, validity=answers[0].validity if answers else (),
-        next_step="" if answers else "next: test the knot (the DER pull did not decide)",
+        next_step="" if answers else f"next: test the knot ({der['message']})",
         der=der, **common,
     )  # fmt: skip
 
 
+#: [wall s per simulated s] the stall bound of a bend pull under ``hold --simulate``: a
+#: solid-rod pull runs at 20-70 (2.6 s simulated in 1-3 min, 2.5x that on a busy machine);
+#: a fibre rope (kappa = 0.01, E = 0.25 GPa) crawls at ~2700 (a whole pull about an hour,
+#: issue 27), and is stopped after the solver's 60 s window as ``failed``, undecided
+BEND_WALL_RATE = 300.0
+
+
 def _cost(key) -> str:
     """What one pull costs (benchmarks/tied.py for the tied bends)."""
-    return "1-3 minutes" if _patil(knots.get(key)) else "under a minute of CPU"
+    cost = "1-3 minutes" if _patil(knots.get(key)) else "under a minute of CPU"
+    return (f"{cost} for a solid rod; a run slower than {BEND_WALL_RATE:g} s of wall per "
+            "simulated second stops undecided")  # fmt: skip
 
 
 def _patil(rec) -> bool:
@@ -100,9 +109,11 @@ def _refuse_post_inputs(key, *, post_diameter, mu_rr, wrap_angle, phase_table, f
 
 def _pull(key, *, d, E, mu, load, mat, kappa, progress):
     """One DER pull of the bend: (details, answers: the DER's, empty when it did not decide)."""
+    from knotmech.rod import SolverOptions
     from knotmech.scenes.bends import bend
 
     kw = {"density": mat.density} if mat is not None else {}
+    kw["options"] = SolverOptions(max_wall_per_sim_second=BEND_WALL_RATE)
     if kappa != 1.0:
         kw["bending_scale"] = kappa
     r = bend(key, rod_diameter=d, youngs_modulus=E, mu_rod_rod=mu, progress=progress, **kw)

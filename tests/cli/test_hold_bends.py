@@ -139,3 +139,30 @@ def test_unknown_bend_is_one_line_exit_2(knot, capsys):
     err = capsys.readouterr().err.strip()
     assert len(err.splitlines()) == 1 and f"unknown knot '{knot}'" in err
     assert "sheet-bend" in err
+
+
+def test_bend_pull_carries_the_stall_bound(monkeypatch):
+    """hold --simulate gives the bend pull a wall-clock stall bound (issue 27: a nylon reef
+    crawled at ~2700 s of wall per simulated second, an hour for one pull)."""
+    from knotmech.verdict import bend as vbend
+
+    seen = {}
+    monkeypatch.setattr("knotmech.scenes.bends.bend", _fake_bend("slips", 0.5, 0.5, seen))
+    knotmech.hold("reef", rod_diameter=4e-3, mu=0.3, load=0.1, youngs_modulus=1e6,
+                  simulate=True)  # fmt: skip
+    assert seen["options"].max_wall_per_sim_second == vbend.BEND_WALL_RATE == 300.0
+
+
+@pytest.mark.slow
+def test_nylon_reef_simulate_stops_undecided_with_the_reason():
+    """The issue-27 case, run for real: stopped by the stall bound after its 60 s window,
+    undecided, the reason in the next step; never an hour."""
+    import time
+
+    t0 = time.perf_counter()
+    v = knotmech.hold("reef", rod_diameter=4e-3, mu=0.3, load=1e-9, material="nylon",
+                      simulate=True)  # fmt: skip
+    wall = time.perf_counter() - t0
+    assert v.holds is None and v.decided_by is None
+    assert "stalled" in v.next_step and "max_wall_per_sim_second = 300" in v.next_step
+    assert wall < 400
