@@ -100,7 +100,7 @@ def test_tied_bend_command_is_bend_with_its_kind(name, stub, capsys):
 
 @pytest.mark.parametrize("extra, message", [
     (["--kind", "reef"], "unrecognized arguments: --kind reef"),
-    (["--n-nodes", "20"], "n_nodes must be an integer >= 100, got 20"),
+    (["--n-nodes", "20"], "n_nodes must be >= 40, got 20"),
     (["--mu", "-1"], "mu_rod_rod"),
 ])  # fmt: skip
 def test_tied_bend_bad_input_is_one_line_and_exit_2(extra, message, capsys):
