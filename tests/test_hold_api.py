@@ -360,3 +360,13 @@ def test_an_implausible_modulus_is_refused_before_any_model(E):
     with pytest.raises(InputError, match=r"youngs_modulus .* is outside 100-1e\+13 Pa"):
         knotmech.hold("clove-hitch", rod_diameter=4e-3, post_diameter=0.03, mu=0.3, load=1.47,
                 youngs_modulus=E)  # fmt: skip
+
+
+def test_simulate_on_a_post_thinner_than_the_rope_names_both_sizes():
+    """A DER hitch needs d/2R < 0.5: the refusal names the two diameters (issue 27), not
+    an internal d_over_2R."""
+    with pytest.raises(
+        InputError, match=r"rod_diameter 4 mm on post_diameter 1 mm gives d/2R = 0.8"
+    ):
+        knotmech.hold("clove-hitch", rod_diameter=4e-3, post_diameter=1e-3, mu=0.3, load=1.0,
+                      material="vps32", simulate=True)  # fmt: skip

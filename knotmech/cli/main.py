@@ -31,8 +31,8 @@ SUMMARIES = {
     "tour": "a short tour: closed forms, a hold verdict and a figure",
     "hold": "does a rope tied to a post hold a load? (closed forms; DER tables and runs for "
     "the hitches, DER pulls for the bends)",
-    "simulate": "run a simulated experiment (capstan, two-loops, pinch, overhand, clove-hitch, "
-    "bend, centreline)",
+    "simulate": "run a simulated experiment (capstan, two-loops, pinch, overhand, the "
+    "hitches, the bends, centreline)",
     "diagnose": "find where a recording differs from its baseline model and name the missing "
     "physics",
     "validate": "run the validation cases (theory vs simulation), write PNG, JSON and index.html",

@@ -298,8 +298,8 @@ def register(subparsers) -> None:
 
     p = subparsers.add_parser(
         "simulate",
-        help="run a simulated experiment (capstan, two-loops, pinch, overhand, clove-hitch, "
-        "bend, centreline)",
+        help="run a simulated experiment (capstan, two-loops, pinch, overhand, the hitches, "
+        "the bends, centreline)",
         description=(
             "Simulate an experiment with the discrete-elastic-rods solver and frictional "
             "contact. Quantities need units (4mm, 0.16N, 180deg, 1.26MPa, 10mm/s, "

@@ -374,6 +374,12 @@ def _rate_refusal(q: _Query, table, tk: float, then: str) -> str:
 
 def _from_simulation(q: _Query, progress) -> _Found:
     """One DER run of the user's geometry (:func:`knotmech.verdict.build.simulate_point`)."""
+    if not q.x < 0.5:
+        raise InputError(
+            f"simulate ties the hitch with the rope thinner than the post's radius: "
+            f"rod_diameter {q.d * 1e3:.3g} mm on post_diameter {q.D * 1e3:.3g} mm gives "
+            f"d/2R = {q.x:.3g} (must be below 0.5)"
+        )
     p = _build.simulate_point(
         d_over_2R=q.x, t_over_EA=q.y, mu=q.mu, mu_rr=q.mu_rr, rod_diameter=q.d,
         youngs_modulus=q.E, bending_scale=q.kappa, creep_limit=q.lim, recheck=True,
