@@ -188,6 +188,22 @@ def fail(status: str, message: str, reason: str | None) -> tuple[str, str]:
 
 
 #: default bound on the work of one scene run: nominal steps x nodes (see check_run_size)
+#: the largest post a DER scene wraps a rod on, in rod diameters (a 6 mm rope on a 6 m
+#: post): the start curve is sampled along the post, so its size grows with D/d, and far
+#: beyond it the curve's coordinates lose all precision (a 1e297 m post gave a zero edge)
+MAX_POST_RATIO = 1000.0
+
+
+def check_post_size(post_diameter: float, rod_diameter: float, scene: str) -> None:
+    """Refuse a post above :data:`MAX_POST_RATIO` rod diameters (InputError, one line)."""
+    if post_diameter > MAX_POST_RATIO * rod_diameter:
+        raise InputError(
+            f"post_diameter / rod_diameter = {post_diameter / rod_diameter:.3g} is above "
+            f"{MAX_POST_RATIO:g}: a DER {scene} is tied on posts up to {MAX_POST_RATIO:g} "
+            "rope diameters (its start curve and run grow with D/d)"
+        )
+
+
 MAX_NODE_STEPS = 2e8
 
 #: rough cost of one node-step of a scene with frictional contact [s] (1 us per node per

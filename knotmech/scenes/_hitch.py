@@ -69,6 +69,7 @@ from knotmech.scenes._common import (
     CREEP_LIMIT,
     check_memory,
     check_numbers,
+    check_post_size,
     check_pull_step,
     check_run_size,
     check_strain,
@@ -80,10 +81,6 @@ from knotmech.scenes._common import (
 from knotmech.scenes._scene import RampedEndLoad, RunControl, Scene, SceneRun, post_contact
 from knotmech.scenes.curves import _edge_distances
 from knotmech.scenes.topology import post_crossing_code, winding_number
-
-#: the largest post a DER hitch is tied on, in rope diameters (a 6 mm rope on a 6 m post):
-#: the start curve is sampled every 0.05 d round the post, so its size grows with D/d
-MAX_POST_RATIO = 1000.0
 
 __all__ = [
     "HitchKnot",
@@ -726,12 +723,7 @@ class HitchScene(Scene):
             check_count("n_nodes", o.n_nodes, 2)
         check_count("n_frames", self.control.n_frames, 2)
         self.ea = self.E * np.pi * self.d * self.d / 4
-        if self.D > MAX_POST_RATIO * self.d:  # the start curve alone grows with D/d
-            raise InputError(
-                f"post_diameter / rod_diameter = {self.D / self.d:.3g} is above "
-                f"{MAX_POST_RATIO:g}: a DER hitch is tied on posts up to {MAX_POST_RATIO:g} "
-                "rope diameters (its start curve and run grow with D/d)"
-            )
+        check_post_size(self.D, self.d, "hitch")
 
     def _check_friction(self) -> None:
         f = self.fric

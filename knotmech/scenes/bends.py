@@ -769,6 +769,7 @@ class TiedBendScene(BendScene):
         overlap watch of every step excludes)."""
         self.inv_checked = got = dict(self.inv_start)
         self.frames_checked, moved = 0, {}
+        pair = self._start_invariants()  # a run with no pull frame keeps the start's
         for k in range(len(pm)):
             try:
                 now = frame_invariants(self.knot, pm[k][: self.N], pm[k][self.N :])

@@ -42,6 +42,7 @@ from knotmech.rod.solver import SolverOptions
 from knotmech.rod.system import Rod, RodSystem
 from knotmech.scenes._common import (
     check_numbers,
+    check_post_size,
     check_pull_step,
     check_quasi_static,
     check_run_size,
@@ -402,6 +403,7 @@ class CapstanScene(Scene):
         self.mu = float(check_nonnegative("mu", o.mu, scalar=True))
         self.d = float(check_positive("rod_diameter", o.rod_diameter, scalar=True))
         self.D = float(check_positive("post_diameter", o.post_diameter, scalar=True))
+        check_post_size(self.D, self.d, "capstan")
         self.E = float(check_positive("youngs_modulus", o.youngs_modulus, scalar=True))
         self.t_low = float(check_positive("t_low", ld.t_low, scalar=True))
         if ld.mode not in ("pull", "hold"):

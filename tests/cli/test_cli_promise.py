@@ -554,3 +554,23 @@ def test_a_dash_for_a_file_output_is_refused(stubbed, argv):
     assert code == 2 and out == ""
     assert err.strip().endswith("-: this output is a file, not standard output; give a file name")
     assert not (stubbed / "-").exists()
+
+
+@pytest.mark.parametrize(
+    "argv",
+    [
+        # found by the campaign on the merged tree: a ZeroDivisionError in the rod frames of
+        # a capstan on a 1e297 m post (now refused above 1000 rod diameters, as the hitches)
+        ["simulate", "capstan", "--no-progress", "--wrap-angle", "180deg", "--mu", "0.5",
+         "--rod-diameter", "4mm", "--youngs-modulus", "1.26MPa", "--t-low", "0.16N",
+         "--post-diameter", "1e+300mm"],
+        # and an UnboundLocalError in the tied bends' topology check of a run with no frame
+        ["simulate", "bend", "--no-progress", "--mu", "1", "--kind", "sheet-bend"],
+    ],
+)  # fmt: skip
+def test_campaign_findings_keep_the_promise(stubbed, argv):
+    check_promise(argv, stubbed)
+    code, _, err, _ = _call(argv)
+    assert code == (2 if "capstan" in argv else 1)
+    if code == 2:
+        assert "post_diameter / rod_diameter = 2.5e+299 is above 1000" in err
