@@ -165,6 +165,18 @@ def grip_path(start, direction, speed: float, t_start: float = 0.0):
     return path
 
 
+def _mu_pair(name: str, mu_static, mu_kinetic) -> tuple[float, float]:
+    """(mu_s, mu_k) checked: both >= 0, mu_k <= mu_s (``mu_kinetic`` None: mu_s);
+    ``name`` is how the user gave mu_s."""
+    ms = float(check_nonnegative(name, mu_static, scalar=True))
+    if mu_kinetic is None:
+        return ms, ms
+    mk = float(check_nonnegative("mu_kinetic", mu_kinetic, scalar=True))
+    if mk > ms:
+        raise InputError(f"mu_kinetic must be <= {name} ({ms:g}), got {mk:g}")
+    return ms, mk
+
+
 def rod_contact(
     *, rod_diameter: float, force_scale: float, mu_static: float, mu_kinetic=None, width=0.05
 ):
@@ -187,14 +199,7 @@ def rod_contact(
     """
     d = float(check_positive("rod_diameter", rod_diameter, scalar=True))
     f = float(check_positive("force_scale", force_scale, scalar=True))
-    ms = float(check_nonnegative("mu_rod_rod", mu_static, scalar=True))
-    mk = (
-        ms
-        if mu_kinetic is None
-        else float(check_nonnegative("mu_kinetic", mu_kinetic, scalar=True))
-    )
-    if mk > ms:
-        raise InputError(f"mu_kinetic must be <= mu_rod_rod ({ms:g}), got {mk:g}")
+    ms, mk = _mu_pair("mu_rod_rod", mu_static, mu_kinetic)
     fr = AnchorFriction(mu_static=ms, mu_kinetic=mk) if ms > 0 else None
     w = float(check_positive("width", width, scalar=True))
     return RodContact(stiffness=20.0 * f / d, sharpness=15.0 / (w * d), friction=fr)
@@ -220,14 +225,7 @@ def post_contact(
     D = float(check_positive("post_diameter", post_diameter, scalar=True))
     d = float(check_positive("rod_diameter", rod_diameter, scalar=True))
     f = float(check_positive("force_scale", force_scale, scalar=True))
-    ms = float(check_nonnegative("mu_rod_post", mu_static, scalar=True))
-    mk = (
-        ms
-        if mu_kinetic is None
-        else float(check_nonnegative("mu_kinetic", mu_kinetic, scalar=True))
-    )
-    if mk > ms:
-        raise InputError(f"mu_kinetic must be <= mu_rod_post ({ms:g}), got {mk:g}")
+    ms, mk = _mu_pair("mu_rod_post", mu_static, mu_kinetic)
     K = 200.0 * f / (0.5 * (D + d) * d) if stiffness is None else float(stiffness)
     post = Cylinder(point=(0.0, 0.0, 0.0), axis=(0.0, 0.0, 1.0), radius=0.5 * D)
     return CylinderContact(
