@@ -78,9 +78,39 @@ def test_capacity_is_the_lower_of_slip_and_break():
     c = cap.capacity_of(knot="clove-hitch", slip=open_, material="hmpe", d=0.006, D=0.04,
                         load=200.0)  # fmt: skip
     assert not c.decided and math.isnan(c.fraction(200.0))
-    assert (
-        c.breaking_note == "breaking load: no published data for clove-hitch in hmpe; source needed"
+    assert c.breaking_note == (
+        "breaking load: no published knot efficiency for clove-hitch in hmpe; source needed"
     )
+    assert c.rope_strength is None  # nor a rope strength table for HMPE
+
+
+def test_without_a_knot_efficiency_the_rope_strength_bounds_the_break():
+    """Thief knot in 10 mm polyester: no published efficiency; the rope's own MBS
+    (19.5 kN, Robline RAPALLO table: 1950 daN at 10 mm) is named as an upper bound, in
+    the words and the JSON, and is not taken as a capacity."""
+    slip = cap.LoadBand(math.inf, 500.0, math.inf, "table")
+    c = cap.capacity_of(knot="thief", slip=slip, material="polyester", d=0.010, D=None,
+                        load=200.0)  # fmt: skip
+    assert not c.decided and c.breaking is None
+    assert c.rope_strength.high == pytest.approx(19.5e3)
+    assert "RAPALLO" in c.rope_strength.source
+    assert c.breaking_note == (
+        "breaks below 20 kN (the rope's own strength; no published knot efficiency for thief)"
+    )
+    d = c.to_dict(200.0)
+    assert d["rope_breaking_upper_bound"]["value_N"] == pytest.approx(19.5e3)
+    assert d["value_N"] is None
+
+
+def test_a_wrong_size_is_named_before_a_missing_friction():
+    """A negative rope diameter with a material that has no friction on steel: the size
+    is the error (it used to say 'no published friction coefficient')."""
+    with pytest.raises(knotmech.InputError, match="^rod_diameter must be > 0, got -0.006$"):
+        knotmech.hold("clove-hitch", rod_diameter=-6e-3, post_diameter=40e-3, load=200,
+                      material="nylon")  # fmt: skip
+    with pytest.raises(knotmech.InputError, match="^load must be > 0, got -200$"):
+        knotmech.hold("clove-hitch", rod_diameter=6e-3, post_diameter=40e-3, load=-200,
+                      material="nylon")  # fmt: skip
 
 
 # --------------------------------------------------------------------------- real numbers

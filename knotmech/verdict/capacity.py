@@ -20,6 +20,7 @@ import math
 from dataclasses import dataclass
 
 from knotmech.errors import InputError
+from knotmech.verdict.answer import format_force
 from knotmech.verdict.criterion import CREEP_LIMIT
 from knotmech.verdict.tables import MU_TOL, _axis
 
@@ -70,7 +71,9 @@ class Capacity:
 
     ``slip``: the slip load (None when no model gives one); ``breaking``: the knot's breaking
     load (None when no published data: ``breaking_note`` says so); ``efficiency`` the knot
-    efficiency (nominal, low, high) or None; ``message`` the capacity in words.
+    efficiency (nominal, low, high) or None; ``message`` the capacity in words;
+    ``rope_strength`` the rope's own breaking strength when no knot efficiency is published
+    (an upper bound of the knot's breaking load, not a capacity), else None.
     """
 
     value: float
@@ -82,6 +85,7 @@ class Capacity:
     efficiency: tuple | None
     breaking_note: str
     message: str
+    rope_strength: LoadBand | None = None
 
     @property
     def decided(self) -> bool:
@@ -105,6 +109,9 @@ class Capacity:
             "breaking": None if self.breaking is None else self.breaking.to_dict(),
             "knot_efficiency": None if self.efficiency is None else list(self.efficiency),
             "breaking_note": self.breaking_note,
+            "rope_breaking_upper_bound": (
+                None if self.rope_strength is None else self.rope_strength.to_dict()
+            ),
             "message": self.message,
         }
 
@@ -189,23 +196,38 @@ def _breaking(knot: str, material, d: float, D: float | None):
     from knotmech import strength
 
     if material is None:
-        return None, None, "breaking load: no material given (--material)"
+        return None, None, "breaking load: no material given (--material)", None
     name = getattr(material, "key", material)
     if knot != "capstan" and knot not in strength.knot_names():
-        return None, None, f"breaking load: no published knot efficiency for {knot}; source needed"
+        return _rope_bound(strength, material, d, f"for {knot}")
     try:
         if knot == "capstan":
             e = strength.breaking_load(material, d)
-            return LoadBand(float(e.nominal), float(e.low), float(e.high),
-                            "rope breaking load (no knot): " + e.source), None, ""  # fmt: skip
+            rope = LoadBand(float(e.nominal), float(e.low), float(e.high),
+                            "rope breaking load (no knot): " + e.source)  # fmt: skip
+            return rope, None, "", None
         e = strength.knot_breaking_load(knot, material, d, D)
         eta = strength.knot_efficiency(knot, material, D)
     except strength.NoDataError:
-        return None, None, f"breaking load: no published data for {knot} in {name}; source needed"
+        return _rope_bound(strength, material, d, f"for {knot} in {name}")
     except InputError as exc:  # a diameter outside the published tables
-        return None, None, f"breaking load: no published data ({exc}); source needed"
+        return None, None, f"breaking load: no published data ({exc}); source needed", None
     band = LoadBand(float(e.nominal), float(e.low), float(e.high), e.source)
-    return band, (float(eta.nominal), float(eta.low), float(eta.high)), ""
+    return band, (float(eta.nominal), float(eta.low), float(eta.high)), "", None
+
+
+def _rope_bound(strength, material, d: float, what: str):
+    """(None, None, note, rope) when no knot efficiency is published: ``rope`` the rope's
+    own breaking strength (a LoadBand with its source), an upper bound of the knotted
+    rope's (efficiency <= 1), or None when it is not tabulated either."""
+    missing = f"no published knot efficiency {what}"
+    try:
+        e = strength.breaking_load(material, d)
+    except (strength.NoDataError, InputError):
+        return None, None, f"breaking load: {missing}; source needed", None
+    rope = LoadBand(float(e.nominal), float(e.low), float(e.high), e.source)
+    note = f"breaks below {format_force(rope.high)} (the rope's own strength; {missing})"
+    return None, None, note, rope
 
 
 def capacity_of(*, knot, slip, material, d, D, load) -> Capacity:
@@ -217,8 +239,8 @@ def capacity_of(*, knot, slip, material, d, D, load) -> Capacity:
       between); without a breaking load, undecided;
     - no slip load: the breaking load alone is not a capacity (undecided).
     """
-    brk, eta, note = _breaking(knot, material, d, D)
-    common = dict(slip=slip, breaking=brk, efficiency=eta, breaking_note=note)
+    brk, eta, note, rope = _breaking(knot, material, d, D)
+    common = dict(slip=slip, breaking=brk, efficiency=eta, breaking_note=note, rope_strength=rope)
     if slip is not None and slip.bounded:
         if brk is not None and brk.value < slip.value:
             return Capacity(brk.value, brk.low, brk.high, "break", message="breaks before it slips",

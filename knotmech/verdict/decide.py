@@ -129,6 +129,7 @@ def hold(
     6.21e-05
     """
     key = knot_key(knot)
+    _check_sizes(rod_diameter, post_diameter, load)
     friction = None
     if mu is None:
         lo, hi, face, src = friction_preset(key, material, post_material)
@@ -154,6 +155,16 @@ def hold(
     )  # fmt: skip
     v = _verdict(c, wrap_angle)
     return replace(v, friction=_friction_part(c, wrap_angle, v, friction))
+
+
+def _check_sizes(rod_diameter, post_diameter, load) -> None:
+    """The sizes and the load first, so that a wrong size is named before a missing
+    friction coefficient (InputError, one line)."""
+    check_positive("rod_diameter", rod_diameter, scalar=True)
+    if post_diameter is not None:
+        check_positive("post_diameter", post_diameter, scalar=True)
+    if load is not None:
+        check_positive("load", load, scalar=True)
 
 
 def _friction_part(c, wrap_angle, v: Verdict, friction) -> dict:

@@ -220,9 +220,12 @@ def test_other_knots(knot, capsys):
     data = _json(args, capsys)
     cap = data["capacity"]
     if knot == "round-turn":  # no knot efficiency is published for it
+        # the rope's own strength bounds it: polyester 6 mm, 750 daN (Robline RAPALLO)
         assert cap["breaking"] is None and cap["breaking_note"] == (
-            "breaking load: no published knot efficiency for round-turn; source needed"
+            "breaks below 7.5 kN (the rope's own strength; no published knot efficiency "
+            "for round-turn)"
         )
+        assert cap["rope_breaking_upper_bound"]["high_N"] == pytest.approx(7500.0)
     else:  # polyester 6 mm MBS (Robline) x the knot's efficiency, a few kN
         assert data["holds"] is True and 1e3 < cap["breaking"]["value_N"] < 1e4
 
