@@ -333,7 +333,12 @@ def _group(rs, key, hit) -> dict:
 def _effects_summary(eff: list) -> dict:
     return {
         "found": _rate(sum(r["found"] for r in eff), len(eff)),
-        "found_by_size": _group(eff, lambda r: f"{r['size']:g} sd", lambda r: r["found"]),
+        "found_by_size": dict(
+            sorted(
+                _group(eff, lambda r: f"{r['size']:g} sd", lambda r: r["found"]).items(),
+                key=lambda kv: float(kv[0].split()[0]),
+            )
+        ),
         "found_by_noise": _group(eff, lambda r: r["noise"], lambda r: r["found"]),
         "found_by_effect": _group(
             eff, lambda r: f"{r['kind']}/{r['effect']}", lambda r: r["found"]

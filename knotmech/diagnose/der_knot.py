@@ -129,12 +129,13 @@ _TIGHT_FIRST_MU = 0.2
 _TIGHT_KNOTS = 6
 #: a simulated force this many times the median of the run's first half is a runaway
 _RUNAWAY = 1e3
-#: carry the surrogate's own error (module docstring); False (the default): the surface
-#: alone. Off by default: on DER-made recordings it brings the null size from 4/60 to 0/60
-#: but finds 8-sd displacement offsets 5/12 (12/12 without) and fits them 20-45 % short
-#: (docs/notes/kpull.md); an error term refitted with every model needs a prior term in
-#: the fits (fitting.py), not done
-SURROGATE_ERROR = False
+#: carry the surrogate's own error (module docstring: ``surrogate_a0..3`` with the prior
+#: N(0, tau^2), refitted with every model); False: the surface alone. On by default
+#: (issue 26): measured on DER-made recordings (benchmarks/der_knot_null_size.py,
+#: docs/notes/diagnose-noise-and-statistics/issue26-campaign.md) nulls not ``none`` 0/12
+#: with it against 1/12 without (earlier: 8/120 = 6.7 % without, nominal 1 %); 8-sd
+#: displacement offsets found 5/6 with it, 6/6 without, fitted within -3..+21 %
+SURROGATE_ERROR = True
 
 
 @dataclass
