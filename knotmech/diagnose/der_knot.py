@@ -132,9 +132,10 @@ _RUNAWAY = 1e3
 #: carry the surrogate's own error (module docstring: ``surrogate_a0..3`` with the prior
 #: N(0, tau^2), refitted with every model); False: the surface alone. On by default
 #: (issue 26): measured on DER-made recordings (benchmarks/der_knot_null_size.py,
-#: docs/notes/diagnose-noise-and-statistics/issue26-campaign.md) nulls not ``none`` 0/12
-#: with it against 1/12 without (earlier: 8/120 = 6.7 % without, nominal 1 %); 8-sd
-#: displacement offsets found 5/6 with it, 6/6 without, fitted within -3..+21 %
+#: docs/notes/diagnose-noise-and-statistics/issue26-campaign.md) nulls not ``none`` 0/16
+#: with it against 1/16 without (earlier: 8/120 = 6.7 % without, nominal 1 %); 8-sd
+#: displacement offsets found 6/8 with it (the misses: negative offsets of one-turn
+#: knots, ``unexplained``), 8/8 without; fitted within -3..+21 %
 SURROGATE_ERROR = True
 
 
