@@ -4,7 +4,7 @@ Each recording is :func:`knotmech.diagnose.der_knot.der_made_recording` (turns 1
 mu 0.3 + 0.1 (seed % 2) for nulls, 0.35 for effects; the law that makes it is a surface
 fitted to runs at 0.85 and 1.2 times the true mu), diagnosed with ``baseline="der"``
 twice: with the surrogate's own error in the baseline (``der_knot.SURROGATE_ERROR``
-True, ``on``) and without it (``off``, the default). The DER runs are cached on disk
+True, ``on``, the default) and without it (``off``). The DER runs are cached on disk
 (``--cache``): a run depends only on the knot, mu and the pulled range, so the two
 diagnoses of one recording share the baseline's runs, and recordings of one (turns, mu)
 share the runs that make them. Prints one JSON line per recording and a summary (counts,
@@ -76,6 +76,7 @@ def one(seed, effect, size, variants) -> dict:
     if effect is not None:
         key = get_effect(effect).key_parameter[0]
         row[key + "_true"] = float(f"{truth[key]:.4g}")
+    default = der_knot.SURROGATE_ERROR
     for v in variants:
         der_knot.SURROGATE_ERROR = v == "on"
         t0 = time.perf_counter()
@@ -92,7 +93,7 @@ def one(seed, effect, size, variants) -> dict:
         }
         if effect is not None:
             row[v][key] = rep.final["parameters"].get(key)
-    der_knot.SURROGATE_ERROR = False
+    der_knot.SURROGATE_ERROR = default
     return row
 
 

@@ -345,16 +345,36 @@ def _tension(g, rng, effect, size, n):
 _KINDS = {"capstan_pull": _capstan, "pinch": _pinch, "tension_profile": _tension}
 
 
-def make(generator, kind, effect, size, noise, seed):
-    """One recording of ``generator`` (``tune`` or ``heldout``) and its truth."""
+def make_mean(generator, kind, effect, size, seed, n=None):
+    """The noiseless curve of one recording of ``generator`` and its noise sd per row.
+
+    ``n`` (optional) replaces the generator's row count (the draw of it is kept, so the
+    other random parameters are those of the same seed).
+
+    Returns
+    -------
+    meta, x, mean, trial, speed, truth, sd
+        Metadata, control variable, mean [N], trial and speed per row (``speed`` None
+        for one speed), the planted truth, the noise sd per row [N].
+    """
     rng = np.random.default_rng(seed) if generator == "tune" else np.random.default_rng([seed, 7])
-    n = 200 if generator == "tune" else int(rng.integers(150, 261))
-    meta, x, mean, trial, speed, truth = _KINDS[kind](generator, rng, effect, size, n)
-    sd = _sd(generator, mean)
-    y = mean + _Noise(generator, seed + 1).draw(sd, trial, RHO if noise == "ar1" else 0.0)
-    rec = recording_from_arrays(
+    n_own = 200 if generator == "tune" else int(rng.integers(150, 261))
+    meta, x, mean, trial, speed, truth = _KINDS[kind](generator, rng, effect, size, n or n_own)
+    return meta, x, mean, trial, speed, truth, _sd(generator, mean)
+
+
+def as_recording(kind, meta, x, y, trial, speed):
+    """A recording of ``kind`` from the arrays of :func:`make_mean` and a noisy ``y``."""
+    return recording_from_arrays(
         kind, x, y, metadata=meta, trial=trial if np.unique(trial).size > 1 else None, speed=speed
     )
+
+
+def make(generator, kind, effect, size, noise, seed, n=None):
+    """One recording of ``generator`` (``tune`` or ``heldout``) and its truth."""
+    meta, x, mean, trial, speed, truth, sd = make_mean(generator, kind, effect, size, seed, n)
+    y = mean + _Noise(generator, seed + 1).draw(sd, trial, RHO if noise == "ar1" else 0.0)
+    rec = as_recording(kind, meta, x, y, trial, speed)
     truth.update(effect=effect or "none", size=size, noise=noise, n=int(x.size))
     truth["sd_median"] = float(np.median(sd))
     return rec, truth

@@ -370,6 +370,7 @@ def select_der(der, base, rec, data, starts, gs, alpha, effects):
         "p_value": float(f"{p:.3g}"),
         "bootstrap_draws": 0,
         "p_value_method": _DER_P_METHOD,
+        "heldout_rms_before": float(f"{held_before:.4g}"),
         "heldout_rms": float(f"{held_alt:.4g}"),
         "accepted": bool(p < alpha and dbic > 0 and held_alt < held_before),
     }

@@ -337,7 +337,9 @@ def _short_recording_check(rec, verdict):
     return "undetermined", short
 
 
-#: the evidence keys of an accepted effect the report carries
+#: the evidence keys of an accepted effect the report carries: the test, and the held-out
+#: measures that show the fit improve (raw held-out RMS before/after, the whitened
+#: one-step-ahead RMS [before, after], the held-out prior's z [before, after])
 _EVIDENCE_KEYS = (
     "delta_bic",
     "p_value",
@@ -345,6 +347,10 @@ _EVIDENCE_KEYS = (
     "p_value_method",
     "p_value_counted_bound",
     "bootstrap_draws",
+    "heldout_rms_before",
+    "heldout_rms",
+    "heldout_innovation_rms",
+    "heldout_prior_z",
 )
 
 
@@ -696,6 +702,7 @@ def _select_closed_form(base, rec, data, starts, gs, rng, alpha, effects, max_ef
                 "p_value": float(f"{p:.3g}"),
                 "bootstrap_draws": b,
                 **_p_provenance(p, b, lr),
+                "heldout_rms_before": float(f"{held_cur:.4g}"),
                 "heldout_rms": float(f"{held_alt:.4g}"),
                 "heldout_innovation_rms": [float(f"{inn_cur:.4g}"), float(f"{inn_alt:.4g}")],
                 **({"heldout_prior_z": [float(f"{z:.4g}") for z in prior_z]} if prior_z else {}),

@@ -105,6 +105,8 @@ def _ls(model, data, p0, noise, starts):
         e = noise.whiten(data.y - f, sd, starts)
         if prior:
             e = np.append(e, (p[mu_idx] - data.mu_nominal) / data.mu_sigma)
+        if model.priors:
+            e = np.append(e, model.prior_residuals(p))
         return e
 
     sd_holder["sd"] = noise.sd(model.mean(p0))
@@ -156,6 +158,8 @@ def _loglik(model, data, p, noise, starts):
     if data.mu_nominal is not None:
         mu = p[model.names.index("mu")]
         ll += -0.5 * ((mu - data.mu_nominal) / data.mu_sigma) ** 2
+    if model.priors:
+        ll += -0.5 * float(np.sum(model.prior_residuals(p) ** 2))
     return ll
 
 
@@ -337,6 +341,8 @@ def heldout_errors(fit: Fit, data: Data, trial: np.ndarray, *, n_folds=5):
             e = (y_t - (f[train] if whole else f)) / sd_t
             if prior:
                 e = np.append(e, (p[mu_idx] - data.mu_nominal) / data.mu_sigma)
+            if fold_model.priors:
+                e = np.append(e, fold_model.prior_residuals(p))
             return e
 
         res = _least_squares(

@@ -50,6 +50,9 @@ class Model:
     experiment : Experiment
     effect_objects_added : tuple of Effect
         The effects as added (``effects`` are their names).
+    priors : dict
+        Zero-mean Gaussian priors on free parameters: name -> sd (the experiment's
+        :meth:`~knotmech.diagnose.experiments.base.Experiment.priors`).
     """
 
     rec: Recording
@@ -60,6 +63,7 @@ class Model:
     fixed: dict = field(default_factory=dict)
     experiment: Experiment | None = None
     effect_objects_added: tuple = ()
+    priors: dict = field(default_factory=dict)
 
     @property
     def effect_objects(self) -> tuple:
@@ -78,6 +82,14 @@ class Model:
     def n_free(self) -> int:
         return len(self.names)
 
+    def prior_residuals(self, p: np.ndarray) -> np.ndarray:
+        """Whitened prior residuals ``p_j / sd_j`` of the parameters with a prior (empty
+        array when none)."""
+        if not self.priors:
+            return np.empty(0)
+        idx = [self.names.index(n) for n in self.priors]
+        return np.asarray(p, float)[idx] / np.array(list(self.priors.values()))
+
 
 def build_model(rec: Recording, effects: tuple = (), fixed: dict | None = None) -> Model:
     """Model of ``rec``'s experiment with ``effects`` (Effect objects, in the order added)."""
@@ -95,6 +107,7 @@ def build_model(rec: Recording, effects: tuple = (), fixed: dict | None = None) 
         fixed,
         exp,
         tuple(effects),
+        dict(exp.priors(rec)),
     )
 
 

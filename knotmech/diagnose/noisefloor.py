@@ -452,6 +452,29 @@ def _rho_of(nf: NoiseFloor) -> float:
     return (1.0 - r) / (1.0 + r)
 
 
+def _ar_failure(nf: NoiseFloor, alpha: float) -> str:
+    """Why the AR(p) fit does not rescue the remainder (the first test it fails)."""
+    ar = nf.ar
+    if ar.p_white < alpha:
+        return f"its innovations are not white (Ljung-Box p = {ar.p_white:.2g})"
+    if _n_eff_coloured(nf) < N_EFF_MIN:
+        return (
+            f"it leaves only {_n_eff_coloured(nf):.3g} independent stretches (largest "
+            f"root {ar.root_modulus:.3g}, AR(1) count {nf.n_eff:.3g}; at least "
+            f"{N_EFF_MIN:g} needed): the recording is too short for its noise"
+        )
+    if nf.p_consistent < alpha:
+        return (
+            f"it whitens the remainder (Ljung-Box p = {ar.p_white:.2g}), but the high "
+            f"frequencies are too white for the level (the check draws AR(1) noise: "
+            f"p = {nf.p_consistent:.2g})"
+        )
+    return (
+        f"a growing ripple explains more of the remainder than it produces "
+        f"(p = {nf.p_ripple_ar:.2g})"
+    )
+
+
 def noise_floor_verdict(nf: NoiseFloor, alpha: float) -> tuple[str, str]:
     """``none``, ``unexplained`` or ``undetermined`` for a remainder, and the reason.
 
@@ -521,14 +544,7 @@ def noise_floor_verdict(nf: NoiseFloor, alpha: float) -> tuple[str, str]:
         )
     ar = nf.ar
     if ar is not None:
-        if ar.p_white < alpha:
-            ar_why = f"its innovations are not white (Ljung-Box p = {ar.p_white:.2g})"
-        else:
-            ar_why = (
-                f"it leaves only {_n_eff_coloured(nf):.3g} independent stretches (largest "
-                f"root {ar.root_modulus:.3g}, AR(1) count {nf.n_eff:.3g}; at least "
-                f"{N_EFF_MIN:g} needed): the recording is too short for its noise"
-            )
+        ar_why = _ar_failure(nf, alpha)
         why += (
             f"; the best AR(p) noise model (p = {ar.order} by BIC, at most {ar.max_order} "
             f"for {nf.n} rows) does not either: {ar_why}"

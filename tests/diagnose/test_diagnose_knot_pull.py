@@ -275,11 +275,11 @@ def test_cubic_basis_is_orthonormal_over_the_rows():
 def test_der_null_with_a_surrogate_gap_is_none_with_the_surrogate_error(monkeypatch):
     """A DER-made null whose two surrogates differ (seed 1022 of diag12.md's 67 fresh nulls:
     `unexplained` there, structure p = 0.003): with the surrogate's own error in the
-    baseline (der_knot.SURROGATE_ERROR, off by default) it is `none`; without it
+    baseline (der_knot.SURROGATE_ERROR, on by default) it is `none`; without it
     `unexplained` again. The prior
     sd comes from the runs' scatter: 3.5 % of ln F for these runs (2 in the surface)."""
     der_knot = _stored_runs(monkeypatch, "der_knot_runs_null_1022.npz")
-    monkeypatch.setattr(der_knot, "SURROGATE_ERROR", True)  # off by default (its docs)
+    monkeypatch.setattr(der_knot, "SURROGATE_ERROR", True)  # the default (its docs)
     rec, _ = der_knot.der_made_recording(1, 0.3, None, size=8.0, seed=1022)
     rep = diagnose(rec, baseline="der", seed=1022)
     assert rep.verdict == "none"
@@ -357,14 +357,19 @@ def _tight_runs(monkeypatch, cut=None):
 
 
 def test_a_whole_pull_to_tight_is_fitted_by_the_der_baseline(monkeypatch):
-    """The DER baseline fits mu = 0.286 (truth 0.3) on every row of the pull to 0.9975 m:
-    a 299-node mesh (edge <= 2.1 h; 79 nodes gave 1.65x the force near tight) and a
-    spline surface in ln e; grid from mu = 0.2 (the closed form's 1e-18 raised)."""
-    _tight_runs(monkeypatch)
+    """The DER baseline fits mu = 0.2967 (truth 0.3) on every row of the pull to 0.9975 m
+    with the surrogate's error term (the default; 0.2863 without it): a 299-node mesh
+    (edge <= 2.1 h; 79 nodes gave 1.65x the force near tight) and a spline surface in
+    ln e; grid from mu = 0.2 (the closed form's 1e-18 raised)."""
+    der_knot = _tight_runs(monkeypatch)
     rep = diagnose(_TIGHT, baseline="der", seed=0)
     mu = rep.final["parameters"]["mu"]
     assert abs(mu - 0.3) < 0.05
-    assert mu == pytest.approx(0.2863, abs=1e-3)
+    assert mu == pytest.approx(0.2967, abs=1e-3)
+    assert "surrogate_error" in rep.details["der"]
+    monkeypatch.setattr(der_knot, "SURROGATE_ERROR", False)
+    off = diagnose(_TIGHT, baseline="der", seed=0)
+    assert off.final["parameters"]["mu"] == pytest.approx(0.2863, abs=1e-3)
     der = rep.details["der"]
     assert der["n_nodes"] == 299 and der["mu_grid"][0] == 0.2
     assert "rows_judged" not in der  # every row reached

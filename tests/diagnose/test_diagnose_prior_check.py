@@ -61,6 +61,8 @@ def test_finite_thickness_is_claimed_with_the_improvement_in_its_evidence():
     z0, z1 = ev["heldout_prior_z"]
     assert ev["accepted"] and abs(z1) < 1.0 < 6.0 < abs(z0)
     assert "mu_nominal predicted from the data" in rep.summary
+    # the claim carries its held-out proof in the report's own evidence
+    assert rep.effects[0]["evidence"]["heldout_prior_z"] == [z0, z1]
 
 
 def test_a_null_with_a_true_prior_is_not_claimed():

@@ -22,6 +22,11 @@ def test_p_values_never_claim_more_than_their_draws():
         assert f"by count p < {ev['p_value_counted_bound']} from {b} draws" in rep.summary
     else:
         assert ev["p_value_method"].startswith("counted")
+    # the held-out improvement that let the effect in, in the effect's own evidence
+    # (issue 26): raw held-out RMS before -> after, whitened one-step-ahead [before, after]
+    assert ev["heldout_rms"] < ev["heldout_rms_before"]
+    inn = ev["heldout_innovation_rms"]
+    assert len(inn) == 2 and inn[1] < inn[0]
 
 
 def test_plotted_baseline_is_the_best_baseline_fit():

@@ -104,6 +104,12 @@ class Experiment:
         """Free baseline parameters of ``rec``: (names, lower bounds, upper bounds)."""
         return ["mu"], [0.0], [5.0]
 
+    def priors(self, rec) -> dict:
+        """Gaussian priors N(0, sd^2) on baseline parameters of ``rec``: name -> sd (in the
+        parameter's units). Each enters every fit as one more whitened residual
+        ``value / sd`` (as ``mu_nominal`` does); none by default."""
+        return {}
+
     def start(self, rec, y) -> dict:
         """Heuristic starting values of the baseline parameters (more keys allowed)."""
         raise NotImplementedError

@@ -200,9 +200,30 @@ class KnotPull(Experiment):
         law = getattr(rec, "force_law", None)
         if law is None:
             force = mu * self.unit_force(rec, d)
-        else:  # the DER law, times its surrogate-error correction at the recorded rows
-            force = law(d, mu) * law.row_factor(rec.x)
+        else:  # the DER law, times its surrogate-error term at the recorded rows
+            force = law(d, mu)
+            term = getattr(law, "correction", None)
+            if term is not None:
+                a = np.array([p.get(name, 0.0) for name in term.names])
+                force = force * np.exp(term.log_factor(law, rec.x, a))
         return st.apply("output", force)
+
+    def parameters(self, rec):
+        """``mu``; under the DER law with its surrogate-error term
+        (:data:`knotmech.diagnose.der_knot.SURROGATE_ERROR`) also the term's coefficients
+        ``surrogate_a0..3``, within 10 prior sd."""
+        names, lo, hi = super().parameters(rec)
+        term = getattr(getattr(rec, "force_law", None), "correction", None)
+        if term is not None:
+            names += list(term.names)
+            lo += [-10.0 * term.tau] * len(term.names)
+            hi += [10.0 * term.tau] * len(term.names)
+        return names, lo, hi
+
+    def priors(self, rec) -> dict:
+        """The surrogate-error coefficients' prior N(0, tau^2) (none without the term)."""
+        term = getattr(getattr(rec, "force_law", None), "correction", None)
+        return {} if term is None else dict.fromkeys(term.names, term.tau)
 
     # --- synthetic recordings ------------------------------------------------------------
     def synth_setup(self, rng, n, speeds):
