@@ -167,11 +167,11 @@ class LoopResult:
         }
 
 
-def loop_inside(x, d: float) -> np.ndarray:
+def loop_inside(x, d: float, ignore=None) -> np.ndarray:
     """(n,) bool: the nodes of one rope ``x`` ((n, 3) [m]) inside the knot: within
     :data:`~knotmech.scenes.tied.pulled.NEAR_SET` d of a node of the rope more than
     :data:`~knotmech.scenes.tied.pulled.OWN` d of arc away whose tangent crosses it (more
-    than 25 deg apart)."""
+    than 25 deg apart); nodes in the bool mask ``ignore`` are not counted as such strands."""
     x = np.asarray(x, float)
     h = float(np.mean(np.linalg.norm(np.diff(x, axis=0), axis=1)))
     idx = np.arange(len(x))
@@ -179,7 +179,10 @@ def loop_inside(x, d: float) -> np.ndarray:
     near = np.linalg.norm(x[:, None, :] - x[None, :, :], axis=2) < NEAR_SET * d
     t = np.gradient(x, axis=0)
     t /= np.linalg.norm(t, axis=1, keepdims=True)
-    return (near & far & (np.abs(t @ t.T) < PARALLEL)).any(axis=1)
+    crossing = near & far & (np.abs(t @ t.T) < PARALLEL)
+    if ignore is not None:
+        crossing[:, np.asarray(ignore, bool)] = False
+    return crossing.any(axis=1)
 
 
 def _run_from(inside, k: int, step: int) -> int:
@@ -195,10 +198,14 @@ def loop_lengths(x, d: float, h: float, eye_cut: int) -> tuple[float, float]:
 
     Material lengths: node counts times the rest edge length ``h`` [m]. The tail is the run
     of outside nodes from the last node inwards; the eye, the run of outside nodes either
-    side of the node ``eye_cut`` (the eye's farthest point round the pin).
+    side of the node ``eye_cut`` (the eye's farthest point round the pin), the free tail
+    not counted as a strand crossing it.
     """
     inside = loop_inside(x, d)
-    tail = _run_from(inside, len(inside) - 1, -1)
+    n = len(inside)
+    tail = _run_from(inside, n - 1, -1)
+    free_tail = np.arange(n) >= n - tail  # a free tail swinging across the eye is no knot
+    inside = loop_inside(x, d, ignore=free_tail)
     eye = _run_from(inside, eye_cut, -1) + _run_from(inside, eye_cut, 1) - 1
     return h * max(tail - 1, 0), h * max(eye, 0)
 
