@@ -97,8 +97,8 @@ def main() -> None:
     if not a.loops:  # the kernels compiled by a first, untimed call
         bend("sheet-bend", settle_time=0.01, set_travel=1e-4, pull_distance=1e-4, n_frames=10)
     else:
-        loop("bowline", pin_diameter=a.pin_diameter, settle_time=0.01, set_travel=1e-4,
-             pull_distance=1e-4, n_frames=10)  # fmt: skip
+        loop("bowline", pin_diameter=a.pin_diameter, settle_time=0.01, set_travel=1e-3,
+             pull_distance=1e-3, n_frames=10)  # fmt: skip
         out["pin_diameter"] = a.pin_diameter
     for kind in names:
         one = (lambda k=kind: _one_loop(k, a.mu, a.pin_diameter)) if a.loops else (

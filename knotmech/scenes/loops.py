@@ -513,10 +513,15 @@ class LoopScene(Scene):
         g = self.grip[0]
         force = run.reaction(g[:1], tp) @ self.u + run.reaction(g[1:], tp) @ self.u
         draw, out = self._draw(pm)
-        verdict, slip_load, _ = _bend_verdict(force, draw, out, self.slip)
-        status, message = self._topology(run, pm, tp, _slip_frame(force, draw, out, self.slip))
-        if status == "success" and not force.size:
-            status, message = "failed", "no pull frames recorded"
+        pulled = bool(np.isfinite(force).any() and np.nanmax(force) > 0)
+        if pulled:
+            verdict, slip_load, _ = _bend_verdict(force, draw, out, self.slip)
+            k_slip = _slip_frame(force, draw, out, self.slip)
+        else:  # no pull frame, or no positive pull force recorded
+            verdict, slip_load, k_slip = "", float("nan"), len(force) - 1
+        status, message = self._topology(run, pm, tp, k_slip)
+        if status == "success" and not pulled:
+            status, message = "failed", "no pull frame with a positive pull force recorded"
         if status != "success":
             verdict = ""
         stats = dict(run.stats)

@@ -128,3 +128,13 @@ def test_bowline_slips_at_mu_03_and_holds_more_at_mu_1():
     assert high.status == "success", high.message
     reached = high.slip_load if high.verdict == "slips" else high.max_force
     assert reached > 2 * low.slip_load
+
+
+@pytest.mark.slow
+def test_a_pull_too_short_to_load_the_loop_fails_in_one_line():
+    """A 0.1 mm pull after a 0.1 mm set: the grip still pushes (negative force); the run
+    fails with its reason instead of raising (the slip rule needs a positive force)."""
+    r = loop("bowline", pin_diameter=0.02, settle_time=0.01, set_travel=1e-4,
+             pull_distance=1e-4, n_frames=10)  # fmt: skip
+    assert r.status == "failed" and "positive pull force" in r.message
+    assert r.verdict == "" and np.isnan(r.slip_load)
