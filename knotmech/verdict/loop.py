@@ -89,11 +89,19 @@ def _cost() -> str:
             " s of wall per simulated second stops undecided")  # fmt: skip
 
 
+#: what a loop's DER pull does not yet show (docs/notes/knots-and-curves/tied-loops-pulled.md)
+CAVEATS = {
+    "figure-eight-loop": "; caution: its start shape is loose (a doubled figure-eight about "
+    "40 x 24 d) and a 20 d pull does not tighten it, so a 'slip' of this run is loose strands "
+    "moving, not the tight knot's slip",
+}
+
+
 def _note(key) -> str:
     rec = knots.get(key)
     return (f"{key} is a loop ({rec.summary}): no closed form and no DER table; one DER pull "
             "of the loop scene (knotmech.scenes.loops.loop: the eye round a fixed pin, the "
-            "standing part pulled) gives its slip load")  # fmt: skip
+            "standing part pulled) gives its slip load" + CAVEATS.get(key, ""))  # fmt: skip
 
 
 def _refuse(key, *, post_diameter, mu_rr, wrap_angle, phase_table, free_end_load):
