@@ -259,7 +259,8 @@ def loop(
     pull_distance : float [m], optional
         Travel of the standing end in the pull (default 20 d).
     settle_time : float [s]
-        Both ends held while the contacts settle.
+        Both ends held while the contacts settle; also the length of the release (the
+        standing end held, the tail let go) between the set and the pull.
     n_nodes : int, optional
         Nodes of the rope (default: its record's, 175 bowline, 300 figure-eight loop).
     dt : float [s]
@@ -270,7 +271,7 @@ def loop(
         The standing part and the tail are pulled outwards until the tension next to each
         grip reaches this (default :math:`0.1 B/d^2`) or for ``set_travel``.
     set_travel : float [m], optional
-        Largest travel of the standing end while setting (default 20 d).
+        Largest travel of each end while setting (default 20 d).
     force_scale : float [N], optional
         Sizes the contact penalties (default :math:`2 B/d^2`).
     contact_width : float
@@ -289,6 +290,12 @@ def loop(
     InputError
         A bad argument (no pin diameter, D <= 0 or NaN, D outside 0.5-40 d, an unknown
         loop), or a run above the size bounds.
+
+    Notes
+    -----
+    Cost at the defaults (d = 4 mm, E = 1 MPa, D = 20 mm): bowline 10-11 s of CPU (175
+    nodes), figure-eight loop 62-75 s (300 nodes); ``benchmarks/tied.py --loops``,
+    docs/notes/knots-and-curves/tied-loops-pulled.md.
     """
     rec = _record(knot)
     if pin_diameter is None:
