@@ -489,11 +489,25 @@ class LoopScene(Scene):
             return float(np.min(ea * strain))
 
         if run.ok:
-            u_tail = end_direction(self.system.positions(run.state.q), "end")
+            x = self.system.positions(run.state.q)
+            u_tail = end_direction(x, "end")
+            travel = min(self.set_travel, self._clear_of_pin(x[self.tail[0][0]], u_tail))
             cons = self._moving(run, [(self.grip, self.u), (self.tail, u_tail)])
-            run.phase("set", self.set_travel / self.v, dt=self.dt, loads=[self.drag],
+            run.phase("set", travel / self.v, dt=self.dt, loads=[self.drag],
                       constraints=[*cons, Clamp(edges=[self.grip[1], self.tail[1]])],
                       stop=lambda x: tension(x) >= self.f_set)  # fmt: skip
+
+    def _clear_of_pin(self, p, u) -> float:
+        """Travel [m] of a grip from ``p`` along ``u`` that stays 2 d clear of the pin (the
+        bowline's tail, inside the eye, points at it); inf if the path misses the pin."""
+        p, u = np.asarray(p[:2], float), np.asarray(u[:2], float)
+        a = float(u @ u)
+        R = 0.5 * (self.D + self.d) + 2.0 * self.d
+        b, c = float(p @ u), float(p @ p) - R * R
+        disc = b * b - a * c
+        if a == 0.0 or disc < 0.0 or -b - np.sqrt(disc) < 0.0:
+            return float("inf")
+        return max((-b - np.sqrt(disc)) / a, 0.0) * float(np.sqrt(a))
 
     def _pull(self, run: SceneRun) -> None:
         """The standing end pulled on, the tail free; stops when the tail runs out."""

@@ -76,6 +76,19 @@ def test_start_invariants_with_the_pin_on_the_axis(name):
     assert np.dot(scene.u, scene.x0[0]) > 0
 
 
+def test_the_set_keeps_a_grip_2d_clear_of_the_pin():
+    """The bowline's tail points at the pin: its set travel stops 2 d from the pin's
+    surface, where the ray meets the circle of radius (D + d)/2 + 2 d = 5 d (D = 5 d)."""
+    s = LoopScene.__new__(LoopScene)
+    s.D, s.d = 20e-3, D4
+    p = np.array([16.0, 0.95, -0.6]) * D4
+    assert s._clear_of_pin(p, np.array([-1.0, 0.0, 0.0])) == pytest.approx(
+        (16 - np.sqrt(25 - 0.95**2)) * D4
+    )
+    assert s._clear_of_pin(p, np.array([1.0, 0.0, 0.0])) == np.inf  # away from it
+    assert s._clear_of_pin(p, np.array([0.0, 1.0, 0.0])) == np.inf  # passes it by
+
+
 def test_bowline_longer_tail_keeps_its_knot():
     k = bowline(rod_diameter=D4, n_nodes=175, pin_diameter=20e-3, tail=15.0)
     assert measure(k) == {"alexander": (1, -3, 5, -3, 1), "winding_pin": -1,
