@@ -20,7 +20,8 @@ def test_names_and_aliases_are_one_spelling_each():
             seen[name] = k.name
     assert knots.key("Lark's head") == knots.key("GIRTH_HITCH") == "cow-hitch"
     assert knots.key("Round turn & two half hitches") == "round-turn-two-half-hitches"
-    assert knots.key("bowline") == "bowline" and not knots.get("bowline").answered
+    assert knots.key("figure-8") == "figure-eight" and not knots.get("figure-8").answered
+    assert knots.key("Figure 8 on a bight") == "figure-eight-loop"
     with pytest.raises(InputError, match="unknown knot 'granny-bend'"):
         knots.get("granny-bend")
 
@@ -31,8 +32,8 @@ def test_hold_answers_the_answered_records():
     assert KNOT_NAMES == knots.names() == (
         "capstan", "clove-hitch", "two-half-hitches", "round-turn",
         "round-turn-two-half-hitches", "cow-hitch", "reef", "granny", "thief", "grief",
-        "sheet-bend", "double-sheet-bend", "flat-overhand-bend", "figure-eight-bend",
-        "double-fishermans",
+        "bowline", "figure-eight-loop", "sheet-bend", "double-sheet-bend", "flat-overhand-bend",
+        "figure-eight-bend", "double-fishermans",
     )  # fmt: skip
     for k in knots.records(answered=False):
         with pytest.raises(InputError, match=re.escape(f"is {k.unanswered}")):

@@ -35,6 +35,7 @@ __all__ = ["register", "run", "format_verdict", "format_creep"]
 _FLAGS = {
     "rod_diameter": "--rod-diameter",
     "post_diameter": "--post-diameter",
+    "pin_diameter": "--pin-diameter",
     "mu": "--mu",
     "mu_rr": "--mu-rr",
     "load": "--load",
@@ -77,6 +78,12 @@ def register(subparsers) -> None:
         default=None,
         help="post diameter D, e.g. 40mm (required except for the bends reef, granny, thief, "
         "grief)",
+    )
+    p.add_argument(
+        "--pin-diameter",
+        default=None,
+        help="loops (bowline, figure-eight-loop): diameter of the pin the eye goes round, "
+        "e.g. 20mm (required for a loop)",
     )
     p.add_argument(
         "--mu",
@@ -205,6 +212,7 @@ def run(args) -> int:
 _QUANTITIES = {
     "rod_diameter": ("rod_diameter", "length"),
     "post_diameter": ("post_diameter", "length"),
+    "pin_diameter": ("pin_diameter", "length"),
     "mu": ("mu", "dimensionless"),
     "mu_rr": ("mu_rr", "dimensionless"),
     "load": ("load", "force"),
@@ -270,8 +278,8 @@ def _flag_names(message: str) -> str:
     """A library message with its parameter names spelled as the options that set them."""
     import re
 
-    names = ("rod_diameter", "post_diameter", "mu_rr", "free_end_load", "wrap_angle",
-             "post_material", "material", "youngs_modulus", "simulate", "phase_table",
+    names = ("rod_diameter", "post_diameter", "pin_diameter", "mu_rr", "free_end_load",
+             "wrap_angle", "post_material", "material", "youngs_modulus", "simulate", "phase_table",
              "creep_limit", "bending_scale")  # fmt: skip
     pattern = r"(?<![\w-])(" + "|".join(names) + r")(?!\w)"
     message = re.sub(pattern, lambda m: "--" + m.group(1).replace("_", "-"), message)

@@ -59,8 +59,12 @@ TIED_BENDS = tuple(
     if k.has_scene and k.curve.startswith("knotmech.scenes.tied.")
 )
 
+#: the loops of :func:`knotmech.scenes.loops.loop` (the registry's loops with a scene): the
+#: eye round a fixed pin, ``--pin-diameter`` required
+LOOP_SCENES = tuple(k.name for k in knots.records(family="loop") if k.has_scene)
+
 SCENES = ("capstan", "two-loops", "pinch", "overhand", "clove-hitch", *HITCH_SCENES, "bend",
-          *TIED_BENDS, "centreline")  # fmt: skip
+          *TIED_BENDS, *LOOP_SCENES, "centreline")  # fmt: skip
 
 REQUIRED = "required"
 
@@ -235,6 +239,38 @@ _BEND = (  # knotmech.scenes.bends.bend
     Opt("--dt", "dt", "time", "nominal time step (halved when Newton fails)", "4ms"),
 )  # fmt: skip
 
+_LOOP = (  # knotmech.scenes.loops.loop
+    Opt("--pin-diameter", "pin_diameter", "length", "diameter D of the pin the eye goes "
+        "round (0.5-40 d), e.g. 20mm", REQUIRED),
+    Opt("--mu", "mu_rod_rod", "dimensionless", "rope-rope (static) friction coefficient",
+        "0.3"),
+    Opt("--mu-kinetic", "mu_kinetic", "dimensionless", "kinetic rope-rope coefficient", "--mu"),
+    Opt("--mu-pin", "mu_pin", "dimensionless", "rope-pin friction coefficient", "--mu"),
+    Opt("--rod-diameter", "rod_diameter", "length", "rope diameter d", "4mm"),
+    Opt("--youngs-modulus", "youngs_modulus", "pressure", "Young's modulus E (B = E pi d^4/64)",
+        "1MPa"),
+    Opt("--density", "density", "density", "rope density", "1100kg/m^3"),
+    Opt("--bending-scale", "bending_scale", "dimensionless",
+        "bending stiffness x the solid rod's (a fibre rope ~0.01)", "1"),
+    Opt("--pull-speed", "pull_speed", "velocity", "speed of the standing end (set and pull)",
+        "40mm/s"),
+    Opt("--pull-distance", "pull_distance", "length", "travel of the standing end", "20 x d"),
+    Opt("--settle-time", "settle_time", "time", "both ends held while contacts settle (and "
+        "the tail's release)", "0.2s"),
+    Opt("--set-tension", "set_tension", "force", "the loop is set (standing part and tail "
+        "pulled) until the tension next to each grip reaches this", "0.1 B/d^2"),
+    Opt("--set-travel", "set_travel", "length", "largest travel of each end while setting",
+        "20 x d"),
+    Opt("--slip-draw-in", "slip_draw_in", "length", "tail draw-in or eye growth near the "
+        "largest force that counts as a slip", "2 x d"),
+    Opt("--force-scale", "force_scale", "force", "sizes the contact penalties", "2 B/d^2"),
+    Opt("--contact-width", "contact_width", "dimensionless",
+        "range of the rope-rope penalty in rod diameters", "0.2"),
+    Opt("--n-nodes", "n_nodes", "count", "nodes of the rope", "its record's (175, 300)"),
+    Opt("--n-frames", "n_frames", "count", "recorded frames of the pull (>= 10)", "20"),
+    Opt("--dt", "dt", "time", "nominal time step (halved when Newton fails)", "4ms"),
+)  # fmt: skip
+
 _CENTRELINE = (  # knotmech.scenes.centreline.centreline
     Opt("--rod-diameter", "rod_diameter", "length", "rod diameter d, e.g. 4mm", REQUIRED),
     Opt("--youngs-modulus", "youngs_modulus", "pressure", "Young's modulus E, e.g. 1MPa",
@@ -267,6 +303,7 @@ SCENE_OPTIONS: dict[str, tuple[Opt, ...]] = {
     **{name: _HITCH for name in HITCH_SCENES},
     "bend": _BEND,
     **{name: tuple(o for o in _BEND if o.kwarg != "kind") for name in TIED_BENDS},
+    **{name: _LOOP for name in LOOP_SCENES},
     "centreline": _CENTRELINE,
 }
 
@@ -286,6 +323,13 @@ _DESCRIPTIONS = {
         "load, the tail drawn in, its knot type checked on every frame"
         for k in knots.records(family="bend")
         if k.name in TIED_BENDS
+    },
+    **{
+        k.name: f"{k.summary}; its eye round a fixed pin, set, then pulled by the standing "
+        "part (the tail free) until it slips: slip load, tail drawn in and eye growth, its "
+        "knot type checked on every frame"
+        for k in knots.records(family="loop")
+        if k.name in LOOP_SCENES
     },
     "centreline": "your own knot from a CSV of centreline points (one or two rods), relaxed "
     "and pulled by the ends you choose: verdict and slip load",
@@ -474,6 +518,9 @@ def _csv_tables(scene: str, args) -> list[tuple[str, str]]:
         return [("", "pull force, end-to-end distance and loop size against time")]
     if scene == "bend":
         return [("", "pull force and the tails' draw-in against the grips' displacement")]
+    if scene in LOOP_SCENES:
+        return [("", "pull force, tail draw-in and eye growth against the standing end's "
+                 "displacement")]  # fmt: skip
     if scene == "centreline":
         return [("", "pull force and the free ends' draw-in against the pulled ends' "
                  "displacement")]  # fmt: skip
@@ -541,6 +588,10 @@ def _csv_columns(scene: str, res, loading: str | None) -> list[tuple[list[str], 
     if scene == "overhand":
         return [(["time_s", "end_to_end_m", "pull_force_N", "loop_diameter_m"],
                  [res.times, res.end_to_end, res.pull_force, res.loop_diameter])]  # fmt: skip
+    if scene in LOOP_SCENES:
+        return [(["time_s", "pull_displacement_m", "pull_force_N", "tail_draw_in_m",
+                  "eye_growth_m"], [res.times, res.pull_displacement, res.pull_force,
+                                    res.tail_draw_in, res.eye_growth])]  # fmt: skip
     if scene in ("bend", "centreline"):
         draw = np.asarray(res.draw_in)  # (n_frames, k) for bends and centrelines, 0 frames included
         names = (["draw_in_tail_a_m", "draw_in_tail_b_m"] if scene == "bend"
@@ -651,7 +702,7 @@ def _plot(path: Path, scene: str, res, kw: dict) -> str:
         ax.set_xlabel("end-to-end distance [m]")
         ax.set_ylabel("pull force [N]")
         what = "pull force against end-to-end distance (no closed form drawn)"
-    elif scene in ("bend", "centreline"):
+    elif scene in ("bend", "centreline", *LOOP_SCENES):
         ax.plot(res.pull_displacement * 1e3, res.pull_force, "k-", lw=1.2,
                 label="DER simulation")  # fmt: skip
         if np.isfinite(res.slip_load):
@@ -660,7 +711,7 @@ def _plot(path: Path, scene: str, res, kw: dict) -> str:
         ax.set_xlabel("pulled-end displacement [mm]")
         ax.set_ylabel("pull force [N]")
         what = "pull force against displacement, with the slip load (no closed form drawn)"
-        name = f"bend {res.kind}" if scene == "bend" else "centreline"
+        name = {"bend": f"bend {getattr(res, 'kind', '')}"}.get(scene, scene)
         ax.set_title(f"simulate {name}: status {res.status}, verdict {res.verdict or 'none'}")
     elif res.loading == "pull":
         ax.plot(res.pull_displacement * 1e3, res.ratio_curve, "k-", lw=1.2,
@@ -709,6 +760,8 @@ def run(args) -> int:
         res = _run_overhand(kw, args, progress)
     elif scene in ("bend", "centreline"):
         res = _run_pulled_knot(scene, kw, args, progress)
+    elif scene in LOOP_SCENES:
+        res = _run_loop(scene, kw, progress)
     elif scene in HITCH_SCENES:
         res = _run_hitch(scene, kw, args, progress)
     else:
@@ -828,6 +881,33 @@ def _ends(values: list[str]) -> list[tuple[str, str]]:
             )
         ends.append((parts[0], parts[1]))
     return ends
+
+
+def _run_loop(scene, kw, progress):
+    """A loop round its pin, pulled by the standing part until it slips or the pull ends."""
+    import math
+
+    from knotmech.scenes.loops import loop
+
+    res = loop(scene, progress=progress, **kw)
+    if res.verdict == "slips":
+        verdict = f"SLIPS at {res.slip_load:.4g} N ({res.slipped_by or 'tail'})"
+    elif res.verdict == "holds":
+        verdict = f"HOLDS up to {res.max_force:.4g} N (the pull ended)"
+    else:
+        verdict = "no verdict"
+    end = "no pull frame"
+    if res.tail_draw_in.size:
+        end = (f"tail drawn in {res.tail_draw_in[-1] * 1e3:.3g} mm, eye grown "
+               f"{res.eye_growth[-1] * 1e3:.3g} mm")  # fmt: skip
+    kept = "kept" if res.topology_preserved else "CHANGED"
+    peak = f"{res.max_force:.4g} N" if math.isfinite(res.max_force) else "none"
+    print(
+        f"{scene}: status {res.status}; {verdict}; {end}; max force {peak}; knot type {kept} "
+        f"on {res.frames_checked} frames; {res.stats.get('steps', 0)} steps, "
+        f"{res.stats.get('wall_s', 0.0):.3g} s"
+    )
+    return res
 
 
 def _run_pulled_knot(scene, kw, args, progress):

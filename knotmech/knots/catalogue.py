@@ -56,6 +56,26 @@ _TIED_BENDS = (
      {"n_nodes": 150, **_TIED_PULL}, _ENDS),
 )  # fmt: skip
 
+#: the loops (issue 25): their eye round a fixed pin (knotmech.scenes.loops)
+LOOP_NOTE = "this work: docs/notes/knots-and-curves/tied-loops-pulled.md"
+_LOOP_LOADING = (
+    "the eye round a fixed pin, the standing part pulled away from the pin along its end "
+    "tangent, the tail free"
+)
+#: (name, aliases, summary, curve keywords, scene defaults) of the loops of
+#: knotmech.scenes.tied: the bowline's tail 15 d (the curve's default 7 d is consumed when
+#: the loose knot tightens, before anything slips)
+_TIED_LOOPS = (
+    ("bowline", ("bowline-knot", "bowline-loop"),
+     "a fixed eye: a bight of the tail through a nipping loop in the standing part, round "
+     "the standing part and back (a sheet bend with one rope)",
+     {"tail": 15.0}, {"n_nodes": 175}),
+    ("figure-eight-loop", ("figure-8-loop", "figure-eight-on-a-bight", "figure-8-on-a-bight",
+                           "flemish-loop", "figure-of-eight-loop"),
+     "a fixed eye: a figure-eight knot tied in the doubled rope",
+     {}, {"n_nodes": 300}),
+)  # fmt: skip
+
 _THH_DOC = r"""Tie {what} on a post and load them.
 
     Same keywords as :func:`knotmech.scenes.clove_hitch.clove_hitch` (see
@@ -244,10 +264,21 @@ CATALOGUE = (
             "Choi, Tong & Jawed 2021 (implicit contact model)",
         ),
     ),
-    Knot(
-        name="bowline",
-        family="loop",
-        unanswered="a loop knot (no post, no closed form or DER table here)",
+    # -- loops (issue 25): the eye round a fixed pin, the standing part pulled ---------
+    *(
+        Knot(
+            name=name,
+            family="loop",
+            aliases=aliases,
+            summary=summary,
+            curve=f"knotmech.scenes.tied.{name.replace('-', '_')}:{name.replace('-', '_')}",
+            curve_params=params,
+            scene="knotmech.scenes.loops:loop",
+            scene_defaults=defaults,
+            loading=_LOOP_LOADING,
+            sources=(LOOP_NOTE,),
+        )
+        for name, aliases, summary, params, defaults in _TIED_LOOPS
     ),
     Knot(
         name="figure-eight",

@@ -26,12 +26,14 @@ def _q(value: float, unit: str) -> str:
 
 def simulate_command(
     knot, *, d, D, mu, mu_rr=None, load, material=None, youngs_modulus=None, creep_limit=None,
-    bending_scale=None,
+    bending_scale=None, pin=None,
 ) -> str:  # fmt: skip
     """The full ``knotmech hold ... --simulate`` command that decides this case by one DER run."""
     parts = ["knotmech", "hold", knot, "--rod-diameter", _q(d, "m")]
     if D is not None:
         parts += ["--post-diameter", _q(D, "m")]
+    if pin is not None:  # a loop's eye round a pin
+        parts += ["--pin-diameter", _q(pin, "m")]
     parts += ["--mu", f"{mu:g}"]
     if mu_rr is not None and mu_rr != mu:
         parts += ["--mu-rr", f"{mu_rr:g}"]

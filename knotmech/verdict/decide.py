@@ -10,6 +10,7 @@ import math
 import warnings
 from dataclasses import dataclass, replace
 
+from knotmech import knots
 from knotmech.errors import InputError, check_nonnegative, check_positive
 from knotmech.verdict.answer import Verdict
 from knotmech.verdict.command import SIMULATE_COST, simulate_command
@@ -39,6 +40,7 @@ def hold(
     creep_limit=None,
     bending_scale=None,
     post_material=None,
+    pin_diameter=None,
 ) -> Verdict:
     r"""Does a rope tied to a post hold a load? The verdict, every model's answer and why.
 
@@ -47,8 +49,9 @@ def hold(
     knot : str
         One of :data:`KNOT_NAMES` (``capstan``, ``clove-hitch``, ``two-half-hitches``,
         ``round-turn``, ``round-turn-two-half-hitches``, ``cow-hitch`` (also girth hitch,
-        lark's head), and the bends ``reef``, ``granny``, ``thief``, ``grief``). Other
-        knots (bowline, figure-eight, sheet bend, ...) raise a one-line
+        lark's head), the bends ``reef``, ``granny``, ``thief``, ``grief`` and the tied
+        bends, and the loops ``bowline``, ``figure-eight-loop`` (their eye round a pin:
+        ``pin_diameter``). Other knots raise a one-line
         :class:`~knotmech.errors.InputError` listing these.
     rod_diameter, post_diameter : float
         Rope diameter d and post diameter D [m], > 0 (no post for a bend: None).
@@ -57,6 +60,9 @@ def hold(
         published range of ``material`` on ``post_material``
         (:func:`knotmech.strength.friction_range`): the verdict is given at its low end and
         scanned over the range (:attr:`Verdict.friction`).
+    pin_diameter : float, optional
+        A loop's pin diameter [m] (the pin its eye goes round), required for a loop and
+        refused for any other knot.
     post_material : str, optional
         The post's material for the friction range when ``mu`` is not given: ``steel``
         (default, :data:`knotmech.verdict.friction.DEFAULT_POST_MATERIAL`), ``aluminium``,
@@ -136,6 +142,19 @@ def hold(
         mu = lo
         friction = {"post_material": face, "default_post_material": post_material is None,
                     "range": [lo, hi], "source": src}  # fmt: skip
+    if knots.get(key).family == "loop":
+        from knotmech.verdict.loop import hold_loop
+
+        v = hold_loop(
+            key, rod_diameter=rod_diameter, post_diameter=post_diameter,
+            pin_diameter=pin_diameter, mu=mu, load=load, free_end_load=free_end_load,
+            mu_rr=mu_rr, wrap_angle=wrap_angle, material=material,
+            youngs_modulus=youngs_modulus, simulate=simulate, phase_table=phase_table,
+            progress=progress, bending_scale=bending_scale,
+        )  # fmt: skip
+        return v if friction is None else replace(v, friction=friction)
+    if pin_diameter is not None:
+        raise InputError(f"pin_diameter applies to a loop (bowline, figure-eight-loop), not {key}")
     if key in BENDS:
         from knotmech.verdict.bend import hold_bend
 

@@ -290,7 +290,7 @@ def test_max_node_steps_default_shown_is_the_library_bound():
     from knotmech.scenes._common import MAX_NODE_STEPS
 
     for scene, opts in sim.SCENE_OPTIONS.items():
-        if scene in ("bend", "centreline", *sim.TIED_BENDS):  # no up-front work bound
+        if scene in ("bend", "centreline", *sim.TIED_BENDS, *sim.LOOP_SCENES):  # no bound
             assert "--max-node-steps" not in [o.flag for o in opts]
             continue
         (o,) = [o for o in opts if o.flag == "--max-node-steps"]
@@ -306,6 +306,7 @@ _SCENE_FUNCS = {
     **{name: ("knotmech.scenes.hitches", "hitch_function") for name in sim.HITCH_SCENES},
     "bend": ("knotmech.scenes.bends", "bend"),
     **{name: ("knotmech.scenes.bends", "bend") for name in sim.TIED_BENDS},
+    **{name: ("knotmech.scenes.loops", "loop") for name in sim.LOOP_SCENES},
     "centreline": ("knotmech.scenes.centreline", "centreline"),
 }
 _VALUE = st.text(st.sampled_from(list("0123456789.,_-+e mMNkgs/^*%\u2212\uff14")), max_size=8)

@@ -37,6 +37,7 @@ from __future__ import annotations
 
 import numpy as np
 
+from knotmech.errors import InputError
 from knotmech.scenes.tied._common import (
     LEG,
     TiedKnot,
@@ -52,11 +53,15 @@ from knotmech.scenes.tied._common import (
 
 __all__ = ["bowline"]
 
-EYE_X = -14.0  #: where the eye legs leave the knot [d]
+EYE_X = -14.0  #: where the eye legs leave the knot [d] (with the default tail)
 TAIL_Y = -8.5  #: y of the first eye leg [d]
+TAIL = 7.0  #: default straight run of the tail beyond the nipping loop [d]
+NIP_LEFT = -3.0  #: the nipping loop's left side [d]
 
 
-def bowline(*, rod_diameter: float, n_nodes: int = 300, pin_diameter: float) -> TiedKnot:
+def bowline(
+    *, rod_diameter: float, n_nodes: int = 300, pin_diameter: float, tail: float = TAIL
+) -> TiedKnot:
     r"""Loosely tied bowline with its eye round a pin.
 
     Parameters
@@ -67,6 +72,10 @@ def bowline(*, rod_diameter: float, n_nodes: int = 300, pin_diameter: float) -> 
         Nodes of the rope (>= 150).
     pin_diameter : float [m]
         D, between 0.5 d and 40 d.
+    tail : float
+        Straight run of the tail beyond the nipping loop [d], 4-40 (default 7); the eye
+        legs are as much longer (the tail lies inside the eye, 4 d short of where they
+        leave the knot).
 
     Returns
     -------
@@ -76,12 +85,13 @@ def bowline(*, rod_diameter: float, n_nodes: int = 300, pin_diameter: float) -> 
     """
     d, n = check_sizes(rod_diameter, n_nodes, 150)
     D = check_pin(pin_diameter, d, 0.5, 40)
-    a, b = sheet_controls(left=EYE_X + 4.0)
+    eye_x = NIP_LEFT - _tail(tail) - 4.0
+    a, b = sheet_controls(left=eye_x + 4.0)
     a = a[1:]  # A's standing leg starts where the eye ends
-    a[0, 0] = EYE_X
-    b[-1, 0] = EYE_X
+    a[0, 0] = eye_x
+    b[-1, 0] = eye_x
     R = 0.5 * (D / d + 1.0)
-    center = np.array([EYE_X - 6.0 - 2.0 * R, 0.5 * (TAIL_Y + LEG)])
+    center = np.array([eye_x - 6.0 - 2.0 * R, 0.5 * (TAIL_Y + LEG)])
     eye = eye_controls(b[-1], a[0], center, R, 3.0, direction=-1.0)
     ctrl = np.vstack([b[:-1], eye, a[1:]])
     (rope,), _ = build_ropes([ctrl])
@@ -103,3 +113,11 @@ def bowline(*, rod_diameter: float, n_nodes: int = 300, pin_diameter: float) -> 
         },  # fmt: skip
         info=info,
     )
+
+
+def _tail(tail) -> float:
+    """The tail's straight run [d], checked to lie in [4, 40]."""
+    t = float(tail) if isinstance(tail, (int, float)) else float("nan")
+    if not 4.0 <= t <= 40.0:
+        raise InputError(f"tail must lie in [4, 40] rod diameters, got {tail!r}")
+    return t

@@ -1,0 +1,627 @@
+r"""A loop knot with its eye round a fixed pin, the standing part pulled away until it slips:
+the bowline and the figure-eight loop of :mod:`knotmech.scenes.tied` (issue 25).
+
+The loop is tied loosely from its curve (one naturally straight elastic rod, node 0 the
+standing part, the last node the tail), its eye round a rigid pin (a cylinder along z,
+diameter D, with sticking friction: :func:`knotmech.scenes._scene.post_contact`). Phases,
+as the tied bends' (:class:`knotmech.scenes.bends.TiedBendScene`):
+
+1. **settle** ``settle_time`` with both ends held;
+2. **set**: the standing end pulled away from the pin along its outward end tangent and
+   the tail along its own, each at ``pull_speed`` (a hand dressing the knot), until the
+   tension next to each grip reaches ``set_tension`` (default
+   :math:`0.1 B/d^2`) or for ``set_travel``;
+3. **release** ``settle_time``: the standing end held where the set left it, the tail let
+   go (damped as the settling: a tail let go at the set tension would otherwise snap
+   into a loose knot and count as a slip at the set tension);
+4. **pull**: the standing end pulled on along the same direction for ``pull_distance``,
+   the tail free.
+
+Measured: the pull force (the grip's reaction along the pull), and two *material*
+draw-ins (lengths of rope, not positions, so that a knot moving along its rope counts):
+the **tail draw-in** (the decrease of the tail's length outside the knot) and the **eye
+growth** (the increase of the eye's length outside the knot, both legs from the pin to
+the first strand crossing them). A node is *inside the knot* when a strand crossing it
+(tangents more than 25 deg apart) of the rope more than 4 d of arc away lies within
+1.25 d (:data:`knotmech.scenes.tied.pulled.NEAR_SET`). The loop **slips** by the tied
+bends' rule (:func:`knotmech.scenes.bends._bend_verdict`): the tail drawn in, or the eye
+grown, by more than ``slip_draw_in`` (2 d) beyond the frame where the force first reaches
+90 % of its largest value, or the tail run out (< 1 d outside after > 2 d of draw-in);
+the **slip load** is the largest force before that frame.
+
+Topology on every pull frame: :func:`knotmech.scenes.tied.measure` of the rope (standing
+part closed to the tail far outside, the tail lifted out of the eye for the bowline: 6_3;
+the unknot for the figure-eight loop), its winding about the pin, and the rope cut at the
+pin with each half closed alone. The closed rope's knot type counts as kept when either
+closure keeps its start value: the ends lifted up (+z) or down (-z) before being joined
+far outside (the free tail end of a bowline swings out of its eye under or over an eye
+leg, which changes one closure and not the other; a strand through another changes
+both). Up to the slip, a change of the knot type or of the winding fails the run
+(``status`` failed, the time and the invariant in ``message``); after the slip (the tail
+end travelling through the knot) and for the cut halves a change is reported. The
+overlap watch of every accepted step (no two strands closer than d/2) excludes a strand
+passing through another.
+Friction: the tied bends' law (anchor, cap floored at
+:data:`knotmech.scenes.bends.TIED_CAP_FLOOR`), with the path tunnelling guard.
+"""
+
+from __future__ import annotations
+
+import time
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from knotmech import knots, rod
+from knotmech.errors import InputError, check_count, check_nonnegative, check_positive
+from knotmech.materials import DEMO_ROD_DENSITY
+from knotmech.rod.constraints import Clamp, MovingNodes
+from knotmech.scenes._common import check_memory, check_run_size, frames_bytes, pair_check_bytes
+from knotmech.scenes._scene import RunControl, Scene, SceneRun, grip_path, post_contact
+from knotmech.scenes.bends import TIED_CAP_FLOOR, BendPull, BendRopes, _bend_verdict, _plain
+from knotmech.scenes.curves import _edge_distances
+from knotmech.scenes.tied import measure
+from knotmech.scenes.tied.pulled import NEAR_SET, OWN, PARALLEL, end_direction, invariants_changed
+
+__all__ = ["LoopResult", "LoopScene", "loop", "LOOPS", "loop_inside", "loop_lengths"]
+
+#: the loop knots with this scene (the registry's loops with a scene)
+LOOPS = tuple(k.name for k in knots.records(family="loop") if k.scene.endswith("loops:loop"))
+
+#: invariants whose change fails a run: the closed rope's knot type and its turns round the pin
+FAIL_KEYS = ("alexander", "winding_pin")  # alexander: kept by either closure (up or down)
+
+
+@dataclass
+class LoopResult:
+    """What a loop pull measured (SI units).
+
+    Attributes
+    ----------
+    knot : str
+    verdict : {"slips", "holds", ""}
+        ``""`` when the run failed.
+    slip_load : float [N]
+        Largest pull force before the slip (NaN if it held).
+    max_force : float [N]
+        Largest pull force of the whole pull.
+    pin_diameter, pull_speed, mu_rod_rod, mu_pin : float [m], [m/s], -, -
+    times : (n_frames,) [s]
+    pull_displacement : (n_frames,) [m]
+        Travel of the standing end since the pull began.
+    pull_force : (n_frames,) [N]
+    tail_draw_in, eye_growth : (n_frames,) [m]
+        Material draw-in of the tail and growth of the eye since the pull began.
+    slipped_by : {"tail", "eye", "both", ""}
+        Which grew by more than d/2 at the last frame ("both": both did).
+    invariants_start, invariants_checked : dict
+        :func:`knotmech.scenes.tied.measure` of the start shape and the last values defined
+        on the frames checked.
+    frames_checked : int
+    law : str
+    positions : (n_frames, n_nodes, 3) [m]
+    status, message : str; stats : dict (steps, newton_iterations, wall_s)
+    """
+
+    knot: str
+    verdict: str
+    slip_load: float
+    max_force: float
+    pin_diameter: float
+    pull_speed: float
+    mu_rod_rod: float
+    mu_pin: float
+    times: np.ndarray
+    pull_displacement: np.ndarray
+    pull_force: np.ndarray
+    tail_draw_in: np.ndarray
+    eye_growth: np.ndarray
+    slipped_by: str
+    invariants_start: dict
+    invariants_checked: dict
+    frames_checked: int
+    law: str
+    positions: np.ndarray
+    status: str
+    message: str
+    stats: dict = field(default_factory=dict)
+
+    @property
+    def topology_preserved(self) -> bool:
+        """The closed rope's knot type and its winding about the pin kept on every frame
+        checked."""
+        s, c = self.invariants_start, self.invariants_checked
+        return all(s.get(k) == c.get(k) for k in FAIL_KEYS)
+
+    def to_dict(self) -> dict:
+        """Plain-JSON summary (curves as lists, positions left out)."""
+
+        def num(v):
+            return float(v) if np.isfinite(v) else None
+
+        return {
+            "scene": "loop",
+            "knot": self.knot,
+            "verdict": self.verdict,
+            "slip_load": num(self.slip_load),
+            "max_force": num(self.max_force),
+            "slipped_by": self.slipped_by,
+            "tail_draw_in_end": num(self.tail_draw_in[-1]) if self.tail_draw_in.size else None,
+            "eye_growth_end": num(self.eye_growth[-1]) if self.eye_growth.size else None,
+            "pin_diameter": self.pin_diameter,
+            "pull_speed": self.pull_speed,
+            "mu_rod_rod": self.mu_rod_rod,
+            "mu_pin": self.mu_pin,
+            "topology_preserved": self.topology_preserved,
+            "frames_checked": int(self.frames_checked),
+            "law": self.law,
+            "invariants_start": _plain(self.invariants_start),
+            "invariants_checked": _plain(self.invariants_checked),
+            "status": self.status,
+            "message": self.message,
+            "stats": {k: (float(v) if k == "wall_s" else int(v)) for k, v in self.stats.items()},
+            "pull_displacement": [float(v) for v in self.pull_displacement],
+            "pull_force": [num(v) for v in self.pull_force],
+            "tail_draw_in": [float(v) for v in self.tail_draw_in],
+            "eye_growth": [float(v) for v in self.eye_growth],
+        }
+
+
+def loop_inside(x, d: float, ignore=None) -> np.ndarray:
+    """(n,) bool: the nodes of one rope ``x`` ((n, 3) [m]) inside the knot: within
+    :data:`~knotmech.scenes.tied.pulled.NEAR_SET` d of a node of the rope more than
+    :data:`~knotmech.scenes.tied.pulled.OWN` d of arc away whose tangent crosses it (more
+    than 25 deg apart); nodes in the bool mask ``ignore`` are not counted as such strands."""
+    x = np.asarray(x, float)
+    h = float(np.mean(np.linalg.norm(np.diff(x, axis=0), axis=1)))
+    idx = np.arange(len(x))
+    far = np.abs(idx[:, None] - idx[None, :]) >= int(np.ceil(OWN * d / h))
+    near = np.linalg.norm(x[:, None, :] - x[None, :, :], axis=2) < NEAR_SET * d
+    t = np.gradient(x, axis=0)
+    t /= np.linalg.norm(t, axis=1, keepdims=True)
+    crossing = near & far & (np.abs(t @ t.T) < PARALLEL)
+    if ignore is not None:
+        crossing[:, np.asarray(ignore, bool)] = False
+    return crossing.any(axis=1)
+
+
+def _run_from(inside, k: int, step: int) -> int:
+    """Nodes from ``k`` (included) walking by ``step`` before the first inside node."""
+    n, j = len(inside), k
+    while 0 <= j < n and not inside[j]:
+        j += step
+    return abs(j - k)
+
+
+def loop_lengths(x, d: float, h: float, eye_cut: int) -> tuple[float, float]:
+    """(tail length outside the knot, eye length outside the knot) [m] of one frame.
+
+    Material lengths: node counts times the rest edge length ``h`` [m]. The tail is the run
+    of outside nodes from the last node inwards; the eye, the run of outside nodes either
+    side of the node ``eye_cut`` (the eye's farthest point round the pin), the free tail
+    not counted as a strand crossing it.
+    """
+    inside = loop_inside(x, d)
+    n = len(inside)
+    tail = _run_from(inside, n - 1, -1)
+    free_tail = np.arange(n) >= n - tail  # a free tail swinging across the eye is no knot
+    inside = loop_inside(x, d, ignore=free_tail)
+    eye = _run_from(inside, eye_cut, -1) + _run_from(inside, eye_cut, 1) - 1
+    return h * max(tail - 1, 0), h * max(eye, 0)
+
+
+def loop(
+    knot: str,
+    *,
+    pin_diameter: float | None = None,
+    rod_diameter: float = 4e-3,
+    youngs_modulus: float = 1.0e6,
+    density: float = DEMO_ROD_DENSITY,
+    bending_scale: float = 1.0,
+    mu_rod_rod: float = 0.3,
+    mu_kinetic: float | None = None,
+    mu_pin: float | None = None,
+    pull_speed: float = 0.04,
+    pull_distance: float | None = None,
+    settle_time: float = 0.2,
+    n_nodes: int | None = None,
+    dt: float = 4e-3,
+    slip_draw_in: float | None = None,
+    set_tension: float | None = None,
+    set_travel: float | None = None,
+    force_scale: float | None = None,
+    contact_width: float = 0.2,
+    n_frames: int | None = None,
+    options: rod.SolverOptions | None = None,
+    progress: bool = False,
+) -> LoopResult:
+    r"""Tie a loop round a pin, pull its standing part away from the pin, report the slip load.
+
+    Parameters
+    ----------
+    knot : str
+        ``"bowline"`` or ``"figure-eight-loop"`` (or an alias).
+    pin_diameter : float [m]
+        Diameter D of the pin the eye goes round (required; 0.5-40 d).
+    rod_diameter : float [m]
+        d (default 4 mm).
+    youngs_modulus : float [Pa]
+        Of the solid elastic rod (default 1 MPa; :math:`B = E\pi d^4/64`).
+    density : float [kg/m^3]
+    bending_scale : float
+        kappa in (0, 1]: bending and twisting stiffness times the solid rod's.
+    mu_rod_rod, mu_kinetic : float
+        Static and kinetic rope-rope friction (``mu_kinetic`` None: the static).
+    mu_pin : float, optional
+        Rope-pin friction (default ``mu_rod_rod``).
+    pull_speed : float [m/s]
+        Speed of the standing end (set and pull).
+    pull_distance : float [m], optional
+        Travel of the standing end in the pull (default 20 d).
+    settle_time : float [s]
+        Both ends held while the contacts settle; also the length of the release (the
+        standing end held, the tail let go) between the set and the pull.
+    n_nodes : int, optional
+        Nodes of the rope (default: its record's, 175 bowline, 300 figure-eight loop).
+    dt : float [s]
+        Nominal step.
+    slip_draw_in : float [m], optional
+        Tail draw-in or eye growth near the largest force that counts as a slip (2 d).
+    set_tension : float [N], optional
+        The standing part and the tail are pulled outwards until the tension next to each
+        grip reaches this (default :math:`0.1 B/d^2`) or for ``set_travel``.
+    set_travel : float [m], optional
+        Largest travel of each end while setting (default 20 d).
+    force_scale : float [N], optional
+        Sizes the contact penalties (default :math:`2 B/d^2`).
+    contact_width : float
+        Range of the rod-rod penalty in rod diameters.
+    n_frames : int, optional
+        Recorded frames of the pull (>= 10; default 20: each is checked).
+    options : knotmech.rod.SolverOptions, optional
+    progress : bool
+
+    Returns
+    -------
+    LoopResult
+
+    Raises
+    ------
+    InputError
+        A bad argument (no pin diameter, D <= 0 or NaN, D outside 0.5-40 d, an unknown
+        loop), or a run above the size bounds.
+
+    Notes
+    -----
+    Cost at the defaults (d = 4 mm, E = 1 MPa, D = 20 mm): bowline 10-11 s of CPU (175
+    nodes), figure-eight loop 62-75 s (300 nodes); ``benchmarks/tied.py --loops``,
+    docs/notes/knots-and-curves/tied-loops-pulled.md.
+    """
+    rec = _record(knot)
+    if pin_diameter is None:
+        raise InputError(
+            f"{rec.name} needs pin_diameter: the diameter of the pin its eye goes round"
+        )
+    defaults = {"n_nodes": 150, "n_frames": 20, "pull_distance_d": 20.0, "set_travel_d": 20.0,
+                **rec.scene_defaults}  # fmt: skip
+    d = float(check_positive("rod_diameter", rod_diameter, scalar=True))
+    ropes = BendRopes(
+        rod_diameter=d, youngs_modulus=youngs_modulus, density=density,
+        bending_scale=bending_scale, mu_rod_rod=mu_rod_rod, mu_kinetic=mu_kinetic,
+        n_nodes=defaults["n_nodes"] if n_nodes is None else n_nodes,
+        force_scale=force_scale, contact_width=contact_width,
+    )  # fmt: skip
+    pull = BendPull(
+        pull_speed=pull_speed,
+        pull_distance=defaults["pull_distance_d"] * d if pull_distance is None else pull_distance,
+        settle_time=settle_time,
+        slip_draw_in=slip_draw_in,
+        set_tension=set_tension,
+        set_travel=defaults["set_travel_d"] * d if set_travel is None else set_travel,
+    )
+    control = RunControl(
+        dt=dt, n_frames=defaults["n_frames"] if n_frames is None else n_frames,
+        options=options, progress=progress,
+    )  # fmt: skip
+    return LoopScene(rec, pin_diameter=pin_diameter, mu_pin=mu_pin, ropes=ropes, pull=pull,
+                     control=control).run()  # fmt: skip
+
+
+def _record(knot):
+    """The registry record of a loop with this scene; a one-line InputError otherwise."""
+    names = LOOPS
+    key = knots.key(knot) if isinstance(knot, str) else ""
+    if key not in names:
+        raise InputError(f"loop must be one of {', '.join(names)}, got {knot!r}")
+    return knots.get(key)
+
+
+def _slip_frame(force, draw, out, slip) -> int:
+    """The first pull frame where :func:`~knotmech.scenes.bends._bend_verdict` sees the
+    slip (the last frame if it held)."""
+    if not force.size:
+        return -1
+    k_near = int(np.nonzero(force >= 0.9 * np.nanmax(force))[0][0])
+    beyond = draw.max(axis=1) - draw[k_near].max()
+    slipped = np.nonzero(((beyond > slip) & (np.arange(force.size) >= k_near)) | out)[0]
+    return int(slipped[0]) if slipped.size else len(force) - 1
+
+
+class LoopScene(Scene):
+    """A loop round a fixed pin, set and pulled by its standing part: the phases of
+    :func:`loop`."""
+
+    def __init__(self, record, *, pin_diameter, mu_pin, ropes, pull, control):
+        self.record, self.ropes, self.pull, self.control = record, ropes, pull, control
+        self.pin_diameter, self.mu_pin_in = pin_diameter, mu_pin
+
+    # -- setup -----------------------------------------------------------------------
+    def setup(self) -> None:
+        """Inputs and cost checked; the loop tied, its pin moved to the origin."""
+        o, p = self.ropes, self.pull
+        self.d = d = float(check_positive("rod_diameter", o.rod_diameter, scalar=True))
+        self.E = float(check_positive("youngs_modulus", o.youngs_modulus, scalar=True))
+        self.rho = float(check_positive("density", o.density, scalar=True))
+        self.mu = float(check_nonnegative("mu_rod_rod", o.mu_rod_rod, scalar=True))
+        mp = self.mu_pin_in
+        self.mu_pin = self.mu if mp is None else float(check_nonnegative("mu_pin", mp, scalar=True))
+        self.v = float(check_positive("pull_speed", p.pull_speed, scalar=True))
+        self.dist = float(check_positive("pull_distance", p.pull_distance, scalar=True))
+        self.set_travel = float(check_positive("set_travel", p.set_travel, scalar=True))
+        self.slip = 2 * d if p.slip_draw_in is None else float(
+            check_positive("slip_draw_in", p.slip_draw_in, scalar=True))  # fmt: skip
+        check_count("n_frames", self.control.n_frames, 10)
+        check_positive("contact_width", o.contact_width, scalar=True)
+        self.B = B = self.E * np.pi * d**4 / 64
+        self.f_set = 0.1 * B / d**2 if p.set_tension is None else float(
+            check_positive("set_tension", p.set_tension, scalar=True))  # fmt: skip
+        self.fs = 2 * B / d**2 if o.force_scale is None else float(
+            check_positive("force_scale", o.force_scale, scalar=True))  # fmt: skip
+        self.settle_time = float(check_positive("settle_time", p.settle_time, scalar=True))
+        self.dt = float(check_positive("dt", self.control.dt, scalar=True))
+        self._check_cost()
+        self._tie()
+
+    def _check_cost(self) -> None:
+        n = check_count("n_nodes", self.ropes.n_nodes, 40)
+        t_end = self.settle_time + (self.set_travel + self.dist) / self.v
+        check_run_size(n_nodes=n, t_end=t_end, dt=self.dt,
+                       hint="use fewer nodes (n_nodes), a larger dt or a shorter pull")  # fmt: skip
+        check_memory(pair_check_bytes(n) + frames_bytes(self.control.n_frames + 100, n),
+                     what=f"the strands' overlap check on {n} nodes",
+                     hint="use fewer nodes (n_nodes)")  # fmt: skip
+
+    def _tie(self) -> None:
+        """The loop's start curve, shifted so that its pin's axis is the z axis."""
+        knot = self.record.curve_function()(
+            rod_diameter=self.d,
+            n_nodes=int(self.ropes.n_nodes),
+            pin_diameter=self.pin_diameter,
+            **self.record.curve_params,
+        )
+        c = np.array(knot.pin["point"], float)
+        x = knot.ropes["rope"] - c
+        pin = dict(knot.pin, point=(0.0, 0.0, 0.0))
+        info = dict(knot.info, pin_center=(0.0, 0.0, 0.0))
+        self.knot = replace(knot, ropes={"rope": x}, pin=pin, info=info)
+        self.x0 = x
+        self.D = float(pin["diameter"])
+        self.inv_start = measure(self.knot)
+        self.alex_down0 = self._alexander_down(x)
+        self.u = end_direction(x, "start")
+
+    # -- build -----------------------------------------------------------------------
+    def build(self) -> SceneRun:
+        """The rope, its contacts with itself and with the pin, the overlap watch."""
+        o, d = self.ropes, self.d
+        r = rod.Rod(positions=self.x0, radius=0.5 * d, youngs_modulus=self.E, density=self.rho,
+                    natural="straight", bending_scale=o.bending_scale)  # fmt: skip
+        self.system = system = rod.RodSystem([r])
+        self.N = N = int(o.n_nodes)
+        self.h = float(system.rest_length.mean())
+        idx = np.arange(N - 1)
+        self.far = np.abs(idx[:, None] - idx[None, :]) >= 3
+        c = 0.01 * self.B / d**2 / (float(system.rest_length.sum()) * self.v)
+        self.drag = rod.ViscousDamping(coefficient=c)
+        nodes, edges = system.rod_nodes(0), system.rod_edges(0)
+        self.grip = ([int(nodes[0]), int(nodes[1])], int(edges[0]))
+        self.tail = ([int(nodes[-1]), int(nodes[-2])], int(edges[-1]))
+        pin = post_contact(post_diameter=self.D, rod_diameter=d, force_scale=self.fs,
+                           mu_static=self.mu_pin)  # fmt: skip
+        ctl = self.control
+        return SceneRun(system, interactions=[self._contact(), pin], options=ctl.options,
+                        watch=self._watch, progress=ctl.progress)  # fmt: skip
+
+    def _contact(self):
+        """Rope-rope contact: the tied bends' law (anchor, cap floored), path tunnel guard."""
+        mk = self.mu if self.ropes.mu_kinetic is None else float(
+            check_nonnegative("mu_kinetic", self.ropes.mu_kinetic, scalar=True))  # fmt: skip
+        if mk > self.mu:
+            raise InputError(f"mu_kinetic must be <= mu_rod_rod ({self.mu:g}), got {mk:g}")
+        fr = None
+        if self.mu > 0:
+            fr = rod.AnchorFriction(mu_static=self.mu, mu_kinetic=mk, cap_floor=TIED_CAP_FLOOR)
+        w = float(self.ropes.contact_width)
+        return rod.RodContact(stiffness=20.0 * self.fs / self.d, sharpness=15.0 / (w * self.d),
+                              friction=fr, tunnel_check="path")  # fmt: skip
+
+    def _watch(self, x):
+        gap = _edge_distances(x)[self.far].min()
+        if gap < 0.5 * self.d:
+            return f"strands overlap by more than half a diameter (gap {gap / self.d:.2f} d)"
+        return None
+
+    # -- phases ----------------------------------------------------------------------
+    def run_phases(self, run: SceneRun) -> None:
+        """Settle (both ends held), set (both ends pulled out), release (the standing end
+        held, the tail let go), pull (the tail free)."""
+        g, t = self.grip, self.tail
+        mass = self.rho * np.pi * self.d * self.d / 4
+        self.t_wall = time.perf_counter()
+        run.phase("settle", self.settle_time, dt=self.dt,
+                  loads=[rod.ViscousDamping(coefficient=20.0 * mass / self.settle_time)],
+                  constraints=[Clamp(nodes=g[0] + t[0], edges=[g[1], t[1]])])  # fmt: skip
+        self._set(run)
+        if run.ok:  # the tail let go, the standing end held: the knot finds its seat
+            run.phase("release", self.settle_time, dt=self.dt,
+                      loads=[rod.ViscousDamping(coefficient=20.0 * mass / self.settle_time)],
+                      constraints=[Clamp(nodes=g[0], edges=[g[1]])])  # fmt: skip
+        self._pull(run)
+
+    def _moving(self, run, ends):
+        """Grips moving at ``pull_speed`` along the outward end tangents of ``ends``."""
+        x = self.system.positions(run.state.q)
+        return [MovingNodes(nodes=g[0], path=grip_path(x[g[0]], u, self.v, run.t))
+                for g, u in ends]  # fmt: skip
+
+    def _set(self, run: SceneRun) -> None:
+        """Set (dress) the loop as a rigger does: the standing part and the tail pulled
+        outwards along their end tangents until the tension next to each grip reaches
+        ``set_tension`` (read on the first free edge: the end edges are rigid). A loose
+        loop pulled by its standing part alone, the tail free, does not set: it capsizes
+        and unties (docs/notes/knots-and-curves/tied-loops-pulled.md)."""
+        s = self.system
+        e = np.array([self.grip[1] + 1, self.tail[1] - 1])
+        ea, rest, en = s.ea[e], s.rest_length[e], s.edge_nodes[e]
+
+        def tension(x):
+            strain = np.linalg.norm(x[en[:, 1]] - x[en[:, 0]], axis=1) / rest - 1
+            return float(np.min(ea * strain))
+
+        if run.ok:
+            x = self.system.positions(run.state.q)
+            u_tail = end_direction(x, "end")
+            travel = min(self.set_travel, self._clear_of_pin(x[self.tail[0][0]], u_tail))
+            cons = self._moving(run, [(self.grip, self.u), (self.tail, u_tail)])
+            run.phase("set", travel / self.v, dt=self.dt, loads=[self.drag],
+                      constraints=[*cons, Clamp(edges=[self.grip[1], self.tail[1]])],
+                      stop=lambda x: tension(x) >= self.f_set)  # fmt: skip
+
+    def _clear_of_pin(self, p, u) -> float:
+        """Travel [m] of a grip from ``p`` along ``u`` that stays 2 d clear of the pin (the
+        bowline's tail, inside the eye, points at it); inf if the path misses the pin."""
+        p, u = np.asarray(p[:2], float), np.asarray(u[:2], float)
+        a = float(u @ u)
+        R = 0.5 * (self.D + self.d) + 2.0 * self.d
+        b, c = float(p @ u), float(p @ p) - R * R
+        disc = b * b - a * c
+        if a == 0.0 or disc < 0.0 or -b - np.sqrt(disc) < 0.0:
+            return float("inf")
+        return max((-b - np.sqrt(disc)) / a, 0.0) * float(np.sqrt(a))
+
+    def _pull(self, run: SceneRun) -> None:
+        """The standing end pulled on, the tail free; stops when the tail runs out."""
+        if not run.ok:
+            return
+        x = self.system.positions(run.state.q)
+        self.lengths0 = np.array(loop_lengths(x, self.d, self.h, self.knot.info["eye_cut"]))
+        self.t0 = run.t
+        cons = [*self._moving(run, [(self.grip, self.u)]), Clamp(edges=[self.grip[1]])]
+        run.phase("pull", self.dist / self.v, dt=self.dt, loads=[self.drag], constraints=cons,
+                  save_every=self.dist / self.v / int(self.control.n_frames),
+                  stop=self._tail_out)  # fmt: skip
+
+    def _tail_out(self, x) -> bool:
+        tail, _ = loop_lengths(x, self.d, self.h, self.knot.info["eye_cut"])
+        return bool(tail < self.d and self.lengths0[0] - tail > self.slip)
+
+    # -- measure ---------------------------------------------------------------------
+    def measure(self, run: SceneRun) -> LoopResult:
+        """Pull force, draw-in and eye growth, verdict, topology; the status checked."""
+        times, pos = run.frames()
+        m = run.phase_mask("pull")
+        tp, pm = times[m], pos[m]
+        g = self.grip[0]
+        force = run.reaction(g[:1], tp) @ self.u + run.reaction(g[1:], tp) @ self.u
+        draw, out = self._draw(pm)
+        pulled = bool(np.isfinite(force).any() and np.nanmax(force) > 0)
+        if pulled:
+            verdict, slip_load, _ = _bend_verdict(force, draw, out, self.slip)
+            k_slip = _slip_frame(force, draw, out, self.slip)
+        else:  # no pull frame, or no positive pull force recorded
+            verdict, slip_load, k_slip = "", float("nan"), len(force) - 1
+        status, message = self._topology(run, pm, tp, k_slip)
+        if status == "success" and not pulled:
+            status, message = "failed", "no pull frame with a positive pull force recorded"
+        if status != "success":
+            verdict = ""
+        stats = dict(run.stats)
+        stats["wall_s"] = time.perf_counter() - self.t_wall
+        return LoopResult(
+            knot=self.record.name, verdict=verdict, slip_load=slip_load,
+            max_force=float(np.nanmax(force)) if force.size else float("nan"),
+            pin_diameter=self.D, pull_speed=self.v, mu_rod_rod=self.mu, mu_pin=self.mu_pin,
+            times=tp, pull_displacement=self.v * (tp - getattr(self, "t0", 0.0)),
+            pull_force=force, tail_draw_in=draw[:, 0], eye_growth=draw[:, 1],
+            slipped_by=self._slipped_by(draw), invariants_start=self.inv_start,
+            invariants_checked=getattr(self, "inv_checked", dict(self.inv_start)),
+            frames_checked=getattr(self, "frames_checked", 0), law=self._law(),
+            positions=pos, status=status, message=message, stats=stats,
+        )  # fmt: skip
+
+    def _law(self) -> str:
+        return (f"anchor (sticking) friction, cap floor {TIED_CAP_FLOOR:g} (r_i + r_j), "
+                f"path tunnelling guard; pin: anchor friction mu = {self.mu_pin:g}")  # fmt: skip
+
+    def _draw(self, pm):
+        """(n, 2) [m] tail draw-in and eye growth since the pull began; (n,) tail run out."""
+        if not len(pm):
+            return np.zeros((0, 2)), np.zeros(0, bool)
+        k = self.knot.info["eye_cut"]
+        now = np.array([loop_lengths(x, self.d, self.h, k) for x in pm])
+        draw = np.column_stack([self.lengths0[0] - now[:, 0], now[:, 1] - self.lengths0[1]])
+        return draw, (now[:, 0] < self.d) & (draw[:, 0] > self.slip)
+
+    def _slipped_by(self, draw) -> str:
+        if not draw.size:
+            return ""
+        grew = draw[-1] > 0.5 * self.d
+        return {(True, False): "tail", (False, True): "eye", (True, True): "both"}.get(
+            (bool(grew[0]), bool(grew[1])), "")  # fmt: skip
+
+    def _alexander_down(self, x) -> tuple:
+        """Alexander polynomial of the rope closed with its ends lifted down (-z): the
+        frame mirrored in z and closed as usual (the polynomial does not see the mirror)."""
+        return measure(replace(self.knot, ropes={"rope": x * np.array([1.0, 1.0, -1.0])}))[
+            "alexander"
+        ]
+
+    def _frame_invariants(self, x) -> dict:
+        """:func:`~knotmech.scenes.tied.measure` of one frame; ``alexander`` the start's
+        when either closure keeps its start value: the ends lifted up (+z, the curve's
+        closure) or down. A free tail end passing under a strand changes the first, over
+        one the second; a strand through another changes both."""
+        now = measure(replace(self.knot, ropes={"rope": x}))
+        if now.get("alexander") != self.inv_start.get("alexander"):
+            if self._alexander_down(x) == self.alex_down0:
+                now["alexander"] = self.inv_start["alexander"]
+        return now
+
+    def _topology(self, run, pm, tp, k_slip):
+        """Every pull frame's invariants against the start's. Up to the slip frame
+        ``k_slip``, a change of the closed rope's knot type or winding fails the run; after
+        it (the tail end travelling through the knot, where the closure of the open rope
+        lifted from the tail end is not defined) and for the cut halves, a change is
+        reported in the message."""
+        self.inv_checked = got = dict(self.inv_start)
+        self.frames_checked, moved = 0, {}
+        for k in range(len(pm)):
+            try:
+                now = self._frame_invariants(pm[k])
+            except InputError as e:
+                return "failed", f"t = {tp[k]:.3f} s: the frame does not close ({e})"
+            self.frames_checked += 1
+            changed = invariants_changed(self.inv_start, now)
+            for key in changed:
+                moved.setdefault(key, (tp[k], now[key]))
+            bad = [key for key in changed if key in FAIL_KEYS]
+            if bad and k <= k_slip:
+                return "failed", (f"knot type changed at t = {tp[k]:.3f} s ({', '.join(bad)}) "
+                                  "before the loop slipped: a strand through another, or the "
+                                  "tail out through the closure; not a result")  # fmt: skip
+            if k <= k_slip:
+                got.update({key: v for key, v in now.items() if v is not None})
+        note = "; ".join(f"{key} {self.inv_start[key]} -> {v} at t = {t:.3f} s"
+                         + (" (after the slip)" if t > tp[k_slip] else " (free tail)")
+                         for key, (t, v) in moved.items())  # fmt: skip
+        return run.status, run.message or note

@@ -1,0 +1,153 @@
+"""The loop scene (:mod:`knotmech.scenes.loops`): the bowline and the figure-eight loop with
+their eye round a fixed pin, pulled by the standing part. Default suite: the tail and eye
+lengths on a drawn curve against their closed form, the start invariants with the pin moved
+to the axis, the bowline's longer tail keeping its knot type, one-line errors. Slow: a short
+pull of each loop keeps its knot type on every frame; the bowline's slip load at mu = 0.3
+and what mu = 1 holds."""
+
+import numpy as np
+import pytest
+
+from knotmech.errors import InputError
+from knotmech.scenes.loops import LoopScene, loop, loop_inside, loop_lengths
+from knotmech.scenes.tied import bowline, measure
+
+D4 = 4e-3
+
+
+def _polyline(points, h):
+    """Points [d] joined by straight runs, resampled every h [d]; returned in metres."""
+    p = np.asarray(points, float)
+    seg = np.linalg.norm(np.diff(p, axis=0), axis=1)
+    s = np.r_[0.0, np.cumsum(seg)]
+    t = np.arange(0.0, s[-1] + 1e-9, h)
+    return np.column_stack([np.interp(t, s, p[:, k]) for k in range(3)]) * D4
+
+
+def test_straight_rope_is_all_tail_and_all_eye():
+    x = _polyline([(0, 0, 0), (40, 0, 0)], 0.5)
+    h = 0.5 * D4
+    assert not loop_inside(x, D4).any()
+    tail, eye = loop_lengths(x, D4, h, eye_cut=40)
+    assert tail == pytest.approx(40 * D4) and eye == pytest.approx((len(x) - 1) * D4 * 0.5 + h)
+
+
+def test_tail_length_up_to_the_strand_it_crosses():
+    """A rope along x, round, and down across itself at x = 10 d, 1 d above it: the tail
+    (15 d below the crossing) is free up to where it comes within 1.25 d of the crossed
+    strand, sqrt(y^2 + 1) < 1.25 d, |y| < 0.75 d: 14.25 d, to a node spacing."""
+    h = 0.25
+    x = _polyline([(0, 0, 0), (30, 0, 0), (30, 10, 1), (10, 10, 1), (10, -15, 1)], h)
+    tail, _ = loop_lengths(x, D4, h * D4, eye_cut=0)
+    assert tail == pytest.approx(14.25 * D4, abs=1.01 * h * D4)
+    inside = loop_inside(x, D4)
+    crossing = np.nonzero(inside[: int(30 / h)])[0] * h  # on the first run, around x = 10 d
+    assert crossing.min() == pytest.approx(10 - 0.75, abs=h) and crossing.max() == pytest.approx(
+        10 + 0.75, abs=h
+    )
+
+
+def test_eye_length_up_to_the_strands_crossing_it():
+    """The same rope, the eye measured round the node at x = 5 d: back to node 0 (5 d) and
+    on to where the crossing strand comes within 1.25 d (x = 9.25 d): 9.25 d of eye."""
+    h = 0.25
+    x = _polyline([(0, 0, 0), (30, 0, 0), (30, 10, 1), (10, 10, 1), (10, -15, 1)], h)
+    _, eye = loop_lengths(x, D4, h * D4, eye_cut=int(5 / h))
+    assert eye == pytest.approx(9.25 * D4, abs=1.01 * h * D4)
+
+
+@pytest.mark.parametrize("name", ["bowline", "figure-eight-loop"])
+def test_start_invariants_with_the_pin_on_the_axis(name):
+    from knotmech import knots
+    from knotmech.scenes._scene import RunControl
+    from knotmech.scenes.bends import BendPull, BendRopes
+
+    rec = knots.get(name)
+    scene = LoopScene(rec, pin_diameter=20e-3, mu_pin=None,
+                      ropes=BendRopes(n_nodes=rec.scene_defaults["n_nodes"]),
+                      pull=BendPull(pull_distance=0.08, set_travel=0.08),
+                      control=RunControl(dt=4e-3, n_frames=20))  # fmt: skip
+    scene.setup()
+    inv = scene.inv_start
+    expected = {"bowline": (1, -3, 5, -3, 1), "figure-eight-loop": (1,)}[name]
+    assert inv["alexander"] == expected and inv["winding_pin"] == -1
+    assert scene.knot.pin["point"] == (0.0, 0.0, 0.0)
+    # the standing part is pulled away from the pin
+    assert np.dot(scene.u, scene.x0[0]) > 0
+
+
+def test_the_set_keeps_a_grip_2d_clear_of_the_pin():
+    """The bowline's tail points at the pin: its set travel stops 2 d from the pin's
+    surface, where the ray meets the circle of radius (D + d)/2 + 2 d = 5 d (D = 5 d)."""
+    s = LoopScene.__new__(LoopScene)
+    s.D, s.d = 20e-3, D4
+    p = np.array([16.0, 0.95, -0.6]) * D4
+    assert s._clear_of_pin(p, np.array([-1.0, 0.0, 0.0])) == pytest.approx(
+        (16 - np.sqrt(25 - 0.95**2)) * D4
+    )
+    assert s._clear_of_pin(p, np.array([1.0, 0.0, 0.0])) == np.inf  # away from it
+    assert s._clear_of_pin(p, np.array([0.0, 1.0, 0.0])) == np.inf  # passes it by
+
+
+def test_bowline_longer_tail_keeps_its_knot():
+    k = bowline(rod_diameter=D4, n_nodes=175, pin_diameter=20e-3, tail=15.0)
+    assert measure(k) == {"alexander": (1, -3, 5, -3, 1), "winding_pin": -1,
+                          "alexander_cut": ((1,), (1,))}  # fmt: skip
+    with pytest.raises(InputError, match=r"tail must lie in \[4, 40\]"):
+        bowline(rod_diameter=D4, pin_diameter=20e-3, tail=2.0)
+
+
+@pytest.mark.parametrize(
+    ("kw", "words"),
+    [
+        ({}, "bowline needs pin_diameter"),
+        ({"pin_diameter": 0.0}, "pin_diameter must be > 0"),
+        ({"pin_diameter": 1.0}, r"pin_diameter must lie in \[0.5 d, 40 d\]"),
+        ({"pin_diameter": 0.02, "mu_pin": -1.0}, "mu_pin must be >= 0"),
+        ({"pin_diameter": 0.02, "n_frames": 3}, "n_frames"),
+    ],
+)
+def test_loop_errors(kw, words):
+    with pytest.raises(InputError, match=words):
+        loop("bowline", **kw)
+
+
+def test_unknown_loop():
+    with pytest.raises(InputError, match="loop must be one of bowline, figure-eight-loop"):
+        loop("alpine-butterfly", pin_diameter=0.02)
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("name", ["bowline", "figure-eight-loop"])
+def test_short_pull_keeps_the_knot_type_on_every_frame(name):
+    r = loop(name, pin_diameter=20e-3, settle_time=0.05, set_travel=1e-3, pull_distance=2e-3,
+             n_frames=10)  # fmt: skip
+    assert r.status == "success", r.message
+    assert r.frames_checked == len(r.times) >= 10
+    assert r.topology_preserved
+    assert r.invariants_checked["winding_pin"] == -1
+
+
+@pytest.mark.slow
+def test_bowline_slips_at_mu_03_and_holds_more_at_mu_1():
+    """Measured (docs/notes/knots-and-curves/tied-loops-pulled.md): at mu = 0.3 the tail
+    runs out at about 0.065 N; at mu = 1 the loop holds to the end of the pull (about
+    0.5 N)."""
+    low = loop("bowline", pin_diameter=20e-3, mu_rod_rod=0.3)
+    assert low.status == "success", low.message
+    assert low.verdict == "slips" and 0 < low.slip_load < 0.2
+    assert low.tail_draw_in[-1] > 2 * D4
+    high = loop("bowline", pin_diameter=20e-3, mu_rod_rod=1.0)
+    assert high.status == "success", high.message
+    reached = high.slip_load if high.verdict == "slips" else high.max_force
+    assert reached > 2 * low.slip_load
+
+
+@pytest.mark.slow
+def test_a_pull_too_short_to_load_the_loop_fails_in_one_line():
+    """A 0.1 mm pull after a 0.1 mm set: the grip still pushes (negative force); the run
+    fails with its reason instead of raising (the slip rule needs a positive force)."""
+    r = loop("bowline", pin_diameter=0.02, settle_time=0.01, set_travel=1e-4,
+             pull_distance=1e-4, n_frames=10)  # fmt: skip
+    assert r.status == "failed" and "positive pull force" in r.message
+    assert r.verdict == "" and np.isnan(r.slip_load)
