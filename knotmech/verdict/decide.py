@@ -12,6 +12,7 @@ from dataclasses import dataclass, replace
 
 from knotmech.errors import InputError, check_nonnegative, check_positive
 from knotmech.verdict.answer import Verdict
+from knotmech.verdict.axial import AXIAL_HOLD_KNOTS
 from knotmech.verdict.command import SIMULATE_COST, simulate_command
 from knotmech.verdict.friction import critical_mu, friction_preset, range_words
 from knotmech.verdict.inputs import STRAIN_LIMIT, _bending_scale, _warnings, _youngs_modulus
@@ -145,6 +146,17 @@ def hold(
             progress=progress, bending_scale=bending_scale,
         )  # fmt: skip
         v = _bend_capacity(v, material)
+        return v if friction is None else replace(v, friction=friction)
+    if key in AXIAL_HOLD_KNOTS:  # the Prusik: pulled along its pole (verdict/axial.py)
+        from knotmech.verdict.axial import hold_axial, with_capacity
+
+        v = hold_axial(
+            key, rod_diameter=rod_diameter, post_diameter=post_diameter, mu=mu, load=load,
+            free_end_load=free_end_load, mu_rr=mu_rr, wrap_angle=wrap_angle, material=material,
+            youngs_modulus=youngs_modulus, simulate=simulate, phase_table=phase_table,
+            progress=progress, bending_scale=bending_scale,
+        )  # fmt: skip
+        v = with_capacity(v, material)
         return v if friction is None else replace(v, friction=friction)
     c = _case(
         key, rod_diameter=rod_diameter, post_diameter=post_diameter, mu=mu, load=load,
