@@ -117,3 +117,39 @@ def test_simulate_prusik_prints_and_writes_the_drag(monkeypatch, tmp_path, capsy
     lines = csv.read_text().splitlines()
     assert lines[0] == "time_s,grip_displacement_m,axial_force_N,knot_displacement_m"
     assert lines[2].split(",")[2] == "3"
+
+
+COW = ["--rod-diameter", "4mm", "--post-diameter", "30mm", "--mu", "0.3", "--load", "0.3N",
+       "--material", "vps32"]  # fmt: skip
+
+
+def test_cow_hitch_on_both_legs_is_undecided_with_its_simulate_command(capsys):
+    assert main(["hold", "cow-hitch", *COW, "--loading", "both-legs", "--json", "-"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["holds"] is None
+    cmd = ("knotmech hold cow-hitch --rod-diameter 4mm --post-diameter 30mm --mu 0.3 "
+           "--load 0.3N --free-end-load 0.3N --material vps32 --simulate")  # fmt: skip
+    assert cmd in data["next_step"] and "s of CPU" in data["next_step"]
+    # one-leg is the default loading; --loading is the cow hitch's only
+    assert main(["hold", "cow-hitch", *COW, "--loading", "one-leg", "--json", "-"]) == 0
+    assert "--free-end-load" not in json.loads(capsys.readouterr().out)["next_step"]
+    assert main(["hold", "clove-hitch", *COW, "--loading", "both-legs"]) == 2
+    assert "applies to the cow hitch, not to clove-hitch" in capsys.readouterr().err
+
+
+def test_cow_hitch_both_legs_simulate_loads_the_other_leg(monkeypatch):
+    from knotmech.verdict import build
+
+    seen = {}
+
+    def fake(**kw):
+        seen.update(kw)
+        return {"holds": True, "verdict": "hold", "message": "", "wall_s": 1.0,
+                "time_scale": 1.0, "creep_speed_protocol": 1e-5, "ran_to_end": True,
+                "creep_window_s": 0.75}  # fmt: skip
+
+    monkeypatch.setattr(build, "simulate_point", fake)
+    v = knotmech.hold("cow-hitch", rod_diameter=4e-3, post_diameter=30e-3, mu=0.3, load=0.3,
+                      free_end_load=0.15, material="vps32", simulate=True)  # fmt: skip
+    assert seen["knot"] == "cow-hitch" and seen["t_low_fraction"] == pytest.approx(0.5)
+    assert v.holds is True and v.der["source"] == "simulation"
