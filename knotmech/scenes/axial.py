@@ -60,12 +60,38 @@ from knotmech.scenes.curves import _edge_distances
 from knotmech.scenes.hitch_curves._parts import hitch_invariants
 from knotmech.scenes.topology import winding_number
 
-__all__ = ["AXIAL_KNOTS", "AxialResult", "axial_pull", "axial_curve"]
+__all__ = ["AXIAL_KNOTS", "AxialGrip", "AxialResult", "axial_pull", "axial_curve"]
 
 #: knots this scene drags along the pole
 AXIAL_KNOTS = ("clove-hitch", "prusik")
 #: the anchor law's cap floor (docs/notes/contact-and-friction/sticking-law-cap-width.md)
 CAP_FLOOR = 1e-2
+
+
+@dataclass(frozen=True)
+class AxialGrip:
+    """Move the z coordinate of ``nodes`` at ``speed`` [m/s] along ``sense`` (+1: +z) from
+    ``t_start`` [s], from ``z_start`` [m]; their x and y stay free (a constraint for
+    :func:`knotmech.rod.simulate`: the reactions on ``nodes`` carry the grip's force in z)."""
+
+    nodes: tuple
+    z_start: tuple
+    speed: float
+    sense: float
+    t_start: float
+
+    def node_indices(self, system) -> np.ndarray:
+        return np.asarray(self.nodes, dtype=np.int64)
+
+    def edge_indices(self, system) -> np.ndarray:
+        return np.zeros(0, dtype=np.int64)
+
+    def dofs(self, system) -> np.ndarray:
+        return system.node_dofs[self.node_indices(system), 2]
+
+    def values(self, system, t_new, dt, q_old) -> np.ndarray:
+        shift = self.sense * self.speed * max(t_new - self.t_start, 0.0)
+        return np.asarray(self.z_start, dtype=float) + shift
 
 
 @dataclass
@@ -235,6 +261,7 @@ def axial_pull(
     drag_speed: float = 0.01,
     drag_distance: float | None = None,
     leg_length: float | None = None,
+    legs: str = "clamped",
     force_scale: float | None = None,
     settle_time: float = 0.4,
     load_time: float = 0.3,
@@ -268,6 +295,11 @@ def axial_pull(
         Travel of the grip (default 8 rod diameters).
     leg_length : float [m], optional
         The clove hitch's legs from the pole to the grips (default 8 rod diameters).
+    legs : {"clamped", "dead"}
+        During the drag, the legs' ends are ``"clamped"`` where the loads left them and
+        moved along the pole (the legs' tension rises as they tilt and stretch), or keep
+        their ``"dead"`` loads T along the tails while only their axial position is driven
+        (the normal load stays T; the clove hitch only).
     force_scale : float [N], optional
         Largest force expected, which sizes the contact penalties (default 10 T).
     settle_time, load_time : float [s]
@@ -294,7 +326,7 @@ def axial_pull(
         dict(normal_load=normal_load, wraps=wraps, rod_diameter=rod_diameter,
              post_diameter=post_diameter, youngs_modulus=youngs_modulus, density=density,
              bending_scale=bending_scale, mu_rod_post=mu_rod_post, mu_rod_rod=mu_rod_rod,
-             drag_speed=drag_speed, drag_distance=drag_distance, leg_length=leg_length,
+             drag_speed=drag_speed, drag_distance=drag_distance, leg_length=leg_length, legs=legs,
              force_scale=force_scale,
              settle_time=settle_time, load_time=load_time, slide_distance=slide_distance,
              n_nodes=n_nodes),
@@ -325,6 +357,11 @@ class AxialScene(Scene):
         self.mrr = float(check_nonnegative("mu_rod_rod", p["mu_rod_rod"], scalar=True))
         self.T = float(check_positive("normal_load", p["normal_load"], scalar=True))
         self.v = float(check_positive("drag_speed", p["drag_speed"], scalar=True))
+        if p["legs"] not in ("clamped", "dead"):
+            raise InputError(f"legs must be 'clamped' or 'dead', got {p['legs']!r}")
+        if p["legs"] == "dead" and self.knot != "clove-hitch":
+            raise InputError("legs='dead' applies to the clove hitch (the Prusik's legs run "
+                             "along the pole)")  # fmt: skip
         self.dist = self._length("drag_distance", 8.0)
         self.slide = self._length("slide_distance", 1.0)
         fs = 10.0 * self.T if p["force_scale"] is None else p["force_scale"]
@@ -404,12 +441,16 @@ class AxialScene(Scene):
         xs = run.positions[-1]
         self.k0 = len(run.times) - 1
         self.z0 = self._knot_z(xs)
-        # the legs' ends gripped where the loads left them and moved along the pole
-        ends = np.array([xs[0], xs[-1]])
-        path = grip_path(ends, (0.0, 0.0, self.sense), self.v, t_start=self.t2)
-        grip = MovingNodes(nodes=[0, self.N - 1], path=path)
         # a light drag (1 % of the settling's): quasi-static at the drag speed
         loads = [rod.ViscousDamping(coefficient=0.01 * self.drag)]
+        if self.p["legs"] == "dead":  # T kept along the tails, the ends' z driven
+            grip = AxialGrip(nodes=(0, self.N - 1), z_start=(xs[0, 2], xs[-1, 2]),
+                             speed=self.v, sense=self.sense, t_start=self.t2)  # fmt: skip
+            loads = [*self.legs, *loads]
+        else:  # the ends gripped where the loads left them and moved along the pole
+            ends = np.array([xs[0], xs[-1]])
+            path = grip_path(ends, (0.0, 0.0, self.sense), self.v, t_start=self.t2)
+            grip = MovingNodes(nodes=[0, self.N - 1], path=path)
         t_drag = self.dist / self.v
         every = t_drag / (int(self.control.n_frames) - 1)
         h = float(np.mean(np.linalg.norm(np.diff(self.x0, axis=0), axis=1)))

@@ -52,6 +52,8 @@ def test_open_sling_removes_only_the_loops_bottom():
         ({"knot": "clove-hitch", "wraps": 3}, "wraps must be 2 for the clove hitch"),
         ({"normal_load": 0.0}, "normal_load"),
         ({"drag_speed": -1.0}, "drag_speed"),
+        ({"legs": "free"}, "legs must be 'clamped' or 'dead'"),
+        ({"knot": "prusik", "legs": "dead"}, "applies to the clove hitch"),
         ({"post_diameter": -1.0}, "post_diameter"),
         ({"knot": "prusik", "post_diameter": 80e-3}, "pin_diameter"),
     ],
