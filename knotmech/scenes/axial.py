@@ -19,6 +19,11 @@ along +z instead (the same relative motion):
    the plateau (mean over the last third of the travel) of F are reported too. A knot that
    never travelled that far held (``slid`` False, :math:`F_s` nan).
 
+   With ``legs="dead"`` (the clove hitch) the legs keep their dead loads T along the tails
+   and only their ends' axial position is driven (:class:`AxialGrip`): F = 2 T tan of the
+   legs' tilt rises to a plateau while the knot slides with the grips; the plateau is then
+   the sliding force at a normal load that stays T.
+
 The Prusik (:func:`knotmech.scenes.tied.prusik.prusik`, a closed sling) is opened at its
 loaded loop: the half turn at the bottom of the loop is cut out and each of the two legs'
 ends carries half of the axial load along -z, as the two strands of a loop pulled by a
