@@ -118,7 +118,7 @@ def test_simulate_runs_the_cow_hitch_scene(monkeypatch, capsys):
     assert data["creep"]["window_s"] == 0.75 and "0.75 s" in data["der"]["criterion"]
     der_answer = next(a for a in data["answers"] if a["model"] == "DER-simulation")
     assert knots.get("cow-hitch").loading in der_answer["assumptions"]
-    # both legs loaded is not what the scene runs: one line, exit 2
-    assert main(args + ["--free-end-load", "0.3N"]) == 2
-    err = capsys.readouterr().err.strip()
-    assert len(err.splitlines()) == 1 and "one leg loaded" in err
+    # both legs loaded (issue 25): the scene's asymmetric loading, T_low on the other leg
+    assert main(args + ["--free-end-load", "0.3N", "--json", "-"]) == 0
+    assert seen["t_low_fraction"] == pytest.approx(1.0)
+    assert _strict(capsys.readouterr().out)["decided_by"] == "DER-simulation"

@@ -33,7 +33,7 @@ def test_hold_answers_the_answered_records():
         "capstan", "clove-hitch", "two-half-hitches", "round-turn",
         "round-turn-two-half-hitches", "cow-hitch", "reef", "granny", "thief", "grief",
         "bowline", "figure-eight-loop", "sheet-bend", "double-sheet-bend", "flat-overhand-bend",
-        "figure-eight-bend", "double-fishermans",
+        "figure-eight-bend", "double-fishermans", "prusik",
     )  # fmt: skip
     for k in knots.records(answered=False):
         with pytest.raises(InputError, match=re.escape(f"is {k.unanswered}")):

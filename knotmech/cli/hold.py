@@ -109,6 +109,14 @@ def register(subparsers) -> None:
         default="0N",
         help="tension on the other end (cow hitch: on the other leg; default 0N: free end)",
     )
+    p.add_argument(
+        "--loading",
+        default=None,
+        choices=("one-leg", "both-legs"),
+        help="cow hitch only: one-leg (--load on one leg, --free-end-load on the other, 0 by "
+        "default) or both-legs (the girth hitch of a sling: --load on each leg, or "
+        "--free-end-load on the other when given)",
+    )
     p.add_argument("--wrap-angle", default=None, help="capstan only: wrap angle, e.g. 360deg")
     p.add_argument(
         "--material",
@@ -189,7 +197,7 @@ def run(args) -> int:
     from knotmech.verdict import hold, knot_key
 
     knot = knot_key(args.knot)
-    inputs = _quantities(args)
+    inputs = _legs(args.loading, knot, _quantities(args))
     json_path = _json_path(args.json)
     if args.plot is not None:
         _check_plot(args.plot, knot, inputs["free_end_load"])
@@ -222,6 +230,19 @@ _QUANTITIES = {
     "bending_scale": ("bending_scale", "dimensionless"),
     "creep_limit": ("creep_limit", "dimensionless"),
 }
+
+
+def _legs(loading, knot: str, inputs: dict) -> dict:
+    """``--loading``: both-legs puts ``--load`` on the cow hitch's other leg too (unless
+    ``--free-end-load`` gives it); one-leg is the default's loading."""
+    if loading is None:
+        return inputs
+    if knot != "cow-hitch":
+        raise InputError(f"--loading {loading} applies to the cow hitch, not to {knot}")
+    free = inputs["free_end_load"] or 0.0
+    if loading == "one-leg":
+        return inputs
+    return {**inputs, "free_end_load": free if free > 0 else inputs["load"]}
 
 
 def _quantities(args) -> dict:

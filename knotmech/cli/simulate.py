@@ -63,8 +63,12 @@ TIED_BENDS = tuple(
 #: eye round a fixed pin, ``--pin-diameter`` required
 LOOP_SCENES = tuple(k.name for k in knots.records(family="loop") if k.has_scene)
 
+#: hitches pulled along their pole (knotmech.scenes.axial): their own command; the clove
+#: hitch's is ``simulate clove-hitch --loading axial``
+AXIAL_SCENES = ("prusik",)
+
 SCENES = ("capstan", "two-loops", "pinch", "overhand", "clove-hitch", *HITCH_SCENES, "bend",
-          *TIED_BENDS, *LOOP_SCENES, "centreline")  # fmt: skip
+          *TIED_BENDS, *LOOP_SCENES, "centreline", *AXIAL_SCENES)  # fmt: skip
 
 REQUIRED = "required"
 
@@ -210,6 +214,38 @@ _HITCH = tuple(
     Opt("--load-time", "load_time", "time", "ramp to the final loads", "0.5s"),
 )  # fmt: skip
 
+#: the axial drag (knotmech.scenes.axial.axial_pull): clove-hitch --loading axial and prusik
+_AXIAL_DRAG = (
+    Opt("--drag-speed", "drag_speed", "velocity", "--loading axial: speed of the legs' grips "
+        "along the pole", "10mm/s"),
+    Opt("--drag-distance", "drag_distance", "length", "--loading axial: travel of the grips",
+        "8 x d"),
+)  # fmt: skip
+_CLOVE_AXIAL = (
+    Opt("--normal-load", "normal_load", "force", "--loading axial: dead load T on each leg "
+        "before the drag", "required with --loading axial"),
+    *_AXIAL_DRAG,
+)  # fmt: skip
+_PRUSIK = (
+    Opt("--post-diameter", "post_diameter", "length", "diameter D of the pole (or rope) the "
+        "Prusik grips, 1 to 10 d", REQUIRED),
+    Opt("--wraps", "wraps", "count", "turns a side (2 to 6)", "3"),
+    Opt("--normal-load", "normal_load", "force", "pre-tension of each leg (along the pole) "
+        "before the drag", "0.5N"),
+    Opt("--mu", "mu_rod_post", "dimensionless", "rod-pole friction coefficient", "0.3"),
+    Opt("--mu-rr", "mu_rod_rod", "dimensionless", "rod-rod friction coefficient", "0.3"),
+    Opt("--rod-diameter", "rod_diameter", "length", "cord diameter d", "4mm"),
+    Opt("--youngs-modulus", "youngs_modulus", "pressure", "Young's modulus E", "1.26MPa"),
+    Opt("--density", "density", "density", "cord density", "1150kg/m^3"),
+    Opt("--bending-scale", "bending_scale", "dimensionless", "kappa in (0, 1] (B = kappa E "
+        "pi d^4/64; a fibre cord is of order 0.01)", "1"),
+    *(Opt(o.flag, o.kwarg, o.kind, o.help.removeprefix("--loading axial: "), o.default)
+      for o in _AXIAL_DRAG),
+    Opt("--n-nodes", "n_nodes", "count", "nodes of the sling", "200"),
+    Opt("--dt", "dt", "time", "nominal time step", "2ms"),
+    _COMMON_TAIL[1],
+)  # fmt: skip
+
 _BEND = (  # knotmech.scenes.bends.bend
     Opt("--kind", "kind", "choice", f"which bend: {', '.join(BEND_KINDS)}", REQUIRED,
         choices=BEND_KINDS),
@@ -299,8 +335,9 @@ SCENE_OPTIONS: dict[str, tuple[Opt, ...]] = {
     "two-loops": _TWO_LOOPS,
     "pinch": _PINCH,
     "overhand": _OVERHAND,
-    "clove-hitch": _CLOVE,
+    "clove-hitch": _CLOVE + _CLOVE_AXIAL,
     **{name: _HITCH for name in HITCH_SCENES},
+    "prusik": _PRUSIK,
     "bend": _BEND,
     **{name: tuple(o for o in _BEND if o.kwarg != "kind") for name in TIED_BENDS},
     **{name: _LOOP for name in LOOP_SCENES},
@@ -411,11 +448,15 @@ def register(subparsers) -> None:
                              help="parameter set: implicit-contact-model paper (imc) or "
                              "coated-rod paper table 1 [imc]")  # fmt: skip
         if name == "clove-hitch" or name in HITCH_SCENES:
+            axial = ("axial",) if name == "clove-hitch" else ()
             opt.add_argument(
-                "--loading", default="free", choices=("symmetric", "asymmetric", "free", "pull"),
+                "--loading", default="free",
+                choices=("symmetric", "asymmetric", "free", "pull", *axial),
                 help="end loads: both --t-high (symmetric); --t-high and --t-low "
                 "(asymmetric); --t-high and a free end (free); pull: dead load --t-low on one "
-                "end, the other pulled at --speed for --pull-distance [free]",
+                "end, the other pulled at --speed for --pull-distance"
+                + ("; axial: both legs at --normal-load, then dragged along the post "
+                   "(Sabater et al. 2026)" if axial else "") + " [free]",
             )  # fmt: skip
         out = sp.add_argument_group("output (checked before the run starts)")
         out.add_argument("--json", metavar="FILE", help="the run's scalars as strict JSON")
@@ -467,6 +508,20 @@ def _refuse(kw: dict, flags: dict[str, str], reason: str) -> None:
         raise InputError(f"{', '.join(given)}: not used {reason}")
 
 
+#: the options of the axial drag only (clove-hitch --loading axial)
+_AXIAL_ONLY = {"normal_load": "--normal-load", "drag_speed": "--drag-speed",
+               "drag_distance": "--drag-distance"}  # fmt: skip
+
+
+def _axial_missing(kw: dict) -> list[str]:
+    """clove-hitch --loading axial: the options it refuses, and the missing ones."""
+    _refuse(kw, {"t_high": "--t-high", "t_low": "--t-low", "hold_time": "--hold-time",
+                 "pull_speed": "--pull-speed", "pull_distance": "--pull-distance",
+                 "rod_length": "--rod-length", "mu_kinetic": "--mu-kinetic"},
+            "with --loading axial (see --drag-speed, --drag-distance)")  # fmt: skip
+    return [] if "normal_load" in kw else ["--normal-load"]
+
+
 def _check_combination(scene: str, args, kw: dict) -> None:
     """Options that depend on another option: all missing ones at once; unused ones refused."""
     missing = []
@@ -479,7 +534,11 @@ def _check_combination(scene: str, args, kw: dict) -> None:
         else:
             _refuse(kw, {"t_high": "--t-high", "hold_time": "--hold-time"},
                     "with --mode pull (the pulled end's force is measured)")  # fmt: skip
+    elif scene == "clove-hitch" and args.loading == "axial":
+        missing += _axial_missing(kw)
     elif scene == "clove-hitch" or scene in HITCH_SCENES:
+        if scene == "clove-hitch":
+            _refuse(kw, _AXIAL_ONLY, "without --loading axial")
         if scene in HITCH_SCENES and args.loading != "free":
             _refuse(kw, {"creep_limit": "--creep-limit"}, "without --loading free")
         if args.loading == "pull":
@@ -512,6 +571,8 @@ def _csv_tables(scene: str, args) -> list[tuple[str, str]]:
     if scene in ("capstan", "two-loops"):
         return [("", "T_high against time and displacement"),
                 ("_tension_profile", "tension along the rod at the end")]  # fmt: skip
+    if scene in AXIAL_SCENES or getattr(args, "loading", None) == "axial":
+        return [("", "axial force and knot travel against the grips' travel")]
     if scene == "pinch":
         return [("", "pull force against time and displacement")]
     if scene == "overhand":
@@ -582,6 +643,13 @@ def _csv_columns(scene: str, res, loading: str | None) -> list[tuple[list[str], 
              [res.times, res.displacement, res.t_high, np.asarray(res.t_high) / res.t_low]),
             (["s_m", "tension_N"], [res.s, res.tension]),
         ]  # fmt: skip
+    if scene in AXIAL_SCENES or loading == "axial":
+        return [
+            (
+                ["time_s", "grip_displacement_m", "axial_force_N", "knot_displacement_m"],
+                [res.times, res.grip_displacement, res.axial_force, res.knot_displacement],
+            )
+        ]
     if scene == "pinch":
         return [(["time_s", "displacement_m", "pull_force_N"],
                  [res.times, res.displacement, res.pull_force])]  # fmt: skip
@@ -689,6 +757,15 @@ def _plot(path: Path, scene: str, res, kw: dict) -> str:
         ax.set_title(f"hold: T_high/T_low = {kw['t_high'] / res.t_low:.4g}, limit "
                      f"exp(mu_eff theta) = {res.exp_mu_eff_theta:.4g}")  # fmt: skip
         what = "high-end displacement against time (creep)"
+    elif hasattr(res, "grip_displacement"):  # the axial drag
+        ax.plot(res.grip_displacement * 1e3, res.axial_force, "k-", lw=1.2,
+                label="DER simulation")  # fmt: skip
+        if np.isfinite(res.sliding_force):
+            ax.axhline(res.sliding_force, color="C3", ls="--",
+                       label=f"sliding force {res.sliding_force:.4g} N")  # fmt: skip
+        ax.set_xlabel("grips' travel along the pole [mm]")
+        ax.set_ylabel("axial force [N]")
+        what = "axial force against the grips' travel, with the sliding force"
     elif scene == "pinch":
         ax.plot(res.displacement * 1e3, res.pull_force, "k-", lw=1.2, label="DER simulation")
         amontons = 2 * res.mu * res.normal_load
@@ -762,6 +839,8 @@ def run(args) -> int:
         res = _run_pulled_knot(scene, kw, args, progress)
     elif scene in LOOP_SCENES:
         res = _run_loop(scene, kw, progress)
+    elif scene in AXIAL_SCENES or (scene == "clove-hitch" and args.loading == "axial"):
+        res = _run_axial(scene, kw, progress)
     elif scene in HITCH_SCENES:
         res = _run_hitch(scene, kw, args, progress)
     else:
@@ -834,6 +913,21 @@ def _run_clove_hitch(kw, args, progress):
             )
             + verdict
         )
+    return res
+
+
+def _run_axial(scene, kw, progress):
+    """A hitch dragged along its pole (knotmech.scenes.axial): sliding force, knot type."""
+    from knotmech.scenes.axial import axial_pull
+
+    res = axial_pull(scene, progress=progress, **kw)
+    kept = "kept" if res.topology_preserved else "CHANGED (a strand passed through another)"
+    slid = (f"slides at {res.sliding_force:.4g} N" if res.slid
+            else f"did not slide up to {res.peak_force:.4g} N")  # fmt: skip
+    print(f"{scene} (axial drag at {res.drag_speed * 1e3:.3g} mm/s, T = {res.normal_load:.4g} N "
+          f"a leg, {res.wraps} turns): status {res.status}; {slid} (peak {res.peak_force:.4g} "
+          f"N, plateau {res.plateau_force:.4g} N); knot type {kept}; "
+          f"{res.stats.get('wall_s', 0.0):.3g} s")  # fmt: skip
     return res
 
 

@@ -302,3 +302,26 @@ CATALOGUE = (
         for name, aliases, summary, pull, defaults, loading in _TIED_BENDS
     ),
 )
+
+# -- hitches pulled along the pole's axis (issue 25, item 3; knotmech.scenes.axial) ---------
+#: the axial sliding test of the clove hitch (the scene of knotmech.scenes.axial)
+SABATER = (
+    "Sabater, Park, Crassous, Neukirch & Reis, J. Mech. Phys. Solids (2026), DOI "
+    "10.1016/j.jmps.2026.106628, arXiv 2604.06962"
+)
+AXIAL_NOTE = "this work: docs/notes/knots-and-curves/axial-hitches.md"
+
+CATALOGUE = (
+    *CATALOGUE,
+    Knot(
+        name="prusik",
+        family="hitch",
+        aliases=("prusik-knot", "prussik", "prusik-hitch"),
+        summary="a closed sling wrapped two to four times round a pole (or a rope) and through "
+        "itself, loaded along the pole by its loop (ABoK #1763)",
+        simulate_help="a Prusik (a sling with --wraps turns a side) on a pole, its loop "
+        "pulled along the pole: sliding force, knot type kept",
+        loading="the sling's loop pulled along the pole (both legs, half the load each)",
+        sources=(AXIAL_NOTE, SABATER),
+    ),
+)

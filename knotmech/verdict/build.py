@@ -11,7 +11,7 @@ import math
 
 import numpy as np
 
-from knotmech.errors import InputError, check_positive
+from knotmech.errors import InputError, check_nonnegative, check_positive
 from knotmech.verdict.criterion import (
     CREEP_CRITERION,
     CREEP_LIMIT,
@@ -121,6 +121,7 @@ def simulate_point(
     knot: str = "clove-hitch",
     progress: bool = False,
     keep_result: bool = False,
+    t_low_fraction: float = 0.0,
 ) -> dict:
     r"""One DER run of a clove hitch with a free end: does it hold :math:`T_\mathrm{high}`?
 
@@ -148,6 +149,10 @@ def simulate_point(
     dimensionless run for every material (1 for the tables' VPS32 rod at kappa 1).
     The returned ``creep_speed`` is in d per real second; ``creep_speed_protocol`` = s x
     ``creep_speed`` is what is compared with ``creep_limit``.
+
+    ``t_low_fraction`` > 0 loads the other end too, with :math:`T_\mathrm{low}` = that
+    fraction of :math:`T_\mathrm{high}` (the scene's ``"asymmetric"`` loading: the cow hitch
+    loaded on both legs, issue 25); the verdict is the same creep criterion on end 0.
 
     ``hold_time`` [protocol s] replaces the protocol's hold. With ``recheck`` (what ``hold
     --simulate`` uses), a run whose creep speed lies in :data:`RECHECK_BAND` around the
@@ -184,9 +189,11 @@ def simulate_point(
     nn, length = _nodes_and_length(knot, geo, n_nodes)
     proto, run_proto, window = _point_protocol(friction, hold_time, ts, knot)
     t_high = tea * E * np.pi * d * d / 4
+    frac = float(check_nonnegative("t_low_fraction", t_low_fraction, scalar=True))
+    legs = {"loading": "asymmetric", "t_low": frac * t_high} if frac > 0 else {"loading": "free"}
     c0 = time.process_time()
     r = scene(
-        loading="free",
+        **legs,
         t_high=t_high,
         rod_diameter=d,
         post_diameter=geo["post_diameter"],
@@ -212,6 +219,7 @@ def simulate_point(
         "d_over_2R": float(d_over_2R),
         "t_over_EA": tea,
         "t_high": float(t_high),
+        "t_low": frac * float(t_high),
         "post_diameter": geo["post_diameter"],
         "n_nodes": int(np.asarray(r.positions).shape[1]) if nn is None else nn,
         "knot": knot,
@@ -248,7 +256,7 @@ def simulate_point(
             youngs_modulus=E, density=density, friction=friction, n_nodes=n_nodes,
             bending_scale=kappa, creep_limit=lim,
             hold_time=RECHECK_HOLD_FACTOR * proto["hold_time"], time_scale=time_scale,
-            knot=knot, progress=progress, keep_result=keep_result,
+            knot=knot, progress=progress, keep_result=keep_result, t_low_fraction=frac,
         )  # fmt: skip
         again["first_creep_speed"] = speed
         again["first_hold_time"] = proto["hold_time"]

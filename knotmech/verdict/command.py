@@ -26,7 +26,7 @@ def _q(value: float, unit: str) -> str:
 
 def simulate_command(
     knot, *, d, D, mu, mu_rr=None, load, material=None, youngs_modulus=None, creep_limit=None,
-    bending_scale=None, pin=None,
+    bending_scale=None, pin=None, free_end_load=None,
 ) -> str:  # fmt: skip
     """The full ``knotmech hold ... --simulate`` command that decides this case by one DER run."""
     parts = ["knotmech", "hold", knot, "--rod-diameter", _q(d, "m")]
@@ -38,6 +38,8 @@ def simulate_command(
     if mu_rr is not None and mu_rr != mu:
         parts += ["--mu-rr", f"{mu_rr:g}"]
     parts += ["--load", _q(load, "N")]
+    if free_end_load:  # the cow hitch loaded on both legs
+        parts += ["--free-end-load", _q(free_end_load, "N")]
     if youngs_modulus is not None:
         parts += ["--youngs-modulus", _q(youngs_modulus, "Pa")]
     elif material is not None:

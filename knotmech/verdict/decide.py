@@ -13,6 +13,7 @@ from dataclasses import dataclass, replace
 from knotmech import knots
 from knotmech.errors import InputError, check_nonnegative, check_positive
 from knotmech.verdict.answer import Verdict
+from knotmech.verdict.axial import AXIAL_HOLD_KNOTS, BOTH_LEGS_KNOTS
 from knotmech.verdict.command import SIMULATE_COST, simulate_command
 from knotmech.verdict.friction import critical_mu, friction_preset, range_words
 from knotmech.verdict.inputs import STRAIN_LIMIT, _bending_scale, _warnings, _youngs_modulus
@@ -166,6 +167,17 @@ def hold(
         )  # fmt: skip
         v = _bend_capacity(v, material)
         return v if friction is None else replace(v, friction=friction)
+    if key in AXIAL_HOLD_KNOTS:  # the Prusik: pulled along its pole (verdict/axial.py)
+        from knotmech.verdict.axial import hold_axial, with_capacity
+
+        v = hold_axial(
+            key, rod_diameter=rod_diameter, post_diameter=post_diameter, mu=mu, load=load,
+            free_end_load=free_end_load, mu_rr=mu_rr, wrap_angle=wrap_angle, material=material,
+            youngs_modulus=youngs_modulus, simulate=simulate, phase_table=phase_table,
+            progress=progress, bending_scale=bending_scale,
+        )  # fmt: skip
+        v = with_capacity(v, material)
+        return v if friction is None else replace(v, friction=friction)
     c = _case(
         key, rod_diameter=rod_diameter, post_diameter=post_diameter, mu=mu, load=load,
         free_end_load=free_end_load, mu_rr=mu_rr, material=material,
@@ -269,8 +281,9 @@ class _Case:
 
     @property
     def simulable(self) -> bool:
-        """Whether one DER run decides this case (a scene, a free end)."""
-        return can_simulate(self.key) and self.free == 0
+        """Whether one DER run decides this case (a scene, a free end; the cow hitch also
+        loaded on both legs)."""
+        return can_simulate(self.key) and (self.free == 0 or self.key in BOTH_LEGS_KNOTS)
 
     def command(self) -> str:
         """The one DER run that decides this case ("" when there is none)."""
@@ -281,7 +294,7 @@ class _Case:
             mu_rr=None if self.mu_rr is None else float(self.mu_rr), load=self.load,
             material=None if self.mat is None else self.mat.key,
             youngs_modulus=self.youngs_modulus, creep_limit=self.creep_limit,
-            bending_scale=self.bending_scale,
+            bending_scale=self.bending_scale, free_end_load=self.free,
         )  # fmt: skip
 
 
@@ -320,10 +333,10 @@ def _check_combination(key, *, mu_rr, simulate, free, phase_table) -> None:
             f"simulate is available for the clove hitch, the hitches with a DER scene and the "
             f"bends, not for {key}"
         )
-    if simulate and free > 0:
+    if simulate and free > 0 and key not in BOTH_LEGS_KNOTS:
         raise InputError(
-            "simulate covers the hitches with a free end only (free_end_load 0; cow hitch: one "
-            "leg loaded, the other free)"
+            "simulate covers the hitches with a free end only (free_end_load 0), and the cow "
+            "hitch on one or both legs"
         )
     if simulate and phase_table is not None:
         raise InputError("give either simulate or phase_table, not both")
@@ -527,11 +540,12 @@ def _der_part(c: _Case, answers: list, assumptions: list, cmd: str):
     """The DER answer of a hitch with one (appended to ``answers``): (details, creep, shape)."""
     if not has_der_answer(c.key):
         return None, None, None
-    if c.free > 0:
+    if c.free > 0 and not (c.simulate and c.key in BOTH_LEGS_KNOTS):
         return {
             "source": "none",
             "holds": None,
-            "message": "the DER phase diagram covers the free end only (T_low = 0)",
+            "message": "the DER phase diagram covers the free end only (T_low = 0)"
+            + (f"; {c.command()} simulates both legs" if c.key in BOTH_LEGS_KNOTS else ""),
         }, None, None  # fmt: skip
     if c.E is None:
         assumptions.append(
@@ -551,6 +565,7 @@ def _der_part(c: _Case, answers: list, assumptions: list, cmd: str):
         load=c.load, E=c.E, simulate=c.simulate, phase_table=c.phase_table,
         progress=c.progress, ideal_holds=ideal, creep_limit=c.creep_limit,
         bending_scale=c.kappa, command=cmd, density=None if c.mat is None else c.mat.density,
+        free_end_load=c.free,
     )  # fmt: skip
     if answer is not None:
         answers.append(answer)

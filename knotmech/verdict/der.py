@@ -231,6 +231,8 @@ class _Query:
     EA: float = math.nan
     ts: float = 1.0
     out: dict = field(default_factory=dict)
+    #: [N] T_low on the other end (the cow hitch loaded on both legs; 0: a free end)
+    free: float = 0.0
 
 
 @dataclass
@@ -279,8 +281,9 @@ def _start(q: _Query) -> _Query:
 def der_answer(
     *, knot="clove-hitch", d, D, mu, mu_rr, load, E, simulate, phase_table, progress,
     ideal_holds, creep_limit=None, bending_scale=1.0, command="", density=None,
+    free_end_load=0.0,
 ):  # fmt: skip
-    """The DER answer for a hitch with a free end.
+    """The DER answer for a hitch with a free end (or, simulated, the cow hitch on both legs).
 
     Parameters
     ----------
@@ -311,6 +314,9 @@ def der_answer(
         protocol time scale within :data:`ROD_RATE_FACTOR` of the rope's.
     command : str
         The command that decides a case the table refuses.
+    free_end_load : float
+        T_low [N] on the other end: 0 (a free end) or, with ``simulate``, the cow hitch's
+        other leg (the scene's asymmetric loading).
 
     Returns
     -------
@@ -326,7 +332,7 @@ def der_answer(
     q = _start(_Query(
         knot=knot, d=d, D=D, mu=mu, mu_rr=mu_rr, load=load, E=E, kappa=float(bending_scale),
         lim=CREEP_LIMIT if creep_limit is None else float(creep_limit), command=command,
-        density=density,
+        density=density, free=float(free_end_load),
     ))  # fmt: skip
     found = _from_simulation(q, progress) if simulate else _from_tables(q, phase_table)
     if found.validity is None:
@@ -385,6 +391,7 @@ def _from_simulation(q: _Query, progress) -> _Found:
         youngs_modulus=q.E, bending_scale=q.kappa, creep_limit=q.lim, recheck=True,
         progress=progress, keep_result=True,
         **({} if q.knot == "clove-hitch" else {"knot": q.knot}),
+        **({"t_low_fraction": q.free / q.load} if q.free > 0 else {}),
         **({} if q.density is None else {"density": float(q.density)}),
     )  # fmt: skip
     shape = _shape(p.get("result"), d=q.d, D=q.D)

@@ -149,7 +149,12 @@ def _scene_function(scene):
 @pytest.mark.parametrize("scene", ["capstan", "pinch", "clove-hitch", "bend", "centreline"])
 def test_defaults_shown_are_the_scene_functions_defaults(scene):
     """A default shown in --help that is a quantity equals the library's default."""
-    params = inspect.signature(_scene_function(scene)).parameters
+    params = dict(inspect.signature(_scene_function(scene)).parameters)
+    if scene == "clove-hitch":  # --loading axial: the drag's options are axial_pull's
+        from knotmech.scenes.axial import axial_pull
+
+        axial = inspect.signature(axial_pull).parameters
+        params.update({o.kwarg: axial[o.kwarg] for o in sim._CLOVE_AXIAL})
     checked = 0
     for o in sim.SCENE_OPTIONS[scene]:
         default = params[o.kwarg].default
@@ -308,6 +313,7 @@ _SCENE_FUNCS = {
     **{name: ("knotmech.scenes.bends", "bend") for name in sim.TIED_BENDS},
     **{name: ("knotmech.scenes.loops", "loop") for name in sim.LOOP_SCENES},
     "centreline": ("knotmech.scenes.centreline", "centreline"),
+    "prusik": ("knotmech.scenes.axial", "axial_pull"),
 }
 _VALUE = st.text(st.sampled_from(list("0123456789.,_-+e mMNkgs/^*%\u2212\uff14")), max_size=8)
 
