@@ -54,6 +54,8 @@ SLOW_MARKERS = (
     "knotmech simulate figure-eight-bend",
     "knotmech simulate double-fishermans",
     "knotmech simulate two-half-hitches",
+    "knotmech simulate bowline",
+    "knotmech simulate prusik",
     "knotmech validate",
     "benchmarks/",
 )
