@@ -20,8 +20,9 @@ from .twist import twist_grad_hess
 
 
 @njit(cache=True)
-def elastic_frames(q, edge_dof0, stencil_edge, t_old, d1_old, rt_old, tangents, lengths,
-                   d1, d2, ref_twist, m1, m2):  # fmt: skip
+def elastic_frames(
+    q, edge_dof0, stencil_edge, t_old, d1_old, rt_old, tangents, lengths, d1, d2, ref_twist, m1, m2
+):
     """Reference frames at ``q`` transported from the step-start frames (``t_old``,
     ``d1_old``, ``rt_old``), then the material frames: the outputs ``tangents`` (n_edges, 3),
     ``lengths`` (n_edges,) [m], ``d1``, ``d2``, ``m1``, ``m2`` (n_edges, 3) and
@@ -33,8 +34,25 @@ def elastic_frames(q, edge_dof0, stencil_edge, t_old, d1_old, rt_old, tangents, 
 
 
 @njit(cache=True)
-def elastic_grad_hess(q, edge_dof0, stencil_edge, rest_length, ea, m1, m2, kappa_bar, ei,
-                      voronoi, ref_twist, twist_bar, gj, grad, hess_s, hess8, with_hess):  # fmt: skip
+def elastic_grad_hess(
+    q,
+    edge_dof0,
+    stencil_edge,
+    rest_length,
+    ea,
+    m1,
+    m2,
+    kappa_bar,
+    ei,
+    voronoi,
+    ref_twist,
+    twist_bar,
+    gj,
+    grad,
+    hess_s,
+    hess8,
+    with_hess,
+):
     """Zero ``grad`` (n_dof,) and add the stretching, bending and twisting gradients [N, N m]
     to it, in that order; write the local Hessians into ``hess_s`` (n_edges, 6, 6) and
     ``hess8`` (n_stencils, 8, 8) unless ``with_hess`` is False. Returns the three energies
