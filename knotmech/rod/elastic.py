@@ -11,9 +11,11 @@ from __future__ import annotations
 import numpy as np
 
 from ._kernels import assembly as _asm
+from ._kernels import bend as _bend
 from ._kernels import elastic_eval as _ev
 from ._kernels import frames as _fr
 from ._kernels import stretch as _st
+from ._kernels import twist as _tw
 
 __all__ = ["ElasticWorkspace"]
 
@@ -59,11 +61,16 @@ class ElasticWorkspace:
         (unless ``hessian`` is False: then they are left stale); the (stretch, bend, twist)
         energies into ``energy_parts``. Call :meth:`frames` first.
         """
-        self.energy_parts = _ev.elastic_grad_hess(
-            q, self._edge_dof0, self._stencil_edge, self._rest_length, self._ea, self.m1,
-            self.m2, self._kappa_bar, self._ei, self._voronoi, self.ref_twist,
-            self._twist_bar, self._gj, self.grad, self.hess_s, self.hess8, bool(hessian),
-        )  # fmt: skip
+        ed0, se, vor, h = self._edge_dof0, self._stencil_edge, self._voronoi, bool(hessian)
+        self.grad[:] = 0.0
+        e_s = _st.stretch_grad_hess(q, ed0, self._rest_length, self._ea, self.grad, self.hess_s, h)
+        e_b = _bend.bend_grad_hess(
+            q, ed0, se, self.m1, self.m2, self._kappa_bar, self._ei, vor, self.grad, self.hess8, h
+        )
+        e_t = _tw.twist_grad_hess(
+            q, ed0, se, self.ref_twist, self._twist_bar, self._gj, vor, self.grad, self.hess8, h
+        )
+        self.energy_parts = (e_s, e_b, e_t)
 
     def band_add(self, ab, full: bool = True) -> None:
         """Add the elastic Hessian into band storage: ``ab`` (31, n_dof) in the dgbsv layout

@@ -290,10 +290,9 @@ class Stepper:
         self.trip.wanted = jacobian and not lazy
         for it in self.interactions:
             it.assemble(s, q, st.q, dt, fext, self.trip)
-        pot, sx, sth, rx, rt, rnorm, strain = _asm.residual_all(
-            self._mass, dt, q, st.q, st.v, ws.grad, fext, self._is_theta, self.free, self.f,
-            ws.lengths, self._rest_length,
-        )  # fmt: skip
+        pot, sx, sth, rx, rt = _asm.residual_and_scales(
+            self._mass, dt, q, st.q, st.v, ws.grad, fext, self._is_theta, self.free, self.f
+        )
         # incremental potential (the merit of the line search): its gradient is f for
         # conservative loads and interactions
         phi = pot + sum(ws.energy_parts)
@@ -303,14 +302,14 @@ class Stepper:
         for it in self.interactions:
             phi += it.energy(s, q)
         self.phi = phi
-        self.rnorm = rnorm  # |f| on the free dofs
+        self.rnorm = _asm.masked_norm(self.f, self.free)  # |f| on the free dofs
         self._eval_dt = dt
         if jacobian:  # the matrix itself is built lazily, by solve()
             np.subtract(self._mass / (dt * dt), jd, out=self.diag)
             self._jac_pending = True
             self._hess_missing = lazy
             self._eval_args = (q, st, dt, t_new) if lazy else None
-        tens = self.ea_max * strain
+        tens = self.ea_max * _asm.max_abs_strain(ws.lengths, self._rest_length)
         return max(sx, tens), sth, rx, rt
 
     def _hessian_may_wait(self) -> bool:

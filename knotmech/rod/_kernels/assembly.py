@@ -202,18 +202,6 @@ def max_abs_strain(lengths, rest_length):
 
 
 @njit(cache=True)
-def residual_all(mass, dt, q, q_old, v_old, grad, fext, is_theta, free, f, lengths, rest_length):
-    """:func:`residual_and_scales`, then |f| over the free dofs (:func:`masked_norm`) and
-    the largest |strain| (:func:`max_abs_strain`), in one call (each kernel compiled on
-    its own: the same bits as the three calls). Returns (potential, sx, st, rx, rt,
-    |f|_free, max |strain|)."""
-    pot, sx, st, rx, rt = residual_and_scales(
-        mass, dt, q, q_old, v_old, grad, fext, is_theta, free, f
-    )
-    return pot, sx, st, rx, rt, masked_norm(f, free), max_abs_strain(lengths, rest_length)
-
-
-@njit(cache=True)
 def band_add_hessians_mapped(edge_dof0, stencil_edge, hess_s, hess8, gmap, off, ab):
     """Add the full elastic Hessian (stretching 6x6 per edge, then bending+twisting
     H11 = P^T H8 P per stencil) into a general band matrix, row/column i of the system
