@@ -37,11 +37,21 @@ cpu_s 52.7 / 52.3 / 45.5; floored (cap_floor 1e-2) 24800 steps, 38204 iterations
 rejection, final force 0.07300 N, tight-phase force ratio floored/imc 0.851 / 0.986 / 1.014.
 Solver glue in numba (issue 24, branch speed; same counts and final force, bit for bit):
 anchor law's process CPU 0.86x the base commit's in alternated pairs (53.1 / 62.4 s at
-load 6-8; about 24-25 s on an idle core). ``--tunnel-check path`` runs the scene with
-``RodContact(tunnel_check="path")`` (the guard tests the path for crossings instead of
-bounding the displacement; docs/notes/contact-and-friction/sticking-law-cap-width.md,
-section 8). Each law's entry reports cpu_s (median) and cpu_s_runs, steps,
-newton_iterations and rejected_steps; target_cpu_s 15 (not met).
+load 6-8; about 24-25 s on an idle core). Issue 24 item 4 (branch speed; envelope LU
+update in place, frame kernels in one call, less per-step glue; same counts and final
+forces, bit for bit): the first 6 s (``--t-end 6``), 6 alternated pairs against the base
+commit 76b5446 at load 4-6, cpu_s medians imc 4.30 / 4.52 s (0.92x), anchor 5.77 / 6.40 s
+(0.89x); full runs, 2 alternated pairs at load 4-6: whole-process CPU 0.90x (0.78-1.03;
+per law too noisy: imc pair ratios 0.80 and 1.23, anchor 0.75 and 0.86); a full run at
+load 2-4: imc cpu_s 30.3, anchor 30.9 (anchor/imc 1.02; the CPU time of this 2-core
+machine rises with the other core's load), so about 22 s per law on an idle core. The
+15 s target needs changed numbers (fewer factorizations, reordered kernel sums): the
+profile of what remains is section 8.3 of
+docs/notes/contact-and-friction/sticking-law-cap-width.md. ``--tunnel-check path`` runs
+the scene with ``RodContact(tunnel_check="path")`` (the guard tests the path for
+crossings instead of bounding the displacement; the same note, section 8). Each law's
+entry reports cpu_s (median) and cpu_s_runs, steps, newton_iterations and rejected_steps;
+target_cpu_s 15 (not met).
 """
 
 from __future__ import annotations

@@ -11,7 +11,12 @@ from __future__ import annotations
 import numpy as np
 
 from knotmech.errors import InputError, check_nonnegative
-from knotmech.rod._kernels.contact_broadphase import brute_pairs, edge_boxes, sweep_pairs
+from knotmech.rod._kernels.contact_broadphase import (
+    brute_pairs,
+    edge_boxes,
+    sort_pairs,
+    sweep_pairs,
+)
 
 __all__ = ["candidate_edge_pairs"]
 
@@ -65,7 +70,7 @@ def candidate_edge_pairs(
         edge_boxes(positions, edge_nodes, inflate, lo, hi)
         pairs = sweep_pairs(lo, hi, edge_nodes, edge_rod, int(exclusion))
         if pairs.shape[0] > 1:
-            pairs = pairs[np.lexsort((pairs[:, 1], pairs[:, 0]))]
+            pairs = sort_pairs(pairs, n_edges)  # the order of the lexsort below
         return pairs
     pos = np.ascontiguousarray(positions, dtype=float)
     en = np.ascontiguousarray(edge_nodes, dtype=np.int64)

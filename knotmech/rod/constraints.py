@@ -95,8 +95,13 @@ class MovingNodes:
         dofs = _cached_dofs(self, system)
         n = dofs.size // 3
         if self.path is not None:
-            x = check_finite("path(t)", self.path(t_new))
-            return np.broadcast_to(x, (n, 3)).ravel().copy()
+            x = self.path(t_new)
+            # per step attempt: the full check only for what is not a finite float array
+            if not (isinstance(x, np.ndarray) and x.dtype == float and np.isfinite(x).all()):
+                x = check_finite("path(t)", x)
+            out = np.empty((n, 3))
+            out[...] = x  # broadcasts (3,) or (n, 3), as np.broadcast_to did
+            return out.ravel()
         v = np.broadcast_to(check_finite("velocity", self.velocity), (n, 3)).ravel()
         return q_old[dofs] + v * dt
 

@@ -225,6 +225,7 @@ class RodContact:
         self._store = (np.zeros(0, dtype=np.int64), np.zeros((0, 2)), np.zeros(0, dtype=bool))
         self._anc = None
         self.pairs = None
+        self._pos_old = None
         self._no_anchor = (
             np.zeros((1, 2)),
             np.zeros(1, dtype=bool),
@@ -296,6 +297,17 @@ class RodContact:
         )
         if self._anchored:
             self._align_anchors(system)
+        # the step start's node positions, gathered once per attempt (assemble() runs at
+        # every Newton iterate with the same q_old)
+        self._pos_old = (q_old, pos)
+
+    def _old_positions(self, system, q_old, nd):
+        """Node positions (n_nodes, 3) at ``q_old``: those gathered by begin_step when
+        ``q_old`` is the array it was given, else gathered now."""
+        cached = self._pos_old
+        if cached is not None and cached[0] is q_old:
+            return cached[1]
+        return np.asarray(q_old, dtype=float)[nd]
 
     def _ensure_pairs(self, system, q):
         if self.pairs is None:
@@ -344,7 +356,7 @@ class RodContact:
         fn = np.empty(npair)
         e, cnt = rodrod_assemble(
             pos,
-            np.asarray(q_old, dtype=float)[nd],
+            self._old_positions(system, q_old, nd),
             float(dt) if dt else 1.0,
             pairs,
             near,
@@ -484,6 +496,7 @@ class RodContact:
             self._anchor_pass(system, q_new, q_old, 1, keep)
         self._store = (keys[keep], anc[keep], slip[keep])
         self._energy_cache = None
+        self._pos_old = None
         self._anc = None  # aligned again by the next begin_step (or energy())
 
     def energy(self, system, q):

@@ -12,6 +12,7 @@ import numpy as np
 
 from ._kernels import assembly as _asm
 from ._kernels import bend as _bend
+from ._kernels import elastic_eval as _ev
 from ._kernels import frames as _fr
 from ._kernels import stretch as _st
 from ._kernels import twist as _tw
@@ -51,11 +52,9 @@ class ElasticWorkspace:
 
     def frames(self, q, tangents_old, d1_old, ref_twist_old) -> None:
         """Reference frames at ``q`` transported from the step-start frames; material frames."""
-        ed0, se = self._edge_dof0, self._stencil_edge
-        _fr.edge_tangents(q, ed0, self.tangents, self.lengths)
-        _fr.transport_frames(tangents_old, d1_old, self.tangents, self.d1, self.d2)
-        _fr.reference_twist(se, self.tangents, self.d1, ref_twist_old, self.ref_twist)
-        _fr.material_frames(q, ed0, self.d1, self.d2, self.m1, self.m2)
+        _ev.elastic_frames(q, self._edge_dof0, self._stencil_edge, tangents_old, d1_old,
+                           ref_twist_old, self.tangents, self.lengths, self.d1, self.d2,
+                           self.ref_twist, self.m1, self.m2)  # fmt: skip
 
     def grad_hess(self, q, hessian: bool = True) -> None:
         """Gradient of the elastic energy into ``grad``; local Hessians into hess_s, hess8

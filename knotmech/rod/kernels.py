@@ -17,7 +17,7 @@ _CORE = (
     "stretch.stretch_grad_hess",
     "bend.bend_grad_hess",
     "twist.twist_grad_hess",
-    "frames.material_frames",
+    "elastic_eval.elastic_frames",
     "envelope.env_factor",
     "envelope.env_solve",
 )

@@ -328,7 +328,13 @@ class RodSystem:
                 f"contact_exclusion must be an integer >= 1, got {self.contact_exclusion!r}"
             )
         object.__setattr__(self, "rods", rods)
-        object.__setattr__(self, "_arrays", self._build(rods))
+        arrays = self._build(rods)
+        object.__setattr__(self, "_arrays", arrays)
+        # the arrays as plain instance attributes (the solver reads them at every Newton
+        # evaluation; __getattr__ below stays for names the class itself defines)
+        for name, value in arrays.items():
+            if not hasattr(type(self), name):
+                object.__setattr__(self, name, value)
 
     def __getattr__(self, name):
         arrays = object.__getattribute__(self, "_arrays")

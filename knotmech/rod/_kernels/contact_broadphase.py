@@ -93,3 +93,20 @@ def brute_pairs(lo, hi, edge_nodes, edge_rod, exclusion):
         res[k, 0] = out[k][0]
         res[k, 1] = out[k][1]
     return res
+
+
+@njit(cache=True)
+def sort_pairs(pairs, n_edges):
+    """``pairs`` (n, 2) with rows (i < j) sorted lexicographically, as a new array (the
+    order of ``np.lexsort((pairs[:, 1], pairs[:, 0]))``: the keys i n_edges + j are
+    unique, so any sort of them gives it)."""
+    n = pairs.shape[0]
+    keys = np.empty(n, dtype=np.int64)
+    for k in range(n):
+        keys[k] = pairs[k, 0] * n_edges + pairs[k, 1]
+    order = np.argsort(keys)
+    out = np.empty((n, 2), dtype=np.int64)
+    for k in range(n):
+        out[k, 0] = pairs[order[k], 0]
+        out[k, 1] = pairs[order[k], 1]
+    return out
