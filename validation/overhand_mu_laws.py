@@ -21,8 +21,9 @@ The runs go in order of information: n = 3 and n = 1 at every mu, then n = 2, th
 
 ``table`` prints one JSON row per finished run: the mean pull force over the tight phase
 (end-to-end window :data:`WINDOWS`), the force at a fixed end-to-end length
-(:data:`AT`), the largest force, steps, Newton iterations, rejected attempts and process
-CPU; ``--figure`` draws the tight-phase mean force against mu, one panel per n, both laws.
+(:data:`AT`), the largest force, the force's sudden drops, steps, Newton iterations,
+rejected attempts and process CPU; ``--figure`` draws the tight-phase mean force against
+mu, one panel per n, both laws.
 """
 
 from __future__ import annotations
@@ -101,7 +102,12 @@ def campaign(out):
 
 
 def row(path):
-    """The table row of one saved run: forces [mN], counts, CPU [s]."""
+    """The table row of one saved run: forces [mN], the end-to-end lengths of the force's
+    sudden drops (:func:`~knotmech.scenes.overhand.inversion_points`, span 5 % as in the
+    sticking note: an inversion, or a stick-slip release of the sticking law), counts,
+    CPU [s]."""
+    from knotmech.scenes.overhand import inversion_points
+
     d = np.load(path)
     meta = json.loads(str(d["meta"]))
     n, e, f, t = meta["turns"], d["end_to_end"], d["pull_force"], d["times"]
@@ -111,10 +117,12 @@ def row(path):
     win = pulling & (e >= lo) & (e <= hi)
     reached = bool(e[pulling].max() >= AT[n])
     f_at = np.interp(AT[n], e[pulling][order], f[pulling][order]) if reached else np.nan
+    inv = inversion_points(e[pulling], f[pulling], span=0.05)
     return dict(law=meta["law"], turns=n, mu=meta["mu"],
                 mean_mN=round(1e3 * float(f[win].mean()), 2) if win.any() else None,
                 at_m=AT[n], force_at_mN=None if np.isnan(f_at) else round(1e3 * float(f_at), 2),
-                max_mN=round(1e3 * float(f[pulling].max()), 1), steps=meta["steps"],
+                max_mN=round(1e3 * float(f[pulling].max()), 1),
+                inversions_m=[round(float(x), 3) for x in inv], steps=meta["steps"],
                 newton_iterations=meta["newton_iterations"], rejected=meta["rejected_steps"],
                 cpu_s=round(meta["cpu_s"], 1), status=meta["status"],
                 knot_end=meta.get("knot_end"))  # fmt: skip
