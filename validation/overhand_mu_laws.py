@@ -46,11 +46,12 @@ LAWS = ("imc", "anchor")
 #: order of the campaign: the most informative knots first
 TURNS_ORDER = (3, 1, 2, 4)
 #: [m] end-to-end window of the tight phase, per n (n = 1, 3: the sticking note's
-#: sections 3 and 5; n = 2, 4: chosen from the regularised law's curves, the knot tight
-#: and before its inversions)
-WINDOWS = {1: (0.30, 0.37), 2: (0.30, 0.40), 3: (0.30, 0.42), 4: (0.30, 0.42)}
+#: sections 5 and 3; the pulls go from the start's end-to-end length, 0.10 m for n = 1, 2,
+#: 0.25 m for n = 3 and 0.20 m for n = 4, 0.27 m further: n = 2 as n = 1, n = 4 with n = 3's
+#: offsets from the start and the end of its pull)
+WINDOWS = {1: (0.30, 0.37), 2: (0.30, 0.37), 3: (0.30, 0.42), 4: (0.25, 0.37)}
 #: [m] end-to-end length at which the force is read, per n
-AT = {1: 0.35, 2: 0.40, 3: 0.45, 4: 0.45}
+AT = {1: 0.35, 2: 0.35, 3: 0.45, 4: 0.40}
 #: cap floor of the anchor law in these runs (the library's default after issue 24)
 CAP_FLOOR = 1e-2
 
