@@ -160,7 +160,7 @@ def figure(rows, png):
         ax.grid(alpha=0.3)
     axes[0][0].set_ylabel("pull force [mN]")
     axes[0][0].legend(fontsize=7)
-    fig.suptitle("coated overhand pulls (151 nodes, 30 mm/s, dt 5 ms)", fontsize=9)
+    fig.suptitle("coated overhand pulls (151 nodes, n = 4: 161; 30 mm/s, dt 5 ms)", fontsize=9)
     fig.tight_layout()
     fig.savefig(png, dpi=110)
 
