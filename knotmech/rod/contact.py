@@ -154,10 +154,14 @@ class RodContact:
         the other between two penalty evaluations (the role of ``colLimit`` in the IMC
         code). It does not stop a penalty that is too soft for the load from being pushed
         through quasi-statically: raise ``stiffness`` for that.
-    tunnel_check : {"displacement", "path"}
-        What the tunnelling guard rejects (default "displacement": any step that moves a
+    tunnel_check : {"displacement", "path"} or None
+        What the tunnelling guard rejects. None (default): "path" with
+        :class:`~knotmech.rod.friction.AnchorFriction`, "displacement" otherwise (issue 24:
+        the path test is part of the sticking law's default; the regularised law keeps the
+        guard its validations were run with). "displacement": any step that moves a
         node of a candidate pair more than ``max_displacement`` radii, as described
-        above). "path": such a step is kept if no edge pair passes through itself on the
+        above (with ``AnchorFriction(cap_floor=0)``, the anchor law as shipped before
+        issue 24). "path": such a step is kept if no edge pair passes through itself on the
         straight path between the two states (every pair within reach of the step's
         motion, found by a broad phase of its own, not only the step's candidates): the
         path is sampled so that no node moves more than min(``max_displacement``, 0.5)
@@ -181,7 +185,7 @@ class RodContact:
     exclusion: int | None = None
     max_displacement: float | None = 0.5
     friction_normal_derivative: bool = True
-    tunnel_check: str = "displacement"
+    tunnel_check: str | None = None
     pairs: np.ndarray = field(default=None, init=False, repr=False)
     last_normal_force: np.ndarray = field(default=None, init=False, repr=False)
 
@@ -193,6 +197,10 @@ class RodContact:
         if self.max_displacement is not None:
             self.max_displacement = float(
                 check_positive("max_displacement", self.max_displacement, scalar=True)
+            )
+        if self.tunnel_check is None:
+            self.tunnel_check = (
+                "path" if isinstance(self.friction, AnchorFriction) else "displacement"
             )
         if self.tunnel_check not in ("displacement", "path"):
             raise InputError(

@@ -537,7 +537,8 @@ def run_hitch(
         :data:`knotmech.scenes._common.MAX_NODE_STEPS`; ``inf`` lifts it).
     friction : {"anchor", "imc"}
         Rod-rod friction law: ``"anchor"`` the elasto-plastic anchor per contact pair, which
-        sticks below ``mu |F_n|`` (:class:`~knotmech.rod.friction.AnchorFriction`); ``"imc"``
+        sticks below ``mu |F_n|`` (:class:`~knotmech.rod.friction.AnchorFriction`, with the
+        library's default cap floor and the path tunnelling guard since issue 24); ``"imc"``
         the regularised law of the implicit contact model (:class:`~knotmech.rod.friction.
         SmoothFriction`), which creeps.
     creep_limit : float or None [d/s]

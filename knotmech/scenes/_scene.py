@@ -185,7 +185,9 @@ def rod_contact(
     Penalty stiffness :math:`K_c = 20 F/d` (overlap about 2.5 % of d under ``force_scale``),
     sharpness :math:`k = 15/(w d)` with w = ``width`` (0.05: the clove-hitch scene's choice);
     friction :class:`knotmech.rod.AnchorFriction` (true sticking below :math:`\mu_s N`,
-    sliding at :math:`\mu_k N`), none when :math:`\mu_s = 0`.
+    sliding at :math:`\mu_k N`; the library's default cap floor and, through
+    :class:`knotmech.rod.RodContact`, the path tunnelling guard), none when
+    :math:`\mu_s = 0`.
 
     Parameters
     ----------

@@ -436,7 +436,7 @@ class BendScene(Scene):
         )
 
     def _contact(self):
-        """Rod-rod contact with the anchor (sticking) friction law as shipped."""
+        """Rod-rod contact with the anchor (sticking) friction law, the library's default."""
         o = self.ropes
         return rod_contact(
             rod_diameter=self.d,
@@ -617,8 +617,10 @@ class BendScene(Scene):
 
 #: the tied bends' friction law: the anchor law with its cap floored at 1e-2 (r_i + r_j),
 #: several times fewer steps in tight knots
-#: (docs/notes/contact-and-friction/sticking-law-cap-width.md)
-TIED_CAP_FLOOR = 1e-2
+#: (docs/notes/contact-and-friction/sticking-law-cap-width.md); the library's default
+#: since issue 24 (:data:`knotmech.rod.friction.CAP_FLOOR`), kept as a name for the tied
+#: bends' results
+TIED_CAP_FLOOR = rod.friction.CAP_FLOOR
 
 
 def _record(kind):
@@ -731,8 +733,10 @@ class TiedBendScene(BendScene):
         if self.mu > 0:
             fr = rod.AnchorFriction(mu_static=self.mu, mu_kinetic=mk, cap_floor=TIED_CAP_FLOOR)
         w = float(check_positive("contact_width", o.contact_width))
-        return rod.RodContact(stiffness=20.0 * self.fs / self.d, sharpness=15.0 / (w * self.d),
-                              friction=fr)  # fmt: skip
+        contact = rod.RodContact(stiffness=20.0 * self.fs / self.d,
+                                 sharpness=15.0 / (w * self.d), friction=fr)  # fmt: skip
+        self.contact_tunnel_check = contact.tunnel_check
+        return contact
 
     def _pull(self, run: SceneRun) -> None:
         """:meth:`BendScene._pull`, the tails' free lengths at its start kept."""
@@ -802,7 +806,10 @@ class TiedBendScene(BendScene):
             da, db = draw[-1]
             roll = float(min(da, db))
             tail = "A" if da > db + 0.5 * self.d else "B" if db > da + 0.5 * self.d else "both"
-        law = f"anchor (sticking) friction, cap floor {TIED_CAP_FLOOR:g} (r_i + r_j)"
+        law = (
+            f"anchor (sticking) friction, cap floor {TIED_CAP_FLOOR:g} (r_i + r_j), "
+            f"tunnel check {self.contact_tunnel_check}"
+        )
         return TiedBendResult(**base, tail_drawn=tail, roll=roll, law=law,
                               invariants_start=self.inv_start,
                               invariants_checked=getattr(self, "inv_checked", {}),

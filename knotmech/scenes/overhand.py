@@ -308,7 +308,9 @@ def overhand(
         contact model and the coated-rod paper (:class:`~knotmech.rod.friction.
         SmoothFriction`, the papers' own, which these scenes reproduce); ``"anchor"`` the
         elasto-plastic anchor that truly sticks (:class:`~knotmech.rod.friction.
-        AnchorFriction`, mu_s = mu_k = ``mu``).
+        AnchorFriction`, mu_s = mu_k = ``mu``, with the library's defaults since issue 24:
+        cap floor :data:`~knotmech.rod.friction.CAP_FLOOR` and the contact's path
+        tunnelling guard; ``validation/overhand_mu_laws.py`` compares the two laws).
 
     Returns
     -------

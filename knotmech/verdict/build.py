@@ -30,7 +30,7 @@ from knotmech.verdict.criterion import (
     needs_recheck,
     protocol_time_scale,
 )
-from knotmech.verdict.tables import _AXES, HoldTable, _num
+from knotmech.verdict.tables import _AXES, ANCHOR_LAW, HoldTable, _num
 
 __all__ = [
     "HOLD_GRID",
@@ -488,7 +488,7 @@ def hold_table_from_results(knot: str, results, *, meta=None) -> HoldTable:
         },
         "what": f"DER {knot} with a free end: creep speed of the loaded end at "
         "(d/2R, T_high/EA, mu = mu_rr)",
-        "law": "anchor (rod-rod AnchorFriction, rod-post anchor friction)",
+        "law": ANCHOR_LAW,
         "generator": "knotmech.scenes.phase_table.build_hold_table (simulate_point per point)",
         "grid": g,
         "rod": {"d_m": ROD_DIAMETER, "E_Pa": YOUNGS_MODULUS, "rho": DENSITY},

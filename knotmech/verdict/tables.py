@@ -14,7 +14,7 @@ from __future__ import annotations
 
 import json
 import math
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 from importlib import resources
 from pathlib import Path
 
@@ -525,6 +525,16 @@ class HoldPoint:
         return f"({self.d_over_2R:.4g}, {self.t_over_EA:.3g}, mu {self.mu:g}) {state}, {why}"
 
 
+#: law of the anchor-law hold tables built since issue 24 (their meta's "law"); a table
+#: whose law names no ``cap_floor`` was built with the law as shipped before
+#: (:attr:`HoldTable.law_note`). The floor is :data:`knotmech.rod.friction.CAP_FLOOR`,
+#: written out rather than imported so that ``hold`` from a table does not load the solver
+#: (tests/verdict/test_law_note.py checks that the two agree).
+ANCHOR_LAW = (
+    "anchor (rod-rod AnchorFriction, cap_floor 0.01, tunnel_check path; rod-post anchor friction)"
+)
+
+
 @dataclass(frozen=True)
 class HoldAnswer:
     """Answer of :meth:`HoldTable.lookup`.
@@ -715,6 +725,17 @@ class HoldTable:
                for p in self.points if p.mu == m[0]]  # fmt: skip
         return PhaseTable(pts, m[0], m[0], {"law": self.law, "knot": self.knot})
 
+    @property
+    def law_note(self) -> str:
+        """One line when the table was built with the anchor law as shipped before issue 24
+        (its meta's law names no ``cap_floor``), "" otherwise."""
+        if "cap_floor" in str(self.meta.get("law", "")):
+            return ""
+        return (
+            "table built with the anchor law as shipped before issue 24 (cap_floor 0, "
+            f"tunnel_check displacement), not the default since: {ANCHOR_LAW}"
+        )
+
     def lookup(
         self,
         d_over_2R: float,
@@ -724,7 +745,14 @@ class HoldTable:
         mu_rr: float | None = None,
         creep_limit: float = CREEP_LIMIT,
     ) -> HoldAnswer:
-        """Hold, slip or undecided at (d/2R, T_high/EA, mu, mu_rr) by the rules above."""
+        """Hold, slip or undecided at (d/2R, T_high/EA, mu, mu_rr) by the rules above; the
+        message ends with :attr:`law_note` when there is one."""
+        a = self._lookup(d_over_2R, t_over_EA, mu=mu, mu_rr=mu_rr, creep_limit=creep_limit)
+        note = self.law_note
+        return replace(a, message=f"{a.message}; {note}") if note else a
+
+    def _lookup(self, d_over_2R, t_over_EA, *, mu, mu_rr, creep_limit) -> HoldAnswer:
+        """:meth:`lookup` without the law note."""
         x, y, m, mr, lim = _hold_query(d_over_2R, t_over_EA, mu, mu_rr, creep_limit)
         ax = self.axes
         xi, xw = _axis(ax["d_over_2R"], x, x)

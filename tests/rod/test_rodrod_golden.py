@@ -8,9 +8,12 @@ pull forces and the step counts of each law, written on that commit by
 
     PYTHONPATH=. python tests/rod/test_rodrod_golden.py write tests/golden/stick.json
 
-(the "floored" entry, cap_floor = 1e-2, was added on branch ``stick``).
+(the "floored" entry, cap_floor = 1e-2, was added on branch ``stick``; the "default"
+entry, the library's anchor law since issue 24, on branch ``law``).
 """
 
+import contextlib
+import functools
 import json
 import sys
 from pathlib import Path
@@ -23,18 +26,30 @@ SLICE = dict(params="coated", n_nodes=151, dt=5e-3, wait_time=0.02, pull_time=0.
              pull_speed=0.03, n_frames=3)  # fmt: skip
 
 
-def golden_run(law, cap_floor=0.0):
-    """One short slice; returns the JSON-able record."""
-    import contextlib
+@contextlib.contextmanager
+def _law(cap_floor, tunnel_check):
+    """Inside the block the overhand scene's anchor law has ``cap_floor`` and its contact
+    ``tunnel_check`` (None: the library's defaults, untouched)."""
+    import knotmech.scenes.overhand as scene
+    from knotmech.rod.contact import RodContact
+    from knotmech.rod.friction import AnchorFriction
 
+    orig = scene.RodContact, scene.AnchorFriction
+    if cap_floor is not None:
+        scene.AnchorFriction = functools.partial(AnchorFriction, cap_floor=cap_floor)
+    if tunnel_check is not None:
+        scene.RodContact = functools.partial(RodContact, tunnel_check=tunnel_check)
+    try:
+        yield
+    finally:
+        scene.RodContact, scene.AnchorFriction = orig
+
+
+def golden_run(law, cap_floor=None, tunnel_check=None):
+    """One short slice; returns the JSON-able record."""
     from knotmech.scenes.overhand import overhand
 
-    ctx = contextlib.nullcontext()
-    if cap_floor:
-        from validation._sticking_census import anchor_cap_floor
-
-        ctx = anchor_cap_floor(cap_floor)
-    with ctx:
+    with _law(cap_floor, tunnel_check):
         r = overhand(3, 0.6, friction=law, **SLICE)
     return dict(
         positions=[float(v).hex() for v in np.ravel(r.snapshots[-1])],
@@ -44,7 +59,17 @@ def golden_run(law, cap_floor=0.0):
     )
 
 
-CASES = {"imc": ("imc", 0.0), "anchor": ("anchor", 0.0), "floored": ("anchor", 1e-2)}
+#: name -> (law, cap_floor, tunnel_check); None: the library's default. "anchor" is the
+#: anchor law as shipped before issue 24 (cap_floor 0, displacement guard), pinned to the
+#: base commit's bits; "default" the library's anchor law since issue 24 (cap_floor
+#: 1e-2, path guard: 24 steps on this slice where "floored" takes 33, its displacement
+#: guard halving the step after the first contacts' fast slides).
+CASES = {
+    "imc": ("imc", None, None),
+    "anchor": ("anchor", 0.0, "displacement"),
+    "floored": ("anchor", 1e-2, "displacement"),
+    "default": ("anchor", None, None),
+}
 
 
 @pytest.mark.parametrize("name", sorted(CASES))

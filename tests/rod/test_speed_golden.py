@@ -10,7 +10,8 @@ was written on the base commit 9a101fa, before any optimisation, by
     PYTHONPATH=. python tests/rod/test_speed_golden.py write tests/golden/speed_golden.json
 
 and is compared BIT-IDENTICALLY: the optimisations move work, they do not reorder any
-arithmetic.
+arithmetic. ``overhand_anchor`` and ``clove_pull`` were regenerated on branch ``law``
+(issue 24: the anchor law's default became cap_floor 1e-2 with the path guard).
 """
 
 import json

@@ -112,8 +112,11 @@ def test_pull_starts_pretensioned_and_stretches_part_of_the_rod(pulled):
     sel = r.pull_displacement <= 2.05e-3
     k = np.polyfit(r.pull_displacement[sel], r.pull_force[sel], 1)[0]
     assert ea / (tail + 4 * np.pi * R) < k < ea / tail
-    # rising over the pull, below the ideal-rope sliding ratio exp(mu 4 pi) = 55.8
-    assert np.all(np.diff(r.pull_force) > 0)
+    # rising over the pull, below the ideal-rope sliding ratio exp(mu 4 pi) = 55.8; the
+    # sticking law's small slips may drop it by a fraction of a percent between frames
+    # (issue 24's default law: 0.16 % at 1.3 mm, 0.7299 -> 0.7287 N)
+    assert np.all(np.diff(r.pull_force) > -5e-3 * r.pull_force[1:])
+    assert r.pull_force[-1] > 1.5 * r.pull_force[0]
     assert r.ratio_curve[0] < r.ratio_at(0.005) < r.ratio_at(0.01) < np.exp(0.32 * 4 * np.pi)
     assert np.isnan(r.ratio_at(0.02))
 

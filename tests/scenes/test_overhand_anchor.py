@@ -7,6 +7,8 @@ at 6 mm/s); the full benchmark case is in benchmarks/overhand.py (docs/notes/fri
 force ratio 0.92-1.01 in its tight phase).
 """
 
+import json
+
 import numpy as np
 import pytest
 
@@ -37,3 +39,27 @@ def test_anchor_law_follows_the_imc_force_curve_in_the_tight_phase():
     f_anc = np.interp(imc.end_to_end[tight], anc.end_to_end[order], anc.pull_force[order])
     ratio = f_anc / imc.pull_force[tight]
     assert np.all(np.abs(ratio - 1.0) < 0.15), ratio
+
+
+#: [mN] the regularised law's tight-phase mean force of the coated n = 3 pull (quick mesh,
+#: end-to-end 0.30-0.42 m), measured by ``python -m validation.overhand_mu_laws run``
+#: (docs/notes/contact-and-friction/sticking-law-cap-width.md, section 9)
+IMC_N3_MEAN_MN = {0.2: 17.94, 0.6: 74.85}
+
+
+@pytest.mark.slow
+@pytest.mark.parametrize("mu", sorted(IMC_N3_MEAN_MN))
+def test_default_anchor_law_follows_mu_in_the_tight_coated_n3_knot(tmp_path, mu):
+    """Issue 24: with the default law (cap floor 1e-2, path guard) the tight-phase force
+    of the coated n = 3 knot follows mu as the regularised law's does, within 15 % (the
+    law as shipped before gave 40-50 mN at 0.45 m for every mu)."""
+    from validation import overhand_mu_laws as om
+
+    r = overhand(3, mu, params="coated", n_frames=om.N_FRAMES, friction="anchor", **om.QUICK)
+    assert r.status == "success", r.message
+    path = tmp_path / "run.npz"
+    meta = dict(law="anchor", mu=mu, turns=3, cpu_s=0.0, status=r.status, **r.stats)
+    np.savez(path, end_to_end=r.end_to_end, pull_force=r.pull_force, times=r.times,
+             meta=json.dumps(meta))  # fmt: skip
+    mean = om.row(str(path))["mean_mN"]
+    assert mean == pytest.approx(IMC_N3_MEAN_MN[mu], rel=0.15)

@@ -1,0 +1,72 @@
+"""Benchmark: one heavy fibre-rope clove-hitch point against the solid rod (issue 23 item 4).
+
+One hold-table point of the clove hitch (:func:`knotmech.verdict.build.simulate_point`,
+the tables' protocol, a free end) at d/2R = 0.1176, T_high/EA = 0.1, mu = mu_rr = 0.3,
+run with the fibre rope's bending scale kappa = 0.01 and with the solid rod (kappa = 1),
+both with the library's default rod-rod law (the anchor law with cap floor
+:data:`knotmech.rod.friction.CAP_FLOOR` and the path tunnelling guard, issue 24).
+Prints JSON: for each kappa the verdict, creep speed, steps, Newton iterations,
+rejected attempts and process CPU [s]; and the kappa/solid ratios of steps and CPU.
+Target: the kappa point costs at most about 2x the solid-rod point (before issue 24:
+300-650 s of CPU, 15x the steps of a solid rod, one of four failed in the solver).
+
+    OPENBLAS_NUM_THREADS=1 NUMBA_NUM_THREADS=1 python benchmarks/kappa_point.py \
+        [--kappa 0.01] [--t-over-ea 0.1]
+
+Measured (branch law, issue 24's default law, shared 2-core machine at load 1-4, one run):
+kappa 0.01 holds (creep 8.4e-10 d/s), 1176 steps, 3015 Newton iterations, 48 rejected,
+17.7 s CPU; solid rod holds (1.1e-9 d/s), 1079 steps, 2265 iterations, 24 rejected,
+12.1 s CPU: **steps 1.09x, CPU 1.46x** (target 2x: met).
+"""
+
+from __future__ import annotations
+
+import argparse
+import json
+import time
+
+from knotmech.verdict.build import simulate_point
+
+POINT = dict(d_over_2R=0.1176, mu=0.3)
+TARGET_RATIO = 2.0
+
+
+def run_point(kappa: float, t_over_EA: float) -> dict:
+    """One point at bending scale ``kappa``: verdict, counts and process CPU [s]."""
+    c0 = time.process_time()
+    r = simulate_point(t_over_EA=t_over_EA, bending_scale=kappa, keep_result=True, **POINT)
+    cpu = time.process_time() - c0
+    stats = r["result"].stats
+    return {
+        "bending_scale": kappa,
+        "verdict": r["verdict"],
+        "creep_speed_d_per_s": r["creep_speed"],
+        "status": r["status"],
+        "steps": int(stats.get("steps", 0)),
+        "newton_iterations": int(stats.get("newton_iterations", 0)),
+        "rejected_steps": int(stats.get("rejected_steps", 0)),
+        "cpu_s": round(cpu, 1),
+    }
+
+
+def main(argv=None) -> None:
+    ap = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    ap.add_argument("--kappa", type=float, default=0.01, help="fibre rope's bending scale")
+    ap.add_argument("--t-over-ea", type=float, default=0.1, help="T_high/EA of the point")
+    a = ap.parse_args(argv)
+    fibre = run_point(a.kappa, a.t_over_ea)
+    solid = run_point(1.0, a.t_over_ea)
+    out = {
+        "point": {**POINT, "t_over_EA": a.t_over_ea},
+        "law": "anchor, library defaults (cap_floor 1e-2, tunnel_check path)",
+        "fibre": fibre,
+        "solid": solid,
+        "steps_ratio": fibre["steps"] / max(solid["steps"], 1),
+        "cpu_ratio": fibre["cpu_s"] / max(solid["cpu_s"], 1e-9),
+        "target_ratio": TARGET_RATIO,
+    }
+    print(json.dumps(out, indent=1, default=str))
+
+
+if __name__ == "__main__":
+    main()
