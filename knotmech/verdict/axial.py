@@ -9,6 +9,7 @@ import math
 
 from knotmech import knots
 from knotmech.errors import InputError, check_nonnegative, check_positive
+from knotmech.verdict._run import run_answer
 from knotmech.verdict.answer import Verdict
 from knotmech.verdict.command import simulate_command
 from knotmech.verdict.inputs import _bending_scale, _warnings, _youngs_modulus
@@ -141,12 +142,9 @@ def _outcome(key, r, load):
 
 def _answer(key, r, holds, capacity, load, kappa, message):
     """The drag's deciding :class:`~knotmech.analytic.hitch.ModelAnswer`."""
-    from knotmech.analytic.hitch import ModelAnswer
-
     rec = knots.get(key)
-    return ModelAnswer(
-        model="DER-simulation", holds=bool(holds), margin=capacity / load - 1,
-        capacity=capacity, critical_mu=math.nan, decides=True, inside_validity=True,
+    return run_answer(
+        holds=holds, capacity=capacity, load=load,
         assumptions=(
             f"an elastic rod (B = kappa E pi d^4/64, kappa = {kappa:g}) on a rigid pole, "
             f"sticking friction; {rec.loading}, set at {SET_FRACTION:g} x the load on each "
@@ -154,8 +152,7 @@ def _answer(key, r, holds, capacity, load, kappa, message):
             f"slides: the wraps travel {r.slide_distance * 1e3:.3g} mm (one rod diameter)",
         ),
         validity=("one DER drag of this knot at this d, D, E and mu",),
-        reference="; ".join(rec.sources) + "; knotmech.scenes.axial",
-        notes=(message,),
+        reference="; ".join(rec.sources) + "; knotmech.scenes.axial", message=message,
     )  # fmt: skip
 
 

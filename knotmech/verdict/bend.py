@@ -9,6 +9,7 @@ import math
 from knotmech import knots
 from knotmech.errors import InputError, check_nonnegative, check_positive
 from knotmech.knots.catalogue import PATIL
+from knotmech.verdict._run import refuse_inputs, run_answer
 from knotmech.verdict.answer import Verdict
 from knotmech.verdict.command import simulate_command
 from knotmech.verdict.inputs import _bending_scale, _warnings, _youngs_modulus
@@ -96,15 +97,11 @@ def _note(key) -> str:
 
 def _refuse_post_inputs(key, *, post_diameter, mu_rr, wrap_angle, phase_table, free_end_load):
     """A bend has no post, no second friction, no wrap, no table and no free end."""
-    for name, val in (("post_diameter", post_diameter), ("mu_rr", mu_rr),
-                      ("wrap_angle", wrap_angle), ("phase_table", phase_table)):  # fmt: skip
-        if val is not None:
-            raise InputError(
-                f"{name} does not apply to a bend ({key}: two ropes pulled apart, no post; "
-                "mu is the rope-rope friction)"
-            )
-    if float(free_end_load or 0.0) != 0.0:
-        raise InputError(f"free_end_load does not apply to a bend ({key}: no free end)")
+    refuse_inputs(
+        key, "bend", "two ropes pulled apart, no post; mu is the rope-rope friction",
+        free_end="no free end", post_diameter=post_diameter, mu_rr=mu_rr,
+        wrap_angle=wrap_angle, phase_table=phase_table, free_end_load=free_end_load,
+    )  # fmt: skip
 
 
 def _pull(key, *, d, E, mu, load, mat, kappa, progress):
@@ -154,16 +151,13 @@ def _pull_outcome(key, r, load):
 
 def _pull_answer(key, r, holds, capacity, load, kappa, message):
     """The pull's deciding :class:`~knotmech.analytic.hitch.ModelAnswer`."""
-    from knotmech.analytic.hitch import ModelAnswer
-
     rec = knots.get(key)
     law = getattr(r, "law", "") or "sticking rod-rod friction"
     loading = rec.loading or "set by hand then pulled apart"
     reference = (PATIL + "; knotmech.scenes.bends" if _patil(rec)
                  else "; ".join(rec.sources) + "; knotmech.scenes.bends")  # fmt: skip
-    return ModelAnswer(
-        model="DER-simulation", holds=bool(holds), margin=capacity / load - 1,
-        capacity=capacity, critical_mu=math.nan, decides=True, inside_validity=True,
+    return run_answer(
+        holds=holds, capacity=capacity, load=load,
         assumptions=(
             f"two elastic rods (B = kappa E pi d^4/64, kappa = {kappa:g}), {law}, "
             f"{loading} at {r.pull_speed * 1e3:g} mm/s",
@@ -171,6 +165,5 @@ def _pull_answer(key, r, holds, capacity, load, kappa, message):
             "within 10 % of its largest value",
         ),
         validity=("one DER pull of the bend at this d, E and mu",),
-        reference=reference,
-        notes=(message,),
+        reference=reference, message=message,
     )  # fmt: skip

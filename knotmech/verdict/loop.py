@@ -10,6 +10,7 @@ from dataclasses import replace
 
 from knotmech import knots
 from knotmech.errors import InputError, check_nonnegative, check_positive
+from knotmech.verdict._run import refuse_inputs, run_answer
 from knotmech.verdict.answer import Verdict
 from knotmech.verdict.bend import BEND_WALL_RATE, _pull_outcome
 from knotmech.verdict.command import simulate_command
@@ -106,15 +107,12 @@ def _note(key) -> str:
 
 def _refuse(key, *, post_diameter, mu_rr, wrap_angle, phase_table, free_end_load):
     """A loop has a pin (not a post), one friction, no wrap, no table, a free tail."""
-    for name, val in (("post_diameter", post_diameter), ("mu_rr", mu_rr),
-                      ("wrap_angle", wrap_angle), ("phase_table", phase_table)):  # fmt: skip
-        if val is not None:
-            raise InputError(
-                f"{name} does not apply to a loop ({key}: its eye round a pin, give "
-                "pin_diameter; mu is the rope-rope and rope-pin friction)"
-            )
-    if float(free_end_load or 0.0) != 0.0:
-        raise InputError(f"free_end_load does not apply to a loop ({key}: the tail is free)")
+    refuse_inputs(
+        key, "loop", "its eye round a pin, give pin_diameter; mu is the rope-rope and "
+        "rope-pin friction", free_end="the tail is free", post_diameter=post_diameter,
+        mu_rr=mu_rr, wrap_angle=wrap_angle, phase_table=phase_table,
+        free_end_load=free_end_load,
+    )  # fmt: skip
 
 
 def _pull(key, *, d, D, E, mu, load, mat, kappa, progress):
@@ -147,12 +145,9 @@ def _pull(key, *, d, D, E, mu, load, mat, kappa, progress):
 
 def _answer(key, r, holds, capacity, load, kappa, message):
     """The pull's deciding :class:`~knotmech.analytic.hitch.ModelAnswer`."""
-    from knotmech.analytic.hitch import ModelAnswer
-
     rec = knots.get(key)
-    return ModelAnswer(
-        model="DER-simulation", holds=bool(holds), margin=capacity / load - 1,
-        capacity=capacity, critical_mu=math.nan, decides=True, inside_validity=True,
+    return run_answer(
+        holds=holds, capacity=capacity, load=load,
         assumptions=(
             f"one elastic rod (B = kappa E pi d^4/64, kappa = {kappa:g}), {r.law}, "
             f"{rec.loading} at {r.pull_speed * 1e3:g} mm/s, pin diameter "
@@ -161,8 +156,7 @@ def _answer(key, r, holds, capacity, load, kappa, message):
             "force stays within 10 % of its largest value",
         ),
         validity=("one DER pull of the loop at this d, D, E and mu",),
-        reference="; ".join(rec.sources) + "; knotmech.scenes.loops",
-        notes=(message,),
+        reference="; ".join(rec.sources) + "; knotmech.scenes.loops", message=message,
     )  # fmt: skip
 
 
