@@ -64,11 +64,10 @@ from ._common import finish, output_dir, save_figure, to_jsonable
 NAME = "diagnose_campaign"
 #: one sentence for the validation page: what this case checks, and against what
 SUMMARY = (
-    "knotmech diagnose on fresh recordings of two generators independent of synth.py (one "
-    "to tune on, one held out): catalogue effects found with a held-out improvement "
-    "(target >= 90 % at 3-10 sd), nulls flagged under white, AR(1), AR(2), 1/f and outlier "
-    "noise (target <= 5 %), out-of-catalogue shapes unexplained (target >= 75 % at >= 6 sd, "
-    "50 rows included), each rate with its Wilson 95 % interval."
+    "knotmech diagnose's verdicts against the effects planted in fresh recordings of a "
+    "tune and a held-out generator: effects found with a held-out improvement (target >= "
+    "90 %), nulls flagged under five noises (<= 5 %), out-of-catalogue shapes unexplained "
+    "(>= 75 %), each rate with its Wilson 95 % interval."
 )
 
 NULL_NOISES = ("white", "ar1", "ar2", "pink", "outliers")

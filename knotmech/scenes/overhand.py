@@ -310,7 +310,7 @@ def overhand(
         elasto-plastic anchor that truly sticks (:class:`~knotmech.rod.friction.
         AnchorFriction`, mu_s = mu_k = ``mu``, with the library's defaults since issue 24:
         cap floor :data:`~knotmech.rod.friction.CAP_FLOOR` and the contact's path
-        tunnelling guard; ``validation/overhand_mu_laws.py`` compares the two laws).
+        tunnelling guard; ``validation/_overhand_mu_laws.py`` compares the two laws).
 
     Returns
     -------

@@ -42,7 +42,7 @@ def test_anchor_law_follows_the_imc_force_curve_in_the_tight_phase():
 
 
 #: [mN] the regularised law's tight-phase mean force of the coated n = 3 pull (quick mesh,
-#: end-to-end 0.30-0.42 m), measured by ``python -m validation.overhand_mu_laws run``
+#: end-to-end 0.30-0.42 m), measured by ``python -m validation._overhand_mu_laws run``
 #: (docs/notes/contact-and-friction/sticking-law-cap-width.md, section 9)
 IMC_N3_MEAN_MN = {0.2: 17.94, 0.6: 74.85}
 
@@ -53,7 +53,7 @@ def test_default_anchor_law_follows_mu_in_the_tight_coated_n3_knot(tmp_path, mu)
     """Issue 24: with the default law (cap floor 1e-2, path guard) the tight-phase force
     of the coated n = 3 knot follows mu as the regularised law's does, within 15 % (the
     law as shipped before gave 40-50 mN at 0.45 m for every mu)."""
-    from validation import overhand_mu_laws as om
+    from validation import _overhand_mu_laws as om
 
     r = overhand(3, mu, params="coated", n_frames=om.N_FRAMES, friction="anchor", **om.QUICK)
     assert r.status == "success", r.message

@@ -1,11 +1,11 @@
-"""The table of validation/overhand_mu_laws.py: forces read from a saved pull."""
+"""The table of validation/_overhand_mu_laws.py: forces read from a saved pull."""
 
 import json
 
 import numpy as np
 import pytest
 
-from validation import overhand_mu_laws as om
+from validation import _overhand_mu_laws as om
 
 
 def _save(path, e, f, t, **meta):

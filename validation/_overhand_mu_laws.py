@@ -17,8 +17,8 @@ the same whatever the defaults are. Each run is saved as ``OUT/{law}_n{n}_mu{mu}
 (curve, solver counts, CPU) and skipped if present, so an interrupted campaign resumes.
 The runs go in order of information: n = 3 and n = 1 at every mu, then n = 2, then n = 4.
 
-    OPENBLAS_NUM_THREADS=1 nice -n 5 python -m validation.overhand_mu_laws run OUT
-    python -m validation.overhand_mu_laws table OUT [--figure docs/img/overhand_mu_laws.png]
+    OPENBLAS_NUM_THREADS=1 nice -n 5 python -m validation._overhand_mu_laws run OUT
+    python -m validation._overhand_mu_laws table OUT [--figure docs/img/overhand_mu_laws.png]
 
 ``table`` prints one JSON row per finished run: the mean pull force over the tight phase
 (end-to-end window :data:`WINDOWS`), the force at a fixed end-to-end length
