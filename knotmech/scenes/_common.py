@@ -194,8 +194,21 @@ def fail(status: str, message: str, reason: str | None) -> tuple[str, str]:
 MAX_POST_RATIO = 1000.0
 
 
+#: the thickest rod a post scene ties, in post diameters: its start curve's length (and
+#: node count) grows with d, so a mistyped rod diameter (8 m on a 30 mm post) would build a
+#: curve of millions of nodes before the run-size check could refuse it
+MAX_ROD_RATIO = 10.0
+
+
 def check_post_size(post_diameter: float, rod_diameter: float, scene: str) -> None:
-    """Refuse a post above :data:`MAX_POST_RATIO` rod diameters (InputError, one line)."""
+    """Refuse a post above :data:`MAX_POST_RATIO` rod diameters, or a rod above
+    :data:`MAX_ROD_RATIO` post diameters (InputError, one line)."""
+    if rod_diameter > MAX_ROD_RATIO * post_diameter:
+        raise InputError(
+            f"rod_diameter / post_diameter = {rod_diameter / post_diameter:.3g} is above "
+            f"{MAX_ROD_RATIO:g}: a DER {scene} is tied with rods up to {MAX_ROD_RATIO:g} "
+            "post diameters (check the units of both)"
+        )
     if post_diameter > MAX_POST_RATIO * rod_diameter:
         raise InputError(
             f"post_diameter / rod_diameter = {post_diameter / rod_diameter:.3g} is above "

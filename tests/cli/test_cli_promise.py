@@ -459,7 +459,9 @@ _QUICK = settings(
         HealthCheck.function_scoped_fixture,
     ],  # fmt: skip
 )
-_CAMPAIGN = _QUICK
+#: the campaign is seeded too (derandomize): CI is a gate, and the same 2,665 examples run
+#: on every machine; explore new seeds with --hypothesis-seed=N
+_CAMPAIGN = settings(_QUICK, derandomize=True)
 
 #: examples per scene / command in the default suite (seeded) and in the campaign
 _SIMULATE_N, _SIMULATE_SLOW = 12, 150
@@ -566,11 +568,21 @@ def test_a_dash_for_a_file_output_is_refused(stubbed, argv):
          "--post-diameter", "1e+300mm"],
         # and an UnboundLocalError in the tied bends' topology check of a run with no frame
         ["simulate", "bend", "--no-progress", "--mu", "1", "--kind", "sheet-bend"],
+        # session 12: a 1e12 mm rod on the default 30 mm post built a start curve of 7e12
+        # nodes (54 TiB) before any size check; now refused above 10 post diameters
+        ["simulate", "cow-hitch", "--no-progress", "--loading", "free", "--t-high", "0.1N",
+         "--mu", "0.6", "--hold-time", "0.4s", "--rod-diameter", "1e+12mm"],
+        # and a settle of 1e-12 s with the run cut at its start frame
+        ["simulate", "cow-hitch", "--no-progress", "--loading", "free", "--t-high", "0.1N",
+         "--mu", "0.6", "--hold-time", "0.4s", "--settle-time", "1e-12s"],
     ],
 )  # fmt: skip
 def test_campaign_findings_keep_the_promise(stubbed, argv):
     check_promise(argv, stubbed)
     code, _, err, _ = _call(argv)
-    assert code == (2 if "capstan" in argv else 1)
-    if code == 2:
+    expected = 2 if ("capstan" in argv or "1e+12mm" in argv) else 1
+    assert code == expected
+    if "capstan" in argv:
         assert "post_diameter / rod_diameter = 2.5e+299 is above 1000" in err
+    elif code == 2:
+        assert "rod_diameter / post_diameter = 3.33e+10 is above 10" in err
