@@ -628,6 +628,26 @@ def _post_frame(axis):
     return e1, e2, a
 
 
+#: the longest straight tail a wrapped start curve is built with, in rod diameters: the
+#: tail is sampled at the wrap's point spacing (0.05-0.1 d) before it is resampled to the
+#: rod's nodes, so a mistyped rod length (2.7e5 m for a 4 mm rod) would allocate
+#: hundreds of millions of points before any run-size check (the slow CLI campaign's
+#: MemoryError)
+MAX_TAIL_RATIO = 1.0e4
+
+
+def _check_tail(tail_length: float, rod_diameter: float) -> float:
+    """``tail_length`` [m], refused (InputError, one line) above :data:`MAX_TAIL_RATIO`
+    rod diameters."""
+    tl = float(check_positive("tail_length", tail_length, scalar=True))
+    if tl > MAX_TAIL_RATIO * rod_diameter:
+        raise InputError(
+            f"a straight tail of {tl:.3g} m is {tl / rod_diameter:.3g} rod diameters, above "
+            f"{MAX_TAIL_RATIO:g}: shorten the rod (check the units of rod_length)"
+        )
+    return tl
+
+
 def _wrapped(psi, z, rho, tail_len, frame, center, n_nodes, rod_length=None):
     """Curve from cylindrical coordinates along the wraps, plus tangent tails."""
     e1, e2, a = frame
@@ -676,7 +696,7 @@ def coil_curve(
     D = float(check_positive("post_diameter", post_diameter, scalar=True))
     d = float(check_positive("rod_diameter", rod_diameter, scalar=True))
     th = float(check_positive("wrap_angle", wrap_angle, scalar=True))
-    tl = float(check_positive("tail_length", tail_length, scalar=True))
+    tl = _check_tail(tail_length, d)
     pf = float(check_range("pitch_factor", pitch_factor, 1.0, 100.0, scalar=True))
     N = check_count("n_nodes", n_nodes, 20)
     R = 0.5 * (D + d)
@@ -789,7 +809,7 @@ def clove_hitch_curve(
     """
     D = float(check_positive("post_diameter", post_diameter, scalar=True))
     d = float(check_positive("rod_diameter", rod_diameter, scalar=True))
-    tl = float(check_positive("tail_length", tail_length, scalar=True))
+    tl = _check_tail(tail_length, d)
     g = float(check_range("gap", gap, 1.0, 50.0, scalar=True))
     lf = float(check_range("lift", lift, 1.0, 10.0, scalar=True))
     N = check_count("n_nodes", n_nodes, 40)
