@@ -21,7 +21,8 @@ InputError line naming it before any run (the solver is stubbed: nothing runs).
 The default run is derandomized and small (20 examples per function, about 20 s in
 all); ``-m slow`` runs a random campaign of 100 examples per function and 600 texts for
 ``parse_quantity`` (about 5,000 calls, about 1 min). What it found in ``hitch.py``
-(another helper's) is kept as strict xfails (:data:`HITCH_PENDING`).
+(a message naming no argument, bare broadcast ValueErrors, an infinite ideal ratio at
+mu >= 57) is fixed (session 13).
 """
 
 from __future__ import annotations
@@ -123,30 +124,9 @@ SAMPLES = {
 }
 
 
-#: what this test found in hitch.py (issue 27) and is not fixed yet; each entry is a
-#: strict xfail: remove it when hitch.py is fixed and the case passes
-HITCH_PENDING = {
-    "ideal_hitch_ratio": "hitch.py ideal_hitch_ratio returns inf when exp(mu*wrap) overflows "
-    "(mu >= 57 on the clove hitch): refuse it as capstan._finite_result does",
-}
-#: a message of hitch.py that names no argument (hitch.py:185, 'the thick-nip model is not
-#: derived for the cow-hitch'): tolerated in the random runs, a strict xfail in
-#: test_every_knot_name_gives_an_answer_or_a_message_naming_knot until it says 'knot: ...'
-PENDING_MESSAGE = "the thick-nip model is not derived for the"
-
-
-def _names(campaign=False):
-    """The functions as pytest params, the cases of :data:`HITCH_PENDING` as strict xfails
-    (and, in the campaign, those of :data:`BROADCAST_PENDING` as non-strict ones)."""
-    params = []
-    for n in sorted(FUNCTIONS):
-        if n in HITCH_PENDING:
-            n = pytest.param(n, marks=pytest.mark.xfail(reason=HITCH_PENDING[n], strict=True))
-        elif campaign and n in BROADCAST_PENDING:
-            reason = "hitch.py: arrays that do not broadcast raise a bare ValueError"
-            n = pytest.param(n, marks=pytest.mark.xfail(reason=reason, strict=False))
-        params.append(n)
-    return params
+def _names():
+    """The functions' names, sorted."""
+    return sorted(FUNCTIONS)
 
 
 def _sample(name: str) -> dict:
@@ -160,7 +140,6 @@ def test_every_public_function_has_a_valid_sample_that_returns_finite_numbers():
         _assert_finite(name, func(**_sample(name)))
 
 
-@pytest.mark.xfail(reason="hitch.py:185 names no argument (see PENDING_MESSAGE)", strict=True)
 def test_every_knot_name_gives_an_answer_or_a_message_naming_knot():
     """Each function of a knot, at each name of KNOTS: finite numbers or 'knot ...'."""
     for name, func in FUNCTIONS.items():
@@ -177,29 +156,9 @@ def _numeric_arguments(name):
     return [p for p, v in _sample(name).items() if isinstance(v, (int, float)) and p != "turns"]
 
 
-#: hitch.py functions (another helper's) that raise a bare ValueError on arrays that do not
-#: broadcast; strict xfails here, non-strict in the random campaign (which may not draw it)
-BROADCAST_PENDING = frozenset(
-    ("thick_hitch_ratio", "hitch_holds", "hitch_margin", "hitch_critical_mu", "nip_factor")
-)
-
-
 @pytest.mark.parametrize(
     "name",
-    [
-        pytest.param(
-            n,
-            marks=pytest.mark.xfail(
-                reason="hitch.py: arrays that do not broadcast raise a bare ValueError "
-                "(decorate with knotmech.errors.vectorised)",
-                strict=True,
-            ),
-        )
-        if n in BROADCAST_PENDING
-        else n
-        for n in sorted(FUNCTIONS)
-        if len(_numeric_arguments(n)) >= 2 and n != "hold_verdict"
-    ],
+    [n for n in sorted(FUNCTIONS) if len(_numeric_arguments(n)) >= 2 and n != "hold_verdict"],
 )
 def test_arrays_that_do_not_broadcast_are_refused_naming_both(name):
     """Two array arguments of shapes (2,) and (3,): InputError naming the two."""
@@ -296,7 +255,7 @@ def _call(name, func, kwargs, names_in_message):
     except InputError as e:
         msg = str(e)
         assert msg and "\n" not in msg, f"{name}({kwargs!r}): message not one line: {msg!r}"
-        assert msg.startswith(PENDING_MESSAGE) or any(n in msg for n in names_in_message), (
+        assert any(n in msg for n in names_in_message), (
             f"{name}({kwargs!r}): message names no argument: {msg!r}"
         )
     else:
@@ -391,7 +350,7 @@ def test_parse_quantity_returns_a_finite_float_or_one_line(data):
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("name", _names(campaign=True))
+@pytest.mark.parametrize("name", _names())
 @_CAMPAIGN
 @given(data=st.data())
 def test_campaign_closed_forms(name, data):

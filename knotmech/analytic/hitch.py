@@ -66,7 +66,7 @@ import numpy as np
 
 from knotmech import _json, knots
 from knotmech.analytic.capstan import mu_eff
-from knotmech.errors import InputError, check_nonnegative, check_positive
+from knotmech.errors import InputError, check_nonnegative, check_positive, vectorised
 
 __all__ = [
     "KNOTS",
@@ -155,7 +155,10 @@ def _geometry(knot: str) -> HitchGeometry:
 def _thick_geometry(knot: str) -> HitchGeometry:
     g = _geometry(knot)
     if not g.thick_nip:
-        raise InputError(f"the thick-nip model is not derived for the {g.name}")
+        raise InputError(
+            f"knot: the thick-nip model is not derived for the {g.name} (it is for "
+            f"{', '.join(k for k, v in KNOTS.items() if v.thick_nip)})"
+        )
     return g
 
 
@@ -163,6 +166,7 @@ def _mu_rr(mu, mu_rr):
     return mu if mu_rr is None else check_nonnegative("mu_rr", mu_rr)
 
 
+@vectorised
 def nip_factor(rod_diameter, support_diameter):
     r"""Normal force at a nip per unit rider tension, :math:`n = N/T_r`.
 
@@ -195,6 +199,7 @@ def nip_factor(rod_diameter, support_diameter):
     return 2 * np.sqrt(1 - c**2)
 
 
+@vectorised
 def ideal_hitch_ratio(knot, mu, mu_rr=None):
     r"""Holding ratio :math:`K = T_\mathrm{high}/T_\mathrm{low}` of an ideal-rope hitch.
 
@@ -226,7 +231,14 @@ def ideal_hitch_ratio(knot, mu, mu_rr=None):
     mu = check_nonnegative("mu", mu)
     mrr = _mu_rr(mu, mu_rr)
     with np.errstate(over="ignore"):
-        return np.exp(mu * g.post_wrap + mrr * g.rope_wrap)
+        k = np.exp(mu * g.post_wrap + mrr * g.rope_wrap)
+    if not np.all(np.isfinite(k)):
+        raise InputError(
+            f"mu = {np.max(mu):.3g} overflows the {g.name}'s ideal ratio exp(mu Theta) (mu "
+            f"above {np.log(np.finfo(float).max) / (g.post_wrap + g.rope_wrap):.3g}); a rope's "
+            "friction coefficient is below about 1.5"
+        )
+    return k
 
 
 def _thick_parts(g: HitchGeometry, mu, mrr, d, D):
@@ -238,6 +250,7 @@ def _thick_parts(g: HitchGeometry, mu, mrr, d, D):
     return m_post, m_rope, n_post, n_rope, mu + mrr, 2 * mrr
 
 
+@vectorised
 def thick_hitch_lock_parameter(knot, mu, mu_rr=None, *, rod_diameter, post_diameter):
     r"""Self-locking parameter :math:`\Lambda` of the thick-nip model (locks when >= 1).
 
@@ -259,6 +272,7 @@ def thick_hitch_lock_parameter(knot, mu, mu_rr=None, *, rod_diameter, post_diame
     return lock
 
 
+@vectorised
 def thick_hitch_ratio(knot, mu, mu_rr=None, *, rod_diameter, post_diameter):
     r"""Holding ratio :math:`K` of the thick-nip model (``inf`` when self-locking).
 
@@ -325,6 +339,7 @@ def _check_tensions(high_tension, low_tension):
     return th, tl
 
 
+@vectorised
 def hitch_holds(knot, *, high_tension, low_tension, mu, mu_rr=None):
     r"""Whether an ideal-rope hitch holds: :math:`T_\mathrm{high} \le K\,T_\mathrm{low}`.
 
@@ -347,6 +362,7 @@ def hitch_holds(knot, *, high_tension, low_tension, mu, mu_rr=None):
     return th <= ideal_hitch_ratio(knot, mu, mu_rr) * tl
 
 
+@vectorised
 def hitch_margin(knot, *, high_tension, low_tension, mu, mu_rr=None):
     r"""Load margin of an ideal-rope hitch: :math:`K T_\mathrm{low}/T_\mathrm{high} - 1`.
 
@@ -356,6 +372,7 @@ def hitch_margin(knot, *, high_tension, low_tension, mu, mu_rr=None):
     return ideal_hitch_ratio(knot, mu, mu_rr) * tl / th - 1
 
 
+@vectorised
 def hitch_critical_mu(knot, *, high_tension, low_tension, mu_rr=None):
     r"""Smallest rope-post :math:`\mu` at which an ideal-rope hitch holds.
 
