@@ -199,6 +199,25 @@ def nip_factor(rod_diameter, support_diameter):
     return 2 * np.sqrt(1 - c**2)
 
 
+def _ideal_ratio(g: HitchGeometry, mu, mrr):
+    """exp(mu Theta_post + mu_rr Theta_rope), ``inf`` where it overflows (the hold verdict
+    and :func:`hitch_holds` read ``inf`` as locked; :func:`ideal_hitch_ratio` refuses it)."""
+    with np.errstate(over="ignore"):
+        return np.exp(mu * g.post_wrap + mrr * g.rope_wrap)
+
+
+def _ratio_of(knot, mu, mu_rr):
+    """:func:`_ideal_ratio` of ``knot`` with its arguments checked (``inf`` kept)."""
+    mu = check_nonnegative("mu", mu)
+    return _ideal_ratio(_geometry(knot), mu, _mu_rr(mu, mu_rr))
+
+
+def _held(ratio, low_tension):
+    """K T_low: the largest load held [N]; 0 with a free end even where K is ``inf``."""
+    with np.errstate(invalid="ignore"):
+        return np.where(np.asarray(low_tension) == 0, 0.0, ratio * low_tension)
+
+
 @vectorised
 def ideal_hitch_ratio(knot, mu, mu_rr=None):
     r"""Holding ratio :math:`K = T_\mathrm{high}/T_\mathrm{low}` of an ideal-rope hitch.
@@ -229,9 +248,7 @@ def ideal_hitch_ratio(knot, mu, mu_rr=None):
     """
     g = _geometry(knot)
     mu = check_nonnegative("mu", mu)
-    mrr = _mu_rr(mu, mu_rr)
-    with np.errstate(over="ignore"):
-        k = np.exp(mu * g.post_wrap + mrr * g.rope_wrap)
+    k = _ideal_ratio(g, mu, _mu_rr(mu, mu_rr))
     if not np.all(np.isfinite(k)):
         raise InputError(
             f"mu = {np.max(mu):.3g} overflows the {g.name}'s ideal ratio exp(mu Theta) (mu "
@@ -359,7 +376,7 @@ def hitch_holds(knot, *, high_tension, low_tension, mu, mu_rr=None):
         False whenever ``low_tension == 0`` (:data:`FREE_END_STATEMENT`).
     """
     th, tl = _check_tensions(high_tension, low_tension)
-    return th <= ideal_hitch_ratio(knot, mu, mu_rr) * tl
+    return th <= _held(_ratio_of(knot, mu, mu_rr), tl)
 
 
 @vectorised
@@ -369,7 +386,7 @@ def hitch_margin(knot, *, high_tension, low_tension, mu, mu_rr=None):
     >= 0 means it holds; -1 with a free end.
     """
     th, tl = _check_tensions(high_tension, low_tension)
-    return ideal_hitch_ratio(knot, mu, mu_rr) * tl / th - 1
+    return _held(_ratio_of(knot, mu, mu_rr), tl) / th - 1
 
 
 @vectorised
@@ -586,7 +603,7 @@ def _capstan_answers(mu, theta, d, D, load, free):
 
 
 def _hitch_answers(g: HitchGeometry, mu, mrr, d, D, load, free):
-    K = float(ideal_hitch_ratio(g.name, mu, mrr))
+    K = float(_ideal_ratio(g, mu, mrr))
     cap = _capacity(K, free)
     crit = float(
         hitch_critical_mu(g.name, high_tension=load, low_tension=free, mu_rr=None)

@@ -200,7 +200,7 @@ def run(args) -> int:
     inputs = _legs(args.loading, knot, _quantities(args))
     json_path = _json_path(args.json)
     if args.plot is not None:
-        _check_plot(args.plot, knot, inputs["free_end_load"])
+        _check_plot(args.plot, knot, inputs["free_end_load"], bool(args.simulate))
         from knotmech.cli._paths import check_distinct
 
         check_distinct([("--json", json_path), ("--plot", args.plot)])
@@ -256,19 +256,16 @@ def _quantities(args) -> dict:
     return out
 
 
-def _check_plot(path, knot: str, free: float) -> None:
+def _check_plot(path, knot: str, free: float, simulate: bool) -> None:
     """``--plot`` draws a DER answer into a png, pdf or svg file in an existing folder."""
-    from knotmech.verdict import DER_HITCHES, check_plot_path, has_der_answer
+    from knotmech.verdict import check_plot_path
+    from knotmech.verdict.scope import check_plot_request
 
     try:
         check_plot_path(path)
+        check_plot_request(knot, simulate=simulate, free_end_load=free)
     except InputError as exc:
         raise InputError(f"--{exc}") from None
-    if not has_der_answer(knot) or free > 0:
-        raise InputError(
-            "--plot draws the DER answer (phase diagram or simulated knot): a hitch with "
-            f"a DER answer ({', '.join(DER_HITCHES)}) with a free end only"
-        )
 
 
 def _emit(args, verdict, json_path) -> None:

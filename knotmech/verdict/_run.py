@@ -46,3 +46,31 @@ def refuse_inputs(key, what: str, why: str, *, free_end: str | None = None, **gi
             raise InputError(f"{name} does not apply to a {what} ({key}: {why})")
     if free_end is not None and float(given.get("free_end_load") or 0.0) != 0.0:
         raise InputError(f"free_end_load does not apply to a {what} ({key}: {free_end})")
+
+
+def run_shape(result, *, d, support_diameter=None, support="", ropes=1):
+    """The last frame of a DER run for ``hold --plot``, or None when the run has no frames.
+
+    Parameters
+    ----------
+    result
+        A scene result with ``positions`` (n_frames, n_nodes, 3) [m].
+    d : float
+        Rod diameter [m].
+    support_diameter : float or None
+        Diameter [m] of what the knot is tied round (its axis the z axis), or None.
+    support : str
+        Its name ("pin", "pole"), drawn as a cylinder when ``support_diameter`` is given.
+    ropes : int
+        Ropes stored one after the other in ``positions`` (a bend: 2), drawn in two colours.
+    """
+    import numpy as np
+
+    try:
+        pos = np.asarray(result.positions[-1], dtype=float)
+    except (AttributeError, IndexError, TypeError, ValueError):
+        return None
+    if pos.ndim != 2 or pos.shape[1] != 3 or len(pos) < 2:
+        return None
+    return {"positions": pos, "rod_diameter": d, "post_diameter": support_diameter,
+            "support": support, "ropes": int(ropes)}  # fmt: skip

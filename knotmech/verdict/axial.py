@@ -9,7 +9,7 @@ import math
 
 from knotmech import knots
 from knotmech.errors import InputError, check_nonnegative, check_positive
-from knotmech.verdict._run import run_answer
+from knotmech.verdict._run import run_answer, run_shape
 from knotmech.verdict.answer import Verdict
 from knotmech.verdict.command import simulate_command
 from knotmech.verdict.inputs import _bending_scale, _warnings, _youngs_modulus
@@ -75,14 +75,14 @@ def hold_axial(
             f"{', '.join(material_names())}) or youngs_modulus"
         )
     mrr = mu if mu_rr is None else float(check_nonnegative("mu_rr", mu_rr, scalar=True))
-    der, answers = _drag(key, d=d, D=D, E=E, mu=mu, mu_rr=mrr, load=load, mat=mat, kappa=kappa,
-                         progress=progress)  # fmt: skip
+    der, answers, shape = _drag(key, d=d, D=D, E=E, mu=mu, mu_rr=mrr, load=load, mat=mat,
+                                kappa=kappa, progress=progress)  # fmt: skip
     return Verdict(
         holds=der["holds"], margin=answers[0].margin if answers else math.nan,
         decided_by="DER-simulation" if answers else None, inside_validity=bool(answers),
         answers=answers, validity=answers[0].validity if answers else (),
         next_step="" if answers else f"next: test the knot ({der['message']})",
-        der=der, **common,
+        der=der, shape=shape, **common,
     )  # fmt: skip
 
 
@@ -96,7 +96,8 @@ def _refuse(key, *, wrap_angle, phase_table, free_end_load) -> None:
 
 
 def _drag(key, *, d, D, E, mu, mu_rr, load, mat, kappa, progress):
-    """One DER drag: (details, answers: the DER's, empty when it did not decide)."""
+    """One DER drag: (details, answers: the DER's, empty when it did not decide, the last
+    frame for ``--plot``)."""
     from knotmech.scenes.axial import axial_pull
 
     kw = {"density": mat.density} if mat is not None else {}
@@ -113,9 +114,10 @@ def _drag(key, *, d, D, E, mu, mu_rr, load, mat, kappa, progress):
     }  # fmt: skip
     holds, capacity, der["message"] = _outcome(key, r, load)
     der["holds"] = holds
+    shape = run_shape(r, d=d, support_diameter=D, support="pole")
     if holds is None:
-        return der, ()
-    return der, (_answer(key, r, holds, capacity, load, kappa, der["message"]),)
+        return der, (), shape
+    return der, (_answer(key, r, holds, capacity, load, kappa, der["message"]),), shape
 
 
 def _outcome(key, r, load):

@@ -9,7 +9,7 @@ import math
 from knotmech import knots
 from knotmech.errors import InputError, check_nonnegative, check_positive
 from knotmech.knots.catalogue import PATIL
-from knotmech.verdict._run import refuse_inputs, run_answer
+from knotmech.verdict._run import refuse_inputs, run_answer, run_shape
 from knotmech.verdict.answer import Verdict
 from knotmech.verdict.command import simulate_command
 from knotmech.verdict.inputs import _bending_scale, _warnings, _youngs_modulus
@@ -57,14 +57,14 @@ def hold_bend(
             "simulate needs the rope's stiffness: give material (one of "
             f"{', '.join(material_names())}) or youngs_modulus"
         )
-    der, answers = _pull(key, d=d, E=E, mu=mu, load=load, mat=mat, kappa=kappa,
-                         progress=progress)  # fmt: skip
+    der, answers, shape = _pull(key, d=d, E=E, mu=mu, load=load, mat=mat, kappa=kappa,
+                                progress=progress)  # fmt: skip
     return Verdict(
         holds=der["holds"], margin=answers[0].margin if answers else math.nan,
         decided_by="DER-simulation" if answers else None, inside_validity=bool(answers),
         answers=answers, validity=answers[0].validity if answers else (),
         next_step="" if answers else f"next: test the knot ({der['message']})",
-        der=der, **common,
+        der=der, shape=shape, **common,
     )  # fmt: skip
 
 
@@ -105,7 +105,8 @@ def _refuse_post_inputs(key, *, post_diameter, mu_rr, wrap_angle, phase_table, f
 
 
 def _pull(key, *, d, E, mu, load, mat, kappa, progress):
-    """One DER pull of the bend: (details, answers: the DER's, empty when it did not decide)."""
+    """One DER pull of the bend: (details, answers: the DER's, empty when it did not decide,
+    the last frame for ``--plot``)."""
     from knotmech.rod import SolverOptions
     from knotmech.scenes.bends import bend
 
@@ -127,9 +128,10 @@ def _pull(key, *, d, E, mu, load, mat, kappa, progress):
     }  # fmt: skip
     holds, capacity, der["message"] = _pull_outcome(key, r, load)
     der["holds"] = holds
+    shape = run_shape(r, d=d, ropes=2)
     if holds is None:
-        return der, ()
-    return der, (_pull_answer(key, r, holds, capacity, load, kappa, der["message"]),)
+        return der, (), shape
+    return der, (_pull_answer(key, r, holds, capacity, load, kappa, der["message"]),), shape
 
 
 def _pull_outcome(key, r, load):

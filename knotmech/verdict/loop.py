@@ -10,7 +10,7 @@ from dataclasses import replace
 
 from knotmech import knots
 from knotmech.errors import InputError, check_nonnegative, check_positive
-from knotmech.verdict._run import refuse_inputs, run_answer
+from knotmech.verdict._run import refuse_inputs, run_answer, run_shape
 from knotmech.verdict.answer import Verdict
 from knotmech.verdict.bend import BEND_WALL_RATE, _pull_outcome
 from knotmech.verdict.command import simulate_command
@@ -72,14 +72,14 @@ def hold_loop(
             "simulate needs the rope's stiffness: give material (one of "
             f"{', '.join(material_names())}) or youngs_modulus"
         )
-    der, answers = _pull(key, d=d, D=D, E=E, mu=mu, load=load, mat=mat, kappa=kappa,
-                         progress=progress)  # fmt: skip
+    der, answers, shape = _pull(key, d=d, D=D, E=E, mu=mu, load=load, mat=mat, kappa=kappa,
+                                progress=progress)  # fmt: skip
     v = Verdict(
         holds=der["holds"], margin=answers[0].margin if answers else math.nan,
         decided_by="DER-simulation" if answers else None, inside_validity=bool(answers),
         answers=answers, validity=answers[0].validity if answers else (),
         next_step="" if answers else f"next: test the knot ({der['message']})",
-        der=der, **common,
+        der=der, shape=shape, **common,
     )  # fmt: skip
     return loop_capacity(v, material)
 
@@ -116,7 +116,8 @@ def _refuse(key, *, post_diameter, mu_rr, wrap_angle, phase_table, free_end_load
 
 
 def _pull(key, *, d, D, E, mu, load, mat, kappa, progress):
-    """One DER pull of the loop: (details, answers: the DER's, empty when it did not decide)."""
+    """One DER pull of the loop: (details, answers: the DER's, empty when it did not decide,
+    the last frame for ``--plot``)."""
     from knotmech.rod import SolverOptions
     from knotmech.scenes.loops import loop
 
@@ -138,9 +139,10 @@ def _pull(key, *, d, D, E, mu, load, mat, kappa, progress):
     }  # fmt: skip
     holds, capacity, der["message"] = _pull_outcome(key, r, load)
     der["holds"] = holds
+    shape = run_shape(r, d=d, support_diameter=D, support="pin")
     if holds is None:
-        return der, ()
-    return der, (_answer(key, r, holds, capacity, load, kappa, der["message"]),)
+        return der, (), shape
+    return der, (_answer(key, r, holds, capacity, load, kappa, der["message"]),), shape
 
 
 def _answer(key, r, holds, capacity, load, kappa, message):

@@ -165,38 +165,60 @@ def _draw_capacity(ax, verdict: Verdict, table, limit: float) -> None:
 
 
 def _plot_knot(verdict: Verdict, p: Path) -> Path:
+    """The simulated knot's last frame in 3-D (mm): coloured by the tension T(s) when the
+    run gives it (the hitches), else one colour a rope (the bends' two ropes); the post,
+    pin or pole it is tied round (axis z through the origin) as grey rings."""
     import matplotlib
 
     matplotlib.use("Agg", force=False)
     import matplotlib.pyplot as plt
     import numpy as np
-    from mpl_toolkits.mplot3d.art3d import Line3DCollection
 
     sh = verdict.shape
-    x = np.asarray(sh["positions"], dtype=float)
-    t = np.asarray(sh["tension"], dtype=float)
-    segs = np.stack([x[:-1], x[1:]], axis=1) * 1e3  # mm
+    x = np.asarray(sh["positions"], dtype=float) * 1e3  # mm
     fig = plt.figure(figsize=(6.4, 5.6))
     ax = fig.add_subplot(projection="3d")
-    lc = Line3DCollection(segs, cmap="viridis", linewidths=3)
-    lc.set_array(t[: len(segs)])
-    ax.add_collection3d(lc)
-    R = 0.5 * float(sh["post_diameter"]) * 1e3
-    zlo, zhi = segs[..., 2].min(), segs[..., 2].max()
-    phi = np.linspace(0, 2 * np.pi, 41)
-    for z in np.linspace(zlo, zhi, 5):
-        ax.plot(R * np.cos(phi), R * np.sin(phi), np.full_like(phi, z), color="0.7", lw=0.6)
-    lim = np.abs(segs[..., :2]).max() * 1.05
-    ax.set_xlim(-lim, lim)
-    ax.set_ylim(-lim, lim)
+    _draw_rods(fig, ax, x, sh)
+    support = sh.get("support") or "post"
+    lo, hi = x.min(axis=0), x.max(axis=0)
+    if sh.get("post_diameter") is not None:
+        R = 0.5 * float(sh["post_diameter"]) * 1e3
+        phi = np.linspace(0, 2 * np.pi, 41)
+        for z in np.linspace(lo[2], hi[2], 5):
+            ax.plot(R * np.cos(phi), R * np.sin(phi), np.full_like(phi, z), color="0.7", lw=0.6)
+        lo[:2], hi[:2] = np.minimum(lo[:2], -R), np.maximum(hi[:2], R)
+    mid, half = 0.5 * (lo + hi), 0.525 * max(float(np.max(hi[:2] - lo[:2])), 1e-9)
+    ax.set_xlim(mid[0] - half, mid[0] + half)
+    ax.set_ylim(mid[1] - half, mid[1] + half)
+    zlo, zhi = (lo[2], hi[2]) if hi[2] > lo[2] else (lo[2] - half, hi[2] + half)
     ax.set_zlim(zlo, zhi)
-    ax.set_box_aspect((1.0, 1.0, max(0.25, min(1.0, (zhi - zlo) / (2 * lim)))))
+    ax.set_box_aspect((1.0, 1.0, max(0.25, min(1.0, (zhi - zlo) / (2 * half)))))
     ax.set_xlabel("x [mm]")
     ax.set_ylabel("y [mm]")
-    ax.set_zlabel("z [mm] (post axis)")
-    fig.colorbar(lc, ax=ax, shrink=0.7, pad=0.12, label="tension T(s) [N]")
+    ax.set_zlabel(f"z [mm] ({support} axis)" if sh.get("post_diameter") is not None else "z [mm]")
     ax.set_title(f"{verdict.knot}: {verdict.state} (DER simulation, last frame)")
     fig.tight_layout()
     fig.savefig(p)
     plt.close(fig)
     return p
+
+
+def _draw_rods(fig, ax, x, sh) -> None:
+    """The centreline ``x`` [mm]: one tube coloured by ``sh["tension"]`` with a colour bar,
+    or ``sh["ropes"]`` equal parts in colours C0, C1, ... with a legend."""
+    import numpy as np
+    from mpl_toolkits.mplot3d.art3d import Line3DCollection
+
+    if sh.get("tension") is not None:
+        t = np.asarray(sh["tension"], dtype=float)
+        segs = np.stack([x[:-1], x[1:]], axis=1)
+        lc = Line3DCollection(segs, cmap="viridis", linewidths=3)
+        lc.set_array(t[: len(segs)])
+        ax.add_collection3d(lc)
+        fig.colorbar(lc, ax=ax, shrink=0.7, pad=0.12, label="tension T(s) [N]")
+        return
+    n = max(int(sh.get("ropes") or 1), 1)
+    for k, part in enumerate(np.array_split(x, n)):
+        label = f"rope {k + 1}" if n > 1 else "rope"
+        ax.plot(part[:, 0], part[:, 1], part[:, 2], color=f"C{k}", lw=2.5, label=label)
+    ax.legend(loc="upper left", fontsize=8)

@@ -15,6 +15,7 @@ __all__ = [
     "is_bend",
     "has_der_answer",
     "can_simulate",
+    "check_plot_request",
 ]
 
 #: knots :func:`knotmech.hold` answers (the registry's answered records: capstan, hitches, bends)
@@ -57,3 +58,34 @@ def can_simulate(knot) -> bool:
     if knot in BENDS:
         return True
     return knot in DER_HITCHES and knots.get(knot).has_scene
+
+
+#: knots that ``simulate`` answers with one DER run and no table (the bends, the loops, the
+#: hitches pulled along a pole), whose ``--plot`` draws the simulated knot
+ONE_RUN_KNOTS = tuple(
+    k.name
+    for k in knots.records(answered=True)
+    if k.family in ("bend", "loop") or (k.family == "hitch" and "along the pole" in k.loading)
+)
+#: hitches whose both-legs loading ``simulate`` answers (the cow hitch)
+_BOTH_LEGS = ("cow-hitch",)
+
+
+def check_plot_request(knot, *, simulate: bool, free_end_load: float) -> None:
+    """Refuse (InputError, one line, before any work) a ``plot`` that would have nothing to
+    draw: a hitch's DER answer (its phase table, free end, or a simulation), or the knot of
+    a DER run under ``simulate`` (bends, loops, the Prusik; the cow hitch on both legs)."""
+    free = float(free_end_load or 0.0)
+    if knot in ONE_RUN_KNOTS or (knot in _BOTH_LEGS and free > 0):
+        if not simulate:
+            raise InputError(
+                f"plot draws the simulated knot: the {knot} has no table, give simulate "
+                "(--simulate) to run it"
+            )
+        return
+    if not has_der_answer(knot) or free > 0:
+        raise InputError(
+            "plot draws the DER answer (phase diagram or simulated knot): a hitch with a DER "
+            f"answer ({', '.join(DER_HITCHES)}) with a free end, or a knot under simulate "
+            f"({', '.join(ONE_RUN_KNOTS)}, cow-hitch on both legs)"
+        )
