@@ -106,13 +106,19 @@ def test_ar_path_needs_correlated_high_frequency_noise():
     assert v == "undetermined"
     assert "best AR(p) noise model (p = 2 by BIC, at most 6 for 120 rows)" in why
     assert "too short for its noise" in why
-    # a whitening AR(2) with enough stretches, vetoed by the (AR(1)) consistency check:
-    # the reason names that check, not the stretches (issue 26's AR(2) nulls)
-    v, why = noise_floor_verdict(
+    # the AR(1) consistency check no longer vetoes the AR(p) rescue (issue 26's AR(2)
+    # nulls: the AR(1) draws were the wrong model for them) ...
+    v, _ = noise_floor_verdict(
         NoiseFloor(p_hf_white=0.001, ar=good, p_consistent=0.004, **base), 0.01
     )
+    assert v == "none"
+    # ... the AR(p) model's own draws do: the reason names that check, not the stretches
+    v, why = noise_floor_verdict(
+        NoiseFloor(p_hf_white=0.001, ar=good, p_consistent=0.004, p_consistent_ar=0.004, **base),
+        0.01,
+    )
     assert v == "undetermined"
-    assert "too white for the level (the check draws AR(1) noise: p = 0.004)" in why
+    assert "do not give the level with these high frequencies (p = 0.004)" in why
     assert "too short for its noise" not in why
     bad = ARFit(2, (1.2, -0.4), 1.0, 0.632, 27.0, 40.0, 10, 1e-5, 6)
     v, why = noise_floor_verdict(NoiseFloor(p_hf_white=0.001, ar=bad, **base), 0.01)
