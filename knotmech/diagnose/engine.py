@@ -246,7 +246,8 @@ def diagnose(
                                      starts, gs, seed, alpha, only)  # fmt: skip
         checks["power_law"] = power_law
         if power_law is not None and power_law["explains"]:
-            verdict = "none" if unexplained else "undetermined"
+            # nothing accepted: the noise floor (with its power-law rescue) judges it
+            verdict = "none" if unexplained and not accepted else "undetermined"
     if verdict == "none":
         # a remainder the power-law null explains is judged by the noise floor too, whose
         # power-law rescue must also hold (level, high frequencies, ripple; else undetermined)
