@@ -615,13 +615,21 @@ def noise_floor_verdict(nf: NoiseFloor, alpha: float) -> tuple[str, str]:
       innovations (``p_model >= alpha``) and leaves at least :data:`N_EFF_MIN`
       independent stretches, or when the high-frequency noise is correlated and an
       AR(p) model (order by BIC, bounded by the rows; :mod:`knotmech.diagnose.arnoise`)
-      whitens the remainder and leaves at least :data:`N_EFF_MIN` stretches; neither
-      rescue when the high frequencies are too white for the correlation the level
-      needs (``p_consistent < alpha``: a narrow bump absorbed by a fitted correlation
-      near 1; 10-sd bumps of 120 rows give p = 0.0025-0.04, AR(1), AR(2) and 1/f nulls
-      at least 0.01);
-    - neither rescue when a growing ripple explains more of the remainder than that noise
-      model produces (``p_ripple``, ``p_ripple_ar``; :mod:`knotmech.diagnose.ripple`);
+      whitens the remainder and leaves at least :data:`N_EFF_MIN` stretches, or when
+      the high-frequency noise is correlated as a power law :math:`f^{-\beta}` with
+      :math:`\beta` in :data:`~knotmech.diagnose.powerlaw.BETA_RANGE` (long-memory,
+      1/f-type noise: Whittle 1953, Robinson 1995) and at least
+      :data:`CONSISTENT_ROWS` rows;
+    - each rescue only when draws of its own noise model give the level and the high
+      frequencies (AR(1) at the correlation the level needs: ``p_consistent``; the
+      AR(p) fit: ``p_consistent_ar``; the power law: ``p_power_law``): a narrow bump
+      absorbed by a fitted correlation near 1 is too white at high frequencies for that
+      correlation (10-sd bumps of 120 rows on white noise give p_consistent
+      0.0025-0.04). The AR(p) rescue was judged by the AR(1) draws until issue 26,
+      which vetoed AR(2) nulls of phi (0.7, 0.15) (p_consistent 0.002-0.01);
+    - no rescue when a growing ripple explains more of the remainder than that noise
+      model produces (``p_ripple``, ``p_ripple_ar``, ``p_ripple_pl``;
+      :mod:`knotmech.diagnose.ripple`);
       when both reject, ``unexplained`` (a deterministic ripple: stick-slip chatter on a
       short recording, issue 26);
     - otherwise ``unexplained`` when the high-frequency noise is white
