@@ -41,6 +41,7 @@ so a rerun only diagnoses recordings it has not seen (``--fresh`` starts over).
 
     python -m validation.diagnose_campaign [--full] [--out DIR] [--workers 2] [--fresh]
         [--figure docs/img/diagnose_campaign.png] [--cached-only]
+        [--only effects|nulls|shapes] [--generator tune|heldout|both] [--seed0 N]
 """
 
 from __future__ import annotations
@@ -214,17 +215,28 @@ def _ooc_cases(g, s, seed):
     return out
 
 
-def cases(quick: bool, generators=None) -> list:
+#: the parts of a run ``--only`` may restrict it to
+PARTS = ("effects", "nulls", "shapes")
+
+
+def cases(quick: bool, generators=None, only=None, seed0=None) -> list:
     """(generator, kind, effect, size, noise, rows, seed) of every recording of the run
-    (``rows`` None: the generator's own count); seeds consecutive per generator."""
+    (``rows`` None: the generator's own count); seeds consecutive per generator.
+
+    ``only``: one of :data:`PARTS` (the other parts' seeds are still counted, so a
+    part's recordings are the same with and without it). ``seed0``: first seed of
+    every generator instead of :data:`SEED0` (a fresh held-out set; the quick offset
+    900 is not added).
+    """
     s = SETTINGS[bool(quick)]
     out = []
     for g in generators or s["generators"]:
-        seed = SEED0[g] + (900 if quick else 0)
-        part = _effect_cases(g, s, seed)
-        part += _null_cases(g, s, seed + len(part), bool(quick))
-        part += _ooc_cases(g, s, seed + len(part))
-        out += part
+        seed = (SEED0[g] + (900 if quick else 0)) if seed0 is None else int(seed0)
+        eff = _effect_cases(g, s, seed)
+        nul = _null_cases(g, s, seed + len(eff), bool(quick))
+        ooc = _ooc_cases(g, s, seed + len(eff) + len(nul))
+        parts = {"effects": eff, "nulls": nul, "shapes": ooc}
+        out += [c for k in PARTS if only in (None, k) for c in parts[k]]
     return out
 
 
@@ -488,13 +500,21 @@ def _checks(summary: dict, quick: bool) -> dict:
 
 
 def run(
-    quick=True, out_dir=".", workers=1, fresh=False, generators=None, figure=None, cached_only=False
+    quick=True,
+    out_dir=".",
+    workers=1,
+    fresh=False,
+    generators=None,
+    figure=None,
+    cached_only=False,
+    only=None,
+    seed0=None,
 ) -> dict:
     """Run the campaign; write its JSON, markdown table and figure (also to ``figure``).
     ``cached_only``: summarise the recordings already in the cache, diagnose none (a
     partial run says how many of the run's recordings it holds: ``numbers.recordings``
-    of ``numbers.planned``)."""
-    todo = cases(bool(quick), generators)
+    of ``numbers.planned``); ``only``, ``seed0``: see :func:`cases`."""
+    todo = cases(bool(quick), generators, only, seed0)
     out = output_dir(out_dir)
     t0 = time.perf_counter()
     results = run_cases(todo, out / f"{NAME}_cache.jsonl", workers, fresh, cached_only)
@@ -542,9 +562,11 @@ def main(argv=None) -> int:
     p.add_argument("--fresh", action="store_true", help="ignore the cached results")
     p.add_argument("--figure", default=None, help="also save the figure here")
     p.add_argument("--cached-only", action="store_true", help="summarise the cache only")
+    p.add_argument("--only", choices=PARTS, default=None, help="one part of the run")
+    p.add_argument("--seed0", type=int, default=None, help="first seed (a fresh set)")
     a = p.parse_args(argv)
     gens = None if a.generator in (None, "both") else (a.generator,)
-    res = run(not a.full, a.out, a.workers, a.fresh, gens, a.figure, a.cached_only)
+    res = run(not a.full, a.out, a.workers, a.fresh, gens, a.figure, a.cached_only, a.only, a.seed0)
     print(res["table_markdown"])
     print(json.dumps(res["checks"], indent=1))
     print(f"{NAME}: {res['verdict']}")

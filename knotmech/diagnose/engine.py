@@ -76,7 +76,7 @@ from knotmech.diagnose.noisefloor import (
     short_recording_verdict,
     without_rows,
 )
-from knotmech.diagnose.powerlaw import F_HIGH, PowerLawNoise, fit_power_law
+from knotmech.diagnose.powerlaw import BETA_RANGE, F_HIGH, PowerLawNoise, fit_power_law
 from knotmech.diagnose.recording import Recording, read_recording, recording_from_arrays
 from knotmech.diagnose.report import Report, effect_parameters, public_parameters
 from knotmech.diagnose.stats import NoiseModel, monte_carlo_pvalue, trial_starts
@@ -99,11 +99,8 @@ _SMOOTH_REASON = (
 _MAX_REPEATS = 6
 
 #: the power-law null is tried when the remainder's high-frequency spectral exponent lies in
-#: this range, that of flicker (1/f-type) noise: on 120 rows white noise fits 0-0.4 (90 %
-#: under 0.38), pink 0.57-1.33 (10-90 %), AR(1) at rho 0.8 1.15-1.78 and at rho 0.9
-#: 1.6-1.8 (the engine's AR(1) null keeps those: a power law fitted to them would
-#: extrapolate far more low-frequency power than they have); :func:`_power_law_check`
-POWER_LAW_BETA_RANGE = (0.3, 1.3)
+#: this range (:data:`knotmech.diagnose.powerlaw.BETA_RANGE`); :func:`_power_law_check`
+POWER_LAW_BETA_RANGE = BETA_RANGE
 
 
 def _as_recording(recording, experiment, x, y, metadata, **cols) -> Recording:
@@ -249,9 +246,14 @@ def diagnose(
                                      starts, gs, seed, alpha, only)  # fmt: skip
         checks["power_law"] = power_law
         if power_law is not None and power_law["explains"]:
-            verdict = "undetermined"
+            # nothing accepted: the noise floor (with its power-law rescue) judges it
+            verdict = "none" if unexplained and not accepted else "undetermined"
     if verdict == "none":
+        # a remainder the power-law null explains is judged by the noise floor too, whose
+        # power-law rescue must also hold (level, high frequencies, ripple; else undetermined)
         floor, verdict, reason, regions = _noise_floor_check(rec, final, starts, rng, alpha)
+        if checks.get("power_law") and verdict == "unexplained":
+            verdict, reason, regions = "undetermined", checks["power_law"]["reason"], []
         checks["noise_floor"] = {**floor.describe(), "reason": reason}
     verdict, checks["short_recording"] = _short_recording_check(rec, verdict)
     if accepted and verdict != "unexplained":

@@ -53,8 +53,14 @@ import numpy as np
 from scipy import ndimage, stats
 
 from knotmech.diagnose.arnoise import ARFit, fit_ar
+from knotmech.diagnose.powerlaw import BETA_RANGE, fit_power_law, power_law_draws
 from knotmech.diagnose.recording import Recording
-from knotmech.diagnose.ripple import RIPPLE_MAX_ROWS, ripple_p_value
+from knotmech.diagnose.ripple import (
+    RIPPLE_MAX_ROWS,
+    ar_draws,
+    ripple_p_of_draws,
+    ripple_p_value,
+)
 from knotmech.diagnose.stats import NoiseModel
 
 __all__ = [
@@ -233,6 +239,22 @@ class NoiseFloor:
         the final AR(1) noise model; | the AR(p) fit ``ar``)
         (:mod:`knotmech.diagnose.ripple`; 1 beyond its row limit). Small: that noise
         model would not produce the ripple, so it may not rescue a ``none``.
+    p_consistent_ar : float
+        As ``p_consistent``, counted from draws of the AR(p) fit ``ar`` itself (the
+        model its rescue rests on): twice the smaller of P(hf_lag1 at most this) and
+        P(level at least this), at most 1 (:func:`_p_consistent_model`; 1 when the
+        fit is white or not stationary, or below :data:`CONSISTENT_ROWS` rows).
+    beta : float or None
+        Spectral exponent of a power law :math:`f^{-\beta}` fitted to the
+        standardised remainder's high frequencies
+        (:func:`~knotmech.diagnose.powerlaw.fit_power_law`);
+        None below :data:`CONSISTENT_ROWS` rows or with too few ordinates.
+    p_power_law : float
+        As ``p_consistent_ar``, counted from power-law draws of exponent ``beta``
+        (long-memory noise: its low-frequency wander is what raises ``level``); 0 when
+        ``beta`` is None or outside :data:`~knotmech.diagnose.powerlaw.BETA_RANGE`.
+    p_ripple_pl : float
+        As ``p_ripple``, counted from those power-law draws (0 when not tried).
     """
 
     sigma_hf: float
@@ -249,6 +271,10 @@ class NoiseFloor:
     p_consistent: float = 1.0
     p_ripple: float = 1.0
     p_ripple_ar: float = 1.0
+    p_consistent_ar: float = 1.0
+    beta: float | None = None
+    p_power_law: float = 0.0
+    p_ripple_pl: float = 0.0
 
     def describe(self) -> dict:
         """JSON-ready numbers (3 significant digits)."""
@@ -335,6 +361,7 @@ def noise_floor(
         u = (resid / (sdm / np.mean(sdm)))[o][:, None]
         p_cons = _p_consistent(u, seg, draws, rng)
     p_rip, p_rip_ar = _ripple_p(resid / noise.sd(mean), x, o, seg, noise, ar, rng)
+    alt = _alternatives(resid / noise.sd(mean), x, o, seg, starts, ar, draws, rng)
     return NoiseFloor(
         sigma_hf=float(sd),
         level=level,
@@ -350,7 +377,81 @@ def noise_floor(
         p_consistent=float(p_cons),
         p_ripple=float(p_rip),
         p_ripple_ar=float(p_rip_ar),
+        **alt,
     )
+
+
+def _alternatives(u, x, o, seg, starts, ar, draws, rng) -> dict:
+    """``p_consistent_ar``, ``beta``, ``p_power_law``, ``p_ripple_pl`` of
+    :class:`NoiseFloor` (``u`` the standardised remainder in row order; below
+    :data:`CONSISTENT_ROWS` rows the defaults: no power-law rescue)."""
+    if u.size < CONSISTENT_ROWS:
+        return {}
+    us = np.asarray(u, float)[o][:, None]
+    out = {}
+    if ar is not None and ar.order > 0 and ar.root_modulus < 1.0:
+        sims = _model_draws(seg, lambda sg, b: ar_draws(ar.phi, sg, b, rng), draws)
+        out["p_consistent_ar"] = _p_consistent_model(us, seg, sims)
+    fit = fit_power_law(u, starts)
+    if fit is None:
+        return out
+    out["beta"] = float(fit.beta)
+    lo, hi = BETA_RANGE
+    if not lo <= fit.beta <= hi:
+        return out
+    sims = _model_draws(seg, lambda sg, b: power_law_draws(sg, fit.beta, b, rng), draws)
+    out["p_power_law"] = _p_consistent_model(us, seg, sims)
+    if u.size <= RIPPLE_MAX_ROWS:
+        out["p_ripple_pl"] = ripple_p_of_draws(us[:, 0], _unit_control(x, o, seg), sims[2])
+    else:
+        out["p_ripple_pl"] = 1.0
+    return out
+
+
+def _unit_control(x, o, seg) -> np.ndarray:
+    """The control variable mapped onto [0, 1] within each trial (rows sorted)."""
+    xs = np.asarray(x, float)[o]
+    t = np.empty_like(xs)
+    for g in np.unique(seg):
+        m = seg == g
+        span = np.ptp(xs[m])
+        t[m] = (xs[m] - xs[m].min()) / span if span > 0 else 0.0
+    return t
+
+
+def _model_draws(seg, draw, draws):
+    """(level, hf_lag1, series) of ``draws`` draws ``draw(seg, draws)`` of a noise model
+    laid out as ``seg``; beyond :data:`_N_COUNTED` rows 200 draws of one
+    :data:`_N_COUNTED`-row series (``series`` None)."""
+    if seg.size > _N_COUNTED:
+        one = np.zeros(_N_COUNTED, int)
+        z = draw(one, min(draws, 200))
+        return _level(z, one), _d1_lag1(z, one), None
+    z = draw(seg, draws)
+    return _level(z, seg), _d1_lag1(z, seg), z
+
+
+def _p_consistent_model(u, seg, sims) -> float:
+    """Consistency of a standardised remainder ``u`` (rows sorted) with a noise model
+    drawn in ``sims`` (:func:`_model_draws`): twice the smaller of P(hf_lag1 at most the
+    remainder's) and P(level at least the remainder's), at most 1 (Bonferroni over the
+    two one-sided tests). A narrow bump absorbed by a correlation near 1 is too white
+    at high frequencies for that correlation, or too large for its level.
+    """
+    level = float(_level(u, seg)[0])
+    hf = float(_d1_lag1(u, seg)[0])
+    s_level, s_hf, z = sims
+    if z is not None:
+        b = s_hf.size
+        p_hf = (1 + int(np.sum(s_hf <= hf))) / (b + 1)
+        p_lev = (1 + int(np.sum(s_level >= level))) / (b + 1)
+    else:  # long recordings: normal tails, sd scaled by sqrt(_N_COUNTED / n)
+        shrink = np.sqrt(_N_COUNTED / seg.size)
+        p_hf = float(stats.norm.cdf((hf - np.mean(s_hf)) / (np.std(s_hf) * shrink)))
+        ll = np.log(s_level)
+        z_l = (np.log(level) - np.mean(ll)) / (np.std(ll) * shrink)
+        p_lev = float(stats.norm.sf(z_l))
+    return float(min(1.0, 2.0 * min(p_hf, p_lev)))
 
 
 def _ripple_p(u, x, o, seg, noise, ar, rng) -> tuple[float, float]:
@@ -432,13 +533,29 @@ def _n_eff_coloured(nf: NoiseFloor) -> float:
 
 def _rescued(nf: NoiseFloor, alpha: float) -> bool:
     """A noise model explains the remainder (:func:`noise_floor_verdict`): the final
-    AR(1) or the AR(p) fit, neither when the high frequencies are too white for the
-    level, each only when it would produce the remainder's best ripple."""
-    if nf.p_consistent < alpha:
-        return False
-    if nf.p_model >= alpha and nf.n_eff >= N_EFF_MIN and nf.p_ripple >= alpha:
+    AR(1), the AR(p) fit or power-law noise, each only when its own draws are
+    consistent with the level and the high frequencies (``p_consistent``,
+    ``p_consistent_ar``, ``p_power_law``) and would produce the remainder's best
+    ripple."""
+    if (
+        nf.p_consistent >= alpha
+        and nf.p_model >= alpha
+        and nf.n_eff >= N_EFF_MIN
+        and nf.p_ripple >= alpha
+    ):
         return True
-    return _ar_explains(nf, alpha) and nf.p_ripple_ar >= alpha
+    if _ar_explains(nf, alpha) and nf.p_consistent_ar >= alpha and nf.p_ripple_ar >= alpha:
+        return True
+    return _power_law_explains(nf, alpha)
+
+
+def _power_law_explains(nf: NoiseFloor, alpha: float) -> bool:
+    """Power-law (1/f-type) noise explains the remainder: the high-frequency noise is
+    correlated (``p_hf_white < alpha``), its exponent lies in
+    :data:`~knotmech.diagnose.powerlaw.BETA_RANGE`, and draws of that power law give
+    the level and the high-frequency correlation (``p_power_law >= alpha``) and the
+    remainder's best ripple (``p_ripple_pl >= alpha``)."""
+    return nf.p_hf_white < alpha and nf.p_power_law >= alpha and nf.p_ripple_pl >= alpha
 
 
 def _ripple(nf: NoiseFloor, alpha: float) -> bool:
@@ -463,15 +580,30 @@ def _ar_failure(nf: NoiseFloor, alpha: float) -> str:
             f"root {ar.root_modulus:.3g}, AR(1) count {nf.n_eff:.3g}; at least "
             f"{N_EFF_MIN:g} needed): the recording is too short for its noise"
         )
-    if nf.p_consistent < alpha:
+    if nf.p_consistent_ar < alpha:
         return (
-            f"it whitens the remainder (Ljung-Box p = {ar.p_white:.2g}), but the high "
-            f"frequencies are too white for the level (the check draws AR(1) noise: "
-            f"p = {nf.p_consistent:.2g})"
+            f"it whitens the remainder (Ljung-Box p = {ar.p_white:.2g}), but its draws "
+            f"do not give the level with these high frequencies (p = {nf.p_consistent_ar:.2g})"
         )
     return (
         f"a growing ripple explains more of the remainder than it produces "
         f"(p = {nf.p_ripple_ar:.2g})"
+    )
+
+
+def _power_law_failure(nf: NoiseFloor) -> str:
+    """Why power-law noise does not rescue the remainder ('' when it was not tried)."""
+    if nf.beta is None:
+        return ""
+    lo, hi = BETA_RANGE
+    if not lo <= nf.beta <= hi:
+        return (
+            f"; power-law noise is not tried (high-frequency exponent {nf.beta:.2g}, "
+            f"outside {lo:g}-{hi:g})"
+        )
+    return (
+        f"; nor does power-law noise of the high frequencies' exponent {nf.beta:.2g} "
+        f"(level and high frequencies p = {nf.p_power_law:.2g}, ripple p = {nf.p_ripple_pl:.2g})"
     )
 
 
@@ -483,13 +615,21 @@ def noise_floor_verdict(nf: NoiseFloor, alpha: float) -> tuple[str, str]:
       innovations (``p_model >= alpha``) and leaves at least :data:`N_EFF_MIN`
       independent stretches, or when the high-frequency noise is correlated and an
       AR(p) model (order by BIC, bounded by the rows; :mod:`knotmech.diagnose.arnoise`)
-      whitens the remainder and leaves at least :data:`N_EFF_MIN` stretches; neither
-      rescue when the high frequencies are too white for the correlation the level
-      needs (``p_consistent < alpha``: a narrow bump absorbed by a fitted correlation
-      near 1; 10-sd bumps of 120 rows give p = 0.0025-0.04, AR(1), AR(2) and 1/f nulls
-      at least 0.01);
-    - neither rescue when a growing ripple explains more of the remainder than that noise
-      model produces (``p_ripple``, ``p_ripple_ar``; :mod:`knotmech.diagnose.ripple`);
+      whitens the remainder and leaves at least :data:`N_EFF_MIN` stretches, or when
+      the high-frequency noise is correlated as a power law :math:`f^{-\beta}` with
+      :math:`\beta` in :data:`~knotmech.diagnose.powerlaw.BETA_RANGE` (long-memory,
+      1/f-type noise: Whittle 1953, Robinson 1995) and at least
+      :data:`CONSISTENT_ROWS` rows;
+    - each rescue only when draws of its own noise model give the level and the high
+      frequencies (AR(1) at the correlation the level needs: ``p_consistent``; the
+      AR(p) fit: ``p_consistent_ar``; the power law: ``p_power_law``): a narrow bump
+      absorbed by a fitted correlation near 1 is too white at high frequencies for that
+      correlation (10-sd bumps of 120 rows on white noise give p_consistent
+      0.0025-0.04). The AR(p) rescue was judged by the AR(1) draws until issue 26,
+      which vetoed AR(2) nulls of phi (0.7, 0.15) (p_consistent 0.002-0.01);
+    - no rescue when a growing ripple explains more of the remainder than that noise
+      model produces (``p_ripple``, ``p_ripple_ar``, ``p_ripple_pl``;
+      :mod:`knotmech.diagnose.ripple`);
       when both reject, ``unexplained`` (a deterministic ripple: stick-slip chatter on a
       short recording, issue 26);
     - otherwise ``unexplained`` when the high-frequency noise is white
@@ -549,6 +689,7 @@ def noise_floor_verdict(nf: NoiseFloor, alpha: float) -> tuple[str, str]:
             f"; the best AR(p) noise model (p = {ar.order} by BIC, at most {ar.max_order} "
             f"for {nf.n} rows) does not either: {ar_why}"
         )
+    why += _power_law_failure(nf)
     return "undetermined", (
         f"{head}; {why}; the recording cannot tell a smooth mismatch from correlated "
         f"noise (lag-one correlation of differences {nf.hf_lag1:.2f}, white -0.5)"

@@ -28,7 +28,15 @@ import numpy as np
 
 from knotmech.diagnose.stats import NoiseModel
 
-__all__ = ["F_HIGH", "BETA_GRID", "PowerLawFit", "PowerLawNoise", "fit_power_law"]
+__all__ = [
+    "F_HIGH",
+    "BETA_GRID",
+    "BETA_RANGE",
+    "PowerLawFit",
+    "PowerLawNoise",
+    "fit_power_law",
+    "power_law_draws",
+]
 
 #: lowest frequency [cycles per row] of the band the power law is fitted on
 F_HIGH = 1.0 / 16.0
@@ -36,6 +44,12 @@ F_HIGH = 1.0 / 16.0
 BETA_GRID = np.linspace(0.0, 3.0, 121)
 #: fewest periodogram ordinates a fit needs (a trial of 64 rows gives 28)
 MIN_ORDINATES = 24
+#: the power-law null is tried when the remainder's high-frequency spectral exponent lies
+#: in this range, that of flicker (1/f-type) noise: on 120 rows white noise fits 0-0.4
+#: (90 % under 0.38), pink 0.57-1.33 (10-90 %), AR(1) at rho 0.8 1.15-1.78 and at rho 0.9
+#: 1.6-1.8 (the engine's AR(1) null keeps those: a power law fitted to them would
+#: extrapolate far more low-frequency power than they have)
+BETA_RANGE = (0.3, 1.3)
 
 
 @dataclass(frozen=True)
@@ -102,6 +116,49 @@ def fit_power_law(u, starts, *, f_min: float = F_HIGH) -> PowerLawFit | None:
     nll = f.size * np.log(c) - BETA_GRID * np.sum(lf)
     i = int(np.argmin(nll))
     return PowerLawFit(float(BETA_GRID[i]), float(c[i]), int(f.size))
+
+
+def _synth(m: int, beta: float, draws: int, rng) -> np.ndarray:
+    """(m, draws) Gaussian series of spectrum ``f**-beta`` (unit level), the first ``m``
+    rows of a ``2 m``-row FFT synthesis (not circular), as :meth:`PowerLawNoise.sample`."""
+    n2 = 2 * m
+    f = np.fft.rfftfreq(n2)
+    s = np.zeros_like(f)
+    s[1:] = f[1:] ** (-beta)
+    amp = np.sqrt(s * n2 / 2.0)[:, None]
+    shape = (f.size, draws)
+    spec = amp * (rng.standard_normal(shape) + 1j * rng.standard_normal(shape))
+    spec[-1] = np.sqrt(s[-1] * n2) * rng.standard_normal(draws)
+    return np.fft.irfft(spec, n2, axis=0)[:m]
+
+
+def power_law_draws(seg: np.ndarray, beta: float, draws: int, rng) -> np.ndarray:
+    """``draws`` series of power-law noise of exponent ``beta`` laid out as ``seg``.
+
+    Each run of equal labels in ``seg`` (a trial, rows in time order) is its own
+    series, synthesised as :class:`PowerLawNoise` does (unit level: the statistics they
+    calibrate do not depend on it).
+
+    Parameters
+    ----------
+    seg : (n,) int array
+        Trial label of each row.
+    beta : float
+        Spectral exponent.
+    draws : int
+        Number of series.
+    rng : numpy Generator
+
+    Returns
+    -------
+    (n, draws) array
+    """
+    seg = np.asarray(seg)
+    out = np.empty((seg.size, draws))
+    bounds = np.flatnonzero(np.r_[True, seg[1:] != seg[:-1], True])
+    for a, b in zip(bounds[:-1], bounds[1:], strict=True):
+        out[a:b] = _synth(b - a, beta, draws, rng)
+    return out
 
 
 @dataclass(frozen=True)

@@ -28,7 +28,7 @@ from __future__ import annotations
 import numpy as np
 from scipy import signal
 
-__all__ = ["RIPPLE_MAX_ROWS", "ripple_p_value", "ripple_statistic"]
+__all__ = ["RIPPLE_MAX_ROWS", "ar_draws", "ripple_p_value", "ripple_p_of_draws", "ripple_statistic"]
 
 #: longer recordings are not tested (p = 1): the short-recording gap this closes is at
 #: 30-100 rows, and the noise floor's other statistics resolve a ripple on long ones
@@ -62,7 +62,7 @@ def ripple_statistic(u: np.ndarray, t: np.ndarray, bases=None) -> np.ndarray:
     return best / np.where(tot > 0, tot, 1.0)
 
 
-def _ar_draws(phi, seg, draws, rng) -> np.ndarray:
+def ar_draws(phi, seg, draws, rng) -> np.ndarray:
     """(n, draws) unit-innovation AR(``phi``) series, each trial its own, burnt in."""
     n = seg.size
     out = np.empty((n, draws))
@@ -102,5 +102,32 @@ def ripple_p_value(u, t, seg, phi, rng, draws: int = _DRAWS) -> float:
         return 1.0
     bases = _bases(np.asarray(t, float), n)
     obs = float(ripple_statistic(np.asarray(u, float), t, bases)[0])
-    sims = ripple_statistic(_ar_draws(phi, np.asarray(seg), draws, rng), t, bases)
+    sims = ripple_statistic(ar_draws(phi, np.asarray(seg), draws, rng), t, bases)
     return (1 + int(np.sum(sims >= obs))) / (draws + 1)
+
+
+def ripple_p_of_draws(u, t, z) -> float:
+    """P(S at least the remainder's | the noise drawn in ``z``), counted (1 + k)/(B + 1).
+
+    As :func:`ripple_p_value`, with the draws of the noise under test given (any
+    model: the power-law draws of :mod:`knotmech.diagnose.noisefloor`).
+
+    Parameters
+    ----------
+    u, t : (n,) arrays
+        Standardised remainder and the control mapped onto [0, 1], rows sorted.
+    z : (n, B) array
+        B draws of the noise under test, laid out as ``u``.
+
+    Returns
+    -------
+    float
+        The p-value; 1 for more than :data:`RIPPLE_MAX_ROWS` or fewer than 12 rows.
+    """
+    n = int(np.size(u))
+    if n > RIPPLE_MAX_ROWS or n < 12:
+        return 1.0
+    bases = _bases(np.asarray(t, float), n)
+    obs = float(ripple_statistic(np.asarray(u, float), t, bases)[0])
+    sims = ripple_statistic(z, t, bases)
+    return (1 + int(np.sum(sims >= obs))) / (z.shape[1] + 1)

@@ -106,14 +106,56 @@ def test_ar_path_needs_correlated_high_frequency_noise():
     assert v == "undetermined"
     assert "best AR(p) noise model (p = 2 by BIC, at most 6 for 120 rows)" in why
     assert "too short for its noise" in why
-    # a whitening AR(2) with enough stretches, vetoed by the (AR(1)) consistency check:
-    # the reason names that check, not the stretches (issue 26's AR(2) nulls)
-    v, why = noise_floor_verdict(
+    # the AR(1) consistency check no longer vetoes the AR(p) rescue (issue 26's AR(2)
+    # nulls: the AR(1) draws were the wrong model for them) ...
+    v, _ = noise_floor_verdict(
         NoiseFloor(p_hf_white=0.001, ar=good, p_consistent=0.004, **base), 0.01
     )
+    assert v == "none"
+    # ... the AR(p) model's own draws do: the reason names that check, not the stretches
+    v, why = noise_floor_verdict(
+        NoiseFloor(p_hf_white=0.001, ar=good, p_consistent=0.004, p_consistent_ar=0.004, **base),
+        0.01,
+    )
     assert v == "undetermined"
-    assert "too white for the level (the check draws AR(1) noise: p = 0.004)" in why
+    assert "do not give the level with these high frequencies (p = 0.004)" in why
     assert "too short for its noise" not in why
     bad = ARFit(2, (1.2, -0.4), 1.0, 0.632, 27.0, 40.0, 10, 1e-5, 6)
     v, why = noise_floor_verdict(NoiseFloor(p_hf_white=0.001, ar=bad, **base), 0.01)
     assert v == "undetermined" and "Ljung-Box p = 1e-05" in why
+
+
+def test_ar2_null_with_the_heldout_phi_is_none():
+    """AR(2) noise of phi (0.7, 0.15) (issue 26's held-out generator), 200 rows, pinch,
+    unit marginal sd x 0.01: the consistency check drew AR(1) noise and vetoed the AR(2)
+    rescue (p_consistent 0.004 < 0.01: ``undetermined``); the AR(2) model's own draws
+    agree with the level and the high frequencies (p_consistent_ar 0.61): ``none``."""
+    from scipy.signal import lfilter
+
+    n = 200
+    rng = np.random.default_rng([0, 26])
+    z = lfilter([1.0], [1.0, -0.7, -0.15], rng.standard_normal(n + 300))[300:]
+    x = np.linspace(0.2, 10.0, n)
+    rec = recording_from_arrays("pinch", x, 0.6 * x + 0.01 * z / np.std(z), metadata=PINCH_META)
+    rep = diagnose(rec, seed=0)
+    assert rep.verdict == "none", rep.summary
+    nf = rep.details["noise_floor"]
+    assert nf["p_consistent"] < 0.01 and nf["p_consistent_ar"] == pytest.approx(0.607, abs=0.01)
+    assert nf["ar"]["order"] == 2 and nf["ar"]["p_white"] >= 0.01
+
+
+@pytest.mark.parametrize(("noise", "size", "kind", "seed", "verdict"), [
+    ("ar1", 10.0, "pinch", 0, "undetermined"),
+    ("ar1", 10.0, "tension_profile", 1, "unexplained"),
+    ("ar2", 30.0, "pinch", 0, "unexplained"),
+    ("pink", 30.0, "pinch", 0, "unexplained"),
+])  # fmt: skip
+def test_narrow_bumps_on_coloured_noise_stay_flagged(noise, size, kind, seed, verdict):
+    """``noise_robustness`` Gaussian bumps (sd 4 % of the range) on AR(1) 0.8, AR(2) and
+    1/f noise, 120 rows: the AR(p) rescue judged by its own draws and the power-law
+    rescue leave them as they were (36 such bumps, 10 and 30 sd: 35 unchanged, one 10-sd
+    bump on 1/f noise now ``none``, issue26-campaign.md section 5)."""
+    from validation.noise_robustness import make
+
+    rec, _ = make(kind, "bump", size, noise, seed, 120)
+    assert diagnose(rec, seed=seed).verdict == verdict

@@ -92,17 +92,50 @@ def test_thinned_power_law_draws_are_every_kth_row_of_a_full_draw():
     assert np.var(zs) == pytest.approx(1.0, rel=0.06)
 
 
-def test_pink_null_that_the_ar1_null_called_unexplained_is_undetermined():
-    """``noise_robustness`` pinch null 103 (1/f noise, 120 rows) was ``unexplained``; the
-    power-law null fitted to its high frequencies explains it: ``undetermined``, with the
-    exponent and the reason."""
+def test_pink_null_that_the_ar1_null_called_unexplained_goes_to_the_noise_floor():
+    """``noise_robustness`` pinch null 103 (1/f noise, 120 rows) was ``unexplained``, then
+    ``undetermined`` once the power-law null explained its located mismatch; with nothing
+    accepted the remainder now goes to the noise floor, whose AR(1) rescue holds
+    (p_consistent 0.018 >= 0.01): ``none``."""
     rec, _ = make("pinch", None, 0.0, "pink", 103, 120)
     rep = diagnose(rec, seed=103)
-    assert rep.verdict == "undetermined"
+    assert rep.verdict == "none"
     pl = rep.details["power_law"]
     assert pl["explains"] and pl["tested"] == "unexplained" and pl["p_value"] >= 0.01
     assert 0.3 <= pl["beta"] <= 2.0
-    assert "power-law noise of exponent" in rep.summary.splitlines()[0]
+    assert rep.details["noise_floor"]["p_consistent"] == pytest.approx(0.018, abs=0.002)
+
+
+def test_pink_null_with_an_accepted_effect_stays_undetermined():
+    """``noise_robustness`` pinch null 500 (1/f noise, 200 rows): adhesion accepted, its
+    remainder located as a mismatch the power-law null explains: ``undetermined`` with
+    the effect listed (never ``none`` with an accepted effect, never the effect's name)."""
+    rec, _ = make("pinch", None, 0.0, "pink", 500, 200)
+    rep = diagnose(rec, seed=0)
+    assert rep.verdict == "undetermined"
+    assert [e["name"] for e in rep.effects] == ["adhesion"]
+
+
+def test_power_law_rescue_needs_its_draws_to_agree():
+    """The noise floor's third rescue (:func:`noise_floor_verdict`): correlated high
+    frequencies, an exponent in range and power-law draws that give the level, the high
+    frequencies and the ripple; white high frequencies leave the excess to structure."""
+    from knotmech.diagnose.arnoise import ARFit
+    from knotmech.diagnose.noisefloor import NoiseFloor, noise_floor_verdict
+
+    base = dict(sigma_hf=0.01, level=1.8, p_level=0.002, rho_needed=0.61, innovation_lag1=-0.09,
+                p_model=0.2, hf_lag1=-0.37, n_eff=62.0, n=200, p_consistent=0.004,
+                ar=ARFit(1, (0.53,), 1.0, 0.53, 61.6, 7.5, 10, 0.58, 8), p_consistent_ar=0.003,
+                beta=0.8, p_ripple_pl=0.8)  # fmt: skip
+    assert (
+        noise_floor_verdict(NoiseFloor(p_hf_white=0.008, p_power_law=0.35, **base), 0.01)[0]
+        == "none"
+    )
+    v, why = noise_floor_verdict(NoiseFloor(p_hf_white=0.008, p_power_law=0.004, **base), 0.01)
+    assert v == "undetermined"
+    assert "nor does power-law noise of the high frequencies' exponent 0.8 (level and high " in why
+    v, _ = noise_floor_verdict(NoiseFloor(p_hf_white=0.5, p_power_law=0.35, **base), 0.01)
+    assert v == "unexplained"
 
 
 @pytest.mark.slow

@@ -89,3 +89,27 @@ def test_quick_campaign_rates_on_its_fixed_seeds(tmp_path):
     # a rerun reads the cache: no recording diagnosed again
     again = case.run(quick=True, out_dir=tmp_path)
     assert again["numbers"]["wall_seconds"] < 2.0
+
+
+def test_only_and_seed0_pick_the_same_recordings():
+    """``--only nulls`` keeps the full run's null recordings (seeds counted as in the full
+    run); ``--seed0`` moves every seed of the run (a fresh set)."""
+    full = case.cases(False, ("tune",))
+    nulls = case.cases(False, ("tune",), "nulls")
+    assert len(nulls) == 60 and nulls == [c for c in full if c[2] is None]
+    fresh = case.cases(False, ("heldout",), None, 95_000)
+    assert len(fresh) == 138 and min(c[-1] for c in fresh) == 95_000
+    assert max(c[-1] for c in fresh) == 95_137
+
+
+def test_tune_pink_null_is_rescued_by_power_law_noise():
+    """Tune pinch null 7095 (1/f noise, 200 rows) was ``undetermined``: the AR(1) draws
+    (p_consistent 0.004) and the AR(1) fit's own draws (p_consistent_ar 0.012, order 1)
+    found its high frequencies too white for its level; power-law draws of the fitted
+    exponent 0.8 give both (p_power_law 0.35) and its ripple: ``none``."""
+    rec, _ = case.make("tune", "pinch", None, 0.0, "pink", 7095)
+    rep = case.diagnose(rec, seed=7095)
+    assert rep.verdict == "none"
+    nf = rep.details["noise_floor"]
+    assert nf["p_consistent"] < 0.01 and nf["beta"] == pytest.approx(0.8, abs=0.03)
+    assert nf["p_power_law"] == pytest.approx(0.347, abs=0.01) and nf["p_ripple_pl"] >= 0.01
