@@ -1,4 +1,5 @@
-"""The rod-rod anchor law's defaults since issue 24: cap floor 1e-2 and the path guard.
+"""The rod-rod anchor law's defaults since issue 24: cap floor 1e-2 and the path guard; the
+hitch scenes keep the floor 0 (the paper's free-end clove hitch slips with the floor).
 
 The regularised law keeps the displacement guard (the path guard moves its goldens:
 tests/golden/speed_golden.json's overhand_imc takes 15 instead of 17 steps with it), and
@@ -41,9 +42,25 @@ def test_law_as_shipped_stays_reachable():
         RodContact(stiffness=1.0, sharpness=1.0, tunnel_check="none")
 
 
-def test_table_law_text_names_the_default_floor():
-    assert f"cap_floor {CAP_FLOOR:g}," in tables.ANCHOR_LAW
+def test_table_law_text_names_the_hitch_scenes_floor():
+    from knotmech.scenes._hitch import HITCH_CAP_FLOOR
+
+    assert HITCH_CAP_FLOOR == 0.0
+    assert f"cap_floor {HITCH_CAP_FLOOR:g}," in tables.ANCHOR_LAW
     assert "tunnel_check path" in tables.ANCHOR_LAW
+
+
+def test_hitch_scenes_build_their_anchor_law_without_the_floor():
+    """The hitch scenes' rod-rod law: anchor with cap floor 0 (the smooth law unchanged)."""
+    from types import SimpleNamespace
+
+    from knotmech.scenes._hitch import HitchScene
+
+    def law(name):
+        return HitchScene._rod_friction(SimpleNamespace(mrr=0.3, fric=SimpleNamespace(law=name)))
+
+    assert isinstance(law("anchor"), AnchorFriction) and law("anchor").cap_floor == 0.0
+    assert isinstance(law("imc"), SmoothFriction)
 
 
 def test_old_tables_say_which_law_built_them():
@@ -52,6 +69,7 @@ def test_old_tables_say_which_law_built_them():
     a = table.lookup(0.1, 1e-3, mu=0.3)
     assert a.message.endswith(table.law_note)
     assert "as shipped before issue 24 (cap_floor 0, tunnel_check displacement)" in a.message
+    assert "not the hitch scenes' law since" in a.message
     rebuilt = tables.HoldTable(table.knot, table.points, {**table.meta, "law": tables.ANCHOR_LAW})
     assert rebuilt.law_note == ""
     assert rebuilt.lookup(0.1, 1e-3, mu=0.3).message == a.message[: -len(table.law_note) - 2]
