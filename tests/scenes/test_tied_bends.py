@@ -214,3 +214,26 @@ def test_sheet_bend_slip_load_rises_with_friction():
         assert r.status == "success" and r.verdict == "slips", r.message
         assert r.topology_preserved
     assert 0 < low.slip_load < high.slip_load < math.inf
+
+
+@pytest.mark.slow
+def test_figure_eight_bend_keeps_its_knot_type_through_set_and_pull():
+    """The default run at mu = 0.3 (about 70 s of CPU): each rope stays 4_1 at the pull's
+    start and on every pull frame (with 8 d ends B came undone during the set), and the
+    bend holds to the end of the 20 d pull."""
+    r = bend("figure-eight-bend", mu_rod_rod=0.3)
+    assert r.status == "success", r.message
+    assert r.frames_checked == len(r.times) >= 20 and r.topology_preserved
+    assert r.came_undone == "" and r.verdict == "holds"
+
+
+@pytest.mark.slow
+def test_double_fishermans_comes_undone_at_low_friction():
+    """The default run at mu = 0.3 (about 60 s of CPU): rope A's tail is drawn back
+    through its coil (A alone turns from 5_1 into another knot), a slip, not a failure;
+    every frame before it keeps both ropes' 5_1."""
+    r = bend("double-fishermans", mu_rod_rod=0.3)
+    assert r.status == "success", r.message
+    assert r.verdict == "slips" and r.came_undone in ("A", "B", "AB")
+    assert r.topology_preserved  # on the frames before the slip
+    assert 0.05 < r.slip_load < 0.35
