@@ -284,8 +284,8 @@ def bend(
     -----
     Cost at the defaults (80 nodes per rope, 2 x 48 mm at 40 mm/s): about 800 steps and
     6000 Newton iterations, 1-2 minutes on a free core (docs/notes/knots.md gives the times).
-    A tied bend at its defaults: 15-55 s of CPU (``benchmarks/tied.py``;
-    docs/notes/knots-and-curves/tied-knots-pulled.md).
+    A tied bend at its defaults: 10-60 s of CPU, the figure-eight bend (40 d set, 200 d
+    ropes) 70-80 s (``benchmarks/tied.py``; docs/notes/knots-and-curves/tied-knots-pulled.md).
     """
     record = _record(kind)
     defaults = {"n_nodes": 80, "n_frames": 120, **record.scene_defaults}
