@@ -54,6 +54,7 @@ def _one(kind: str, mu: float) -> dict:
         "slip_load_N": r.slip_load if r.verdict == "slips" else None,
         "max_force_N": r.max_force,
         "tail_drawn": r.tail_drawn,
+        "came_undone": r.came_undone,
         "roll_d": r.roll / 4e-3,
         "frames_checked": r.frames_checked,
     }

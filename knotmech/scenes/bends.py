@@ -57,8 +57,10 @@ from knotmech.scenes.tied.pulled import (
     end_direction,
     frame_invariants,
     invariants_changed,
+    rope_types,
     tail_free_lengths,
     tail_nodes,
+    tails_drawn,
 )
 
 __all__ = [
@@ -282,8 +284,8 @@ def bend(
     -----
     Cost at the defaults (80 nodes per rope, 2 x 48 mm at 40 mm/s): about 800 steps and
     6000 Newton iterations, 1-2 minutes on a free core (docs/notes/knots.md gives the times).
-    A tied bend at its defaults: 15-55 s of CPU (``benchmarks/tied.py``;
-    docs/notes/knots-and-curves/tied-knots-pulled.md).
+    A tied bend at its defaults: 10-60 s of CPU, the figure-eight bend (40 d set, 200 d
+    ropes) 70-80 s (``benchmarks/tied.py``; docs/notes/knots-and-curves/tied-knots-pulled.md).
     """
     record = _record(kind)
     defaults = {"n_nodes": 80, "n_frames": 120, **record.scene_defaults}
@@ -621,6 +623,9 @@ class BendScene(Scene):
 #: since issue 24 (:data:`knotmech.rod.friction.CAP_FLOOR`), kept as a name for the tied
 #: bends' results
 TIED_CAP_FLOOR = rod.friction.CAP_FLOOR
+#: interval [s of simulated time] at which a tied bend's pull looks whether a tail was
+#: drawn through the knot (the pull's frame interval at the defaults: 20 d in 20 frames)
+UNDONE_EVERY = 0.1
 
 
 def _record(kind):
@@ -648,6 +653,10 @@ class TiedBendResult(BendResult):
     roll : float [m]
         The smaller of the two tails' draw-in at the last pull frame: how far the knot
         moved along both ropes towards the tails (the flat overhand bend "rolls").
+    came_undone : {"", "A", "B", "AB"}
+        The rope(s) whose tail was drawn through the knot (its knot type alone changed
+        with the tail end drawn in by more than the slip draw-in): the knot came undone,
+        a slip at that frame (``verdict`` "slips"; frames after it are not checked).
     invariants_start, invariants_checked : dict
         :func:`knotmech.scenes.tied.measure` of the start shape and the last values
         defined on the frames checked.
@@ -660,6 +669,7 @@ class TiedBendResult(BendResult):
 
     tail_drawn: str = ""
     roll: float = float("nan")
+    came_undone: str = ""
     invariants_start: dict = field(default_factory=dict)
     invariants_checked: dict = field(default_factory=dict)
     frames_checked: int = 0
@@ -676,6 +686,7 @@ class TiedBendResult(BendResult):
         out = super().to_dict()
         out.update(
             tail_drawn=self.tail_drawn,
+            came_undone=self.came_undone,
             roll=float(self.roll) if np.isfinite(self.roll) else None,
             frames_checked=int(self.frames_checked),
             law=self.law,
@@ -742,6 +753,7 @@ class TiedBendScene(BendScene):
         """:meth:`BendScene._pull`, the tails' free lengths at its start kept."""
         x = self.system.positions(run.state.q)
         self.free0 = tail_free_lengths(x, self.N, self.d, self.tails)
+        self.x_pull0, self._run, self._t_undone = x, run, -np.inf
         super()._pull(run)
 
     def _ran_out(self, free) -> np.ndarray:
@@ -751,15 +763,44 @@ class TiedBendScene(BendScene):
         return (free < 1.0 * self.d) & (self.free0 - free > self.slip)
 
     def _tail_out(self, x) -> bool:
-        """Whether a tail has run out of the knot (:meth:`_ran_out`)."""
-        return bool(self._ran_out(tail_free_lengths(x, self.N, self.d, self.tails)).any())
+        """Whether a tail has run out of the knot (:meth:`_ran_out`) or, looked at every
+        :data:`UNDONE_EVERY` s, been drawn through it (:meth:`_undone`)."""
+        if self._ran_out(tail_free_lengths(x, self.N, self.d, self.tails)).any():
+            return True
+        t = self._run.live.t
+        if t - self._t_undone < UNDONE_EVERY:
+            return False
+        self._t_undone = t
+        return bool(self._undone(x))
+
+    def _undone(self, x) -> tuple:
+        """The ropes (``"A"``, ``"B"``) whose tail was drawn through the knot at ``x``: the
+        rope's knot type alone differs from the start's while its tail end has moved
+        towards the knot by more than the slip draw-in since the pull began (the knot
+        came undone; the overlap watch of every step excludes a strand passing through
+        another). A rope whose type changed with its tail not drawn in is not here: that
+        fails the run (:meth:`_topology`)."""
+        drawn = tails_drawn(x, self.x_pull0, self.N)
+        if not (drawn > self.slip).any():
+            return ()
+        types, start = rope_types(x, self.N), self._start_invariants()[0]
+        return tuple("AB"[i] for i in range(2) if drawn[i] > self.slip and types[i] != start[i])
 
     def _draw_in(self, pm, x0):
         """Material draw-in [m] of A's and B's tails on each pull frame (from the pull's
-        start), and whether a tail has run out (:meth:`_ran_out`)."""
+        start), and whether a tail has run out (:meth:`_ran_out`) or been drawn through
+        the knot (:meth:`_undone`; from the first such frame ``self.k_undone`` on)."""
         free = np.array([tail_free_lengths(x, self.N, self.d, self.tails) for x in pm])
         free = free.reshape(-1, 2)
-        return self.free0 - free, self._ran_out(free).any(axis=1)
+        out = self._ran_out(free).any(axis=1)
+        self.k_undone, self.undone = None, ()
+        for k, x in enumerate(pm):
+            undone = self._undone(x)
+            if undone:
+                self.k_undone, self.undone = k, undone
+                out[k:] = True
+                break
+        return self.free0 - free, out
 
     def _start_invariants(self):
         inv = self.inv_start
@@ -774,7 +815,12 @@ class TiedBendScene(BendScene):
         self.inv_checked = got = dict(self.inv_start)
         self.frames_checked, moved = 0, {}
         pair = self._start_invariants()  # a run with no pull frame keeps the start's
+        before = self._changed_before_pull(pair[0])
+        if before:
+            return "failed", before, pair
         for k in range(len(pm)):
+            if self.k_undone is not None and k >= self.k_undone:
+                return run.status, self._undone_note(tp[k]), pair
             try:
                 now = frame_invariants(self.knot, pm[k][: self.N], pm[k][self.N :])
             except InputError as e:
@@ -796,6 +842,24 @@ class TiedBendScene(BendScene):
         )
         return run.status, run.message or note, pair
 
+    def _changed_before_pull(self, start) -> str:
+        """The failure message when a rope's knot type at the pull's start differs from
+        ``start`` (changed while all four ends were held), else ``""``."""
+        if not hasattr(self, "x_pull0"):
+            return ""
+        now = rope_types(self.x_pull0, self.N)
+        ropes = ", ".join(r for r, a, b in zip("AB", now, start, strict=True) if a != b)
+        if not ropes:
+            return ""
+        return (f"knot type of rope {ropes} changed before the pull (settle or set, all "
+                "four ends held): a loop passed over a held end (ends too short for the "
+                "loose knot), or a strand through another; not a result")  # fmt: skip
+
+    def _undone_note(self, t) -> str:
+        ropes = " and ".join(self.undone)
+        return (f"rope {ropes} came undone at t = {t:.3f} s: its tail drawn through the "
+                "knot (a slip; frames after it not checked)")  # fmt: skip
+
     def measure(self, run: SceneRun) -> TiedBendResult:
         """:meth:`BendScene.measure`, the tail drawn in and the roll."""
         res = super().measure(run)
@@ -811,6 +875,7 @@ class TiedBendScene(BendScene):
             f"tunnel check {self.contact_tunnel_check}"
         )
         return TiedBendResult(**base, tail_drawn=tail, roll=roll, law=law,
+                              came_undone="".join(getattr(self, "undone", ())),
                               invariants_start=self.inv_start,
                               invariants_checked=getattr(self, "inv_checked", {}),
                               frames_checked=getattr(self, "frames_checked", 0))  # fmt: skip

@@ -14,14 +14,18 @@ import numpy as np
 import pytest
 
 from knotmech.errors import InputError
-from knotmech.scenes.bends import TiedBendResult, bend
-from knotmech.scenes.tied import TIED_KNOTS
+from knotmech.scenes.bends import TiedBendResult, TiedBendScene, bend
+from knotmech.scenes.curves import resample_polyline
+from knotmech.scenes.tied import TIED_KNOTS, measure
 from knotmech.scenes.tied.pulled import (
     NEAR_SET,
+    PARALLEL,
     end_direction,
     invariants_changed,
+    rope_types,
     tail_free_lengths,
     tail_nodes,
+    tails_drawn,
 )
 
 D = 4e-3
@@ -81,7 +85,86 @@ def test_start_tails_lie_outside_the_knot(name):
     k = TIED_KNOTS[name](rod_diameter=D, n_nodes=n)
     x = np.vstack([k.ropes["A"], k.ropes["B"]])
     free = tail_free_lengths(x, n, D, tail_nodes(x, n, D))
-    assert np.all(free > 5 * D) and np.all(free < 40 * D)
+    assert np.all(free > 5 * D) and np.all(free < (60 if name == "figure_eight_bend" else 40) * D)
+
+
+def _end_clearance(ropes, d):
+    """Distance [d] from each rope end (A start, A end, B start, B end) to the nearest node
+    of a strand crossing it (tangents more than 25 deg apart; its own rope's nodes within
+    4 d of arc excluded)."""
+    tang = [np.gradient(r, axis=0) / np.linalg.norm(np.gradient(r, axis=0), axis=1)[:, None]
+            for r in ropes]  # fmt: skip
+    allx, allt = np.vstack(ropes), np.vstack(tang)
+    out = []
+    for i, (r, t) in enumerate(zip(ropes, tang, strict=True)):
+        h = float(np.mean(np.linalg.norm(np.diff(r, axis=0), axis=1)))
+        for e in (0, len(r) - 1):
+            keep = np.abs(allt @ t[e]) < PARALLEL
+            own = np.abs(np.arange(len(r)) - e) * h < 4 * d
+            keep[i * len(r) : (i + 1) * len(r)] &= ~own
+            out.append(float(np.linalg.norm(allx[keep] - r[e], axis=1).min()) / d)
+    return np.array(out)
+
+
+def test_figure_eight_bend_ends_lie_clear_of_its_loops():
+    """The figure-eight bend's four held ends lie at least 11 d (left: A standing, B tail)
+    and 26 d (right: A tail, B standing) from any strand crossing them, in the scene's
+    150-node mesh: with the 8 d ends of the construction alone they were 5.5 and 10.6 d,
+    and a loop of B slid over B's held standing end during the set (B came undone)."""
+    k = TIED_KNOTS["figure_eight_bend"](rod_diameter=D, n_nodes=150)
+    got = _end_clearance([k.ropes["A"], k.ropes["B"]], D)
+    np.testing.assert_allclose(got, [11.93, 26.56, 26.60, 12.59], atol=0.01)
+    assert k.info["min_gap"] / D == pytest.approx(1.180, abs=1e-3)  # strands still apart
+    assert measure(k) == k.expected  # the same knot: 4_1 each, linked once, joined 0_1
+
+
+def test_tails_drawn_is_the_end_moved_against_its_outward_tangent():
+    """Two straight ropes along x (tails at their last nodes: A's pointing +x, B's -x);
+    A's tail end moved 3 d in -x and 1 d sideways, B's 2 d in -x (outwards): drawn in by
+    3 d and by -2 d."""
+    n = 20
+    a = _line([0, 0, 0], [D, 0, 0], n)
+    b = _line([0, 2 * D, 0], [-D, 0, 0], n)
+    x0 = np.vstack([a, b])
+    x = x0.copy()
+    x[n - 1] += [-3 * D, D, 0]
+    x[2 * n - 1] += [-2 * D, 0, 0]
+    np.testing.assert_allclose(tails_drawn(x, x0, n), [3 * D, -2 * D], atol=1e-15)
+
+
+def _fishermans_undone():
+    """The double fisherman's start (150 nodes a rope) and a frame in which A's tail is cut
+    back to just past its coil (A's strangle untucked: A alone is no longer 5_1) and
+    resampled, so its tail end lies about 5 d nearer the knot."""
+    k = TIED_KNOTS["double_fishermans"](rod_diameter=D, n_nodes=150)
+    a, b = k.ropes["A"], k.ropes["B"]
+    cut = int(np.argmin(np.abs(a[:, 0] - 12.0 * D) + 10 * (np.arange(150) < 100)))
+    return k, np.vstack([a, b]), np.vstack([resample_polyline(a[:cut], 150), b])
+
+
+def test_rope_types_tell_an_untucked_strangle():
+    k, x0, x = _fishermans_undone()
+    five = (1, -1, 1, -1, 1)
+    assert rope_types(x0, 150) == (five, five)
+    assert rope_types(x, 150)[1] == five and rope_types(x, 150)[0] != five
+    assert tails_drawn(x, x0, 150)[0] > 2 * D
+
+
+def test_a_tail_drawn_through_is_a_slip_and_a_change_without_it_is_not():
+    """:meth:`TiedBendScene._undone`: A's knot type changed with its tail end drawn in by
+    more than the slip draw-in (2 d) -> ("A",), a slip; the same frame taken as the pull's
+    start (tail not drawn in) -> (), which the topology check fails."""
+    k, x0, x = _fishermans_undone()
+    s = object.__new__(TiedBendScene)
+    s.N, s.slip, s.inv_start = 150, 2 * D, measure(k)
+    s.x_pull0 = x0
+    assert s._undone(x0) == ()
+    assert s._undone(x) == ("A",)
+    s.x_pull0 = x
+    assert s._undone(x) == ()
+    assert "rope A changed before the pull" in s._changed_before_pull(
+        (k.expected["alexander_A"], k.expected["alexander_B"])
+    )
 
 
 def test_unknown_bend_and_small_mesh_are_one_line_errors():
@@ -131,3 +214,26 @@ def test_sheet_bend_slip_load_rises_with_friction():
         assert r.status == "success" and r.verdict == "slips", r.message
         assert r.topology_preserved
     assert 0 < low.slip_load < high.slip_load < math.inf
+
+
+@pytest.mark.slow
+def test_figure_eight_bend_keeps_its_knot_type_through_set_and_pull():
+    """The default run at mu = 0.3 (about 70 s of CPU): each rope stays 4_1 at the pull's
+    start and on every pull frame (with 8 d ends B came undone during the set), and the
+    bend holds to the end of the 20 d pull."""
+    r = bend("figure-eight-bend", mu_rod_rod=0.3)
+    assert r.status == "success", r.message
+    assert r.frames_checked == len(r.times) >= 20 and r.topology_preserved
+    assert r.came_undone == "" and r.verdict == "holds"
+
+
+@pytest.mark.slow
+def test_double_fishermans_comes_undone_at_low_friction():
+    """The default run at mu = 0.3 (about 60 s of CPU): rope A's tail is drawn back
+    through its coil (A alone turns from 5_1 into another knot), a slip, not a failure;
+    every frame before it keeps both ropes' 5_1."""
+    r = bend("double-fishermans", mu_rod_rod=0.3)
+    assert r.status == "success", r.message
+    assert r.verdict == "slips" and r.came_undone in ("A", "B", "AB")
+    assert r.topology_preserved  # on the frames before the slip
+    assert 0.05 < r.slip_load < 0.35

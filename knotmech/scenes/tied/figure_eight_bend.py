@@ -28,16 +28,31 @@ Topology, proven in ``tests/scenes/test_tied_curves.py``:
 
 from __future__ import annotations
 
+import numpy as np
+
 from knotmech.scenes.tied._common import TiedKnot, check_sizes, finish, ribbon_strands, start_checks
 
 __all__ = ["figure_eight_bend"]
 
 SCALE = 3.4  #: size of the figure-eight [d]
 HALF = 0.65  #: half spacing of the two ropes [d]
-TAIL = 8.0  #: straight ends [d]
+TAIL = 8.0  #: straight ends of the construction [d]
+#: each straight end lengthened by EXTEND [d] (to 24 d beyond the construction's knot):
+#: the loose knot's loops (up to 20 d across while it is set) must not reach a held end
+#: (with 8 d ends a loop of B slid over B's held standing end during the set and B came
+#: undone: docs/notes/knots-and-curves/tied-knots-pulled.md)
+EXTEND = 16.0
 
 
-def figure_eight_bend(*, rod_diameter: float, n_nodes: int = 200) -> TiedKnot:
+def _extended(p, length: float) -> np.ndarray:
+    """Dense polyline ``p`` [d] with both (straight) ends run on by ``length`` [d] along
+    their outward tangents."""
+    u0, u1 = p[0] - p[1], p[-1] - p[-2]
+    u0, u1 = u0 / np.linalg.norm(u0), u1 / np.linalg.norm(u1)
+    return np.vstack([p[0] + length * u0, p, p[-1] + length * u1])
+
+
+def figure_eight_bend(*, rod_diameter: float, n_nodes: int = 300) -> TiedKnot:
     """Loosely tied figure-eight bend of two ropes A and B.
 
     Parameters
@@ -45,7 +60,8 @@ def figure_eight_bend(*, rod_diameter: float, n_nodes: int = 200) -> TiedKnot:
     rod_diameter : float [m]
         d, both ropes.
     n_nodes : int
-        Nodes per rope (>= 100).
+        Nodes per rope (>= 100; the default 300 gives edges of 0.6-0.7 d, the bend
+        scene's 150 edges of 1.2-1.35 d).
 
     Returns
     -------
@@ -55,7 +71,7 @@ def figure_eight_bend(*, rod_diameter: float, n_nodes: int = 200) -> TiedKnot:
     """
     d, n = check_sizes(rod_diameter, n_nodes, 100)
     upper, lower, w = ribbon_strands("figure_eight", SCALE, HALF, TAIL)
-    a, b = finish([upper, lower[::-1]], d, n)
+    a, b = finish([_extended(upper, EXTEND), _extended(lower[::-1], EXTEND)], d, n)
     return TiedKnot(
         name="figure_eight_bend",
         ropes={"A": a, "B": b},

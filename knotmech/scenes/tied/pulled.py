@@ -11,7 +11,10 @@ its last node its tail. This module holds the pieces that depend only on the nod
   is the tail's *draw-in* (a material measure: it does not move with the knot, so that a
   knot which rolls along its ropes, as the flat overhand bend does, draws both tails in);
 - :func:`invariants_changed`: which of a frame's invariants
-  (:func:`knotmech.scenes.tied.measure`) differ from the start shape's.
+  (:func:`knotmech.scenes.tied.measure`) differ from the start shape's;
+- :func:`rope_types` and :func:`tails_drawn`: each rope's knot type alone and how far each
+  tail end moved towards the knot, which tell a tail drawn through the knot (the knot came
+  undone: a slip) from a change with the tail not drawn in (not a result).
 """
 
 from __future__ import annotations
@@ -20,7 +23,7 @@ from dataclasses import replace
 
 import numpy as np
 
-from knotmech.scenes.tied._common import TiedKnot, measure
+from knotmech.scenes.tied._common import TiedKnot, invariant, join_far, measure
 
 __all__ = [
     "NEAR",
@@ -29,6 +32,8 @@ __all__ = [
     "tail_free_lengths",
     "frame_invariants",
     "invariants_changed",
+    "rope_types",
+    "tails_drawn",
 ]
 
 #: a node is inside the knot when another strand's node lies within NEAR d of it (1 d is
@@ -129,3 +134,41 @@ def invariants_changed(start: dict, now: dict) -> list:
     """Keys whose value at ``now`` differs from ``start``; a value of None (a closure not
     defined because the free tails' ends interleave round the knot) is no change."""
     return [k for k, v in now.items() if v is not None and v != start.get(k)]
+
+
+def rope_types(x, n_nodes: int) -> tuple:
+    """Alexander polynomials of rope A and of rope B, each closed alone far outside (the
+    closure of :func:`knotmech.scenes.tied.measure`'s ``alexander_A``, ``alexander_B``).
+
+    Parameters
+    ----------
+    x : (2 n_nodes, 3) array [m]
+        Rope A's nodes, then B's.
+    n_nodes : int
+        Nodes per rope.
+    """
+    x = np.asarray(x, float)
+    return tuple(invariant(join_far([r])) for r in (x[:n_nodes], x[n_nodes:]))
+
+
+def tails_drawn(x, x0, n_nodes: int) -> np.ndarray:
+    """How far [m] A's and B's tail ends (their last nodes) moved towards the knot since
+    ``x0``: the displacement against each tail's outward end direction at ``x0``
+    (:func:`end_direction`); negative when a tail end moved out.
+
+    Parameters
+    ----------
+    x, x0 : (2 n_nodes, 3) arrays [m]
+        A frame and the reference frame (the pull's start).
+    n_nodes : int
+
+    Returns
+    -------
+    (2,) array [m]
+    """
+    x, x0 = np.asarray(x, float), np.asarray(x0, float)
+    out = np.empty(2)
+    for i, sl in enumerate((slice(0, n_nodes), slice(n_nodes, 2 * n_nodes))):
+        u = end_direction(x0[sl], "end")
+        out[i] = float((x0[sl][-1] - x[sl][-1]) @ u)
+    return out
