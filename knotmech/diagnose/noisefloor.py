@@ -459,12 +459,7 @@ def _ripple_p(u, x, o, seg, noise, ar, rng) -> tuple[float, float]:
     in row order, ``o`` the sorted order, ``seg`` the sorted rows' trials)."""
     if u.size > RIPPLE_MAX_ROWS:
         return 1.0, 1.0
-    xs = np.asarray(x, float)[o]
-    t = np.empty_like(xs)
-    for g in np.unique(seg):
-        m = seg == g
-        span = np.ptp(xs[m])
-        t[m] = (xs[m] - xs[m].min()) / span if span > 0 else 0.0
+    t = _unit_control(x, o, seg)
     us = np.asarray(u, float)[o]
     rho = float(noise.rho)
     p1 = ripple_p_value(us, t, seg, (rho,) if rho > 0 else (), rng)

@@ -13,14 +13,12 @@ from knotmech.verdict._run import run_answer, run_shape
 from knotmech.verdict.answer import Verdict
 from knotmech.verdict.command import simulate_command
 from knotmech.verdict.inputs import _bending_scale, _warnings, _youngs_modulus
+from knotmech.verdict.scope import BOTH_LEGS_KNOTS
 
 __all__ = ["AXIAL_HOLD_KNOTS", "AXIAL_COST", "BOTH_LEGS_KNOTS", "hold_axial", "with_capacity"]
 
 #: knots whose hold question is a pull along the pole
 AXIAL_HOLD_KNOTS = ("prusik",)
-#: hitches that ``hold --simulate`` also answers with both legs loaded (T_low =
-#: ``free_end_load`` on the other leg; ``knotmech hold --loading both-legs``)
-BOTH_LEGS_KNOTS = ("cow-hitch",)
 #: turns a side of the Prusik that ``hold`` simulates (the common three-wrap Prusik)
 PRUSIK_WRAPS = 3
 #: what one drag costs (measured: docs/notes/knots-and-curves/axial-hitches.md)

@@ -9,6 +9,7 @@ from knotmech.errors import InputError
 __all__ = [
     "KNOT_NAMES",
     "HITCHES",
+    "BOTH_LEGS_KNOTS",
     "BENDS",
     "DER_HITCHES",
     "knot_key",
@@ -67,8 +68,9 @@ ONE_RUN_KNOTS = tuple(
     for k in knots.records(answered=True)
     if k.family in ("bend", "loop") or (k.family == "hitch" and "along the pole" in k.loading)
 )
-#: hitches whose both-legs loading ``simulate`` answers (the cow hitch)
-_BOTH_LEGS = ("cow-hitch",)
+#: hitches that ``hold --simulate`` also answers with both legs loaded (T_low =
+#: ``free_end_load`` on the other leg; ``knotmech hold --loading both-legs``)
+BOTH_LEGS_KNOTS = ("cow-hitch",)
 
 
 def check_plot_request(knot, *, simulate: bool, free_end_load: float) -> None:
@@ -76,7 +78,7 @@ def check_plot_request(knot, *, simulate: bool, free_end_load: float) -> None:
     draw: a hitch's DER answer (its phase table, free end, or a simulation), or the knot of
     a DER run under ``simulate`` (bends, loops, the Prusik; the cow hitch on both legs)."""
     free = float(free_end_load or 0.0)
-    if knot in ONE_RUN_KNOTS or (knot in _BOTH_LEGS and free > 0):
+    if knot in ONE_RUN_KNOTS or (knot in BOTH_LEGS_KNOTS and free > 0):
         if not simulate:
             raise InputError(
                 f"plot draws the simulated knot: the {knot} has no table, give simulate "
