@@ -148,6 +148,15 @@ def register(subparsers) -> None:
         "the creep lies near the limit); a bend: one DER pull (1-3 min); needs E",
     )
     p.add_argument(
+        "--bisect",
+        type=int,
+        default=0,
+        metavar="N",
+        help="with --simulate, a hitch with a free end: N more DER runs (1-8) bisect the slip "
+        "load from the band the table and the first run leave (each costs what the first "
+        "does); the runs are listed in the JSON's der.bisection",
+    )
+    p.add_argument(
         "--creep-limit",
         default=None,
         metavar="D_PER_S",
@@ -207,7 +216,7 @@ def run(args) -> int:
     try:
         verdict = hold(
             knot, **inputs, material=args.material, post_material=args.post_material,
-            simulate=bool(args.simulate),
+            simulate=bool(args.simulate), bisect=args.bisect,
             phase_table=args.phase_table, progress=bool(args.simulate) and args.json != "-",
         )  # fmt: skip
     except InputError as exc:
@@ -298,7 +307,7 @@ def _flag_names(message: str) -> str:
 
     names = ("rod_diameter", "post_diameter", "pin_diameter", "mu_rr", "free_end_load",
              "wrap_angle", "post_material", "material", "youngs_modulus", "simulate", "phase_table",
-             "creep_limit", "bending_scale")  # fmt: skip
+             "creep_limit", "bending_scale", "bisect")  # fmt: skip
     pattern = r"(?<![\w-])(" + "|".join(names) + r")(?!\w)"
     message = re.sub(pattern, lambda m: "--" + m.group(1).replace("_", "-"), message)
     # "load" and "mu" are words too: an option only where a message starts with them

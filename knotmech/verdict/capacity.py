@@ -30,6 +30,7 @@ __all__ = [
     "agree_with_verdict",
     "band_newtons",
     "better_slip",
+    "bisect_slip",
     "capacity_of",
     "column_bracket",
     "slip_from_answers",
@@ -284,6 +285,81 @@ def better_slip(table: LoadBand | None, closed: LoadBand | None) -> LoadBand | N
     if table is None or (closed is not None and closed.low > table.low):
         return closed
     return table
+
+
+#: the most extra DER runs a bisection of the slip load may take (``hold --bisect``)
+MAX_BISECT_RUNS = 8
+#: the heaviest load a bisection probes, in T_high/EA: the top of the shipped DER hold
+#: tables, where the clove-hitch paper's critical loads end (Fig. 4: at most about 0.3 EA)
+BISECT_CEILING = 0.3
+
+
+def bisect_slip(ask, *, low: float, high: float, runs: int, ceiling: float, source: str):
+    """Narrow a slip band ``[low, high]`` [N] by ``runs`` decisions ``ask(load)``.
+
+    Each probe is the band's geometric mid-point (``high / 10`` while ``low`` is 0: the
+    decades of the DER tables' load axis); a band
+    open above (``high`` inf) is probed first at ``ceiling`` [N] (the end of the model's
+    validity): a hold there leaves the band open above ``ceiling`` and ends the search.
+    ``ask`` returns True (holds: the slip load is above), False (slips: below) or None (the
+    run failed: the search ends there, the band as it was).
+
+    Parameters
+    ----------
+    ask : callable
+        ``ask(load [N]) -> bool or None``: one DER run at that load.
+    low, high : float
+        The band to start from [N], ``0 <= low <= high`` (``high`` may be inf).
+    runs : int
+        At most this many calls of ``ask``, 1 to :data:`MAX_BISECT_RUNS`.
+    ceiling : float
+        Largest load probed [N] (> 0).
+    source : str
+        Where the band comes from (the runs are appended).
+
+    Returns
+    -------
+    band : LoadBand
+        The narrowed band, its value the geometric mid-point (inf when open above).
+    probes : list of (float, bool or None)
+        Each load asked [N] and its answer.
+
+    Examples
+    --------
+    >>> band, probes = bisect_slip(lambda f: f < 3.0, low=1.0, high=16.0, runs=4,
+    ...                            ceiling=100.0, source="test")
+    >>> [round(f, 3) for f, _ in probes], round(band.low, 3), round(band.high, 3)
+    ([4.0, 2.0, 2.828, 3.364], 2.828, 3.364)
+    >>> band, probes = bisect_slip(lambda f: f < 0.02, low=0.0, high=1.0, runs=3,
+    ...                            ceiling=100.0, source="test")
+    >>> [round(f, 4) for f, _ in probes], band.low, round(band.high, 4)
+    ([0.1, 0.01, 0.0316], 0.01, 0.0316)
+    """
+    if not (0 <= low <= high) or not ceiling > 0:
+        raise InputError(f"bisect_slip needs 0 <= low <= high and ceiling > 0, got "
+                         f"low {low:g}, high {high:g}, ceiling {ceiling:g}")  # fmt: skip
+    if not 1 <= int(runs) <= MAX_BISECT_RUNS:
+        raise InputError(f"bisect must be 1 to {MAX_BISECT_RUNS} runs, got {runs}")
+    probes = []
+    for _ in range(int(runs)):
+        if math.isinf(high):
+            if low >= ceiling:
+                break
+            f = ceiling
+        else:
+            f = math.sqrt(low * high) if low > 0 else high / 10
+        holds = ask(f)
+        probes.append((f, holds))
+        if holds is None:
+            break
+        low, high = (f, high) if holds else (low, f)
+    words = ", ".join(f"{format_force(f)} {_word(h)}" for f, h in probes)
+    text = f"{source}; bisection: {words}" if probes else source
+    return LoadBand(_mid(low, high), low, high, text), probes
+
+
+def _word(holds) -> str:
+    return {True: "held", False: "slipped", None: "failed"}[holds]
 
 
 def band_newtons(row, EA: float) -> LoadBand | None:

@@ -42,6 +42,7 @@ def hold(
     bending_scale=None,
     post_material=None,
     pin_diameter=None,
+    bisect=0,
 ) -> Verdict:
     r"""Does a rope tied to a post hold a load? The verdict, every model's answer and why.
 
@@ -104,6 +105,14 @@ def hold(
     phase_table : path, optional
         A hitch with a DER answer: read the DER table from this file instead of the
         shipped one (it must exist and parse).
+    bisect : int
+        With ``simulate``, a hitch on a post with a free end: this many more DER runs (1 to
+        :data:`knotmech.verdict.capacity.MAX_BISECT_RUNS`) bisect its slip load, from the
+        band the table and the first run leave (:func:`knotmech.verdict.capacity.bisect_slip`;
+        a band open above is probed first at
+        :data:`~knotmech.verdict.capacity.BISECT_CEILING` EA, the top of the DER tables).
+        Each run costs what the first does; the runs are listed in ``der["bisection"]``.
+        0 (default): no bisection.
     progress : bool
         Progress bar on stderr for ``simulate``.
     creep_limit : float, optional
@@ -137,6 +146,7 @@ def hold(
     """
     key = knot_key(knot)
     _check_sizes(rod_diameter, post_diameter, load)
+    bisect = _check_bisect(key, bisect, simulate)
     friction = None
     if mu is None:
         lo, hi, face, src = friction_preset(key, material, post_material)
@@ -184,8 +194,30 @@ def hold(
         youngs_modulus=youngs_modulus, simulate=simulate, phase_table=phase_table,
         progress=progress, creep_limit=creep_limit, bending_scale=bending_scale,
     )  # fmt: skip
+    c.bisect = bisect
     v = _verdict(c, wrap_angle)
     return replace(v, friction=_friction_part(c, wrap_angle, v, friction))
+
+
+def _check_bisect(key: str, bisect, simulate) -> int:
+    """The number of bisection runs, checked: an integer 0 to ``MAX_BISECT_RUNS``, only with
+    ``simulate`` and only for a hitch on a post (InputError, one line)."""
+    from knotmech.verdict.capacity import MAX_BISECT_RUNS
+
+    if bisect is None or bisect is False or (isinstance(bisect, int) and bisect == 0):
+        return 0
+    if isinstance(bisect, bool) or not isinstance(bisect, int):
+        raise InputError(f"bisect must be a whole number of runs, got {bisect!r}")
+    if not 1 <= bisect <= MAX_BISECT_RUNS:
+        raise InputError(f"bisect must be 1 to {MAX_BISECT_RUNS} runs, got {bisect}")
+    if not simulate:
+        raise InputError("bisect narrows the slip load by DER runs: give simulate as well")
+    if not has_der_answer(key):
+        raise InputError(
+            f"bisect applies to the hitches on a post with a DER scene, not to {key} "
+            "(a bend's, a loop's or the Prusik's run gives its slip load directly)"
+        )
+    return bisect
 
 
 def _check_sizes(rod_diameter, post_diameter, load) -> None:
@@ -278,6 +310,8 @@ class _Case:
     #: the thick nip is self-locking and inside its own validity but for the strain (set
     #: by :func:`_closed_form_answers`): it then bounds the slip load from below by 0.1 EA
     nip_locks: bool = False
+    #: extra DER runs that bisect the slip load (``simulate``, a free end)
+    bisect: int = 0
 
     @property
     def simulable(self) -> bool:
@@ -463,6 +497,11 @@ def _capacity(c: _Case, answers: list, der):
                                    mu_rr=None if c.mu_rr is None else float(c.mu_rr),
                                    creep_limit=lim)  # fmt: skip
         slip = _cap.band_newtons(row, EA)
+    if c.bisect and c.free == 0 and math.isfinite(EA) and (der or {}).get("holds") is not None:
+        # the DER's own evidence only (the table and the runs), not a closed form's bound
+        slip = _cap.agree_with_verdict(slip, bool(der["holds"]), c.load)
+        slip = _bisected(c, slip, EA, der)
+        return _cap.capacity_of(knot=c.key, slip=slip, material=c.mat, d=c.d, D=c.D, load=c.load)
     closed = _cap.slip_from_answers(answers, strain_limit_load=STRAIN_LIMIT * EA)
     if closed is None and c.nip_locks and math.isfinite(EA):  # a load beyond its strain
         closed = _cap.LoadBand(math.inf, STRAIN_LIMIT * EA, math.inf,
@@ -472,6 +511,41 @@ def _capacity(c: _Case, answers: list, der):
     dec = next((a for a in answers if a.decides), None)
     slip = _cap.agree_with_verdict(slip, None if dec is None else dec.holds, c.load)
     return _cap.capacity_of(knot=c.key, slip=slip, material=c.mat, d=c.d, D=c.D, load=c.load)
+
+
+def _bisected(c: _Case, slip, EA: float, der: dict):
+    """The slip band narrowed by ``c.bisect`` DER runs of this geometry
+    (:func:`knotmech.verdict.capacity.bisect_slip`), starting from ``slip`` (the DER table's
+    band narrowed by the first run or, with no table, the first run alone: above its load if
+    it held, below if it slipped); the runs are listed in ``der["bisection"]``."""
+    from knotmech.verdict import capacity as _cap
+    from knotmech.verdict.der import simulate_holds
+
+    held = bool(der["holds"])
+    if slip is None:
+        slip = (
+            _cap.LoadBand(math.inf, c.load, math.inf, "the DER run of this geometry")
+            if held
+            else _cap.LoadBand(c.load, 0.0, c.load, "the DER run of this geometry")
+        )
+
+    def ask(load):
+        return simulate_holds(
+            knot=c.key, d=c.d, D=c.D, mu=c.mu, mu_rr=c.mu if c.mu_rr is None else float(c.mu_rr),
+            load=load, E=c.E, bending_scale=c.kappa, creep_limit=c.creep_limit,
+            density=None if c.mat is None else c.mat.density, progress=c.progress,
+        )  # fmt: skip
+
+    top = _cap.BISECT_CEILING * EA
+    band, probes = _cap.bisect_slip(ask, low=slip.low, high=slip.high, runs=c.bisect,
+                                    ceiling=top, source=slip.source)  # fmt: skip
+    der["bisection"] = [{"load_N": f, "t_over_EA": f / EA, "holds": h} for f, h in probes]
+    if not probes:
+        der["bisection_note"] = (
+            f"no run: nothing slipped up to {slip.low:.4g} N, at or above "
+            f"{_cap.BISECT_CEILING:g} EA = {top:.4g} N, the heaviest load the DER answers for"
+        )
+    return band
 
 
 def _settle(c: _Case, answers: list, i, cap) -> tuple:

@@ -46,6 +46,7 @@ __all__ = [
     "load_user_table",
     "shipped_hold_table",
     "shipped_hold_tables",
+    "simulate_holds",
 ]
 
 #: the DER table answers only when the table's bending scale kappa is within this factor of
@@ -386,14 +387,7 @@ def _from_simulation(q: _Query, progress) -> _Found:
             f"rod_diameter {q.d * 1e3:.3g} mm on post_diameter {q.D * 1e3:.3g} mm gives "
             f"d/2R = {q.x:.3g} (must be below 0.5)"
         )
-    p = _build.simulate_point(
-        d_over_2R=q.x, t_over_EA=q.y, mu=q.mu, mu_rr=q.mu_rr, rod_diameter=q.d,
-        youngs_modulus=q.E, bending_scale=q.kappa, creep_limit=q.lim, recheck=True,
-        progress=progress, keep_result=True,
-        **({} if q.knot == "clove-hitch" else {"knot": q.knot}),
-        **({"t_low_fraction": q.free / q.load} if q.free > 0 else {}),
-        **({} if q.density is None else {"density": float(q.density)}),
-    )  # fmt: skip
+    p = _run(q, q.y, progress, keep_result=True)
     shape = _shape(p.get("result"), d=q.d, D=q.D)
     if p["holds"] is None:
         q.out["message"] = f"the DER simulation failed: {p['message']}"
@@ -423,6 +417,41 @@ def _from_simulation(q: _Query, progress) -> _Found:
         + ")"
     )
     return _Found(validity=validity, creep=creep, shape=shape)
+
+
+def _run(q: _Query, y: float, progress, keep_result=False) -> dict:
+    """One DER run of ``q``'s geometry at T_high/EA = ``y``
+    (:func:`knotmech.verdict.build.simulate_point`, rechecked near the creep limit)."""
+    return _build.simulate_point(
+        d_over_2R=q.x, t_over_EA=y, mu=q.mu, mu_rr=q.mu_rr, rod_diameter=q.d,
+        youngs_modulus=q.E, bending_scale=q.kappa, creep_limit=q.lim, recheck=True,
+        progress=progress, keep_result=keep_result,
+        **({} if q.knot == "clove-hitch" else {"knot": q.knot}),
+        **({"t_low_fraction": q.free / q.load} if q.free > 0 else {}),
+        **({} if q.density is None else {"density": float(q.density)}),
+    )  # fmt: skip
+
+
+def simulate_holds(
+    *, knot, d, D, mu, mu_rr, load, E, bending_scale=1.0, creep_limit=None, density=None,
+    progress=False,
+):  # fmt: skip
+    """Does one DER run of this hitch (free end) hold ``load`` [N]? True, False, or None when
+    the run failed or stopped before the load was on (the bisection of ``hold --bisect``).
+
+    Same geometry, law, protocol and criterion as ``hold --simulate``
+    (:func:`der_answer` with ``simulate``); ``d``, ``D`` [m], ``E`` [Pa], ``density``
+    [kg/m^3] (None: the reference rod's), ``creep_limit`` [d per protocol s].
+    """
+    q = _start(_Query(
+        knot=knot, d=d, D=D, mu=mu, mu_rr=mu_rr, load=load, E=E, kappa=float(bending_scale),
+        lim=CREEP_LIMIT if creep_limit is None else float(creep_limit), command="",
+        density=density,
+    ))  # fmt: skip
+    p = _run(q, q.y, progress)
+    if p["holds"] is None or p.get("stopped_in") == "settle":
+        return None
+    return bool(p["holds"])
 
 
 def _run_message(q: _Query, p: dict, creep: dict) -> str:
