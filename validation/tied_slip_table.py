@@ -274,23 +274,25 @@ def points(data: dict) -> tuple[list, list, list]:
 
 
 def figure(files: list[dict]):
-    """Slip load against mu, one line per file; held runs as open triangles (lower bounds)."""
+    """Slip load against mu, one line per file; held runs as open triangles (lower bounds),
+    failed runs as crosses at their largest force (not joined)."""
     from matplotlib.figure import Figure
 
-    fig = Figure(figsize=(6.4, 4.4))
+    fig = Figure(figsize=(6.4, 4.6))
     ax = fig.add_subplot()
     for k, f in enumerate(files):
         mu, force, held = points(f)
-        if not mu:
-            continue
         colour = f"C{k % 10}"
         ls = "-" if f.get("bending_scale", 1.0) in (None, 1, 1.0) else "--"
         ax.plot(mu, force, ls, color=colour, label=_label(f))
         for x, y, h in zip(mu, force, held, strict=True):
             ax.plot([x], [y], "^" if h else "o", color=colour, mfc="none" if h else colour)
+        for m, r in f["rows"].items():
+            if r.get("status") not in (None, "success") and r.get("max_force_N"):
+                ax.plot([float(m)], [r["max_force_N"]], "x", color=colour)
     ax.set_yscale("log")
     ax.set_xlabel("rope-rope friction coefficient mu")
-    ax.set_ylabel("slip load [N]  (open triangle: held to this force)")
+    ax.set_ylabel("slip load [N]\n(open triangle: held to; x: run failed, largest force)")
     ax.set_title("Tied bends and loops, d = 4 mm, E = 1 MPa (B/d$^2$ = 0.785 N)", fontsize=9)
     ax.legend(fontsize=7, loc="best")
     fig.tight_layout()
