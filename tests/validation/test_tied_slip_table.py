@@ -109,3 +109,15 @@ def test_cli_bad_input_exits_2_in_one_line(capsys):
     assert t.main(["--run", "--knots", "sheet-bend,zeppelin", "--mu", "0.3"]) == 2
     out = capsys.readouterr().out.strip().splitlines()
     assert len(out) == 3 and all(line.startswith("error: ") for line in out)
+
+
+def test_the_validation_case_renders_the_committed_runs(tmp_path):
+    """``knotmech validate`` runs the case on the committed rows: nothing is simulated."""
+    out = t.run(out_dir=tmp_path)
+    assert out["name"] == "tied_slip_table" and out["figures"]
+    assert out["numbers"]["sheet-bend"]["0.3"].startswith("0.0347 (")
+    assert out["checks"]["sheet-bend: slip load rises with mu"] is True
+    # the double fisherman's comes undone at 0.165 N at mu = 0.3 and slips at 0.124 N at 0.6
+    assert out["checks"]["double-fishermans: slip load rises with mu"] is False
+    assert out["verdict"] == "fail"
+    assert (tmp_path / "tied_slip_table.md").read_text().startswith("| knot | mu = 0.1 |")
