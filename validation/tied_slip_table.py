@@ -274,15 +274,17 @@ def points(data: dict) -> tuple[list, list, list]:
 
 
 def figure(files: list[dict]):
-    """Slip load against mu, one line per file; held runs as open triangles (lower bounds),
-    failed runs as crosses at their largest force (not joined)."""
+    """Slip load against mu, one line per file (a colour per knot, dashed for a bending scale
+    other than 1); held runs as open triangles (lower bounds), failed runs as crosses at
+    their largest force (not joined)."""
     from matplotlib.figure import Figure
 
     fig = Figure(figsize=(6.4, 4.6))
     ax = fig.add_subplot()
-    for k, f in enumerate(files):
+    names = sorted({f["knot"] for f in files})  # one colour per knot, dashed for kappa != 1
+    for f in files:
         mu, force, held = points(f)
-        colour = f"C{k % 10}"
+        colour = f"C{names.index(f['knot']) % 10}"
         ls = "-" if f.get("bending_scale", 1.0) in (None, 1, 1.0) else "--"
         ax.plot(mu, force, ls, color=colour, label=_label(f))
         for x, y, h in zip(mu, force, held, strict=True):
