@@ -1,0 +1,123 @@
+"""The slip-over-mu table: renderer on small fake files, and the row-maker's bad input.
+
+Nothing here simulates (the rows are made by ``python -m validation.tied_slip_table --run``).
+"""
+
+import json
+import math
+
+import pytest
+
+from knotmech.errors import InputError
+from validation import tied_slip_table as t
+
+
+def _row(verdict, slip=None, top=0.1, cpu=12.3, status="success"):
+    return {"status": status, "verdict": verdict, "slip_load_N": slip, "max_force_N": top,
+            "cpu_s": cpu}  # fmt: skip
+
+
+@pytest.fixture
+def folder(tmp_path):
+    f = tmp_path / "slip"
+    f.mkdir()
+    a = {"knot": "sheet-bend", "loading": "ends", "rows": {
+        "0.3": _row("slips", 0.0347, 0.0347, 8.94), "1": _row("slips", 0.228, 0.228, 6.2),
+        "0.1": _row("slips", 0.0182, 0.0182, 9.3)}}  # fmt: skip
+    b = {"knot": "bowline", "loading": "pin", "rows": {
+        "0.3": _row("slips", 0.0646, 0.0646), "1": _row("holds", None, 0.505, 10.8),
+        "0.6": _row("", None, 0.28, 9.8, status="failed")}}  # fmt: skip
+    c = {"knot": "sheet-bend", "bending_scale": 0.01, "rows": {"0.3": _row("slips", 0.5, 0.5)}}
+    for name, d in (("sheet-bend", a), ("bowline", b), ("sheet-bend-kappa0.01", c)):
+        (f / f"{name}.json").write_text(json.dumps(d))
+    return f
+
+
+def test_table_has_a_line_per_file_and_a_column_per_mu(folder):
+    text = t.table(t.read_folder(folder))
+    lines = text.splitlines()
+    assert lines[0] == "| knot | mu = 0.1 | mu = 0.3 | mu = 0.6 | mu = 1 |"
+    assert lines[2] == "| bowline | - | 0.0646 (12 s) | failed (9.8 s) | holds (to 0.505) (11 s) |"
+    assert lines[3] == "| sheet-bend | 0.0182 (9.3 s) | 0.0347 (8.9 s) | - | 0.228 (6.2 s) |"
+    assert lines[4] == "| sheet-bend (kappa 0.01) | - | 0.5 (12 s) | - | - |"
+    assert len(lines) == 5
+
+
+def test_points_sorted_by_mu_with_held_runs_as_lower_bounds(folder):
+    files = {t._label(f): f for f in t.read_folder(folder)}
+    assert t.points(files["bowline"]) == ([0.3, 1.0], [0.0646, 0.505], [False, True])
+    mu, force, held = t.points(files["sheet-bend"])
+    assert mu == [0.1, 0.3, 1.0] and force == [0.0182, 0.0347, 0.228] and not any(held)
+
+
+def test_render_writes_between_the_markers_only_and_the_figure(folder, tmp_path):
+    note = tmp_path / "note.md"
+    note.write_text(f"# head\n\nbefore\n{t.START}\nold table\n{t.END}\nafter\n")
+    image = tmp_path / "img" / "slip.png"
+    out = t.render(folder, note, image)
+    text = note.read_text()
+    assert out["files"] == 3
+    assert text.startswith("# head\n\nbefore\n" + t.START + "\n| knot |")
+    assert text.endswith(t.END + "\nafter\n") and "old table" not in text
+    assert image.read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    t.render(folder, note, image)  # idempotent
+    assert note.read_text() == text
+
+
+def test_a_note_without_markers_or_a_foreign_file_is_one_line_error(folder, tmp_path):
+    note = tmp_path / "note.md"
+    note.write_text("no markers\n")
+    with pytest.raises(InputError, match="markers"):
+        t.write_table(t.read_folder(folder), note)
+    (folder / "other.json").write_text(json.dumps({"rows": {}}))
+    with pytest.raises(InputError, match="other.json: not a slip-over-mu file"):
+        t.read_folder(folder)
+
+
+@pytest.mark.parametrize(
+    ("args", "match"),
+    [
+        (("zeppelin-bend", 0.3), "knot must be a tied bend or loop"),
+        (("reef", 0.3), "knot must be a tied bend or loop"),
+        ((None, 0.3), "knot must be a tied bend or loop"),
+        (("sheet-bend", 0.0), "mu must be"),
+        (("sheet-bend", -0.3), "mu must be"),
+        (("bowline", math.nan), "mu must be"),
+        (("bowline", "0.3"), "mu must be"),
+    ],
+)
+def test_row_maker_refuses_bad_input_before_any_run(args, match):
+    with pytest.raises(InputError, match=match):
+        t.slip_row(*args)
+
+
+def test_row_maker_refuses_bad_kappa_and_pin():
+    with pytest.raises(InputError, match="bending scale must be a finite number in \\(0, 1\\]"):
+        t.slip_row("sheet-bend", 0.3, bending_scale=1.5)
+    with pytest.raises(InputError, match="pin diameter"):
+        t.slip_row("bowline", 0.3, pin_diameter=0.0)
+
+
+def test_aliases_name_the_same_file(tmp_path):
+    assert t.file_for("EDK", folder=tmp_path).name == "flat-overhand-bend.json"
+    assert t.file_for("bowline", 0.01, tmp_path).name == "bowline-kappa0.01.json"
+
+
+def test_cli_bad_input_exits_2_in_one_line(capsys):
+    assert t.main(["--run"]) == 2
+    assert t.main(["--run", "--knots", "sheet-bend", "--mu", "0.3,x"]) == 2
+    assert t.main(["--run", "--knots", "sheet-bend,zeppelin", "--mu", "0.3"]) == 2
+    out = capsys.readouterr().out.strip().splitlines()
+    assert len(out) == 3 and all(line.startswith("error: ") for line in out)
+
+
+def test_the_validation_case_renders_the_committed_runs(tmp_path):
+    """``knotmech validate`` runs the case on the committed rows: nothing is simulated."""
+    out = t.run(out_dir=tmp_path)
+    assert out["name"] == "tied_slip_table" and out["figures"]
+    assert out["numbers"]["sheet-bend"]["0.3"].startswith("0.0347 (")
+    assert out["checks"]["sheet-bend: slip load rises with mu"] is True
+    # the double fisherman's comes undone at 0.165 N at mu = 0.3 and slips at 0.124 N at 0.6
+    assert out["checks"]["double-fishermans: slip load rises with mu"] is False
+    assert out["verdict"] == "fail"
+    assert (tmp_path / "tied_slip_table.md").read_text().startswith("| knot | mu = 0.1 |")
