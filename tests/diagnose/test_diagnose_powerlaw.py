@@ -121,6 +121,22 @@ def test_pink_null_wander_is_not_accepted_as_an_effect():
     assert cand["power_law"]["p_value"] >= 0.01 / 4
 
 
+def test_planted_effect_under_pink_noise_passes_the_power_law_draws_too():
+    """Power kept: a 6-sd adhesion planted in 1/f noise (the campaign's tune generator,
+    seed 8008, 200 rows) is judged against power-law draws of its remainder's exponent
+    (0.975) inside the selection and stays significant there (p 1.5e-19): named, as
+    before the change (18 planted 6- and 10-sd effects in 1/f noise, seeds 8000-8017:
+    every verdict unchanged, issue26-campaign.md section 6)."""
+    from validation.diagnose_campaign import make as campaign_make
+
+    rec, _ = campaign_make("tune", "pinch", "adhesion", 6.0, "pink", 8008)
+    rep = diagnose(rec, seed=8008)
+    assert rep.verdict == "adhesion"
+    (cand,) = [c for c in rep.details["candidates"] if c["accepted"]]
+    assert cand["power_law"]["beta"] == pytest.approx(0.975)
+    assert cand["power_law"]["p_value"] < 1e-10
+
+
 def test_power_law_rescue_needs_its_draws_to_agree():
     """The noise floor's third rescue (:func:`noise_floor_verdict`): correlated high
     frequencies, an exponent in range and power-law draws that give the level, the high
@@ -153,7 +169,7 @@ def test_pink_null_that_the_ar1_null_called_an_effect_is_none():
     assert rep.verdict == "none" and rep.effects == []
     (cand,) = rep.details["candidates"]
     assert cand["effect"] == "contact_flattening" and not cand["accepted"]
-    assert cand["p_value"] < 0.01 / 4 <= cand["power_law"]["p_value"]
+    assert cand["p_value"] < 0.01 / 2 <= cand["power_law"]["p_value"]  # 2 effects tested
 
 
 @pytest.mark.parametrize("kind", ["pinch", "tension_profile", "capstan_pull"])
