@@ -21,8 +21,11 @@ Procedure (one recording):
    one-step-ahead prediction errors (innovations, both models under the augmented
    model's noise) or their raw RMS must fall (for ``finite_thickness``, which adds no
    free parameter but reconciles mu with the prior ``mu_nominal``: not rise by more
-   than 1 %); the report's ``heldout_rms_*`` are the raw held-out RMS. Repeat until
-   no candidate passes.
+   than 1 %); the report's ``heldout_rms_*`` are the raw held-out RMS. When the
+   candidate's remainder has a 1/f-type high-frequency exponent
+   (:data:`~knotmech.diagnose.powerlaw.BETA_RANGE`), its bootstrap is repeated with
+   power-law draws and must reject too (:func:`_power_law_candidate`, issue 26).
+   Repeat until no candidate passes.
 4. Test the final residuals for structure; a located, significant remainder
    gives the verdict ``unexplained``; otherwise the verdict is the accepted
    effect with the largest likelihood gain, or ``none``.
