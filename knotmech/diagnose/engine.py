@@ -21,8 +21,11 @@ Procedure (one recording):
    one-step-ahead prediction errors (innovations, both models under the augmented
    model's noise) or their raw RMS must fall (for ``finite_thickness``, which adds no
    free parameter but reconciles mu with the prior ``mu_nominal``: not rise by more
-   than 1 %); the report's ``heldout_rms_*`` are the raw held-out RMS. Repeat until
-   no candidate passes.
+   than 1 %); the report's ``heldout_rms_*`` are the raw held-out RMS. When the
+   candidate's remainder has a 1/f-type high-frequency exponent
+   (:data:`~knotmech.diagnose.powerlaw.BETA_RANGE`), its bootstrap is repeated with
+   power-law draws and must reject too (:func:`_power_law_candidate`, issue 26).
+   Repeat until no candidate passes.
 4. Test the final residuals for structure; a located, significant remainder
    gives the verdict ``unexplained``; otherwise the verdict is the accepted
    effect with the largest likelihood gain, or ``none``.
@@ -233,7 +236,11 @@ def diagnose(
     if der is not None:
         sel = select_der(der, base, rec, data, starts, gs, alpha, only)
     else:
-        sel = _select_closed_form(base, rec, data, starts, gs, rng, alpha, only, max_effects)
+        # power-law draws inside the selection: their own stream, so the AR(1) bootstrap's
+        # draws (and every recording that never reaches them) stay as they were
+        pl_rng = np.random.default_rng([seed, 26])
+        sel = _select_closed_form(base, rec, data, starts, gs, rng, alpha, only, max_effects,
+                                  pl_rng)  # fmt: skip
     final, accepted = sel[0], sel[1]
     fin_mis = base_mis if final is base else _mismatch(rec, final, starts, rng, alpha)
     verdict, regions = _first_verdict(rec, base, final, accepted, fin_mis, alpha)
@@ -643,8 +650,14 @@ def _tested_effects(rec, only, alpha):
     return ok, skipped, alpha / max(len(ok), 1)
 
 
-def _select_closed_form(base, rec, data, starts, gs, rng, alpha, effects, max_effects):
-    """Forward selection over the catalogue with the parametric bootstrap."""
+def _select_closed_form(base, rec, data, starts, gs, rng, alpha, effects, max_effects,
+                        pl_rng=None):  # fmt: skip
+    """Forward selection over the catalogue with the parametric bootstrap.
+
+    A candidate that passes the AR(1) bootstrap and the held-out check is also judged
+    against power-law draws (:func:`_power_law_candidate`, drawn from ``pl_rng``) when its
+    remainder's high frequencies are 1/f-like; it is accepted only if both nulls reject.
+    """
     n = rec.n
     ok, skipped, alpha_each = _tested_effects(rec, effects, alpha)
     err_cur, block = heldout_errors(base, data, rec.trial)
@@ -710,6 +723,12 @@ def _select_closed_form(base, rec, data, starts, gs, rng, alpha, effects, max_ef
                 **({"heldout_prior_z": [float(f"{z:.4g}") for z in prior_z]} if prior_z else {}),
                 "accepted": bool(p < alpha_each and held_ok),
             }
+            if ev["accepted"] and pl_rng is not None:
+                pl = _power_law_candidate(rec, alt, null_c, eff, lr, data, starts, gs, pl_rng,
+                                          alpha_each)  # fmt: skip
+                if pl is not None:
+                    ev["power_law"] = pl
+                    ev["accepted"] = bool(pl["p_value"] < alpha_each)
             tested.append(ev)
             if ev["accepted"]:
                 step = (eff, alt, ev, held_alt, err_alt)
@@ -720,6 +739,40 @@ def _select_closed_form(base, rec, data, starts, gs, rng, alpha, effects, max_ef
         accepted.append((eff, ev, lr_gain(current, alt)))
         current, held_cur = alt, held_alt
     return current, accepted, tested, steps, skipped, held_before, held_cur
+
+
+def _power_law_candidate(rec, alt, null_c, eff, lr, data, starts, gs, rng, alpha_each):
+    """A candidate effect judged against power-law (1/f-type) noise before it is accepted.
+
+    The spectrum of the candidate's remainder (``rec.y - alt.mean``, standardised by the
+    augmented model's sd) is fitted on the high frequencies
+    (:func:`~knotmech.diagnose.powerlaw.fit_power_law`; Whittle 1953, Robinson 1995). When
+    its exponent lies in :data:`POWER_LAW_BETA_RANGE` and the remainder is at most
+    :data:`~knotmech.diagnose.noisefloor.NONE_LEVEL_MAX` high-frequency sd (the gates of
+    :func:`_power_law_check`), the candidate's parametric bootstrap is repeated with the
+    null's draws power-law noise of that exponent
+    (:class:`~knotmech.diagnose.powerlaw.PowerLawNoise`): a wander of 1/f noise that an
+    effect fits is then not significant. A real effect takes its own broadband power out
+    of the remainder and stays significant under both nulls.
+
+    Returns
+    -------
+    dict or None
+        None when not tried; else ``beta``, ``p_value`` and ``bootstrap_draws`` of the
+        power-law bootstrap (the candidate is accepted only if ``p_value < alpha_each``).
+    """
+    resid = rec.y - alt.mean
+    sd_hf = hf_sigma(resid, rec.x, rec.trial)
+    level = float(np.sqrt(np.mean(resid**2)) / sd_hf) if sd_hf > 0 else math.inf
+    if not level <= NONE_LEVEL_MAX:
+        return None
+    fit = fit_power_law(resid / alt.noise.sd(alt.mean), starts)
+    lo, hi = POWER_LAW_BETA_RANGE
+    if fit is None or not lo <= fit.beta <= hi:
+        return None
+    pl_null = replace(null_c, noise=PowerLawNoise.from_noise(null_c.noise, fit))
+    p, b = _bootstrap_p(pl_null, eff, lr, data, starts, gs, rng, alpha_each)
+    return {"beta": round(fit.beta, 3), "p_value": float(f"{p:.3g}"), "bootstrap_draws": int(b)}
 
 
 def _prior_check(current, alt, eff, data, starts, gs):
