@@ -1,5 +1,6 @@
 r"""A loop knot with its eye round a fixed pin, the standing part pulled away until it slips:
-the bowline and the figure-eight loop of :mod:`knotmech.scenes.tied` (issue 25).
+the bowline, the figure-eight loop and the alpine butterfly of :mod:`knotmech.scenes.tied`
+(issue 25); the alpine butterfly also end to end (``loading="end-to-end"``, below).
 
 The loop is tied loosely from its curve (one naturally straight elastic rod, node 0 the
 standing part, the last node the tail), its eye round a rigid pin (a cylinder along z,
@@ -43,6 +44,15 @@ overlap watch of every accepted step (no two strands closer than d/2) excludes a
 passing through another.
 Friction: the tied bends' law (anchor, cap floored at
 :data:`knotmech.scenes.bends.TIED_CAP_FLOOR`), with the path tunnelling guard.
+
+End to end (the alpine butterfly, a mid-line loop isolating a damaged stretch: its record's
+``scene_defaults["loadings"]``): no pin; the eye held in the settle and drawn out (away from
+the rope's centroid) with both ends in the set, let go in the release (both ends held), free
+in the pull, where both ends are pulled apart along their end tangents (the force: the mean
+of the two grips' reactions). The draw-ins are then the eye drawn into the knot and the rope
+drawn out of the knot into the right end; the invariants, the closed rope's knot type and
+the linking number of the rope's halves cut at the eye (:data:`END_KEYS`: 1 while the eye
+passes through the window; its change is reported as the knot coming undone).
 """
 
 from __future__ import annotations
@@ -320,7 +330,8 @@ def loop(
     Notes
     -----
     Cost at the defaults (d = 4 mm, E = 1 MPa, D = 20 mm): bowline 10-11 s of CPU (175
-    nodes), figure-eight loop 62-75 s (300 nodes); ``benchmarks/tied.py --loops``,
+    nodes), figure-eight loop 62-75 s (300 nodes), alpine butterfly (210 nodes, set up to
+    60 d) see the note; ``benchmarks/tied.py --loops``,
     docs/notes/knots-and-curves/tied-loops-pulled.md.
     """
     rec = _record(knot)
