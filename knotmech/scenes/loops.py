@@ -642,6 +642,12 @@ class LoopScene(Scene):
             force = 0.5 * (force + other)
         return force
 
+    @property
+    def _early(self) -> str:
+        """Why an invariant reported may change before the slip: the free tail swinging;
+        end to end, the eye drawn out of the window (the knot came undone)."""
+        return " (the knot came undone)" if self.ends else " (free tail)"
+
     def _law(self) -> str:
         if self.ends:
             return (f"anchor (sticking) friction, cap floor {TIED_CAP_FLOOR:g} (r_i + r_j), "
@@ -720,6 +726,6 @@ class LoopScene(Scene):
             if k <= k_slip:
                 got.update({key: v for key, v in now.items() if v is not None})
         note = "; ".join(f"{key} {self.inv_start[key]} -> {v} at t = {t:.3f} s"
-                         + (" (after the slip)" if t > tp[k_slip] else " (free tail)")
+                         + (" (after the slip)" if t > tp[k_slip] else self._early)
                          for key, (t, v) in moved.items())  # fmt: skip
         return run.status, run.message or note
