@@ -46,13 +46,16 @@ Friction: the tied bends' law (anchor, cap floored at
 :data:`knotmech.scenes.bends.TIED_CAP_FLOOR`), with the path tunnelling guard.
 
 End to end (the alpine butterfly, a mid-line loop isolating a damaged stretch: its record's
-``scene_defaults["loadings"]``): no pin; the eye held in the settle and drawn out (away from
-the rope's centroid) with both ends in the set, let go in the release (both ends held), free
-in the pull, where both ends are pulled apart along their end tangents (the force: the mean
-of the two grips' reactions). The draw-ins are then the eye drawn into the knot and the rope
-drawn out of the knot into the right end; the invariants, the closed rope's knot type and
-the linking number of the rope's halves cut at the eye (:data:`END_KEYS`: 1 while the eye
-passes through the window; its change is reported as the knot coming undone).
+``scene_defaults["loadings"]``): no pin; the eye held where it is in the settle and the set
+(drawn out with the ends, it withdraws the tongue from the loose window and the knot comes
+undone in the set), let go in the release (both ends held), free in the pull, where both
+ends are pulled apart along their end tangents (the force: the mean of the two grips'
+reactions). The draw-ins are then the eye drawn into the knot and the rope drawn out of the
+knot into the right end; the invariants, the closed rope's knot type and the linking number
+of the rope's halves cut at the eye (:data:`END_KEYS`: 1 while the eye passes through the
+window; a change up to the slip is kept in ``invariants_checked`` and reported as the knot
+coming undone; on tight frames the Gauss integral of :func:`linking_number` is not always
+near an integer, so the flag is a prompt to look at the frames, not a proof).
 """
 
 from __future__ import annotations
@@ -505,8 +508,8 @@ class LoopScene(Scene):
     def run_phases(self, run: SceneRun) -> None:
         """Settle (both ends held), set (both ends pulled out), release (the standing end
         held, the tail let go), pull (the tail free). End to end: the eye held in the
-        settle and drawn out in the set too (away from the rope's centroid), let go in the
-        release (both ends held), free in the pull (both ends pulled)."""
+        settle and the set too, let go in the release (both ends held), free in the pull
+        (both ends pulled)."""
         g, t = self.grip, self.tail
         mass = self.rho * np.pi * self.d * self.d / 4
         self.t_wall = time.perf_counter()
@@ -551,18 +554,13 @@ class LoopScene(Scene):
             if not self.ends:
                 travel = min(travel, self._clear_of_pin(x[self.tail[0][0]], u_tail))
             grips = [(self.grip, self.u), (self.tail, u_tail)]
-            if self.ends:  # the eye held and drawn out too (dressed three ways, by hand)
-                grips.append((self.eye_grip, self._eye_direction(x)))
-            cons = self._moving(run, grips)
+            # end to end: the eye held where it is (drawn out, it withdraws the tongue
+            # from the loose window: the knot comes undone in the set)
+            eye = self.eye_grip if self.ends else ([], None)
+            edges = [g[1] for g, _ in grips] + ([eye[1]] if self.ends else [])
             run.phase("set", travel / self.v, dt=self.dt, loads=[self.drag],
-                      constraints=[*cons, Clamp(edges=[g[1] for g, _ in grips])],
+                      constraints=[*self._moving(run, grips), Clamp(nodes=eye[0], edges=edges)],
                       stop=lambda x: tension(x) >= self.f_set)  # fmt: skip
-
-    def _eye_direction(self, x):
-        """Unit vector from the rope's centroid to the eye's far node, in the plane z = 0."""
-        u = x[self.eye_cut] - x.mean(axis=0)
-        u[2] = 0.0
-        return u / np.linalg.norm(u)
 
     def _clear_of_pin(self, p, u) -> float:
         """Travel [m] of a grip from ``p`` along ``u`` that stays 2 d clear of the pin (the
@@ -725,6 +723,8 @@ class LoopScene(Scene):
                                   "tail out through the closure; not a result")  # fmt: skip
             if k <= k_slip:
                 got.update({key: v for key, v in now.items() if v is not None})
+                if self.ends:  # a change up to the slip stays recorded (kept on every frame)
+                    got.update({key: v for key, (_, v) in moved.items() if key in END_KEYS})
         note = "; ".join(f"{key} {self.inv_start[key]} -> {v} at t = {t:.3f} s"
                          + (" (after the slip)" if t > tp[k_slip] else self._early)
                          for key, (t, v) in moved.items())  # fmt: skip
