@@ -82,8 +82,8 @@ def register(subparsers) -> None:
     p.add_argument(
         "--pin-diameter",
         default=None,
-        help="loops (bowline, figure-eight-loop): diameter of the pin the eye goes round, "
-        "e.g. 20mm (required for a loop)",
+        help="loops (bowline, figure-eight-loop, alpine-butterfly): diameter of the pin the "
+        "eye goes round, e.g. 20mm (required for a loop)",
     )
     p.add_argument(
         "--mu",

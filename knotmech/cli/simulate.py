@@ -307,6 +307,22 @@ _LOOP = (  # knotmech.scenes.loops.loop
     Opt("--dt", "dt", "time", "nominal time step (halved when Newton fails)", "4ms"),
 )  # fmt: skip
 
+
+def _loop_options(name: str) -> tuple[Opt, ...]:
+    """The options of loop ``name``: with ``--loading`` (and ``--pin-diameter`` needed by the
+    loop loading only) when its scene takes more than one loading (the alpine butterfly)."""
+    loadings = knots.get(name).scene_defaults.get("loadings", ("loop",))
+    if len(loadings) < 2:
+        return _LOOP
+    pin = Opt("--pin-diameter", "pin_diameter", "length", "diameter D of the pin the eye goes "
+              "round (0.5-40 d), e.g. 20mm; end to end: the start eye's size only (no pin)",
+              "required with --loading loop; end to end 5 x d")  # fmt: skip
+    loading = Opt("--loading", "loading", "choice", f"{' or '.join(loadings)}: the eye round "
+                  "the pin, the standing part (node 0) pulled, the other end free; or both "
+                  "ends pulled apart, the eye free", loadings[0], choices=loadings)  # fmt: skip
+    return (loading, pin, *(o for o in _LOOP if o.kwarg != "pin_diameter"))
+
+
 _CENTRELINE = (  # knotmech.scenes.centreline.centreline
     Opt("--rod-diameter", "rod_diameter", "length", "rod diameter d, e.g. 4mm", REQUIRED),
     Opt("--youngs-modulus", "youngs_modulus", "pressure", "Young's modulus E, e.g. 1MPa",
@@ -340,7 +356,7 @@ SCENE_OPTIONS: dict[str, tuple[Opt, ...]] = {
     "prusik": _PRUSIK,
     "bend": _BEND,
     **{name: tuple(o for o in _BEND if o.kwarg != "kind") for name in TIED_BENDS},
-    **{name: _LOOP for name in LOOP_SCENES},
+    **{name: _loop_options(name) for name in LOOP_SCENES},
     "centreline": _CENTRELINE,
 }
 
@@ -365,6 +381,11 @@ _DESCRIPTIONS = {
         k.name: f"{k.summary}; its eye round a fixed pin, set, then pulled by the standing "
         "part (the tail free) until it slips: slip load, tail drawn in and eye growth, its "
         "knot type checked on every frame"
+        + (
+            "; --loading end-to-end: both ends pulled apart, the eye free, no pin"
+            if "end-to-end" in k.scene_defaults.get("loadings", ())
+            else ""
+        )
         for k in knots.records(family="loop")
         if k.name in LOOP_SCENES
     },
@@ -991,7 +1012,10 @@ def _run_loop(scene, kw, progress):
     else:
         verdict = "no verdict"
     end = "no pull frame"
-    if res.tail_draw_in.size:
+    if res.tail_draw_in.size and res.loading == "end-to-end":
+        end = (f"end to end: eye drawn in {res.eye_growth[-1] * 1e3:.3g} mm, rope drawn out "
+               f"to the right end {res.tail_draw_in[-1] * 1e3:.3g} mm")  # fmt: skip
+    elif res.tail_draw_in.size:
         end = (f"tail drawn in {res.tail_draw_in[-1] * 1e3:.3g} mm, eye grown "
                f"{res.eye_growth[-1] * 1e3:.3g} mm")  # fmt: skip
     kept = "kept" if res.topology_preserved else "CHANGED"

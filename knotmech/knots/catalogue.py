@@ -65,18 +65,32 @@ _LOOP_LOADING = (
     "the eye round a fixed pin, the standing part pulled away from the pin along its end "
     "tangent, the tail free"
 )
-#: (name, aliases, summary, curve keywords, scene defaults) of the loops of
+_BUTTERFLY_LOADING = (
+    "on the loop (default): " + _LOOP_LOADING + "; end to end (loading end-to-end): both "
+    "ends pulled apart along their end tangents, the eye free, no pin"
+)
+#: (name, aliases, summary, curve keywords, scene defaults, loading) of the loops of
 #: knotmech.scenes.tied: the bowline's tail 15 d (the curve's default 7 d is consumed when
-#: the loose knot tightens, before anything slips)
+#: the loose knot tightens, before anything slips); scene default "loadings": the loadings
+#: its scene takes (default only "loop"); the alpine butterfly sets for up to 60 d: its
+#: loose start shape (229 d of rope, six crossings) has not reached the set tension after
+#: 20 d (docs/notes/knots-and-curves/tied-loops-pulled.md)
 _TIED_LOOPS = (
     ("bowline", ("bowline-knot", "bowline-loop"),
      "a fixed eye: a bight of the tail through a nipping loop in the standing part, round "
      "the standing part and back (a sheet bend with one rope)",
-     {"tail": 15.0}, {"n_nodes": 175}),
+     {"tail": 15.0}, {"n_nodes": 175}, _LOOP_LOADING),
     ("figure-eight-loop", ("figure-8-loop", "figure-eight-on-a-bight", "figure-8-on-a-bight",
                            "flemish-loop", "figure-of-eight-loop"),
      "a fixed eye: a figure-eight knot tied in the doubled rope",
-     {}, {"n_nodes": 300}),
+     {}, {"n_nodes": 300}, _LOOP_LOADING),
+    ("alpine-butterfly", ("butterfly", "butterfly-loop", "alpine-butterfly-loop",
+                          "alpine-butterfly-knot", "butterfly-knot", "linemans-loop",
+                          "lineman-loop", "linemans-knot"),
+     "a mid-line fixed eye tied in the bight (ABoK #1053): a bight twisted twice, its end "
+     "passed through the window between the twists; loadable on the loop and end to end",
+     {}, {"n_nodes": 210, "set_travel_d": 60.0, "loadings": ("loop", "end-to-end")},
+     _BUTTERFLY_LOADING),
 )  # fmt: skip
 
 _THH_DOC = r"""Tie {what} on a post and load them.
@@ -278,10 +292,10 @@ CATALOGUE = (
             curve_params=params,
             scene="knotmech.scenes.loops:loop",
             scene_defaults=defaults,
-            loading=_LOOP_LOADING,
+            loading=loading,
             sources=(LOOP_NOTE,),
         )
-        for name, aliases, summary, params, defaults in _TIED_LOOPS
+        for name, aliases, summary, params, defaults, loading in _TIED_LOOPS
     ),
     Knot(
         name="figure-eight",

@@ -1,5 +1,6 @@
 r"""A loop knot with its eye round a fixed pin, the standing part pulled away until it slips:
-the bowline and the figure-eight loop of :mod:`knotmech.scenes.tied` (issue 25).
+the bowline, the figure-eight loop and the alpine butterfly of :mod:`knotmech.scenes.tied`
+(issue 25); the alpine butterfly also end to end (``loading="end-to-end"``, below).
 
 The loop is tied loosely from its curve (one naturally straight elastic rod, node 0 the
 standing part, the last node the tail), its eye round a rigid pin (a cylinder along z,
@@ -43,6 +44,19 @@ overlap watch of every accepted step (no two strands closer than d/2) excludes a
 passing through another.
 Friction: the tied bends' law (anchor, cap floored at
 :data:`knotmech.scenes.bends.TIED_CAP_FLOOR`), with the path tunnelling guard.
+
+End to end (the alpine butterfly, a mid-line loop isolating a damaged stretch: its record's
+``scene_defaults["loadings"]``): no pin; the eye held where it is in the settle and the set
+(drawn out with the ends, it withdraws the tongue from the loose window and the knot comes
+undone in the set), let go in the release (both ends held), free in the pull, where both
+ends are pulled apart along their end tangents (the force: the mean of the two grips'
+reactions). The draw-ins are then the eye drawn into the knot and the rope drawn out of the
+knot into the right end; the invariants, the closed rope's knot type and the linking number
+of the rope's halves cut at the eye (:data:`END_KEYS`: 1 while the eye passes through the
+window; a change up to the slip is kept in ``invariants_checked`` and reported as the knot
+coming undone; on drawn-up frames the Gauss integral of :func:`linking_number` is not
+always near an integer, so the flag is a prompt to look at the frames, not a proof, and
+``topology_preserved`` is the knot type's alone).
 """
 
 from __future__ import annotations
@@ -61,6 +75,7 @@ from knotmech.scenes._scene import RunControl, Scene, SceneRun, grip_path, post_
 from knotmech.scenes.bends import TIED_CAP_FLOOR, BendPull, BendRopes, _bend_verdict, _plain
 from knotmech.scenes.curves import _edge_distances
 from knotmech.scenes.tied import measure
+from knotmech.scenes.tied._common import closed_alone, linking_number
 from knotmech.scenes.tied.pulled import NEAR_SET, OWN, PARALLEL, end_direction, invariants_changed
 
 __all__ = ["LoopResult", "LoopScene", "loop", "LOOPS", "loop_inside", "loop_lengths"]
@@ -68,8 +83,17 @@ __all__ = ["LoopResult", "LoopScene", "loop", "LOOPS", "loop_inside", "loop_leng
 #: the loop knots with this scene (the registry's loops with a scene)
 LOOPS = tuple(k.name for k in knots.records(family="loop") if k.scene.endswith("loops:loop"))
 
+#: the start eye's size [d] of an end-to-end pull (no pin)
+EYE_D = 5.0
+
 #: invariants whose change fails a run: the closed rope's knot type and its turns round the pin
 FAIL_KEYS = ("alexander", "winding_pin")  # alexander: kept by either closure (up or down)
+#: end to end (no pin), reported: the linking of the rope's halves cut at the eye (1 while
+#: the eye is through the window; 0 when it has been drawn out: the knot came undone). Not
+#: part of ``topology_preserved``: once the cut point is inside the drawn-up knot the two
+#: closures, which share it, touch and the number is not reliable
+#: (docs/notes/knots-and-curves/tied-loops-pulled.md)
+END_KEYS = ("linking_cut",)
 
 
 @dataclass
@@ -86,14 +110,19 @@ class LoopResult:
     max_force : float [N]
         Largest pull force of the whole pull.
     pin_diameter, pull_speed, mu_rod_rod, mu_pin : float [m], [m/s], -, -
+        (end to end: ``pin_diameter`` the eye's start size, no pin; ``mu_pin`` unused)
     times : (n_frames,) [s]
     pull_displacement : (n_frames,) [m]
         Travel of the standing end since the pull began.
     pull_force : (n_frames,) [N]
     tail_draw_in, eye_growth : (n_frames,) [m]
-        Material draw-in of the tail and growth of the eye since the pull began.
+        Material draw-in of the tail and growth of the eye since the pull began (end to
+        end: the growth of the right end's length outside the knot, and the eye's
+        decrease: the eye drawn in).
     slipped_by : {"tail", "eye", "both", ""}
-        Which grew by more than d/2 at the last frame ("both": both did).
+        Which grew by more than d/2 at the last frame ("both": both did); end to end:
+        ``"eye"`` the eye drawn into the knot, ``"tail"`` the right end's length outside
+        the knot grown (rope drawn out of the knot), ``"both"``.
     invariants_start, invariants_checked : dict
         :func:`knotmech.scenes.tied.measure` of the start shape and the last values defined
         on the frames checked.
@@ -101,6 +130,7 @@ class LoopResult:
     law : str
     positions : (n_frames, n_nodes, 3) [m]
     status, message : str; stats : dict (steps, newton_iterations, wall_s)
+    loading : {"loop", "end-to-end"}
     """
 
     knot: str
@@ -125,13 +155,16 @@ class LoopResult:
     status: str
     message: str
     stats: dict = field(default_factory=dict)
+    loading: str = "loop"
 
     @property
     def topology_preserved(self) -> bool:
         """The closed rope's knot type and its winding about the pin kept on every frame
-        checked."""
+        checked (end to end: the knot type; the cut halves' linking is reported only, see
+        :data:`END_KEYS`)."""
         s, c = self.invariants_start, self.invariants_checked
-        return all(s.get(k) == c.get(k) for k in FAIL_KEYS)
+        keys = ("alexander",) if self.loading == "end-to-end" else FAIL_KEYS
+        return all(s.get(k) == c.get(k) for k in keys)
 
     def to_dict(self) -> dict:
         """Plain-JSON summary (curves as lists, positions left out)."""
@@ -142,6 +175,7 @@ class LoopResult:
         return {
             "scene": "loop",
             "knot": self.knot,
+            "loading": self.loading,
             "verdict": self.verdict,
             "slip_load": num(self.slip_load),
             "max_force": num(self.max_force),
@@ -213,6 +247,7 @@ def loop_lengths(x, d: float, h: float, eye_cut: int) -> tuple[float, float]:
 def loop(
     knot: str,
     *,
+    loading: str = "loop",
     pin_diameter: float | None = None,
     rod_diameter: float = 4e-3,
     youngs_modulus: float = 1.0e6,
@@ -240,9 +275,16 @@ def loop(
     Parameters
     ----------
     knot : str
-        ``"bowline"`` or ``"figure-eight-loop"`` (or an alias).
+        ``"bowline"``, ``"figure-eight-loop"`` or ``"alpine-butterfly"`` (or an alias).
+    loading : {"loop", "end-to-end"}
+        ``"loop"`` (default): the eye round the pin, node 0 (the standing part) pulled, the
+        tail free. ``"end-to-end"`` (the alpine butterfly only: a mid-line knot isolating a
+        damaged stretch): no pin, the eye free, both ends set and then pulled apart along
+        their end tangents, each at ``pull_speed`` for ``pull_distance``; the pull force
+        is the mean of the two grips' reactions (as the tied bends').
     pin_diameter : float [m]
-        Diameter D of the pin the eye goes round (required; 0.5-40 d).
+        Diameter D of the pin the eye goes round (required for the loop loading; 0.5-40
+        d). End to end: the size of the start eye only (default 5 d), no pin.
     rod_diameter : float [m]
         d (default 4 mm).
     youngs_modulus : float [Pa]
@@ -288,23 +330,29 @@ def loop(
     Raises
     ------
     InputError
-        A bad argument (no pin diameter, D <= 0 or NaN, D outside 0.5-40 d, an unknown
-        loop), or a run above the size bounds.
+        A bad argument (no pin diameter for the loop loading, D <= 0 or NaN, D outside
+        0.5-40 d, an unknown loop or loading), or a run above the size bounds.
 
     Notes
     -----
     Cost at the defaults (d = 4 mm, E = 1 MPa, D = 20 mm): bowline 10-11 s of CPU (175
-    nodes), figure-eight loop 62-75 s (300 nodes); ``benchmarks/tied.py --loops``,
+    nodes), figure-eight loop 62-75 s (300 nodes), alpine butterfly (210 nodes, set up to
+    60 d) see the note; ``benchmarks/tied.py --loops``,
     docs/notes/knots-and-curves/tied-loops-pulled.md.
     """
     rec = _record(knot)
+    defaults = {"n_nodes": 150, "n_frames": 20, "pull_distance_d": 20.0, "set_travel_d": 20.0,
+                "loadings": ("loop",), **rec.scene_defaults}  # fmt: skip
+    if loading not in defaults["loadings"]:
+        raise InputError(f"loading of {rec.name} must be one of "
+                         f"{', '.join(defaults['loadings'])}, got {loading!r}")  # fmt: skip
+    d = float(check_positive("rod_diameter", rod_diameter, scalar=True))
+    if loading == "end-to-end" and pin_diameter is None:
+        pin_diameter = EYE_D * d
     if pin_diameter is None:
         raise InputError(
             f"{rec.name} needs pin_diameter: the diameter of the pin its eye goes round"
         )
-    defaults = {"n_nodes": 150, "n_frames": 20, "pull_distance_d": 20.0, "set_travel_d": 20.0,
-                **rec.scene_defaults}  # fmt: skip
-    d = float(check_positive("rod_diameter", rod_diameter, scalar=True))
     ropes = BendRopes(
         rod_diameter=d, youngs_modulus=youngs_modulus, density=density,
         bending_scale=bending_scale, mu_rod_rod=mu_rod_rod, mu_kinetic=mu_kinetic,
@@ -324,7 +372,7 @@ def loop(
         options=options, progress=progress,
     )  # fmt: skip
     return LoopScene(rec, pin_diameter=pin_diameter, mu_pin=mu_pin, ropes=ropes, pull=pull,
-                     control=control).run()  # fmt: skip
+                     control=control, loading=loading).run()  # fmt: skip
 
 
 def _record(knot):
@@ -351,9 +399,11 @@ class LoopScene(Scene):
     """A loop round a fixed pin, set and pulled by its standing part: the phases of
     :func:`loop`."""
 
-    def __init__(self, record, *, pin_diameter, mu_pin, ropes, pull, control):
+    def __init__(self, record, *, pin_diameter, mu_pin, ropes, pull, control, loading="loop"):
         self.record, self.ropes, self.pull, self.control = record, ropes, pull, control
         self.pin_diameter, self.mu_pin_in = pin_diameter, mu_pin
+        self.loading = loading
+        self.ends = loading == "end-to-end"  # both ends pulled, the eye free, no pin
 
     # -- setup -----------------------------------------------------------------------
     def setup(self) -> None:
@@ -403,10 +453,13 @@ class LoopScene(Scene):
         x = knot.ropes["rope"] - c
         pin = dict(knot.pin, point=(0.0, 0.0, 0.0))
         info = dict(knot.info, pin_center=(0.0, 0.0, 0.0))
+        self.eye_cut = int(knot.info["eye_cut"])
+        if self.ends:  # no pin: the closed rope's knot type only (no winding, no cut halves)
+            pin, info = None, {k: v for k, v in info.items() if k != "eye_cut"}
         self.knot = replace(knot, ropes={"rope": x}, pin=pin, info=info)
         self.x0 = x
-        self.D = float(pin["diameter"])
-        self.inv_start = measure(self.knot)
+        self.D = float(knot.pin["diameter"])
+        self.inv_start = self._measure(x)
         self.alex_down0 = self._alexander_down(x)
         self.u = end_direction(x, "start")
 
@@ -426,10 +479,13 @@ class LoopScene(Scene):
         nodes, edges = system.rod_nodes(0), system.rod_edges(0)
         self.grip = ([int(nodes[0]), int(nodes[1])], int(edges[0]))
         self.tail = ([int(nodes[-1]), int(nodes[-2])], int(edges[-1]))
+        k = self.eye_cut
+        self.eye_grip = ([int(nodes[k]), int(nodes[k + 1])], int(edges[k]))
         pin = post_contact(post_diameter=self.D, rod_diameter=d, force_scale=self.fs,
                            mu_static=self.mu_pin)  # fmt: skip
         ctl = self.control
-        return SceneRun(system, interactions=[self._contact(), pin], options=ctl.options,
+        inter = [self._contact()] if self.ends else [self._contact(), pin]
+        return SceneRun(system, interactions=inter, options=ctl.options,
                         watch=self._watch, progress=ctl.progress)  # fmt: skip
 
     def _contact(self):
@@ -454,18 +510,24 @@ class LoopScene(Scene):
     # -- phases ----------------------------------------------------------------------
     def run_phases(self, run: SceneRun) -> None:
         """Settle (both ends held), set (both ends pulled out), release (the standing end
-        held, the tail let go), pull (the tail free)."""
+        held, the tail let go), pull (the tail free). End to end: the eye held in the
+        settle and the set too, let go in the release (both ends held), free in the pull
+        (both ends pulled)."""
         g, t = self.grip, self.tail
         mass = self.rho * np.pi * self.d * self.d / 4
         self.t_wall = time.perf_counter()
+        held = [g, t, self.eye_grip] if self.ends else [g, t]
         run.phase("settle", self.settle_time, dt=self.dt,
                   loads=[rod.ViscousDamping(coefficient=20.0 * mass / self.settle_time)],
-                  constraints=[Clamp(nodes=g[0] + t[0], edges=[g[1], t[1]])])  # fmt: skip
+                  constraints=[Clamp(nodes=[n for h in held for n in h[0]],
+                                     edges=[h[1] for h in held])])  # fmt: skip
         self._set(run)
-        if run.ok:  # the tail let go, the standing end held: the knot finds its seat
+        if run.ok:  # the tail (end to end: the eye) let go, the loaded end(s) held: it seats
+            ends = [g, t] if self.ends else [g]
             run.phase("release", self.settle_time, dt=self.dt,
                       loads=[rod.ViscousDamping(coefficient=20.0 * mass / self.settle_time)],
-                      constraints=[Clamp(nodes=g[0], edges=[g[1]])])  # fmt: skip
+                      constraints=[Clamp(nodes=[n for h in ends for n in h[0]],
+                                         edges=[h[1] for h in ends])])  # fmt: skip
         self._pull(run)
 
     def _moving(self, run, ends):
@@ -491,10 +553,16 @@ class LoopScene(Scene):
         if run.ok:
             x = self.system.positions(run.state.q)
             u_tail = end_direction(x, "end")
-            travel = min(self.set_travel, self._clear_of_pin(x[self.tail[0][0]], u_tail))
-            cons = self._moving(run, [(self.grip, self.u), (self.tail, u_tail)])
+            travel = self.set_travel
+            if not self.ends:
+                travel = min(travel, self._clear_of_pin(x[self.tail[0][0]], u_tail))
+            grips = [(self.grip, self.u), (self.tail, u_tail)]
+            # end to end: the eye held where it is (drawn out, it withdraws the tongue
+            # from the loose window: the knot comes undone in the set)
+            eye = self.eye_grip if self.ends else ([], None)
+            edges = [g[1] for g, _ in grips] + ([eye[1]] if self.ends else [])
             run.phase("set", travel / self.v, dt=self.dt, loads=[self.drag],
-                      constraints=[*cons, Clamp(edges=[self.grip[1], self.tail[1]])],
+                      constraints=[*self._moving(run, grips), Clamp(nodes=eye[0], edges=edges)],
                       stop=lambda x: tension(x) >= self.f_set)  # fmt: skip
 
     def _clear_of_pin(self, p, u) -> float:
@@ -514,15 +582,21 @@ class LoopScene(Scene):
         if not run.ok:
             return
         x = self.system.positions(run.state.q)
-        self.lengths0 = np.array(loop_lengths(x, self.d, self.h, self.knot.info["eye_cut"]))
+        self.lengths0 = np.array(loop_lengths(x, self.d, self.h, self.eye_cut))
         self.t0 = run.t
         cons = [*self._moving(run, [(self.grip, self.u)]), Clamp(edges=[self.grip[1]])]
+        if self.ends:  # the right end pulled too, along its end tangent now
+            self.u_end = end_direction(x, "end")
+            cons = [*self._moving(run, [(self.grip, self.u), (self.tail, self.u_end)]),
+                    Clamp(edges=[self.grip[1], self.tail[1]])]  # fmt: skip
         run.phase("pull", self.dist / self.v, dt=self.dt, loads=[self.drag], constraints=cons,
                   save_every=self.dist / self.v / int(self.control.n_frames),
                   stop=self._tail_out)  # fmt: skip
 
     def _tail_out(self, x) -> bool:
-        tail, _ = loop_lengths(x, self.d, self.h, self.knot.info["eye_cut"])
+        tail, eye = loop_lengths(x, self.d, self.h, self.eye_cut)
+        if self.ends:  # the eye drawn into the knot
+            return bool(eye < self.d and self.lengths0[1] - eye > self.slip)
         return bool(tail < self.d and self.lengths0[0] - tail > self.slip)
 
     # -- measure ---------------------------------------------------------------------
@@ -531,8 +605,7 @@ class LoopScene(Scene):
         times, pos = run.frames()
         m = run.phase_mask("pull")
         tp, pm = times[m], pos[m]
-        g = self.grip[0]
-        force = run.reaction(g[:1], tp) @ self.u + run.reaction(g[1:], tp) @ self.u
+        force = self._force(run, tp)
         draw, out = self._draw(pm)
         pulled = bool(np.isfinite(force).any() and np.nanmax(force) > 0)
         if pulled:
@@ -556,10 +629,30 @@ class LoopScene(Scene):
             slipped_by=self._slipped_by(draw), invariants_start=self.inv_start,
             invariants_checked=getattr(self, "inv_checked", dict(self.inv_start)),
             frames_checked=getattr(self, "frames_checked", 0), law=self._law(),
-            positions=pos, status=status, message=message, stats=stats,
+            positions=pos, status=status, message=message, stats=stats, loading=self.loading,
         )  # fmt: skip
 
+    def _force(self, run, tp):
+        """Pull force [N]: the standing grip's reaction along its pull (both gripped nodes);
+        end to end, the mean of the two grips'."""
+        g = self.grip[0]
+        force = run.reaction(g[:1], tp) @ self.u + run.reaction(g[1:], tp) @ self.u
+        if self.ends and hasattr(self, "u_end"):
+            t = self.tail[0]
+            other = run.reaction(t[:1], tp) @ self.u_end + run.reaction(t[1:], tp) @ self.u_end
+            force = 0.5 * (force + other)
+        return force
+
+    @property
+    def _early(self) -> str:
+        """Why an invariant reported may change before the slip: the free tail swinging;
+        end to end, the eye drawn out of the window (the knot came undone)."""
+        return " (the knot came undone)" if self.ends else " (free tail)"
+
     def _law(self) -> str:
+        if self.ends:
+            return (f"anchor (sticking) friction, cap floor {TIED_CAP_FLOOR:g} (r_i + r_j), "
+                    "path tunnelling guard; no pin (end to end)")  # fmt: skip
         return (f"anchor (sticking) friction, cap floor {TIED_CAP_FLOOR:g} (r_i + r_j), "
                 f"path tunnelling guard; pin: anchor friction mu = {self.mu_pin:g}")  # fmt: skip
 
@@ -567,9 +660,11 @@ class LoopScene(Scene):
         """(n, 2) [m] tail draw-in and eye growth since the pull began; (n,) tail run out."""
         if not len(pm):
             return np.zeros((0, 2)), np.zeros(0, bool)
-        k = self.knot.info["eye_cut"]
+        k = self.eye_cut
         now = np.array([loop_lengths(x, self.d, self.h, k) for x in pm])
         draw = np.column_stack([self.lengths0[0] - now[:, 0], now[:, 1] - self.lengths0[1]])
+        if self.ends:  # rope drawn out of the knot into the right end, the eye drawn in
+            return -draw, (now[:, 1] < self.d) & (-draw[:, 1] > self.slip)
         return draw, (now[:, 0] < self.d) & (draw[:, 0] > self.slip)
 
     def _slipped_by(self, draw) -> str:
@@ -582,16 +677,26 @@ class LoopScene(Scene):
     def _alexander_down(self, x) -> tuple:
         """Alexander polynomial of the rope closed with its ends lifted down (-z): the
         frame mirrored in z and closed as usual (the polynomial does not see the mirror)."""
-        return measure(replace(self.knot, ropes={"rope": x * np.array([1.0, 1.0, -1.0])}))[
-            "alexander"
-        ]
+        return self._measure(x * np.array([1.0, 1.0, -1.0]))["alexander"]
+
+    def _measure(self, x) -> dict:
+        """:func:`~knotmech.scenes.tied.measure` of the rope at ``x``; end to end (no pin)
+        with ``linking_cut``: the rope cut at the eye, each half closed alone about the
+        rope's centroid, their linking number."""
+        out = measure(replace(self.knot, ropes={"rope": x}))
+        if self.ends:
+            k = self.eye_cut
+            a, b = x[: k + 1], x[k:]
+            out["linking_cut"] = int(round(linking_number(
+                closed_alone(a, [b]), closed_alone(b, [a], scale=2.5))))  # fmt: skip
+        return out
 
     def _frame_invariants(self, x) -> dict:
         """:func:`~knotmech.scenes.tied.measure` of one frame; ``alexander`` the start's
         when either closure keeps its start value: the ends lifted up (+z, the curve's
         closure) or down. A free tail end passing under a strand changes the first, over
         one the second; a strand through another changes both."""
-        now = measure(replace(self.knot, ropes={"rope": x}))
+        now = self._measure(x)
         if now.get("alexander") != self.inv_start.get("alexander"):
             if self._alexander_down(x) == self.alex_down0:
                 now["alexander"] = self.inv_start["alexander"]
@@ -621,7 +726,9 @@ class LoopScene(Scene):
                                   "tail out through the closure; not a result")  # fmt: skip
             if k <= k_slip:
                 got.update({key: v for key, v in now.items() if v is not None})
+                if self.ends:  # a change up to the slip stays recorded (kept on every frame)
+                    got.update({key: v for key, (_, v) in moved.items() if key in END_KEYS})
         note = "; ".join(f"{key} {self.inv_start[key]} -> {v} at t = {t:.3f} s"
-                         + (" (after the slip)" if t > tp[k_slip] else " (free tail)")
+                         + (" (after the slip)" if t > tp[k_slip] else self._early)
                          for key, (t, v) in moved.items())  # fmt: skip
         return run.status, run.message or note

@@ -20,6 +20,9 @@ from knotmech.verdict.inputs import STRAIN_LIMIT, _bending_scale, _warnings, _yo
 from knotmech.verdict.rule import decide, with_validity
 from knotmech.verdict.scope import BENDS, can_simulate, has_der_answer, knot_key
 
+#: the loops (their eye round a pin): the registry's
+LOOP_NAMES = tuple(k.name for k in knots.records(family="loop"))
+
 __all__ = ["hold", "hold_verdict"]
 
 
@@ -52,8 +55,8 @@ def hold(
         One of :data:`KNOT_NAMES` (``capstan``, ``clove-hitch``, ``two-half-hitches``,
         ``round-turn``, ``round-turn-two-half-hitches``, ``cow-hitch`` (also girth hitch,
         lark's head), the bends ``reef``, ``granny``, ``thief``, ``grief`` and the tied
-        bends, and the loops ``bowline``, ``figure-eight-loop`` (their eye round a pin:
-        ``pin_diameter``). Other knots raise a one-line
+        bends, and the loops ``bowline``, ``figure-eight-loop``, ``alpine-butterfly`` (their
+        eye round a pin: ``pin_diameter``). Other knots raise a one-line
         :class:`~knotmech.errors.InputError` listing these.
     rod_diameter, post_diameter : float
         Rope diameter d and post diameter D [m], > 0 (no post for a bend: None).
@@ -165,7 +168,7 @@ def hold(
         )  # fmt: skip
         return v if friction is None else replace(v, friction=friction)
     if pin_diameter is not None:
-        raise InputError(f"pin_diameter applies to a loop (bowline, figure-eight-loop), not {key}")
+        raise InputError(f"pin_diameter applies to a loop ({', '.join(LOOP_NAMES)}), not {key}")
     if key in BENDS:
         from knotmech.verdict.bend import hold_bend
 

@@ -95,6 +95,9 @@ CAVEATS = {
     "figure-eight-loop": "; caution: its start shape is loose (a doubled figure-eight about "
     "40 x 24 d) and a 20 d pull does not tighten it, so a 'slip' of this run is loose strands "
     "moving, not the tight knot's slip",
+    "alpine-butterfly": "; caution: its start shape is loose (229 d of rope, six crossings) "
+    "and the pull still tightens it: the force rises to the end of the pull; hold answers "
+    "the loop loading only (simulate alpine-butterfly --loading end-to-end for the other)",
 }
 
 

@@ -1,7 +1,7 @@
-"""``knotmech hold`` and ``knotmech simulate`` for the loops (bowline, figure-eight loop: the
-eye round a pin): undecided with the full ``--simulate`` command, ``--simulate`` running the
-loop scene (stubbed here: the pull itself is in tests/scenes/test_tied_loops.py), and the
-one-line errors."""
+"""``knotmech hold`` and ``knotmech simulate`` for the loops (bowline, figure-eight loop,
+alpine butterfly: the eye round a pin; the alpine butterfly also end to end): undecided with
+the full ``--simulate`` command, ``--simulate`` running the loop scene (stubbed here: the
+pull itself is in tests/scenes/test_tied_loops.py), and the one-line errors."""
 
 import json
 import math
@@ -25,14 +25,15 @@ def _fake_loop(verdict, slip_load, max_force, seen=None):
         n = 3
         return LoopResult(
             knot=knot, verdict=verdict, slip_load=slip_load, max_force=max_force,
-            pin_diameter=kw["pin_diameter"], pull_speed=0.04, mu_rod_rod=kw.get("mu_rod_rod", 0.3),
+            pin_diameter=kw.get("pin_diameter", 0.02), pull_speed=0.04,
+            mu_rod_rod=kw.get("mu_rod_rod", 0.3),
             mu_pin=kw.get("mu_rod_rod", 0.3), times=np.arange(n) * 0.1,
             pull_displacement=np.arange(n) * 4e-3, pull_force=np.array([0.01, 0.02, max_force]),
             tail_draw_in=np.array([0.0, 4e-3, 12e-3]), eye_growth=np.zeros(n),
             slipped_by="tail", invariants_start={"alexander": (1, -3, 5, -3, 1)},
             invariants_checked={"alexander": (1, -3, 5, -3, 1)}, frames_checked=n,
             law="anchor", positions=np.zeros((n, 4, 3)), status="success", message="",
-            stats={"steps": 10, "wall_s": 1.0},
+            stats={"steps": 10, "wall_s": 1.0}, loading=kw.get("loading", "loop"),
         )  # fmt: skip
 
     return fake
@@ -144,3 +145,51 @@ def test_loop_library_errors():
         loop("sheet-bend", pin_diameter=0.02)
     with pytest.raises(InputError, match="pin_diameter must be a finite number > 0"):
         loop("bowline", pin_diameter=float("nan"))
+
+
+def test_hold_alpine_butterfly(monkeypatch, capsys):
+    """Undecided with its command; with --simulate, one (stubbed) pull on the loop."""
+    from knotmech.scenes import loops
+
+    assert main(["hold", "lineman's loop", *LOOP, "--json", "-"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["holds"] is None and "knotmech hold alpine-butterfly" in data["next_step"]
+    seen = {}
+    monkeypatch.setattr(loops, "loop", _fake_loop("slips", 0.08, 0.08, seen))
+    v = knotmech.hold("butterfly", rod_diameter=4e-3, pin_diameter=20e-3, mu=0.3, load=0.05,
+                      youngs_modulus=1e6, simulate=True)  # fmt: skip
+    assert v.holds is True and seen["knot"] == "alpine-butterfly"
+    assert seen["pin_diameter"] == 0.02 and "loading" not in seen  # the default: on the loop
+
+
+@pytest.mark.parametrize(
+    ("args", "loading", "line"),
+    [
+        (["--pin-diameter", "20mm"], None, "SLIPS at 0.08 N (tail); tail drawn in 12 mm"),
+        (["--loading", "end-to-end"], "end-to-end", "end to end: eye drawn in 0 mm"),
+    ],
+)
+def test_simulate_alpine_butterfly_both_loadings(monkeypatch, capsys, args, loading, line):
+    from knotmech.scenes import loops
+
+    seen = {}
+    monkeypatch.setattr(loops, "loop", _fake_loop("slips", 0.08, 0.08, seen))
+    assert main(["simulate", "alpine-butterfly", *args, "--no-progress"]) == 0
+    assert line in capsys.readouterr().out
+    assert seen.get("loading") == loading and seen["knot"] == "alpine-butterfly"
+    assert ("pin_diameter" in seen) == (loading is None)
+
+
+@pytest.mark.parametrize(
+    ("args", "words"),
+    [
+        ([], "alpine-butterfly needs pin_diameter"),
+        (["--loading", "axial", "--pin-diameter", "20mm"],
+         "loading of alpine-butterfly must be one of loop, end-to-end, got 'axial'"),
+        (["--loading", "end-to-end", "--pin-diameter", "0mm"], "pin_diameter must be > 0"),
+    ],
+)  # fmt: skip
+def test_simulate_alpine_butterfly_errors_are_one_line(args, words, capsys):
+    assert main(["simulate", "alpine-butterfly", *args, "--no-progress"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert words in err and len(err.splitlines()) == 1

@@ -21,7 +21,7 @@ from knotmech.scenes.tied._common import (
 )
 
 D = 0.01  # rod diameter [m]
-PINNED = {"bowline", "figure_eight_loop", "prusik"}
+PINNED = {"bowline", "figure_eight_loop", "alpine_butterfly", "prusik"}
 
 
 def tie(name, **kw):
@@ -42,6 +42,14 @@ EXPECTED = {
         "alexander": "0_1",
         "winding_pin": 1,
         "alexander_cut": ("4_1", "4_1"),
+        "linking_cut": 1,
+    },
+    # tied in the bight: the ends joined give the unknot; cut at the eye (the butterfly
+    # bend), two unknots hooked once (the tongue through the window; 0 if it were not)
+    "alpine_butterfly": {
+        "alexander": "0_1",
+        "winding_pin": 1,
+        "alexander_cut": ("0_1", "0_1"),
         "linking_cut": 1,
     },
     "sheet_bend": {
@@ -115,7 +123,7 @@ def test_scales_with_the_rod_diameter(knots, name):
 
 
 @pytest.mark.parametrize("pin", [0.5, 40.0])
-@pytest.mark.parametrize("name", ["bowline", "figure_eight_loop"])
+@pytest.mark.parametrize("name", ["bowline", "figure_eight_loop", "alpine_butterfly"])
 def test_loops_round_any_pin(name, pin):
     k = tie(name, pin_diameter=pin * D)
     assert measure(k) == k.expected
@@ -215,3 +223,22 @@ def test_interleaved_ends_give_no_linking_number():
     got = measure(k)
     assert got == {"alexander_joined": (1,), "alexander_A": (1,), "alexander_B": (1,),
                    "linking": None}  # fmt: skip
+
+
+def test_alpine_butterfly_tongue_through_the_window(monkeypatch):
+    """The linking number of the cut halves is the tongue threaded through the window: the
+    same curve with the tongue laid over both arms of the window (not through it) gives
+    unlinked halves, the same closed unknot and the same winding."""
+    import importlib
+
+    ab = importlib.import_module("knotmech.scenes.tied.alpine_butterfly")
+
+    over = {(-6.0, -6.5): 1, (-9.0, -6.5): 1, (-6.0, -9.5): 1}  # the tracks over the left arm
+    arm = {(-5.5, -9.5), (-6.5, -8.0), (-5.5, -6.5)}  # the left arm under them
+    a = tuple((x, y, over.get((x, y), z)) for x, y, z in ab.LEG_A)
+    b = tuple((x, y, -1 if (x, y) in arm else over.get((x, y), z)) for x, y, z in ab.LEG_B)
+    monkeypatch.setattr(ab, "LEG_A", a)
+    monkeypatch.setattr(ab, "LEG_B", b)
+    got = measure(ab.alpine_butterfly(rod_diameter=D, pin_diameter=3 * D))
+    assert got == {"alexander": (1,), "winding_pin": 1, "alexander_cut": ((1,), (1,)),
+                   "linking_cut": 0}  # fmt: skip

@@ -1,9 +1,11 @@
-"""The loop scene (:mod:`knotmech.scenes.loops`): the bowline and the figure-eight loop with
-their eye round a fixed pin, pulled by the standing part. Default suite: the tail and eye
-lengths on a drawn curve against their closed form, the start invariants with the pin moved
-to the axis, the bowline's longer tail keeping its knot type, one-line errors. Slow: a short
-pull of each loop keeps its knot type on every frame; the bowline's slip load at mu = 0.3
-and what mu = 1 holds."""
+"""The loop scene (:mod:`knotmech.scenes.loops`): the bowline, the figure-eight loop and the
+alpine butterfly with their eye round a fixed pin, pulled by the standing part (the alpine
+butterfly also end to end). Default suite: the tail and eye lengths on a drawn curve against
+their closed form, the start invariants with the pin moved to the axis, the bowline's longer
+tail keeping its knot type, the alpine butterfly's ends clear of the knot and its end-to-end
+setup, one-line errors. Slow: a short pull of each loop keeps its knot type on every frame
+(the alpine butterfly both ways); the bowline's slip load at mu = 0.3 and what mu = 1
+holds."""
 
 import numpy as np
 import pytest
@@ -56,7 +58,7 @@ def test_eye_length_up_to_the_strands_crossing_it():
     assert eye == pytest.approx(9.25 * D4, abs=1.01 * h * D4)
 
 
-@pytest.mark.parametrize("name", ["bowline", "figure-eight-loop"])
+@pytest.mark.parametrize("name", ["bowline", "figure-eight-loop", "alpine-butterfly"])
 def test_start_invariants_with_the_pin_on_the_axis(name):
     from knotmech import knots
     from knotmech.scenes._scene import RunControl
@@ -69,11 +71,70 @@ def test_start_invariants_with_the_pin_on_the_axis(name):
                       control=RunControl(dt=4e-3, n_frames=20))  # fmt: skip
     scene.setup()
     inv = scene.inv_start
-    expected = {"bowline": (1, -3, 5, -3, 1), "figure-eight-loop": (1,)}[name]
-    assert inv["alexander"] == expected and inv["winding_pin"] == -1
+    expected = {"bowline": (1, -3, 5, -3, 1), "figure-eight-loop": (1,),
+                "alpine-butterfly": (1,)}[name]  # fmt: skip
+    turns = {"alpine-butterfly": 1}.get(name, -1)  # its eye drawn anticlockwise
+    assert inv["alexander"] == expected and inv["winding_pin"] == turns
     assert scene.knot.pin["point"] == (0.0, 0.0, 0.0)
     # the standing part is pulled away from the pin
     assert np.dot(scene.u, scene.x0[0]) > 0
+
+
+def _butterfly_scene(**kw):
+    from knotmech import knots
+    from knotmech.scenes._scene import RunControl
+    from knotmech.scenes.bends import BendPull, BendRopes
+
+    rec = knots.get("alpine-butterfly")
+    scene = LoopScene(rec, mu_pin=None, ropes=BendRopes(n_nodes=rec.scene_defaults["n_nodes"]),
+                      pull=BendPull(pull_distance=0.08, set_travel=0.08),
+                      control=RunControl(dt=4e-3, n_frames=20), **kw)  # fmt: skip
+    scene.setup()
+    return scene
+
+
+def test_alpine_butterfly_ends_leave_clear_of_the_knot():
+    """Both ends leave the knot in opposite directions (-x, +x) and run at least 8 d (the
+    curve's straight ends) outside it; the eye, round the pin, is outside the knot for more
+    than half the pin's circumference."""
+    s = _butterfly_scene(pin_diameter=20e-3)
+    x = s.x0
+    inside = loop_inside(x, D4)
+    h = float(np.linalg.norm(np.diff(x, axis=0), axis=1).mean())
+    free = int(8 * D4 / h)
+    assert not inside[:free].any() and not inside[-free:].any()
+    tail, eye = loop_lengths(x, D4, h, s.eye_cut)
+    assert tail > 8 * D4 and eye > 0.5 * np.pi * 20e-3
+    u0, u1 = s.u, x[-1] - x[-2]
+    assert u0 @ u1 / np.linalg.norm(u1) < -0.99  # opposite directions
+
+
+def test_alpine_butterfly_end_to_end_has_no_pin():
+    """End to end: the same curve (start eye 5 d), no pin, the closed rope's knot type
+    (unknot: tied in the bight) and the cut halves' linking (1: the eye through the window)."""
+    s = _butterfly_scene(pin_diameter=20e-3, loading="end-to-end")
+    assert s.knot.pin is None and s.inv_start == {"alexander": (1,), "linking_cut": 1}
+    assert len(s.build().interactions) == 1  # the rope's contact with itself only
+    assert len(_butterfly_scene(pin_diameter=20e-3).build().interactions) == 2  # and the pin
+
+
+@pytest.mark.parametrize(
+    ("kw", "words"),
+    [
+        ({}, "alpine-butterfly needs pin_diameter"),
+        ({"loading": "axial", "pin_diameter": 0.02},
+         "loading of alpine-butterfly must be one of loop, end-to-end, got 'axial'"),
+        ({"loading": "end-to-end", "pin_diameter": 0.0}, "pin_diameter must be > 0"),
+    ],
+)  # fmt: skip
+def test_alpine_butterfly_errors(kw, words):
+    with pytest.raises(InputError, match=words):
+        loop("butterfly", **kw)
+
+
+def test_only_the_alpine_butterfly_is_pulled_end_to_end():
+    with pytest.raises(InputError, match="loading of bowline must be one of loop, got"):
+        loop("bowline", loading="end-to-end")
 
 
 def test_the_set_keeps_a_grip_2d_clear_of_the_pin():
@@ -113,8 +174,10 @@ def test_loop_errors(kw, words):
 
 
 def test_unknown_loop():
-    with pytest.raises(InputError, match="loop must be one of bowline, figure-eight-loop"):
-        loop("alpine-butterfly", pin_diameter=0.02)
+    with pytest.raises(
+        InputError, match="loop must be one of bowline, figure-eight-loop, alpine-butterfly"
+    ):
+        loop("reef", pin_diameter=0.02)
 
 
 @pytest.mark.slow
@@ -126,6 +189,25 @@ def test_short_pull_keeps_the_knot_type_on_every_frame(name):
     assert r.frames_checked == len(r.times) >= 10
     assert r.topology_preserved
     assert r.invariants_checked["winding_pin"] == -1
+
+
+@pytest.mark.slow
+def test_alpine_butterfly_short_pulls_keep_the_knot_type_on_every_frame():
+    """On the loop (the eye round the pin: the closed rope an unknot winding once round it)
+    and end to end (no pin: the unknot), a short set and pull."""
+    short = {"settle_time": 0.05, "set_travel": 1e-3, "pull_distance": 2e-3, "n_frames": 10,
+             "n_nodes": 150}  # fmt: skip
+    r = loop("alpine-butterfly", pin_diameter=20e-3, **short)
+    assert r.status == "success", r.message
+    assert r.frames_checked == len(r.times) >= 10 and r.topology_preserved
+    assert r.invariants_checked["winding_pin"] == 1 and r.invariants_checked["alexander"] == (1,)
+    e = loop("alpine-butterfly", loading="end-to-end", **short)
+    assert e.status == "success", e.message
+    assert e.frames_checked == len(e.times) >= 10 and e.topology_preserved
+    assert e.loading == "end-to-end" and e.invariants_checked == {
+        "alexander": (1,),
+        "linking_cut": 1,
+    }
 
 
 @pytest.mark.slow

@@ -13,6 +13,7 @@ construction and topology of each knot in its module's docstring and in
 from __future__ import annotations
 
 from knotmech.scenes.tied._common import KNOT_TABLE, TiedKnot, knot_name, measure
+from knotmech.scenes.tied.alpine_butterfly import alpine_butterfly
 from knotmech.scenes.tied.bowline import bowline
 from knotmech.scenes.tied.double_fishermans import double_fishermans
 from knotmech.scenes.tied.double_sheet_bend import double_sheet_bend
@@ -26,6 +27,7 @@ __all__ = [
     "KNOT_TABLE",
     "TIED_KNOTS",
     "TiedKnot",
+    "alpine_butterfly",
     "bowline",
     "double_fishermans",
     "double_sheet_bend",
@@ -42,6 +44,7 @@ __all__ = [
 TIED_KNOTS = {
     "bowline": bowline,
     "figure_eight_loop": figure_eight_loop,
+    "alpine_butterfly": alpine_butterfly,
     "sheet_bend": sheet_bend,
     "double_sheet_bend": double_sheet_bend,
     "flat_overhand_bend": flat_overhand_bend,
