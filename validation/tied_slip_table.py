@@ -211,9 +211,18 @@ def read_folder(folder=FOLDER) -> list[dict]:
     return sorted(out, key=lambda d: (d["knot"], -(d.get("bending_scale") or 1.0)))
 
 
+#: loadings named in a row's label (a loop's default, round the pin, is not)
+_NAMED_LOADINGS = ("end-to-end",)
+
+
 def _label(data: dict) -> str:
     kappa = data.get("bending_scale", 1.0)
-    return data["knot"] + ("" if kappa in (None, 1, 1.0) else f" (kappa {kappa:g})")
+    loading = data.get("loading", "")
+    return (
+        data["knot"]
+        + (f" ({loading.replace('-', ' ')})" if loading in _NAMED_LOADINGS else "")
+        + ("" if kappa in (None, 1, 1.0) else f" (kappa {kappa:g})")
+    )
 
 
 def _fmt(x) -> str:
