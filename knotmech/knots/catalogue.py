@@ -34,7 +34,7 @@ _ENDS = "the two standing parts pulled apart along their end tangents, the tails
 #: standing parts (which leave the knot side by side) pulled apart sideways
 _TIED_PULL = {"n_frames": 20, "pull_distance_d": 20.0, "set_travel_d": 20.0}
 #: the figure-eight bend starts drawn in (about 45-50 d of each rope in the knot, not the
-#: loose parametric 120 d that needed a 40 d set): 60 nodes a rope, the bends' 20 d set
+#: loose parametric 120 d that needed a 40 d set): 52 nodes a rope, the bends' 20 d set
 #: (docs/notes/knots-and-curves/tied-knots-pulled.md)
 _TIED_BENDS = (
     ("sheet-bend", ("sheet", "beckets-bend", "weavers-knot"),
@@ -52,7 +52,7 @@ _TIED_BENDS = (
      "sideways (as on an abseil anchor), the tails free"),
     ("figure-eight-bend", ("figure-8-bend", "flemish-bend"),
      "one rope ties a figure-eight, the other retraces it from the opposite end", "ends",
-     {"n_nodes": 60, **_TIED_PULL}, _ENDS),
+     {"n_nodes": 52, **_TIED_PULL}, _ENDS),
     ("double-fishermans", ("double-fisherman", "double-fishermans-bend", "grapevine-bend",
                            "grapevine"),
      "each rope ties a double overhand (strangle) round the other", "ends",

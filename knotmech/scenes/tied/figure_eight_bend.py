@@ -39,10 +39,10 @@ __all__ = ["figure_eight_bend"]
 #: each end of the drawn-in knot run on by EXTEND [d] along its tangent: a held end must
 #: lie clear of the loops (the loose parametric bend, with 8 d ends, had a loop of B slide
 #: over B's held standing end during the set: docs/notes/knots-and-curves/tied-knots-pulled.md)
-EXTEND = 12.0
+EXTEND = 10.0
 
 
-def figure_eight_bend(*, rod_diameter: float, n_nodes: int = 60) -> TiedKnot:
+def figure_eight_bend(*, rod_diameter: float, n_nodes: int = 52) -> TiedKnot:
     """Figure-eight bend of two ropes A and B, drawn in (snug, not tight).
 
     Parameters
@@ -50,8 +50,9 @@ def figure_eight_bend(*, rod_diameter: float, n_nodes: int = 60) -> TiedKnot:
     rod_diameter : float [m]
         d, both ropes.
     n_nodes : int
-        Nodes per rope (>= 50; the default 60 gives edges of 1.1-1.2 d, ropes of
-        69-73 d).
+        Nodes per rope (>= 40; the default 52 gives edges of 1.26-1.34 d on ropes of
+        64 and 68 d; 46 nodes, edges 1.4-1.5 d, changed the verdict at mu = 1:
+        docs/notes/knots-and-curves/tied-knots-pulled.md).
 
     Returns
     -------
@@ -59,7 +60,7 @@ def figure_eight_bend(*, rod_diameter: float, n_nodes: int = 60) -> TiedKnot:
         ``ropes["A"]``, ``ropes["B"]``, standing part at node 0 of each; ``expected``
         (module docstring).
     """
-    d, n = check_sizes(rod_diameter, n_nodes, 50)
+    d, n = check_sizes(rod_diameter, n_nodes, 40)
     upper, lower, w = snug_figure_eight()
     a, b = (equal_chords(run_on(p, EXTEND, EXTEND) * d, n) for p in (upper, lower[::-1]))
     return TiedKnot(
