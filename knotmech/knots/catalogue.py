@@ -33,9 +33,9 @@ _ENDS = "the two standing parts pulled apart along their end tangents, the tails
 #: knotmech.scenes.tied: pull "ends" along the standing parts' end tangents, "apart" the
 #: standing parts (which leave the knot side by side) pulled apart sideways
 _TIED_PULL = {"n_frames": 20, "pull_distance_d": 20.0, "set_travel_d": 20.0}
-#: the figure-eight bend sets for up to 40 d: its loose start shape holds about 120 d of
-#: each rope in the knot, and a 20 d set leaves it loose, its free tails springing back into
-#: the loops (docs/notes/knots-and-curves/tied-knots-pulled.md)
+#: the figure-eight bend starts drawn in (about 45-50 d of each rope in the knot, not the
+#: loose parametric 120 d that needed a 40 d set): 52 nodes a rope, the bends' 20 d set
+#: (docs/notes/knots-and-curves/tied-knots-pulled.md)
 _TIED_BENDS = (
     ("sheet-bend", ("sheet", "beckets-bend", "weavers-knot"),
      "a bight in one rope, the other through it, round both legs and under itself",
@@ -52,7 +52,7 @@ _TIED_BENDS = (
      "sideways (as on an abseil anchor), the tails free"),
     ("figure-eight-bend", ("figure-8-bend", "flemish-bend"),
      "one rope ties a figure-eight, the other retraces it from the opposite end", "ends",
-     {"n_nodes": 150, **_TIED_PULL, "set_travel_d": 40.0}, _ENDS),
+     {"n_nodes": 52, **_TIED_PULL}, _ENDS),
     ("double-fishermans", ("double-fisherman", "double-fishermans-bend", "grapevine-bend",
                            "grapevine"),
      "each rope ties a double overhand (strangle) round the other", "ends",
@@ -83,7 +83,7 @@ _TIED_LOOPS = (
     ("figure-eight-loop", ("figure-8-loop", "figure-eight-on-a-bight", "figure-8-on-a-bight",
                            "flemish-loop", "figure-of-eight-loop"),
      "a fixed eye: a figure-eight knot tied in the doubled rope",
-     {}, {"n_nodes": 300}, _LOOP_LOADING),
+     {}, {"n_nodes": 130}, _LOOP_LOADING),
     ("alpine-butterfly", ("butterfly", "butterfly-loop", "alpine-butterfly-loop",
                           "alpine-butterfly-knot", "butterfly-knot", "linemans-loop",
                           "lineman-loop", "linemans-knot"),

@@ -336,8 +336,8 @@ def loop(
     Notes
     -----
     Cost at the defaults (d = 4 mm, E = 1 MPa, D = 20 mm): bowline 10-11 s of CPU (175
-    nodes), figure-eight loop 62-75 s (300 nodes), alpine butterfly (210 nodes, set up to
-    60 d) see the note; ``benchmarks/tied.py --loops``,
+    nodes), figure-eight loop 21-56 s over mu = 0.1-1 (130 nodes, drawn-in start), alpine
+    butterfly (210 nodes, set up to 60 d) see the note; ``benchmarks/tied.py --loops``,
     docs/notes/knots-and-curves/tied-loops-pulled.md.
     """
     rec = _record(knot)

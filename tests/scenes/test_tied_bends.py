@@ -81,7 +81,7 @@ def test_invariants_changed_ignores_undefined_closures():
 @pytest.mark.parametrize("name", ["sheet_bend", "flat_overhand_bend", "figure_eight_bend"])
 def test_start_tails_lie_outside_the_knot(name):
     """Each start tail is free over several diameters (the straight ends of the design)."""
-    n = {"sheet_bend": 100, "flat_overhand_bend": 100, "figure_eight_bend": 150}[name]
+    n = {"sheet_bend": 100, "flat_overhand_bend": 100, "figure_eight_bend": 52}[name]
     k = TIED_KNOTS[name](rod_diameter=D, n_nodes=n)
     x = np.vstack([k.ropes["A"], k.ropes["B"]])
     free = tail_free_lengths(x, n, D, tail_nodes(x, n, D))
@@ -107,14 +107,16 @@ def _end_clearance(ropes, d):
 
 
 def test_figure_eight_bend_ends_lie_clear_of_its_loops():
-    """The figure-eight bend's four held ends lie at least 11 d (left: A standing, B tail)
-    and 26 d (right: A tail, B standing) from any strand crossing them, in the scene's
-    150-node mesh: with the 8 d ends of the construction alone they were 5.5 and 10.6 d,
-    and a loop of B slid over B's held standing end during the set (B came undone)."""
-    k = TIED_KNOTS["figure_eight_bend"](rod_diameter=D, n_nodes=150)
+    """The drawn-in figure-eight bend's four held ends lie about 5 d (left: A standing, B
+    tail) and 15 d (right: A tail, B standing) from any strand crossing them, in the scene's
+    52-node mesh, outside its knot of about 9 d (the loose parametric bend's loops, up to
+    20 d across while it was set, needed 12-27 d: with 5.5-10.6 d a loop of B slid over B's
+    held standing end during the set); its strands are 1.21 d apart and it is the same
+    knot."""
+    k = TIED_KNOTS["figure_eight_bend"](rod_diameter=D, n_nodes=52)
     got = _end_clearance([k.ropes["A"], k.ropes["B"]], D)
-    np.testing.assert_allclose(got, [11.93, 26.56, 26.60, 12.59], atol=0.01)
-    assert k.info["min_gap"] / D == pytest.approx(1.180, abs=1e-3)  # strands still apart
+    np.testing.assert_allclose(got, [4.93, 14.92, 15.04, 5.05], atol=0.01)
+    assert k.info["min_gap"] / D == pytest.approx(1.212, abs=1e-3)  # strands still apart
     assert measure(k) == k.expected  # the same knot: 4_1 each, linked once, joined 0_1
 
 
@@ -218,13 +220,14 @@ def test_sheet_bend_slip_load_rises_with_friction():
 
 @pytest.mark.slow
 def test_figure_eight_bend_keeps_its_knot_type_through_set_and_pull():
-    """The default run at mu = 0.3 (about 70 s of CPU): each rope stays 4_1 at the pull's
-    start and on every pull frame (with 8 d ends B came undone during the set), and the
-    bend holds to the end of the 20 d pull."""
+    """The default run at mu = 0.3 (about 15 s of CPU, drawn-in start, 52 nodes a rope):
+    each rope stays 4_1 at the pull's start and on every pull frame to the slip (with the
+    loose parametric start and 8 d ends B came undone during the set); B's tail is drawn
+    in, not pulled out (measured: slips at 0.152 N, 10.5 d)."""
     r = bend("figure-eight-bend", mu_rod_rod=0.3)
     assert r.status == "success", r.message
-    assert r.frames_checked == len(r.times) >= 20 and r.topology_preserved
-    assert r.came_undone == "" and r.verdict == "holds"
+    assert r.frames_checked >= 3 and r.topology_preserved
+    assert r.came_undone == "" and r.verdict == "slips" and 0.1 < r.slip_load < 0.2
 
 
 @pytest.mark.slow

@@ -4,8 +4,11 @@ Construction: rope A ties a figure-eight and rope B follows it back, lying besid
 the way (the knot dressed flat): the single-rope long figure-eight of
 :func:`~knotmech.scenes.tied._common.long_knot_controls` (a parametric 4_1 cut open at its
 outermost point, ends to the far left and right, one kink where the two ends cross) split
-into two parallel strands 1.3 d apart. A is the strand on the left of the direction of
-travel, run from the far left to the far right; B the other strand, run back::
+into two parallel strands 1.3 d apart, then drawn in by the contract-and-repel pass of
+:func:`~knotmech.scenes.tied._snug.snug_figure_eight` (the knot about 9 x 6 x 5 d, strands
+at least 1.19 d apart, 45-50 d of each rope; the doubled parametric knot held 120 d of each
+rope in loops 5-10 d across). A is the strand on the left of the direction of travel, run
+from the far left to the far right; B the other strand, run back::
 
     A standing  =======\   figure-eight of   /======= A tail
                         >== the doubled rope ==
@@ -28,40 +31,28 @@ Topology, proven in ``tests/scenes/test_tied_curves.py``:
 
 from __future__ import annotations
 
-import numpy as np
-
-from knotmech.scenes.tied._common import TiedKnot, check_sizes, finish, ribbon_strands, start_checks
+from knotmech.scenes.tied._common import TiedKnot, check_sizes, start_checks
+from knotmech.scenes.tied._snug import equal_chords, run_on, snug_figure_eight
 
 __all__ = ["figure_eight_bend"]
 
-SCALE = 3.4  #: size of the figure-eight [d]
-HALF = 0.65  #: half spacing of the two ropes [d]
-TAIL = 8.0  #: straight ends of the construction [d]
-#: each straight end lengthened by EXTEND [d] (to 24 d beyond the construction's knot):
-#: the loose knot's loops (up to 20 d across while it is set) must not reach a held end
-#: (with 8 d ends a loop of B slid over B's held standing end during the set and B came
-#: undone: docs/notes/knots-and-curves/tied-knots-pulled.md)
-EXTEND = 16.0
+#: each end of the drawn-in knot run on by EXTEND [d] along its tangent: a held end must
+#: lie clear of the loops (the loose parametric bend, with 8 d ends, had a loop of B slide
+#: over B's held standing end during the set: docs/notes/knots-and-curves/tied-knots-pulled.md)
+EXTEND = 10.0
 
 
-def _extended(p, length: float) -> np.ndarray:
-    """Dense polyline ``p`` [d] with both (straight) ends run on by ``length`` [d] along
-    their outward tangents."""
-    u0, u1 = p[0] - p[1], p[-1] - p[-2]
-    u0, u1 = u0 / np.linalg.norm(u0), u1 / np.linalg.norm(u1)
-    return np.vstack([p[0] + length * u0, p, p[-1] + length * u1])
-
-
-def figure_eight_bend(*, rod_diameter: float, n_nodes: int = 300) -> TiedKnot:
-    """Loosely tied figure-eight bend of two ropes A and B.
+def figure_eight_bend(*, rod_diameter: float, n_nodes: int = 52) -> TiedKnot:
+    """Figure-eight bend of two ropes A and B, drawn in (snug, not tight).
 
     Parameters
     ----------
     rod_diameter : float [m]
         d, both ropes.
     n_nodes : int
-        Nodes per rope (>= 100; the default 300 gives edges of 0.6-0.7 d, the bend
-        scene's 150 edges of 1.2-1.35 d).
+        Nodes per rope (>= 40; the default 52 gives edges of 1.26-1.34 d on ropes of
+        64 and 68 d; 46 nodes, edges 1.4-1.5 d, changed the verdict at mu = 1:
+        docs/notes/knots-and-curves/tied-knots-pulled.md).
 
     Returns
     -------
@@ -69,9 +60,9 @@ def figure_eight_bend(*, rod_diameter: float, n_nodes: int = 300) -> TiedKnot:
         ``ropes["A"]``, ``ropes["B"]``, standing part at node 0 of each; ``expected``
         (module docstring).
     """
-    d, n = check_sizes(rod_diameter, n_nodes, 100)
-    upper, lower, w = ribbon_strands("figure_eight", SCALE, HALF, TAIL)
-    a, b = finish([_extended(upper, EXTEND), _extended(lower[::-1], EXTEND)], d, n)
+    d, n = check_sizes(rod_diameter, n_nodes, 40)
+    upper, lower, w = snug_figure_eight()
+    a, b = (equal_chords(run_on(p, EXTEND, EXTEND) * d, n) for p in (upper, lower[::-1]))
     return TiedKnot(
         name="figure_eight_bend",
         ropes={"A": a, "B": b},

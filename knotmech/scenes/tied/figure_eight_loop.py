@@ -3,9 +3,12 @@ r"""Figure-eight loop (figure-eight on a bight, ABoK #1047): a fixed eye round a
 Construction: a figure-eight knot tied in a doubled rope. The single-rope long figure-eight
 (:func:`~knotmech.scenes.tied._common.long_knot_controls`: a parametric 4_1 cut open at its
 outermost point, ends to the far left and far right, one kink where the two ends cross) is
-split into two parallel strands 1.3 d apart (a flat ribbon, the knot "dressed"); at the
-right the two strands are one rope, joined by the eye, a half turn round a pin (axis z) of
-diameter D at centreline radius (D + d)/2::
+split into two parallel strands 1.3 d apart (a flat ribbon, the knot "dressed") and drawn
+in by the contract-and-repel pass of :func:`~knotmech.scenes.tied._snug.snug_figure_eight`
+(the knot about 9 x 6 x 5 d; the doubled parametric knot was about 40 x 24 d); the two
+ends at the left are run on by :data:`EXTEND`; at the right the two strands are one rope,
+joined by the eye, a half turn round a pin (axis z) of diameter D at centreline radius
+(D + d)/2::
 
     standing  ======\      figure-eight       /=======\
                      >====  (4 crossings of   ==        (  pin )
@@ -40,28 +43,26 @@ from knotmech.scenes.tied._common import (
     check_sizes,
     cut_at,
     eye_controls,
-    finish,
-    ribbon_strands,
     start_checks,
 )
+from knotmech.scenes.tied._snug import equal_chords, run_on, snug_figure_eight
 
 __all__ = ["figure_eight_loop"]
 
-SCALE = 3.4  #: size of the figure-eight [d]
-HALF = 0.65  #: half spacing of the doubled rope [d]
-TAIL = 8.0  #: straight ends [d]
+EXTEND = 12.0  #: the standing part and the tail run on beyond the drawn-in knot [d]
+LEG = 2.0  #: the eye's legs run on beyond the drawn-in knot before the eye [d]
 
 
-def figure_eight_loop(*, rod_diameter: float, n_nodes: int = 400,
+def figure_eight_loop(*, rod_diameter: float, n_nodes: int = 150,
                       pin_diameter: float) -> TiedKnot:  # fmt: skip
-    r"""Loosely tied figure-eight loop with its eye round a pin.
+    r"""Figure-eight loop, drawn in (snug, not tight), with its eye round a pin.
 
     Parameters
     ----------
     rod_diameter : float [m]
         d.
     n_nodes : int
-        Nodes of the rope (>= 200).
+        Nodes of the rope (>= 100).
     pin_diameter : float [m]
         D, between 0.5 d and 40 d.
 
@@ -71,15 +72,16 @@ def figure_eight_loop(*, rod_diameter: float, n_nodes: int = 400,
         ``ropes["rope"]``: standing part at node 0, tail at the last node; ``pin``: point,
         axis (z) and diameter; ``expected`` (module docstring); ``info["eye_cut"]``.
     """
-    d, n = check_sizes(rod_diameter, n_nodes, 200)
+    d, n = check_sizes(rod_diameter, n_nodes, 100)
     D = check_pin(pin_diameter, d, 0.5, 40)
-    upper, lower, w = ribbon_strands("figure_eight", SCALE, HALF, TAIL)
+    upper, lower, w = snug_figure_eight()
+    upper, lower = run_on(upper, EXTEND, LEG), run_on(lower, EXTEND, LEG)
     R = 0.5 * (D / d + 1.0)
     y_mid = 0.5 * (upper[-1, 1] + lower[-1, 1])
     center = np.array([upper[-1, 0] + 4.0 + 2.0 * R, y_mid])
     eye = bspline(eye_controls(upper[-1], lower[-1], center, R, 2.0 + R))
     rope = np.vstack([upper, eye[1:], lower[::-1][1:]])
-    (nodes,) = finish([rope], d, n)
+    nodes = equal_chords(rope * d, n)
     far = np.array([center[0] + R, center[1], 0.0]) * d
     info = {"pin_center": (center[0] * d, center[1] * d, 0.0), "writhe": w,
             "eye_cut": cut_at(nodes, far), **start_checks([nodes], d)}  # fmt: skip
