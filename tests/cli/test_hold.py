@@ -194,8 +194,7 @@ def test_short_answer_first_detail_under_verbose(capsys):
     # the friction line second: the DER table's critical mu at 1.47 N (0.0928 EA, d/2R
     # 0.1176): slips at mu 0.2, holds at 0.3, bisected to the table's tolerance
     assert short[1] == (
-        "friction: critical mu 0.295 (holds for mu >= 0.295 (bisection of the DER table's "
-        "verdict))"
+        "friction: critical mu 0.295 (holds for mu >= 0.295 (bisection of the DER table's verdict))"
     )
     assert len(short) <= 7 < len(long)
     assert not any("assumes:" in s for s in short)
