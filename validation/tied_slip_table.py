@@ -49,6 +49,9 @@ NOTE = ROOT / "docs" / "notes" / "knots-and-curves" / "tied-slip-over-mu.md"
 FIGURE = ROOT / "docs" / "img" / "tied" / "slip_over_mu.png"
 START, END = "<!-- slip-table:start -->", "<!-- slip-table:end -->"
 D = 4e-3  #: the scenes' default rope diameter [m]
+#: the scenes' default axial stiffness EA [N] (E = 1 MPa): a force above
+#: :data:`knotmech.verdict.inputs.STRAIN_LIMIT` EA stretches the rod beyond the model
+EA = 1e6 * math.pi * D * D / 4
 
 
 def _family(knot: str) -> str:
@@ -239,8 +242,17 @@ def _cell(row: dict) -> str:
         undone = " undone" if row.get("came_undone") else ""
         return f"{_fmt(row['slip_load_N'])}{undone}{cost}"
     if row.get("verdict") == "holds":
-        return f"holds (to {_fmt(row.get('max_force_N'))}){cost}"
+        return f"holds (to {_fmt(row.get('max_force_N'))}{_stretched(row)}){cost}"
     return f"{row.get('verdict') or '?'}{cost}"
+
+
+def _stretched(row: dict) -> str:
+    """`` *`` when the row's largest force strains the rod of its bending scale's run beyond
+    :data:`knotmech.verdict.inputs.STRAIN_LIMIT` (E = 1 MPa, d = 4 mm), else ""."""
+    from knotmech.verdict.inputs import STRAIN_LIMIT
+
+    f = row.get("max_force_N")
+    return " *" if f is not None and f > STRAIN_LIMIT * EA else ""
 
 
 def table(files: list[dict]) -> str:
@@ -252,6 +264,13 @@ def table(files: list[dict]) -> str:
         rows = {float(m): r for m, r in f["rows"].items()}
         cells = [_cell(rows[m]) if m in rows else "-" for m in mus]
         lines.append(f"| {_label(f)} | " + " | ".join(cells) + " |")
+    if any(_stretched(r) for f in files for r in f["rows"].values()):
+        lines.append("")
+        lines.append(
+            "\\* the pull ended above 10 % strain (force > 0.1 EA = 1.26 N at E = 1 MPa, "
+            "d = 4 mm): the knot locked and the rod was stretched beyond the rod model's "
+            'validity; read it as "held to at least 1.26 N", not as the load shown.'
+        )
     return "\n".join(lines)
 
 

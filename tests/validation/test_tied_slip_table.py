@@ -122,3 +122,16 @@ def test_the_validation_case_renders_the_committed_runs(tmp_path):
     # the double fisherman's comes undone at 0.165 N at mu = 0.3 and slips at 0.124 N at 0.6
     assert "double-fishermans: 0.165 N at mu 0.3, 0.124 N at mu 0.6" in out["notes"][1]
     assert (tmp_path / "tied_slip_table.md").read_text().startswith("| knot | mu = 0.1 |")
+
+
+def test_a_hold_beyond_ten_percent_strain_is_marked(folder):
+    # E = 1 MPa, d = 4 mm: EA = 12.57 N, so 0.1 EA = 1.257 N; 7.22 N is 57 % strain
+    assert t.EA == pytest.approx(12.566, rel=1e-4)
+    data = {"knot": "figure-eight-bend", "loading": "end-to-end", "rows": {
+        "1": _row("holds", None, 7.22, 70.5), "0.6": _row("holds", None, 1.2, 57.0)}}  # fmt: skip
+    (folder / "figure-eight-bend.json").write_text(json.dumps(data))
+    lines = t.table(t.read_folder(folder)).splitlines()
+    row = next(line for line in lines if line.startswith("| figure-eight-bend"))
+    assert "holds (to 1.2) (57 s)" in row and "holds (to 7.22 *) (70 s)" in row
+    assert row.startswith("| figure-eight-bend (end to end) |")
+    assert lines[-1].startswith("\\* the pull ended above 10 % strain")
