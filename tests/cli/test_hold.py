@@ -374,7 +374,7 @@ def test_malformed_phase_table_fails(content, tmp_path, capsys):
 
 @pytest.mark.parametrize(
     ("knot", "words"),
-    [("alpine-butterfly", "unknown"), ("figure-eight", "stopper"), ("zeppelin", "unknown")],
+    [("trucker-hitch", "unknown"), ("figure-eight", "stopper"), ("zeppelin", "unknown")],
 )  # fmt: skip
 def test_unknown_knots_one_line_listing_supported(knot, words, capsys):
     assert _run(["hold", knot] + CLOVE[2:]) == 2
