@@ -242,7 +242,10 @@ _PRUSIK = (
     Opt("--bending-scale", "bending_scale", "dimensionless", "kappa in (0, 1] (B = kappa E "
         "pi d^4/64; a fibre cord is of order 0.01)", "1"),
     *(Opt(o.flag, o.kwarg, o.kind, o.help.removeprefix("--loading axial: "), o.default)
-      for o in _AXIAL_DRAG),
+      for o in _AXIAL_DRAG[:1]),
+    Opt("--drag-distance", "drag_distance", "length", "travel of the grips; the drag ends "
+        "sooner, once the knot has travelled 3 x d (its sliding force read, the plateau "
+        "established)", "8 x d"),
     Opt("--n-nodes", "n_nodes", "count", "nodes of the sling", "200"),
     Opt("--dt", "dt", "time", "nominal time step", "2ms"),
     _COMMON_TAIL[1],

@@ -30,6 +30,16 @@ ends carries half of the axial load along -z, as the two strands of a loop pulle
 carabiner. It has no separate normal load: the axial load is what grips (its ``normal_load``
 is the pre-tension of the settling, per leg).
 
+The rolling hitch (:mod:`knotmech.scenes.hitch_curves.rolling_hitch`) has its standing part
+along the pole (towards -z, the riding turns' side) and its working end perpendicular to it.
+Both are set at T along their tails, the standing part's end kept on the pole's line
+(:class:`LineGuide`: a free end along the pole swings round it and unwinds the turns of the
+stiff rod); in the drag only the standing part's end is gripped and moved along -z, the
+working end keeping its load T. F starts at T (the standing part's set).
+
+The Prusik's drag ends once its knot has travelled 3 d (:data:`STOP_TRAVEL_D`): past the
+slide its legs only stretch (the default 8 d drag stalled at 18 % strain).
+
 Contacts: rigid pole with sticking (anchor) friction on the rod surface
 (:func:`~knotmech.scenes._scene.post_contact`), rod-rod contact with the anchor law at
 ``cap_floor = 1e-2`` and the path tunnelling guard (``tunnel_check="path"``), sized for the
@@ -69,6 +79,12 @@ __all__ = ["AXIAL_KNOTS", "AxialGrip", "AxialResult", "axial_pull", "axial_curve
 
 #: knots this scene drags along the pole
 AXIAL_KNOTS = ("clove-hitch", "prusik", "rolling-hitch")
+#: knots whose drag ends once the knot has travelled ``stop_travel`` (default, in rod
+#: diameters): the Prusik, whose legs along the pole only stretch as the drag goes on past
+#: the slide (its default 8 d drag stalled at 18 % strain after its sliding force was read);
+#: the clove hitch's clamped curve keeps rising and its T-kept plateau comes late, and the
+#: rolling hitch's drag ran its 8 d, so they run the whole drag_distance
+STOP_TRAVEL_D = {"prusik": 3.0}
 #: the anchor law's cap floor (docs/notes/contact-and-friction/sticking-law-cap-width.md)
 CAP_FLOOR = 1e-2
 
@@ -317,6 +333,7 @@ def axial_pull(
     settle_time: float = 0.4,
     load_time: float = 0.3,
     slide_distance: float | None = None,
+    stop_travel: float | None = None,
     n_nodes: int | None = None,
     dt: float = 2e-3,
     n_frames: int = 80,
@@ -357,6 +374,11 @@ def axial_pull(
         Settling under 0.2 T, then the ramp to T.
     slide_distance : float [m], optional
         Travel of the knot that counts as sliding (default one rod diameter).
+    stop_travel : float [m], optional
+        The drag ends (successfully) once the knot has travelled this far: the sliding
+        force is read and the plateau established (default :data:`STOP_TRAVEL_D`: 3 rod
+        diameters for the Prusik; ``inf`` (the other knots' default): the whole
+        ``drag_distance``). Must exceed ``slide_distance``.
     n_nodes : int, optional
         Nodes (default: the clove hitch's edges of about 3.1 mm; the Prusik's 200-node sling).
     dt : float [s]
@@ -380,6 +402,7 @@ def axial_pull(
              drag_speed=drag_speed, drag_distance=drag_distance, leg_length=leg_length, legs=legs,
              force_scale=force_scale,
              settle_time=settle_time, load_time=load_time, slide_distance=slide_distance,
+             stop_travel=stop_travel,
              n_nodes=n_nodes),
         RunControl(dt=dt, n_frames=n_frames, options=options, progress=progress,
                    max_node_steps=max_node_steps),
@@ -415,6 +438,14 @@ class AxialScene(Scene):
                              "the rolling hitch's standing part run along the pole)")  # fmt: skip
         self.dist = self._length("drag_distance", 8.0)
         self.slide = self._length("slide_distance", 1.0)
+        v = self.p["stop_travel"]
+        if v is None:
+            self.stop = STOP_TRAVEL_D.get(self.knot, np.inf) * self.d
+        else:
+            self.stop = np.inf if v == np.inf else self._length("stop_travel", 0.0)
+        if self.stop <= self.slide:
+            raise InputError(f"stop_travel must exceed slide_distance ({self.slide:g} m), got "
+                             f"{self.stop:g} m")  # fmt: skip
         fs = 10.0 * self.T if p["force_scale"] is None else p["force_scale"]
         self.fscale = float(check_positive("force_scale", fs, scalar=True))
         self.t1 = float(check_positive("settle_time", p["settle_time"], scalar=True))
@@ -516,7 +547,12 @@ class AxialScene(Scene):
         every = t_drag / (int(self.control.n_frames) - 1)
         h = float(np.mean(np.linalg.norm(np.diff(self.x0, axis=0), axis=1)))
         step = min(self.step, 0.25 * min(h, 0.2 * self.d) / self.v)
-        run.phase("drag", t_drag, dt=step, loads=loads, constraints=[grip], save_every=every)
+        run.phase("drag", t_drag, dt=step, loads=loads, constraints=[grip], save_every=every,
+                  stop=self._stop if np.isfinite(self.stop) else None)  # fmt: skip
+
+    def _stop(self, x) -> bool:
+        """The knot has travelled ``stop_travel``: the drag has read what it is for."""
+        return self._knot_z(x) - self.z0 >= self.stop
 
     # -- measure ---------------------------------------------------------------------
     def measure(self, run: SceneRun) -> AxialResult:

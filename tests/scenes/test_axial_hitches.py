@@ -66,6 +66,7 @@ def test_open_sling_removes_only_the_loops_bottom():
         ({"knot": "clove-hitch", "wraps": 3}, "wraps must be 2 for the clove hitch"),
         ({"knot": "rolling-hitch", "wraps": 3}, "wraps must be 2 for the rolling hitch"),
         ({"knot": "rolling-hitch", "legs": "dead"}, "applies to the clove hitch"),
+        ({"knot": "prusik", "stop_travel": 4e-3}, "stop_travel must exceed slide_distance"),
         ({"normal_load": 0.0}, "normal_load"),
         ({"drag_speed": -1.0}, "drag_speed"),
         ({"legs": "free"}, "legs must be 'clamped' or 'dead'"),
@@ -109,3 +110,18 @@ def test_prusik_dragged_keeps_its_type_and_slides():
     assert r.topology_preserved and r.invariants_kept is True
     assert r.axial_force[0] == pytest.approx(1.0, rel=0.02)  # the legs' set, 2 x 0.5 N
     assert r.slid and r.sliding_force == pytest.approx(2.74, rel=0.05)
+
+
+@pytest.mark.slow
+def test_rolling_hitch_dragged_along_the_pole_keeps_its_type():
+    """The rolling hitch, standing part and working end set at 0.5 N, the standing part's end
+    dragged 8 mm along the pole (90 nodes, about 30 s of CPU): the knot type (unknot, linked
+    four times with the pole) is kept on every checked frame and the grip's force starts at
+    the standing part's set, 0.5 N, and rises."""
+    r = axial_pull("rolling-hitch", normal_load=0.5, n_nodes=90, drag_speed=0.02,
+                   drag_distance=0.008, n_frames=9)  # fmt: skip
+    assert r.status == "success", r.message
+    assert r.topology_preserved and r.invariants_kept is True
+    assert r.invariants_start == ((1,), 4)
+    assert r.axial_force[0] == pytest.approx(0.5, rel=0.02)
+    assert r.peak_force > 0.6
