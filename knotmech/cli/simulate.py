@@ -244,8 +244,8 @@ _PRUSIK = (
     *(Opt(o.flag, o.kwarg, o.kind, o.help.removeprefix("--loading axial: "), o.default)
       for o in _AXIAL_DRAG[:1]),
     Opt("--drag-distance", "drag_distance", "length", "travel of the grips; the drag ends "
-        "sooner, once the knot has travelled 3 x d (its sliding force read, the plateau "
-        "established)", "8 x d"),
+        "sooner, once the grips have moved 0.5 x d further after the knot slid (its sliding "
+        "force read, the plateau recorded)", "8 x d"),
     Opt("--n-nodes", "n_nodes", "count", "nodes of the sling", "200"),
     Opt("--dt", "dt", "time", "nominal time step", "2ms"),
     _COMMON_TAIL[1],

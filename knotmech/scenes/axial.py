@@ -37,8 +37,9 @@ Both are set at T along their tails, the standing part's end kept on the pole's 
 stiff rod); in the drag only the standing part's end is gripped and moved along -z, the
 working end keeping its load T. F starts at T (the standing part's set).
 
-The Prusik's drag ends once its knot has travelled 3 d (:data:`STOP_TRAVEL_D`): past the
-slide its legs only stretch (the default 8 d drag stalled at 18 % strain).
+The Prusik's drag ends once the grips have moved 0.5 d further after its knot slid
+(:data:`PLATEAU_WINDOW_D`): past the slide its legs only stretch (the default 8 d drag
+stalled at 18 % strain).
 
 Contacts: rigid pole with sticking (anchor) friction on the rod surface
 (:func:`~knotmech.scenes._scene.post_contact`), rod-rod contact with the anchor law at
@@ -79,12 +80,13 @@ __all__ = ["AXIAL_KNOTS", "AxialGrip", "AxialResult", "axial_pull", "axial_curve
 
 #: knots this scene drags along the pole
 AXIAL_KNOTS = ("clove-hitch", "prusik", "rolling-hitch")
-#: knots whose drag ends once the knot has travelled ``stop_travel`` (default, in rod
-#: diameters): the Prusik, whose legs along the pole only stretch as the drag goes on past
-#: the slide (its default 8 d drag stalled at 18 % strain after its sliding force was read);
-#: the clove hitch's clamped curve keeps rising and its T-kept plateau comes late, and the
-#: rolling hitch's drag ran its 8 d, so they run the whole drag_distance
-STOP_TRAVEL_D = {"prusik": 3.0}
+#: knots whose drag ends ``plateau_window`` (default, in rod diameters of the grips' travel)
+#: after the knot has slid: the Prusik, whose legs along the pole only stretch as the drag
+#: goes on past the slide (the three-turn Prusik at 0.5 N slid at 22.6 mm of the grips'
+#: travel and its default 8 d drag stalled at 26.8 mm, 18 % strain); the clove hitch's clamped
+#: curve keeps rising and its T-kept plateau comes late, and the rolling hitch's drag ran its
+#: 8 d, so they run the whole drag_distance
+PLATEAU_WINDOW_D = {"prusik": 0.5}
 #: the anchor law's cap floor (docs/notes/contact-and-friction/sticking-law-cap-width.md)
 CAP_FLOOR = 1e-2
 
@@ -333,7 +335,7 @@ def axial_pull(
     settle_time: float = 0.4,
     load_time: float = 0.3,
     slide_distance: float | None = None,
-    stop_travel: float | None = None,
+    plateau_window: float | None = None,
     n_nodes: int | None = None,
     dt: float = 2e-3,
     n_frames: int = 80,
@@ -374,11 +376,11 @@ def axial_pull(
         Settling under 0.2 T, then the ramp to T.
     slide_distance : float [m], optional
         Travel of the knot that counts as sliding (default one rod diameter).
-    stop_travel : float [m], optional
-        The drag ends (successfully) once the knot has travelled this far: the sliding
-        force is read and the plateau established (default :data:`STOP_TRAVEL_D`: 3 rod
-        diameters for the Prusik; ``inf`` (the other knots' default): the whole
-        ``drag_distance``). Must exceed ``slide_distance``.
+    plateau_window : float [m], optional
+        The drag ends (successfully) once the grips have moved this much further after the
+        knot slid (its sliding force read, the plateau recorded over the window); default
+        :data:`PLATEAU_WINDOW_D`: half a rod diameter for the Prusik; ``inf`` (the other knots'
+        default): the whole ``drag_distance``.
     n_nodes : int, optional
         Nodes (default: the clove hitch's edges of about 3.1 mm; the Prusik's 200-node sling).
     dt : float [s]
@@ -402,7 +404,7 @@ def axial_pull(
              drag_speed=drag_speed, drag_distance=drag_distance, leg_length=leg_length, legs=legs,
              force_scale=force_scale,
              settle_time=settle_time, load_time=load_time, slide_distance=slide_distance,
-             stop_travel=stop_travel,
+             plateau_window=plateau_window,
              n_nodes=n_nodes),
         RunControl(dt=dt, n_frames=n_frames, options=options, progress=progress,
                    max_node_steps=max_node_steps),
@@ -438,14 +440,11 @@ class AxialScene(Scene):
                              "the rolling hitch's standing part run along the pole)")  # fmt: skip
         self.dist = self._length("drag_distance", 8.0)
         self.slide = self._length("slide_distance", 1.0)
-        v = self.p["stop_travel"]
+        v = self.p["plateau_window"]
         if v is None:
-            self.stop = STOP_TRAVEL_D.get(self.knot, np.inf) * self.d
+            self.window = PLATEAU_WINDOW_D.get(self.knot, np.inf) * self.d
         else:
-            self.stop = np.inf if v == np.inf else self._length("stop_travel", 0.0)
-        if self.stop <= self.slide:
-            raise InputError(f"stop_travel must exceed slide_distance ({self.slide:g} m), got "
-                             f"{self.stop:g} m")  # fmt: skip
+            self.window = np.inf if v == np.inf else self._length("plateau_window", 0.0)
         fs = 10.0 * self.T if p["force_scale"] is None else p["force_scale"]
         self.fscale = float(check_positive("force_scale", fs, scalar=True))
         self.t1 = float(check_positive("settle_time", p["settle_time"], scalar=True))
@@ -531,6 +530,7 @@ class AxialScene(Scene):
         xs = run.positions[-1]
         self.k0 = len(run.times) - 1
         self.z0 = self._knot_z(xs)
+        self.slid_at = None  # the grips' position along the pull when the knot slid
         # a light drag (1 % of the settling's): quasi-static at the drag speed
         loads = [rod.ViscousDamping(coefficient=0.01 * self.drag)]
         if self.p["legs"] == "dead":  # T kept along the tails, the ends' z driven
@@ -548,11 +548,15 @@ class AxialScene(Scene):
         h = float(np.mean(np.linalg.norm(np.diff(self.x0, axis=0), axis=1)))
         step = min(self.step, 0.25 * min(h, 0.2 * self.d) / self.v)
         run.phase("drag", t_drag, dt=step, loads=loads, constraints=[grip], save_every=every,
-                  stop=self._stop if np.isfinite(self.stop) else None)  # fmt: skip
+                  stop=self._stop if np.isfinite(self.window) else None)  # fmt: skip
 
     def _stop(self, x) -> bool:
-        """The knot has travelled ``stop_travel``: the drag has read what it is for."""
-        return self._knot_z(x) - self.z0 >= self.stop
+        """The grips have moved ``plateau_window`` since the knot slid: the drag has read
+        what it is for."""
+        grip = self.sense * float(x[self.grips[0], 2])
+        if self.slid_at is None and self._knot_z(x) - self.z0 > self.slide:
+            self.slid_at = grip
+        return self.slid_at is not None and grip - self.slid_at >= self.window
 
     # -- measure ---------------------------------------------------------------------
     def measure(self, run: SceneRun) -> AxialResult:

@@ -66,7 +66,7 @@ def test_open_sling_removes_only_the_loops_bottom():
         ({"knot": "clove-hitch", "wraps": 3}, "wraps must be 2 for the clove hitch"),
         ({"knot": "rolling-hitch", "wraps": 3}, "wraps must be 2 for the rolling hitch"),
         ({"knot": "rolling-hitch", "legs": "dead"}, "applies to the clove hitch"),
-        ({"knot": "prusik", "stop_travel": 4e-3}, "stop_travel must exceed slide_distance"),
+        ({"knot": "prusik", "plateau_window": 0.0}, "plateau_window must be > 0"),
         ({"normal_load": 0.0}, "normal_load"),
         ({"drag_speed": -1.0}, "drag_speed"),
         ({"legs": "free"}, "legs must be 'clamped' or 'dead'"),
