@@ -115,9 +115,9 @@ def test_prusik_dragged_keeps_its_type_and_slides():
 @pytest.mark.slow
 def test_rolling_hitch_dragged_along_the_pole_keeps_its_type():
     """The rolling hitch, standing part and working end set at 0.5 N, the standing part's end
-    dragged 8 mm along the pole (90 nodes, about 30 s of CPU): the knot type (unknot, linked
-    four times with the pole) is kept on every checked frame and the grip's force starts at
-    the standing part's set, 0.5 N, and rises."""
+    dragged 8 mm along the pole (90 nodes, 19 s of wall on a lightly loaded machine): the knot
+    type (unknot, linked four times with the pole) is kept on every checked frame and the
+    grip's force starts at the standing part's set, 0.5 N, and rises."""
     r = axial_pull("rolling-hitch", normal_load=0.5, n_nodes=90, drag_speed=0.02,
                    drag_distance=0.008, n_frames=9)  # fmt: skip
     assert r.status == "success", r.message
