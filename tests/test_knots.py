@@ -34,6 +34,7 @@ def test_hold_answers_the_answered_records():
         "round-turn-two-half-hitches", "cow-hitch", "reef", "granny", "thief", "grief",
         "bowline", "figure-eight-loop", "alpine-butterfly", "sheet-bend", "double-sheet-bend",
         "flat-overhand-bend", "figure-eight-bend", "double-fishermans", "prusik",
+        "rolling-hitch",
     )  # fmt: skip
     for k in knots.records(answered=False):
         with pytest.raises(InputError, match=re.escape(f"is {k.unanswered}")):
@@ -56,9 +57,10 @@ def test_curves_and_scenes_resolve_from_the_records():
     from knotmech.scenes.hitches import HITCHES
 
     assert HITCH_KNOTS == {"two_half_hitches": math.pi, "round_turn_two_half_hitches": 3 * math.pi,
-                           "cow_hitch": 2 * math.pi}  # fmt: skip
+                           "cow_hitch": 2 * math.pi, "rolling_hitch": 7 * math.pi}  # fmt: skip
     assert list(HITCHES.values()) == [
         "clove-hitch", "two-half-hitches", "round-turn-two-half-hitches", "cow-hitch",
+        "rolling-hitch",
     ]  # fmt: skip
     for k in knots.records(answered=None):
         for ref in (k.curve, k.scene):
@@ -83,7 +85,8 @@ def test_simulate_commands_and_bends_come_from_the_registry():
     from knotmech.cli import simulate as sim
     from knotmech.scenes.bend_curves import BEND_CODES, BEND_ENDS
 
-    assert sim.HITCH_SCENES == ("two-half-hitches", "round-turn-two-half-hitches", "cow-hitch")
+    assert sim.HITCH_SCENES == ("two-half-hitches", "round-turn-two-half-hitches", "cow-hitch",
+                                "rolling-hitch")  # fmt: skip
     assert sim.BEND_KINDS == ("reef", "granny", "thief", "grief", *sim.TIED_BENDS)
     assert sim.TIED_BENDS == ("sheet-bend", "double-sheet-bend", "flat-overhand-bend",
                               "figure-eight-bend", "double-fishermans")  # fmt: skip

@@ -66,6 +66,8 @@ LOOP_SCENES = tuple(k.name for k in knots.records(family="loop") if k.has_scene)
 #: hitches pulled along their pole (knotmech.scenes.axial): their own command; the clove
 #: hitch's is ``simulate clove-hitch --loading axial``
 AXIAL_SCENES = ("prusik",)
+#: hitch commands with ``--loading axial`` (the legs set, then dragged along the pole)
+AXIAL_LOADING = ("clove-hitch", "rolling-hitch")
 
 SCENES = ("capstan", "two-loops", "pinch", "overhand", "clove-hitch", *HITCH_SCENES, "bend",
           *TIED_BENDS, *LOOP_SCENES, "centreline", *AXIAL_SCENES)  # fmt: skip
@@ -240,7 +242,10 @@ _PRUSIK = (
     Opt("--bending-scale", "bending_scale", "dimensionless", "kappa in (0, 1] (B = kappa E "
         "pi d^4/64; a fibre cord is of order 0.01)", "1"),
     *(Opt(o.flag, o.kwarg, o.kind, o.help.removeprefix("--loading axial: "), o.default)
-      for o in _AXIAL_DRAG),
+      for o in _AXIAL_DRAG[:1]),
+    Opt("--drag-distance", "drag_distance", "length", "travel of the grips; the drag ends "
+        "sooner, once the grips have moved 0.5 x d further after the knot slid (its sliding "
+        "force read, the plateau recorded)", "8 x d"),
     Opt("--n-nodes", "n_nodes", "count", "nodes of the sling", "200"),
     Opt("--dt", "dt", "time", "nominal time step", "2ms"),
     _COMMON_TAIL[1],
@@ -352,7 +357,7 @@ SCENE_OPTIONS: dict[str, tuple[Opt, ...]] = {
     "pinch": _PINCH,
     "overhand": _OVERHAND,
     "clove-hitch": _CLOVE + _CLOVE_AXIAL,
-    **{name: _HITCH for name in HITCH_SCENES},
+    **{name: _HITCH + (_CLOVE_AXIAL if name in AXIAL_LOADING else ()) for name in HITCH_SCENES},
     "prusik": _PRUSIK,
     "bend": _BEND,
     **{name: tuple(o for o in _BEND if o.kwarg != "kind") for name in TIED_BENDS},
@@ -469,15 +474,14 @@ def register(subparsers) -> None:
                              help="parameter set: implicit-contact-model paper (imc) or "
                              "coated-rod paper table 1 [imc]")  # fmt: skip
         if name == "clove-hitch" or name in HITCH_SCENES:
-            axial = ("axial",) if name == "clove-hitch" else ()
+            axial = ("axial",) if name in AXIAL_LOADING else ()
             opt.add_argument(
                 "--loading", default="free",
                 choices=("symmetric", "asymmetric", "free", "pull", *axial),
                 help="end loads: both --t-high (symmetric); --t-high and --t-low "
                 "(asymmetric); --t-high and a free end (free); pull: dead load --t-low on one "
                 "end, the other pulled at --speed for --pull-distance"
-                + ("; axial: both legs at --normal-load, then dragged along the post "
-                   "(Sabater et al. 2026)" if axial else "") + " [free]",
+                + (_AXIAL_HELP[name] if axial else "") + " [free]",
             )  # fmt: skip
         out = sp.add_argument_group("output (checked before the run starts)")
         out.add_argument("--json", metavar="FILE", help="the run's scalars as strict JSON")
@@ -529,16 +533,27 @@ def _refuse(kw: dict, flags: dict[str, str], reason: str) -> None:
         raise InputError(f"{', '.join(given)}: not used {reason}")
 
 
+#: ``--loading axial`` in the hitches' help
+_AXIAL_HELP = {
+    "clove-hitch": "; axial: both legs at --normal-load, then dragged along the post (Sabater "
+    "et al. 2026)",
+    "rolling-hitch": "; axial: the standing part (along the pole) and the working end set at "
+    "--normal-load, then the standing part's end dragged along the pole, the working end "
+    "keeping its load (settle 0.4 s, ramp 0.3 s unless given)",
+}
+
 #: the options of the axial drag only (clove-hitch --loading axial)
 _AXIAL_ONLY = {"normal_load": "--normal-load", "drag_speed": "--drag-speed",
                "drag_distance": "--drag-distance"}  # fmt: skip
 
 
 def _axial_missing(kw: dict) -> list[str]:
-    """clove-hitch --loading axial: the options it refuses, and the missing ones."""
+    """clove-hitch or rolling-hitch --loading axial: the options it refuses, and the
+    missing ones."""
     _refuse(kw, {"t_high": "--t-high", "t_low": "--t-low", "hold_time": "--hold-time",
                  "pull_speed": "--pull-speed", "pull_distance": "--pull-distance",
-                 "rod_length": "--rod-length", "mu_kinetic": "--mu-kinetic"},
+                 "rod_length": "--rod-length", "mu_kinetic": "--mu-kinetic",
+                 "creep_limit": "--creep-limit"},
             "with --loading axial (see --drag-speed, --drag-distance)")  # fmt: skip
     return [] if "normal_load" in kw else ["--normal-load"]
 
@@ -555,10 +570,10 @@ def _check_combination(scene: str, args, kw: dict) -> None:
         else:
             _refuse(kw, {"t_high": "--t-high", "hold_time": "--hold-time"},
                     "with --mode pull (the pulled end's force is measured)")  # fmt: skip
-    elif scene == "clove-hitch" and args.loading == "axial":
+    elif scene in AXIAL_LOADING and args.loading == "axial":
         missing += _axial_missing(kw)
     elif scene == "clove-hitch" or scene in HITCH_SCENES:
-        if scene == "clove-hitch":
+        if scene in AXIAL_LOADING:
             _refuse(kw, _AXIAL_ONLY, "without --loading axial")
         if scene in HITCH_SCENES and args.loading != "free":
             _refuse(kw, {"creep_limit": "--creep-limit"}, "without --loading free")
@@ -860,7 +875,7 @@ def run(args) -> int:
         res = _run_pulled_knot(scene, kw, args, progress)
     elif scene in LOOP_SCENES:
         res = _run_loop(scene, kw, progress)
-    elif scene in AXIAL_SCENES or (scene == "clove-hitch" and args.loading == "axial"):
+    elif scene in AXIAL_SCENES or (scene in AXIAL_LOADING and args.loading == "axial"):
         res = _run_axial(scene, kw, progress)
     elif scene in HITCH_SCENES:
         res = _run_hitch(scene, kw, args, progress)

@@ -341,4 +341,26 @@ CATALOGUE = (
         loading="the sling's loop pulled along the pole (both legs, half the load each)",
         sources=(AXIAL_NOTE, SABATER),
     ),
+    Knot(
+        name="rolling-hitch",
+        family="hitch",
+        aliases=("rolling", "magnus-hitch", "magnus"),
+        summary="two riding turns round the pole over the standing part, then a half hitch on "
+        "the other side (Magnus hitch, ABoK #1734-#1735): the hitch for a pull along the pole",
+        curve="knotmech.scenes.hitch_curves.rolling_hitch:rolling_hitch_curve",
+        pull_angle=7 * math.pi,
+        scene_defaults=_MADE_HITCH,
+        scene_doc=_THH_DOC.format(
+            what="a rolling hitch (its standing part along the pole, -z)",
+            length="0.575",
+            ident="rolling_hitch",
+            invariants="(1,), 4",
+        ),
+        simulate_help="a rolling (Magnus) hitch on a pole, its standing part along the pole: "
+        "held by end loads, or (--loading axial) its standing part dragged along the pole: "
+        "sliding force, knot type kept",
+        loading="the standing part pulled along the pole towards the riding turns, the "
+        "working end under a light set load",
+        sources=(AXIAL_NOTE, SABATER, "C. W. Ashley, The Ashley Book of Knots, #1734-#1735"),
+    ),
 )

@@ -30,6 +30,17 @@ ends carries half of the axial load along -z, as the two strands of a loop pulle
 carabiner. It has no separate normal load: the axial load is what grips (its ``normal_load``
 is the pre-tension of the settling, per leg).
 
+The rolling hitch (:mod:`knotmech.scenes.hitch_curves.rolling_hitch`) has its standing part
+along the pole (towards -z, the riding turns' side) and its working end perpendicular to it.
+Both are set at T along their tails, the standing part's end kept on the pole's line
+(:class:`LineGuide`: a free end along the pole swings round it and unwinds the turns of the
+stiff rod); in the drag only the standing part's end is gripped and moved along -z, the
+working end keeping its load T. F starts at T (the standing part's set).
+
+The Prusik's drag ends once the grips have moved 0.5 d further after its knot slid
+(:data:`PLATEAU_WINDOW_D`): past the slide its legs only stretch (the default 8 d drag
+stalled at 18 % strain).
+
 Contacts: rigid pole with sticking (anchor) friction on the rod surface
 (:func:`~knotmech.scenes._scene.post_contact`), rod-rod contact with the anchor law at
 ``cap_floor = 1e-2`` and the path tunnelling guard (``tunnel_check="path"``), sized for the
@@ -68,7 +79,14 @@ from knotmech.scenes.topology import winding_number
 __all__ = ["AXIAL_KNOTS", "AxialGrip", "AxialResult", "axial_pull", "axial_curve"]
 
 #: knots this scene drags along the pole
-AXIAL_KNOTS = ("clove-hitch", "prusik")
+AXIAL_KNOTS = ("clove-hitch", "prusik", "rolling-hitch")
+#: knots whose drag ends ``plateau_window`` (default, in rod diameters of the grips' travel)
+#: after the knot has slid: the Prusik, whose legs along the pole only stretch as the drag
+#: goes on past the slide (the three-turn Prusik at 0.5 N slid at 22.6 mm of the grips'
+#: travel and its default 8 d drag stalled at 26.8 mm, 18 % strain); the clove hitch's clamped
+#: curve keeps rising and its T-kept plateau comes late, and the rolling hitch's drag ran its
+#: 8 d, so they run the whole drag_distance
+PLATEAU_WINDOW_D = {"prusik": 0.5}
 #: the anchor law's cap floor (docs/notes/contact-and-friction/sticking-law-cap-width.md)
 CAP_FLOOR = 1e-2
 
@@ -97,6 +115,28 @@ class AxialGrip:
     def values(self, system, t_new, dt, q_old) -> np.ndarray:
         shift = self.sense * self.speed * max(t_new - self.t_start, 0.0)
         return np.asarray(self.z_start, dtype=float) + shift
+
+
+@dataclass(frozen=True)
+class LineGuide:
+    """Hold the x and y coordinates of ``nodes`` at ``xy`` [m] (their z free): a guide that
+    keeps the rolling hitch's standing part on the pole's line while its dead load sets the
+    knot (a free end along the pole would swing round it and unwind the turns)."""
+
+    nodes: tuple
+    xy: tuple
+
+    def node_indices(self, system) -> np.ndarray:
+        return np.asarray(self.nodes, dtype=np.int64)
+
+    def edge_indices(self, system) -> np.ndarray:
+        return np.zeros(0, dtype=np.int64)
+
+    def dofs(self, system) -> np.ndarray:
+        return system.node_dofs[self.node_indices(system), :2].ravel()
+
+    def values(self, system, t_new, dt, q_old) -> np.ndarray:
+        return np.asarray(self.xy, dtype=float).ravel()
 
 
 @dataclass
@@ -210,17 +250,41 @@ def axial_curve(knot: str, *, rod_diameter: float, post_diameter: float, wraps: 
                 n_nodes: int | None, leg_length: float | None = None):  # fmt: skip
     """Start centreline of ``knot`` in :data:`AXIAL_KNOTS` round the pole (z axis).
 
-    ``leg_length`` [m]: the clove hitch's tails (default 8 d); the Prusik's legs are its
-    curve's (10 d down the pole).
+    ``leg_length`` [m]: the clove hitch's tails and the rolling hitch's standing part and
+    working end (default 8 d); the Prusik's legs are its curve's (10 d down the pole).
 
     Returns
     -------
     nodes : (n, 3) array [m]
-        Node 0 and the last node are the loaded legs' ends.
+        Node 0 and the last node are the loaded legs' ends (the rolling hitch: node 0 the
+        standing part's end, the last node the working end's).
     sense : float
-        +1: the knot is dragged along +z (the clove hitch), -1: along -z (the Prusik's loop).
+        +1: the knot is dragged along +z (the clove hitch), -1: along -z (the Prusik's loop,
+        the rolling hitch's standing part).
     wraps : int
+        The clove hitch's turns (2), the Prusik's turns a side, the rolling hitch's riding
+        turns (2).
     """
+    return _axial_start(knot, rod_diameter=rod_diameter, post_diameter=post_diameter,
+                        wraps=wraps, n_nodes=n_nodes, leg_length=leg_length)[:3]  # fmt: skip
+
+
+def _axial_start(knot, *, rod_diameter, post_diameter, wraps, n_nodes, leg_length):
+    """:func:`axial_curve` and the first node of the knot (the rolling hitch's standing
+    part, which lies along the pole, is not the knot: 0 for the others)."""
+    if knot == "rolling-hitch":
+        from knotmech.scenes.hitch_curves import EDGE
+        from knotmech.scenes.hitch_curves.rolling_hitch import knotted_length, rolling_hitch_curve
+
+        if wraps not in (None, 2):
+            raise InputError(f"wraps must be 2 for the rolling hitch (two riding turns), got "
+                             f"{wraps!r}")  # fmt: skip
+        leg = 8.0 * rod_diameter if leg_length is None else leg_length
+        length = knotted_length(post_diameter, rod_diameter) + 2 * leg
+        n = int(round(length / EDGE)) + 1 if n_nodes is None else n_nodes
+        c = rolling_hitch_curve(post_diameter=post_diameter, rod_diameter=rod_diameter,
+                                rod_length=length, n_nodes=n)  # fmt: skip
+        return c.nodes, -1.0, 2, c.parts["standing"][1]
     if knot == "clove-hitch":
         from knotmech.scenes.clove_hitch import CLOVE
 
@@ -228,14 +292,14 @@ def axial_curve(knot: str, *, rod_diameter: float, post_diameter: float, wraps: 
             raise InputError(f"wraps must be 2 for the clove hitch (two turns), got {wraps!r}")
         leg = 8.0 * rod_diameter if leg_length is None else leg_length
         length = 4 * np.pi * 0.5 * (post_diameter + rod_diameter) * 1.15 + 2 * leg
-        return CLOVE.curve(post_diameter, rod_diameter, length, n_nodes).nodes, 1.0, 2
+        return CLOVE.curve(post_diameter, rod_diameter, length, n_nodes).nodes, 1.0, 2, 0
     if knot == "prusik":
         from knotmech.scenes.tied.prusik import prusik
 
         w = 3 if wraps is None else wraps
         t = prusik(rod_diameter=rod_diameter, pin_diameter=post_diameter, wraps=w,
                    n_nodes=200 if n_nodes is None else n_nodes)  # fmt: skip
-        return _open_sling(t.ropes["sling"], rod_diameter), -1.0, int(w)
+        return _open_sling(t.ropes["sling"], rod_diameter), -1.0, int(w), 0
     raise InputError(f"knot must be one of {', '.join(AXIAL_KNOTS)}, got {knot!r}")
 
 
@@ -271,6 +335,7 @@ def axial_pull(
     settle_time: float = 0.4,
     load_time: float = 0.3,
     slide_distance: float | None = None,
+    plateau_window: float | None = None,
     n_nodes: int | None = None,
     dt: float = 2e-3,
     n_frames: int = 80,
@@ -311,6 +376,11 @@ def axial_pull(
         Settling under 0.2 T, then the ramp to T.
     slide_distance : float [m], optional
         Travel of the knot that counts as sliding (default one rod diameter).
+    plateau_window : float [m], optional
+        The drag ends (successfully) once the grips have moved this much further after the
+        knot slid (its sliding force read, the plateau recorded over the window); default
+        :data:`PLATEAU_WINDOW_D`: half a rod diameter for the Prusik; ``inf`` (the other knots'
+        default): the whole ``drag_distance``.
     n_nodes : int, optional
         Nodes (default: the clove hitch's edges of about 3.1 mm; the Prusik's 200-node sling).
     dt : float [s]
@@ -334,6 +404,7 @@ def axial_pull(
              drag_speed=drag_speed, drag_distance=drag_distance, leg_length=leg_length, legs=legs,
              force_scale=force_scale,
              settle_time=settle_time, load_time=load_time, slide_distance=slide_distance,
+             plateau_window=plateau_window,
              n_nodes=n_nodes),
         RunControl(dt=dt, n_frames=n_frames, options=options, progress=progress,
                    max_node_steps=max_node_steps),
@@ -365,10 +436,15 @@ class AxialScene(Scene):
         if p["legs"] not in ("clamped", "dead"):
             raise InputError(f"legs must be 'clamped' or 'dead', got {p['legs']!r}")
         if p["legs"] == "dead" and self.knot != "clove-hitch":
-            raise InputError("legs='dead' applies to the clove hitch (the Prusik's legs run "
-                             "along the pole)")  # fmt: skip
+            raise InputError("legs='dead' applies to the clove hitch (the Prusik's legs and "
+                             "the rolling hitch's standing part run along the pole)")  # fmt: skip
         self.dist = self._length("drag_distance", 8.0)
         self.slide = self._length("slide_distance", 1.0)
+        v = self.p["plateau_window"]
+        if v is None:
+            self.window = PLATEAU_WINDOW_D.get(self.knot, np.inf) * self.d
+        else:
+            self.window = np.inf if v == np.inf else self._length("plateau_window", 0.0)
         fs = 10.0 * self.T if p["force_scale"] is None else p["force_scale"]
         self.fscale = float(check_positive("force_scale", fs, scalar=True))
         self.t1 = float(check_positive("settle_time", p["settle_time"], scalar=True))
@@ -376,7 +452,7 @@ class AxialScene(Scene):
         self.step = float(check_positive("dt", self.control.dt, scalar=True))
         if int(self.control.n_frames) < 2:
             raise InputError(f"n_frames must be >= 2, got {self.control.n_frames!r}")
-        self.x0, self.sense, self.wraps = axial_curve(
+        self.x0, self.sense, self.wraps, first = _axial_start(
             self.knot, rod_diameter=self.d, post_diameter=self.D, wraps=p["wraps"],
             n_nodes=p["n_nodes"], leg_length=self._length("leg_length", 8.0),
         )  # fmt: skip
@@ -387,6 +463,10 @@ class AxialScene(Scene):
         self.ea = self.E * np.pi * self.d**2 / 4
         r = np.hypot(self.x0[:, 0], self.x0[:, 1])
         self.on_pole = np.flatnonzero(r < 0.5 * (self.D + self.d) + 0.5 * self.d)
+        self.on_pole = self.on_pole[self.on_pole >= first]
+        # the gripped ends: both legs, or the rolling hitch's standing part alone (its
+        # working end keeps its set load, as a tail dressed by hand)
+        self.grips = [0] if self.knot == "rolling-hitch" else [0, self.N - 1]
 
     def _length(self, name: str, in_d: float) -> float:
         """A length option [m], default ``in_d`` rod diameters."""
@@ -438,7 +518,11 @@ class AxialScene(Scene):
         self.drag = 2.0 * self.rho * np.pi * self.d**2 / 4 / (0.1 * t1)
         loads = [*self.legs, rod.ViscousDamping(coefficient=self.drag)]
         self.k0 = None
-        if run.phase("settle-load", self.t2, dt=self.step, loads=loads, save_every=self.t2 / 8):
+        guide = []
+        if self.knot == "rolling-hitch":  # the standing part's end kept on the pole's line
+            guide = [LineGuide(nodes=(0,), xy=(tuple(x[0, :2]),))]
+        if run.phase("settle-load", self.t2, dt=self.step, loads=loads, constraints=guide,
+                     save_every=self.t2 / 8):  # fmt: skip
             self._drag(run)
 
     def _drag(self, run: SceneRun) -> None:
@@ -446,6 +530,7 @@ class AxialScene(Scene):
         xs = run.positions[-1]
         self.k0 = len(run.times) - 1
         self.z0 = self._knot_z(xs)
+        self.slid_at = None  # the grips' position along the pull when the knot slid
         # a light drag (1 % of the settling's): quasi-static at the drag speed
         loads = [rod.ViscousDamping(coefficient=0.01 * self.drag)]
         if self.p["legs"] == "dead":  # T kept along the tails, the ends' z driven
@@ -453,14 +538,25 @@ class AxialScene(Scene):
                              speed=self.v, sense=self.sense, t_start=self.t2)  # fmt: skip
             loads = [*self.legs, *loads]
         else:  # the ends gripped where the loads left them and moved along the pole
-            ends = np.array([xs[0], xs[-1]])
+            ends = xs[self.grips]
             path = grip_path(ends, (0.0, 0.0, self.sense), self.v, t_start=self.t2)
-            grip = MovingNodes(nodes=[0, self.N - 1], path=path)
+            grip = MovingNodes(nodes=list(self.grips), path=path)
+            if len(self.grips) == 1:  # the rolling hitch: the working end's load kept
+                loads = [self.legs[1], self.legs[3], *loads]
         t_drag = self.dist / self.v
         every = t_drag / (int(self.control.n_frames) - 1)
         h = float(np.mean(np.linalg.norm(np.diff(self.x0, axis=0), axis=1)))
         step = min(self.step, 0.25 * min(h, 0.2 * self.d) / self.v)
-        run.phase("drag", t_drag, dt=step, loads=loads, constraints=[grip], save_every=every)
+        run.phase("drag", t_drag, dt=step, loads=loads, constraints=[grip], save_every=every,
+                  stop=self._stop if np.isfinite(self.window) else None)  # fmt: skip
+
+    def _stop(self, x) -> bool:
+        """The grips have moved ``plateau_window`` since the knot slid: the drag has read
+        what it is for."""
+        grip = self.sense * float(x[self.grips[0], 2])
+        if self.slid_at is None and self._knot_z(x) - self.z0 > self.slide:
+            self.slid_at = grip
+        return self.slid_at is not None and grip - self.slid_at >= self.window
 
     # -- measure ---------------------------------------------------------------------
     def measure(self, run: SceneRun) -> AxialResult:
@@ -471,8 +567,8 @@ class AxialScene(Scene):
         force = np.zeros(tt.size)
         if self.k0 is not None and tt.size > 1:
             ph = run.phases[-1]
-            rx = np.vstack([ph.start_reactions[0] + ph.start_reactions[self.N - 1],
-                            run.reaction([0, self.N - 1], tt[1:])])  # fmt: skip
+            rx = np.vstack([sum(ph.start_reactions[k] for k in self.grips),
+                            run.reaction(self.grips, tt[1:])])  # fmt: skip
             force = self.sense * rx[:, 2]
         z0 = getattr(self, "z0", self._knot_z(pos[k0]))
         disp = np.array([self._knot_z(x) - z0 for x in pos[k0:]])

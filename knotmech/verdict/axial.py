@@ -1,7 +1,7 @@
-"""The hold verdict of a hitch loaded along its pole (the Prusik): no closed form and no
-table; with ``simulate`` one DER drag of the axial scene (:func:`knotmech.scenes.axial.
-axial_pull`), its sliding force against the load; the breaking load from
-:mod:`knotmech.strength` where it has the knot."""
+"""The hold verdict of a hitch loaded along its pole (the Prusik, the rolling hitch): no
+closed form and no table; with ``simulate`` one DER drag of the axial scene
+(:func:`knotmech.scenes.axial.axial_pull`), its sliding force against the load; the breaking
+load from :mod:`knotmech.strength` where it has the knot."""
 
 from __future__ import annotations
 
@@ -18,14 +18,28 @@ from knotmech.verdict.scope import BOTH_LEGS_KNOTS
 __all__ = ["AXIAL_HOLD_KNOTS", "AXIAL_COST", "BOTH_LEGS_KNOTS", "hold_axial", "with_capacity"]
 
 #: knots whose hold question is a pull along the pole
-AXIAL_HOLD_KNOTS = ("prusik",)
+AXIAL_HOLD_KNOTS = ("prusik", "rolling-hitch")
 #: turns a side of the Prusik that ``hold`` simulates (the common three-wrap Prusik)
 PRUSIK_WRAPS = 3
+#: the turns ``hold`` simulates, by knot (None: the knot's own)
+HOLD_WRAPS = {"prusik": PRUSIK_WRAPS, "rolling-hitch": None}
+#: what the drag is, in words, by knot
+_DRAGGED = {
+    "prusik": f"one DER drag along the pole ({PRUSIK_WRAPS} turns a side)",
+    "rolling-hitch": "one DER drag of its standing part along the pole (two riding turns)",
+}
 #: what one drag costs (measured: docs/notes/knots-and-curves/axial-hitches.md)
 AXIAL_COST = (
     "one DER drag of a three-turn Prusik, about 2-5 minutes of CPU for a solid rod (a fibre "
     "rope's bending scale costs more)"
 )
+#: the same, by knot
+AXIAL_COSTS = {
+    "prusik": AXIAL_COST,
+    "rolling-hitch": "one DER drag of a rolling hitch: 30 s of CPU at 90 nodes and 20 mm/s, "
+    "not timed at hold's defaults (edges of 3.1 mm, 10 mm/s: a few minutes expected) for a solid "
+    "rod (a fibre rope's bending scale costs more)",
+}
 #: the legs' pre-tension of the simulated set, as a fraction of the load (each leg)
 SET_FRACTION = 0.1
 
@@ -46,7 +60,7 @@ def hold_axial(
     E, mat, e_source = _youngs_modulus(material, youngs_modulus)
     kappa, k_source = _bending_scale(mat, bending_scale)
     inputs = {"rod_diameter": d, "post_diameter": D, "mu": mu, "load": load,
-              "bending_scale": kappa, "wraps": PRUSIK_WRAPS}  # fmt: skip
+              "bending_scale": kappa, "wraps": HOLD_WRAPS[key] or 2}  # fmt: skip
     if mat is not None:
         inputs["material"] = mat.key
     if E is not None:
@@ -58,12 +72,12 @@ def hold_axial(
     common = dict(
         knot=key, assumptions=tuple(([e_source] if e_source else []) + [k_source]),
         warnings=_warnings(mu, mu_rr, d, D, load, E, None), inputs=inputs,
-        notes=(f"{key}: {rec.loading}; no closed form and no DER table; one DER drag along "
-               f"the pole ({PRUSIK_WRAPS} turns a side) gives its sliding force",),
+        notes=(f"{key}: {rec.loading}; no closed form and no DER table; {_DRAGGED[key]} "
+               "gives its sliding force",),
     )  # fmt: skip
     if not simulate:
         return Verdict(holds=None, margin=math.nan, decided_by=None, inside_validity=False,
-                       answers=(), next_step=f"next: {cmd} ({AXIAL_COST}) decides it",
+                       answers=(), next_step=f"next: {cmd} ({AXIAL_COSTS[key]}) decides it",
                        **common)  # fmt: skip
     if E is None:
         from knotmech.materials import material_names
@@ -90,7 +104,10 @@ def _refuse(key, *, wrap_angle, phase_table, free_end_load) -> None:
         if val is not None:
             raise InputError(f"{name} does not apply to the {key} (pulled along its pole)")
     if float(free_end_load or 0.0) != 0.0:
-        raise InputError(f"free_end_load does not apply to the {key} (a closed sling, no end)")
+        why = (
+            "a closed sling, no end" if key == "prusik" else "its working end is set at 0.1 x load"
+        )
+        raise InputError(f"free_end_load does not apply to the {key} ({why})")
 
 
 def _drag(key, *, d, D, E, mu, mu_rr, load, mat, kappa, progress):
@@ -99,7 +116,7 @@ def _drag(key, *, d, D, E, mu, mu_rr, load, mat, kappa, progress):
     from knotmech.scenes.axial import axial_pull
 
     kw = {"density": mat.density} if mat is not None else {}
-    r = axial_pull(key, wraps=PRUSIK_WRAPS, rod_diameter=d, post_diameter=D, youngs_modulus=E,
+    r = axial_pull(key, wraps=HOLD_WRAPS[key], rod_diameter=d, post_diameter=D, youngs_modulus=E,
                    bending_scale=kappa, mu_rod_post=mu, mu_rod_rod=mu_rr,
                    normal_load=SET_FRACTION * load, force_scale=2.0 * load, progress=progress,
                    **kw)  # fmt: skip

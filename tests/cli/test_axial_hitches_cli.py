@@ -153,3 +153,75 @@ def test_cow_hitch_both_legs_simulate_loads_the_other_leg(monkeypatch):
                       free_end_load=0.15, material="vps32", simulate=True)  # fmt: skip
     assert seen["knot"] == "cow-hitch" and seen["t_low_fraction"] == pytest.approx(0.5)
     assert v.holds is True and v.der["source"] == "simulation"
+
+
+# -- the rolling hitch: a made hitch scene with --loading axial, hold along the pole ----------
+
+ROLLING = ["--rod-diameter", "6mm", "--post-diameter", "30mm", "--mu", "0.3", "--load", "100N"]
+
+
+def test_the_rolling_hitch_is_one_record_with_its_aliases():
+    assert knots.key("Magnus hitch") == knots.key("rolling") == "rolling-hitch"
+    rec = knots.get("magnus-hitch")
+    assert rec.family == "hitch" and rec.answered and rec.has_scene and not rec.scene
+    assert rec.pull_angle == pytest.approx(7 * math.pi)  # three and a half turns
+    assert "#1735" in " ".join(rec.sources)
+
+
+def test_hold_rolling_hitch_without_simulate_is_undecided_with_the_command(capsys):
+    assert main(["hold", "magnus-hitch", *ROLLING, "--material", "nylon", "--json", "-"]) == 0
+    data = json.loads(capsys.readouterr().out)
+    assert data["holds"] is None and data["decided_by"] is None
+    cmd = ("knotmech hold rolling-hitch --rod-diameter 6mm --post-diameter 30mm --mu 0.3 "
+           "--load 100N --material nylon --simulate")  # fmt: skip
+    assert cmd in data["next_step"] and "drag of a rolling hitch" in data["next_step"]
+
+
+def test_hold_rolling_hitch_simulate_drags_its_standing_part(monkeypatch):
+    from knotmech.scenes import axial
+
+    seen = {}
+    monkeypatch.setattr(axial, "axial_pull", _fake_drag(80.0, 90.0, seen))
+    v = knotmech.hold("rolling", rod_diameter=6e-3, post_diameter=30e-3, mu=0.3, load=100.0,
+                      youngs_modulus=1e8, simulate=True)  # fmt: skip
+    assert v.holds is False and v.margin == pytest.approx(80.0 / 100.0 - 1)
+    assert seen["knot"] == "rolling-hitch" and seen["wraps"] is None
+    assert seen["normal_load"] == pytest.approx(10.0)  # the set: 0.1 x the load
+
+
+@pytest.mark.parametrize(
+    ("argv", "words"),
+    [
+        (["simulate", "rolling-hitch", "--loading", "axial"],
+         "--normal-load is required with --loading axial"),
+        (["simulate", "rolling-hitch", "--loading", "axial", "--normal-load", "1N",
+          "--creep-limit", "1e-3"], "--creep-limit: not used with --loading axial"),
+        (["simulate", "rolling-hitch", "--t-high", "1N", "--normal-load", "1N"],
+         "--normal-load: not used without --loading axial"),
+        (["hold", "rolling-hitch", *ROLLING, "--free-end-load", "5N"],
+         "does not apply to the rolling-hitch"),
+        (["hold", "rolling-hitch", "--rod-diameter", "6mm", "--mu", "0.3", "--load", "100N"],
+         "--post-diameter is required for rolling-hitch"),
+    ],
+)  # fmt: skip
+def test_rolling_hitch_bad_input_is_one_line_and_exit_2(argv, words, capsys):
+    assert main(argv) == 2
+    err = capsys.readouterr().err.strip()
+    assert words in err and len(err.splitlines()) == 1, err
+
+
+def test_simulate_rolling_hitch_axial_runs_the_drag(monkeypatch, capsys):
+    from knotmech.scenes import axial
+
+    seen = {}
+
+    def fake(knot, **kw):
+        seen.update(kw, knot=knot)
+        raise knotmech.InputError("stub reached")
+
+    monkeypatch.setattr(axial, "axial_pull", fake)
+    argv = ["simulate", "rolling-hitch", "--loading", "axial", "--normal-load", "0.5N",
+            "--drag-speed", "20mm/s", "--n-nodes", "90", "--no-progress"]  # fmt: skip
+    assert main(argv) == 2 and "stub reached" in capsys.readouterr().err
+    assert seen["knot"] == "rolling-hitch" and seen["normal_load"] == pytest.approx(0.5)
+    assert seen["drag_speed"] == pytest.approx(0.02) and seen["n_nodes"] == 90

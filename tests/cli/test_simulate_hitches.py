@@ -1,4 +1,5 @@
-"""``knotmech simulate two-half-hitches | round-turn-two-half-hitches | cow-hitch``.
+"""``knotmech simulate two-half-hitches | round-turn-two-half-hitches | cow-hitch |
+rolling-hitch``.
 
 Option parsing is checked with the scene replaced by a stub (no simulation); one short real
 run goes through ``python -m knotmech`` and checks the files it writes.
@@ -22,6 +23,7 @@ SCENES = {
     "two-half-hitches": "two_half_hitches",
     "round-turn-two-half-hitches": "round_turn_two_half_hitches",
     "cow-hitch": "cow_hitch",
+    "rolling-hitch": "rolling_hitch",
 }
 
 
@@ -55,7 +57,10 @@ def stub(monkeypatch):
 def test_the_hitch_scenes_are_sub_commands():
     assert set(SCENES) <= set(sim.SCENES) and set(SCENES) == set(sim.HITCH_SCENES)
     for scene in SCENES:
-        assert sim.SCENE_OPTIONS[scene] is sim.SCENE_OPTIONS["two-half-hitches"]
+        if scene in sim.AXIAL_LOADING:  # and --loading axial's options (scenes.axial)
+            assert sim.SCENE_OPTIONS[scene] == sim._HITCH + sim._CLOVE_AXIAL
+        else:
+            assert sim.SCENE_OPTIONS[scene] is sim.SCENE_OPTIONS["two-half-hitches"]
 
 
 @pytest.mark.parametrize("scene", list(SCENES))
@@ -97,6 +102,8 @@ def test_defaults_shown_are_the_scene_functions_defaults(scene):
     params = inspect.signature(func).parameters
     checked = 0
     for o in sim.SCENE_OPTIONS[scene]:
+        if o in sim._CLOVE_AXIAL:  # --loading axial: knotmech.scenes.axial.axial_pull's
+            continue
         default = params[o.kwarg].default
         if o.default in (None, sim.REQUIRED) or not isinstance(default, (int, float)):
             continue

@@ -23,6 +23,20 @@ def test_clove_start_curve_is_the_unknot_linked_twice_with_the_pole():
     assert hitch_invariants(x) == ((1,), 2)
 
 
+def test_rolling_hitch_start_curve_takes_the_pull_along_the_pole():
+    d, D = 4e-3, 30e-3
+    x, sense, wraps = axial_curve("rolling-hitch", rod_diameter=d, post_diameter=D,
+                                  wraps=None, n_nodes=100)  # fmt: skip
+    assert sense == -1.0 and wraps == 2 and len(x) == 100
+    R = 0.5 * (D + d)
+    # the standing part lies on the pole, along -z, 8 d past the bend into the first turn
+    assert np.hypot(x[0, 0], x[0, 1]) == pytest.approx(R, rel=1e-6)
+    assert x[0, 2] == pytest.approx(-(8 + 1.2) * d, abs=0.5 * d) and x[1, 2] > x[0, 2]
+    # the working end leaves the back of the pole along +x, 8 d from its touching point
+    assert x[-1, 0] == pytest.approx(8 * d, abs=0.5 * d) and x[-1, 1] == pytest.approx(-R)
+    assert hitch_invariants(x) == ((1,), 4)
+
+
 @pytest.mark.parametrize("wraps", [2, 3, 4])
 def test_opened_prusik_keeps_the_slings_topology(wraps):
     d = 4e-3
@@ -47,9 +61,12 @@ def test_open_sling_removes_only_the_loops_bottom():
 @pytest.mark.parametrize(
     ("kw", "words"),
     [
-        ({"knot": "bowline"}, "knot must be one of clove-hitch, prusik"),
+        ({"knot": "bowline"}, "knot must be one of clove-hitch, prusik, rolling-hitch"),
         ({"knot": "prusik", "wraps": 1}, "wraps must be an integer from 2 to 6"),
         ({"knot": "clove-hitch", "wraps": 3}, "wraps must be 2 for the clove hitch"),
+        ({"knot": "rolling-hitch", "wraps": 3}, "wraps must be 2 for the rolling hitch"),
+        ({"knot": "rolling-hitch", "legs": "dead"}, "applies to the clove hitch"),
+        ({"knot": "prusik", "plateau_window": 0.0}, "plateau_window must be > 0"),
         ({"normal_load": 0.0}, "normal_load"),
         ({"drag_speed": -1.0}, "drag_speed"),
         ({"legs": "free"}, "legs must be 'clamped' or 'dead'"),
@@ -93,3 +110,18 @@ def test_prusik_dragged_keeps_its_type_and_slides():
     assert r.topology_preserved and r.invariants_kept is True
     assert r.axial_force[0] == pytest.approx(1.0, rel=0.02)  # the legs' set, 2 x 0.5 N
     assert r.slid and r.sliding_force == pytest.approx(2.74, rel=0.05)
+
+
+@pytest.mark.slow
+def test_rolling_hitch_dragged_along_the_pole_keeps_its_type():
+    """The rolling hitch, standing part and working end set at 0.5 N, the standing part's end
+    dragged 8 mm along the pole (90 nodes, 19 s of wall on a lightly loaded machine): the knot
+    type (unknot, linked four times with the pole) is kept on every checked frame and the
+    grip's force starts at the standing part's set, 0.5 N, and rises."""
+    r = axial_pull("rolling-hitch", normal_load=0.5, n_nodes=90, drag_speed=0.02,
+                   drag_distance=0.008, n_frames=9)  # fmt: skip
+    assert r.status == "success", r.message
+    assert r.topology_preserved and r.invariants_kept is True
+    assert r.invariants_start == ((1,), 4)
+    assert r.axial_force[0] == pytest.approx(0.5, rel=0.02)
+    assert r.peak_force > 0.6

@@ -31,6 +31,9 @@ INVARIANTS = {
     "two_half_hitches": ((1, -2, 3, -2, 1), -1),
     "round_turn_two_half_hitches": ((1, -2, 3, -2, 1), -2),
     "cow_hitch": ((1,), 0),
+    # the rolling hitch falls apart off the pole (the unknot) and links it four times: three
+    # and a half turns, closed far away
+    "rolling_hitch": ((1,), 4),
 }
 PROTOCOL = dict(settle_time=0.2, load_time=0.3, hold_time=1.5, dt=2e-3, n_frames=41)
 
