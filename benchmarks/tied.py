@@ -36,6 +36,7 @@ from knotmech import knots
 from knotmech.scenes.bends import bend
 from knotmech.scenes.loops import LOOPS, loop
 
+D = 4e-3  #: the scenes' default rope diameter [m]
 TIED = tuple(
     k.name for k in knots.records(family="bend") if k.curve.startswith("knotmech.scenes.tied.")
 )
@@ -44,50 +45,14 @@ TIED = tuple(
 def _one(kind: str, mu: float) -> dict:
     t = time.process_time()
     r = bend(kind, mu_rod_rod=mu)
-    cpu = time.process_time() - t
-    return {
-        "cpu_s": cpu,
-        "steps": int(r.stats.get("steps", 0)),
-        "newton_iterations": int(r.stats.get("newton_iterations", 0)),
-        "rejected_steps": int(r.stats.get("rejected_steps", 0)),
-        "nodes": int(r.positions.shape[1]),
-        "status": r.status,
-        "message": r.message,
-        "verdict": r.verdict,
-        "slip_load_N": r.slip_load if r.verdict == "slips" else None,
-        "max_force_N": r.max_force,
-        "tail_drawn": r.tail_drawn,
-        "came_undone": r.came_undone,
-        "roll_d": r.roll / 4e-3,
-        "frames_checked": r.frames_checked,
-    }
+    return {"cpu_s": time.process_time() - t, **r.summary(rod_diameter=D)}
 
 
 def _one_loop(knot: str, mu: float, pin: float, loading: str = "loop") -> dict:
     t = time.process_time()
     r = loop(knot, pin_diameter=None if loading == "end-to-end" else pin, mu_rod_rod=mu,
              loading=loading)  # fmt: skip
-    cpu = time.process_time() - t
-    d = 4e-3
-    return {
-        "loading": loading,
-        "cpu_s": cpu,
-        "steps": int(r.stats.get("steps", 0)),
-        "newton_iterations": int(r.stats.get("newton_iterations", 0)),
-        "rejected_steps": int(r.stats.get("rejected_steps", 0)),
-        "nodes": int(r.positions.shape[1]),
-        "status": r.status,
-        "message": r.message,
-        "verdict": r.verdict,
-        "slip_load_N": r.slip_load if r.verdict == "slips" else None,
-        "max_force_N": r.max_force,
-        "slipped_by": r.slipped_by,
-        "tail_draw_in_d": float(r.tail_draw_in[-1] / d) if r.tail_draw_in.size else None,
-        "eye_growth_d": float(r.eye_growth[-1] / d) if r.eye_growth.size else None,
-        "pull_travel_d": float(r.pull_displacement[-1] / d) if r.times.size else None,
-        "frames_checked": r.frames_checked,
-        "topology_preserved": bool(r.topology_preserved),
-    }
+    return {"cpu_s": time.process_time() - t, **r.summary(rod_diameter=D)}
 
 
 def main() -> None:

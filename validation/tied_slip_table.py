@@ -112,31 +112,13 @@ def slip_row(knot: str, mu: float, *, bending_scale: float = 1.0,
         knot, mu, bending_scale=bending_scale, pin_diameter=pin_diameter)  # fmt: skip
 
 
-def _common_row(r, cpu: float) -> dict:
-    return {
-        "cpu_s": cpu,
-        "steps": int(r.stats.get("steps", 0)),
-        "newton_iterations": int(r.stats.get("newton_iterations", 0)),
-        "rejected_steps": int(r.stats.get("rejected_steps", 0)),
-        "nodes": int(r.positions.shape[1]),
-        "status": r.status,
-        "message": r.message,
-        "verdict": r.verdict,
-        "slip_load_N": r.slip_load if r.verdict == "slips" else None,
-        "max_force_N": r.max_force,
-        "frames_checked": r.frames_checked,
-    }
-
-
 def bend_row(knot: str, mu: float, *, bending_scale: float = 1.0, **_) -> dict:
     """The row of one bend pull (:func:`slip_row`; no input check here)."""
     from knotmech.scenes.bends import bend
 
     t = time.process_time()
     r = bend(knot, mu_rod_rod=mu, bending_scale=bending_scale)
-    row = _common_row(r, time.process_time() - t)
-    row.update(tail_drawn=r.tail_drawn, came_undone=r.came_undone, roll_d=r.roll / D)
-    return row
+    return {"cpu_s": time.process_time() - t, **r.summary(rod_diameter=D)}
 
 
 def loop_row(knot: str, mu: float, *, bending_scale: float = 1.0,
@@ -146,21 +128,7 @@ def loop_row(knot: str, mu: float, *, bending_scale: float = 1.0,
 
     t = time.process_time()
     r = loop(knot, pin_diameter=pin_diameter, mu_rod_rod=mu, bending_scale=bending_scale)
-    row = _common_row(r, time.process_time() - t)
-    row.update(
-        slipped_by=r.slipped_by,
-        tail_draw_in_d=_last_d(r.tail_draw_in),
-        eye_growth_d=_last_d(r.eye_growth),
-        pull_travel_d=_last_d(r.pull_displacement),
-        topology_preserved=bool(r.topology_preserved),
-        pin_diameter_m=pin_diameter,
-    )
-    return row
-
-
-def _last_d(a):
-    """The last value of a length series in rope diameters (None when empty)."""
-    return float(a[-1] / D) if a.size else None
+    return {"cpu_s": time.process_time() - t, **r.summary(rod_diameter=D)}
 
 
 def warm_up(family: str) -> None:

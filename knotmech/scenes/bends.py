@@ -82,6 +82,25 @@ __all__ = [
 PATIL_ORDER = ("reef", "thief", "granny", "grief")
 
 
+def pull_summary(r) -> dict:
+    """The plain-JSON row of a pull's result (a bend's or a loop's) that the benchmark and
+    the slip table print: the solver's cost (steps, Newton iterations, rejected steps,
+    nodes), status and message, verdict, slip load [N] (None unless it slips), largest
+    force [N] and the frames checked. The caller adds its CPU time."""
+    return {
+        "steps": int(r.stats.get("steps", 0)),
+        "newton_iterations": int(r.stats.get("newton_iterations", 0)),
+        "rejected_steps": int(r.stats.get("rejected_steps", 0)),
+        "nodes": int(r.positions.shape[1]),
+        "status": r.status,
+        "message": r.message,
+        "verdict": r.verdict,
+        "slip_load_N": r.slip_load if r.verdict == "slips" else None,
+        "max_force_N": r.max_force,
+        "frames_checked": int(getattr(r, "frames_checked", 0)),
+    }
+
+
 @dataclass
 class BendResult:
     """What a bend pull measured (SI units).
@@ -680,6 +699,15 @@ class TiedBendResult(BendResult):
         """Each rope's knot type the same at the start and on every frame checked (the
         linking number of two ropes with free tails is not invariant: see ``message``)."""
         return self.alexander_start == self.alexander_checked
+
+    def summary(self, rod_diameter: float) -> dict:
+        """:func:`pull_summary` and the tied bend's draw-in: ``tail_drawn``,
+        ``came_undone``, ``roll_d`` (the roll in diameters of the run's ``rod_diameter``
+        [m])."""
+        row = pull_summary(self)
+        row.update(tail_drawn=self.tail_drawn, came_undone=self.came_undone,
+                   roll_d=self.roll / rod_diameter)  # fmt: skip
+        return row
 
     def to_dict(self) -> dict:
         """:meth:`BendResult.to_dict` and the tied bend's fields."""

@@ -72,7 +72,14 @@ from knotmech.materials import DEMO_ROD_DENSITY
 from knotmech.rod.constraints import Clamp, MovingNodes
 from knotmech.scenes._common import check_memory, check_run_size, frames_bytes, pair_check_bytes
 from knotmech.scenes._scene import RunControl, Scene, SceneRun, grip_path, post_contact
-from knotmech.scenes.bends import TIED_CAP_FLOOR, BendPull, BendRopes, _bend_verdict, _plain
+from knotmech.scenes.bends import (
+    TIED_CAP_FLOOR,
+    BendPull,
+    BendRopes,
+    _bend_verdict,
+    _plain,
+    pull_summary,
+)
 from knotmech.scenes.curves import _edge_distances
 from knotmech.scenes.tied import measure
 from knotmech.scenes.tied._common import closed_alone, linking_number
@@ -165,6 +172,24 @@ class LoopResult:
         s, c = self.invariants_start, self.invariants_checked
         keys = ("alexander",) if self.loading == "end-to-end" else FAIL_KEYS
         return all(s.get(k) == c.get(k) for k in keys)
+
+    def summary(self, rod_diameter: float) -> dict:
+        """:func:`knotmech.scenes.bends.pull_summary` and the loop's: ``loading``,
+        ``slipped_by``, the last frame's ``tail_draw_in_d``, ``eye_growth_d`` and
+        ``pull_travel_d`` in diameters of the run's ``rod_diameter`` [m] (None without
+        frames), ``topology_preserved`` and ``pin_diameter_m``."""
+
+        def last(a):
+            return float(a[-1] / rod_diameter) if a.size else None
+
+        row = pull_summary(self)
+        row.update(
+            loading=self.loading, slipped_by=self.slipped_by,
+            tail_draw_in_d=last(self.tail_draw_in), eye_growth_d=last(self.eye_growth),
+            pull_travel_d=last(self.pull_displacement),
+            topology_preserved=bool(self.topology_preserved), pin_diameter_m=self.pin_diameter,
+        )  # fmt: skip
+        return row
 
     def to_dict(self) -> dict:
         """Plain-JSON summary (curves as lists, positions left out)."""

@@ -135,3 +135,23 @@ def test_a_hold_beyond_ten_percent_strain_is_marked(folder):
     assert "holds (to 1.2) (57 s)" in row and "holds (to 7.22 *) (70 s)" in row
     assert row.startswith("| figure-eight-bend (end to end) |")
     assert lines[-1].startswith("\\* the pull ended above 10 % strain")
+
+
+def test_pull_summary_is_the_row_the_table_and_benchmark_print():
+    from types import SimpleNamespace
+
+    import numpy as np
+
+    from knotmech.scenes.bends import pull_summary
+
+    r = SimpleNamespace(stats={"steps": 5, "newton_iterations": 9}, positions=np.zeros((3, 7, 3)),
+                        status="success", message="", verdict="holds", slip_load=math.nan,
+                        max_force=0.5, frames_checked=3)  # fmt: skip
+    row = pull_summary(r)
+    assert row == {"steps": 5, "newton_iterations": 9, "rejected_steps": 0, "nodes": 7,
+                   "status": "success", "message": "", "verdict": "holds", "slip_load_N": None,
+                   "max_force_N": 0.5, "frames_checked": 3}  # fmt: skip
+    r.verdict, r.slip_load = "slips", 0.25
+    assert pull_summary(r)["slip_load_N"] == 0.25
+    # the table reads the row back: a slip is its load, a hold its largest force
+    assert t._cell({"cpu_s": 12.0, **pull_summary(r)}) == "0.25 (12 s)"
