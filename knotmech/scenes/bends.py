@@ -917,10 +917,14 @@ def _bend_verdict(force, draw, out, slip) -> tuple[str, float, int]:
     if not force.size:
         return "", float("nan"), len(force) - 1
     max_force = float(np.nanmax(force))
-    k_near = int(np.nonzero(force >= 0.9 * max_force)[0][0])
+    # within 10 % of the largest force (a pull that never pulled, all forces <= 0, too)
+    near = max_force - 0.1 * abs(max_force) if max_force <= 0 else 0.9 * max_force
+    k_near = int(np.nonzero(force >= near)[0][0])
     beyond = draw.max(axis=1) - draw[k_near].max()
     slipped = np.nonzero(((beyond > slip) & (np.arange(force.size) >= k_near)) | out)[0]
     if slipped.size:
         k = int(slipped[0])
-        return "slips", float(np.nanmax(force[: k + 1])), int(np.nanargmax(force[: k + 1]))
+        # a knot that slipped before the pull force was ever positive slipped at no load
+        top = float(np.nanmax(force[: k + 1]))
+        return "slips", max(top, 0.0), int(np.nanargmax(force[: k + 1]))
     return "holds", float("nan"), len(force) - 1

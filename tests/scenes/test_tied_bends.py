@@ -202,8 +202,12 @@ def test_sheet_bend_keeps_its_knot_type_on_every_frame():
 
 
 @pytest.mark.slow
-@pytest.mark.parametrize("kind", TIED[1:])
+@pytest.mark.parametrize("kind", [k for k in TIED[1:] if k != "figure-eight-bend"])
 def test_tied_bend_keeps_its_knot_type_on_every_frame(kind):
+    # not the figure-eight bend: from its drawn-in start a 1 mm set does not seat it, the
+    # pull force stays negative and a tail runs out on the second frame (a slip at no load,
+    # test_bend_verdict_of_a_pull_that_never_pulled); its default run is checked frame by
+    # frame in test_figure_eight_bend_keeps_its_knot_type_through_set_and_pull
     _short_pull(kind)
 
 
@@ -240,3 +244,20 @@ def test_double_fishermans_comes_undone_at_low_friction():
     assert r.verdict == "slips" and r.came_undone in ("A", "B", "AB")
     assert r.topology_preserved  # on the frames before the slip
     assert 0.05 < r.slip_load < 0.35
+
+
+def test_bend_verdict_of_a_pull_that_never_pulled():
+    """A short pull whose force stayed negative (the drawn-in figure-eight bend pushed
+    apart by its own set, 2 mm pull): no IndexError; a tail that ran out is a slip at no
+    load (0 N, not the negative force), and without one the knot holds."""
+    from knotmech.scenes.bends import _bend_verdict
+
+    force = np.array([-0.00733706, -0.03282373])
+    draw = np.array([[-0.01513394, -0.00026062], [0.04041137, 0.00507278]])
+    assert _bend_verdict(force, draw, np.array([False, True]), 0.008) == ("slips", 0.0, 0)
+    verdict, load, k = _bend_verdict(force, np.zeros((2, 2)), np.array([False, False]), 0.008)
+    assert (verdict, k) == ("holds", 1) and math.isnan(load)
+    # a pull that rose: the first frame within 10 % of the largest force is where a slip counts
+    rising = _bend_verdict(np.array([0.1, 0.5, 0.48]), np.array([[0, 0], [0, 0], [0.02, 0]]),
+                           np.array([False] * 3), 0.008)  # fmt: skip
+    assert rising == ("slips", 0.5, 1)
