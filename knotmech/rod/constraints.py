@@ -15,7 +15,7 @@ import numpy as np
 from ..errors import InputError, check_finite
 from .loads import _index_array
 
-__all__ = ["Clamp", "MovingNodes", "RotatingEdges", "clamp_end"]
+__all__ = ["Clamp", "MovingNodes", "NodeConstraint", "RotatingEdges", "clamp_end"]
 
 
 def _cached_dofs(constraint, system) -> np.ndarray:
@@ -27,6 +27,17 @@ def _cached_dofs(constraint, system) -> np.ndarray:
         cache = (system, constraint.dofs(system))
         object.__setattr__(constraint, "_dof_cache", cache)
     return cache[1]
+
+
+class NodeConstraint:
+    """Base of the constraints that prescribe node coordinates and no twist angle: the
+    subclass (a frozen dataclass) has a ``nodes`` field and gives ``dofs`` and ``values``."""
+
+    def node_indices(self, system) -> np.ndarray:
+        return _index_array("nodes", self.nodes, system.n_nodes)
+
+    def edge_indices(self, system) -> np.ndarray:
+        return np.zeros(0, dtype=np.int64)
 
 
 @dataclass(frozen=True)
@@ -61,7 +72,7 @@ class Clamp:
 
 
 @dataclass(frozen=True)
-class MovingNodes:
+class MovingNodes(NodeConstraint):
     """Move nodes along prescribed paths (e.g. pull an end at constant speed).
 
     Parameters
@@ -81,12 +92,6 @@ class MovingNodes:
             raise InputError("MovingNodes needs exactly one of velocity and path")
         if self.path is not None and not callable(self.path):
             raise InputError("path must be a callable t -> (n, 3) positions")
-
-    def node_indices(self, system) -> np.ndarray:
-        return _index_array("nodes", self.nodes, system.n_nodes)
-
-    def edge_indices(self, system) -> np.ndarray:
-        return np.zeros(0, dtype=np.int64)
 
     def dofs(self, system) -> np.ndarray:
         return system.node_dofs[self.node_indices(system)].ravel()

@@ -59,7 +59,7 @@ import numpy as np
 from knotmech import rod
 from knotmech.errors import InputError, check_bending_scale, check_nonnegative, check_positive
 from knotmech.materials import PHASE_TABLE_DENSITY, VPS32_YOUNGS_MODULUS
-from knotmech.rod.constraints import MovingNodes
+from knotmech.rod.constraints import MovingNodes, NodeConstraint
 from knotmech.rod.contact import RodContact
 from knotmech.rod.friction import AnchorFriction
 from knotmech.scenes._common import check_post_size, check_run_size, fail, measured_strain
@@ -92,7 +92,7 @@ CAP_FLOOR = 1e-2
 
 
 @dataclass(frozen=True)
-class AxialGrip:
+class AxialGrip(NodeConstraint):
     """Move the z coordinate of ``nodes`` at ``speed`` [m/s] along ``sense`` (+1: +z) from
     ``t_start`` [s], from ``z_start`` [m]; their x and y stay free (a constraint for
     :func:`knotmech.rod.simulate`: the reactions on ``nodes`` carry the grip's force in z)."""
@@ -103,12 +103,6 @@ class AxialGrip:
     sense: float
     t_start: float
 
-    def node_indices(self, system) -> np.ndarray:
-        return np.asarray(self.nodes, dtype=np.int64)
-
-    def edge_indices(self, system) -> np.ndarray:
-        return np.zeros(0, dtype=np.int64)
-
     def dofs(self, system) -> np.ndarray:
         return system.node_dofs[self.node_indices(system), 2]
 
@@ -118,19 +112,13 @@ class AxialGrip:
 
 
 @dataclass(frozen=True)
-class LineGuide:
+class LineGuide(NodeConstraint):
     """Hold the x and y coordinates of ``nodes`` at ``xy`` [m] (their z free): a guide that
     keeps the rolling hitch's standing part on the pole's line while its dead load sets the
     knot (a free end along the pole would swing round it and unwind the turns)."""
 
     nodes: tuple
     xy: tuple
-
-    def node_indices(self, system) -> np.ndarray:
-        return np.asarray(self.nodes, dtype=np.int64)
-
-    def edge_indices(self, system) -> np.ndarray:
-        return np.zeros(0, dtype=np.int64)
 
     def dofs(self, system) -> np.ndarray:
         return system.node_dofs[self.node_indices(system), :2].ravel()

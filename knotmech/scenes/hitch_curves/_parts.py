@@ -16,12 +16,39 @@ from __future__ import annotations
 
 import numpy as np
 
+from knotmech.errors import InputError, check_positive, check_range
 from knotmech.scenes.curves import min_separation, resample_polyline
 from knotmech.scenes.topology import knot_invariant, winding_number
 
 __all__ = ["PITCH", "TAIL", "EDGE", "hitch_closure", "hitch_invariants"]
 
 PITCH = 1.15  #: axial distance [d] per turn of the strands that pass side by side
+
+
+def _check_sizes(post_diameter, rod_diameter, rod_length, n_nodes, *, gap, lift, gap_min=1.0):
+    """The sizes every hitch curve takes, checked: (D, d, L [m], n_nodes, gap, lift [d]);
+    the gap within [gap_min, 50] d, the lift within [1, 10] d, at least 40 nodes."""
+    D = float(check_positive("post_diameter", post_diameter, scalar=True))
+    d = float(check_positive("rod_diameter", rod_diameter, scalar=True))
+    L = float(check_positive("rod_length", rod_length, scalar=True))
+    g = float(check_range("gap", gap, gap_min, 50.0, scalar=True))
+    lf = float(check_range("lift", lift, 1.0, 10.0, scalar=True))
+    N = int(n_nodes)
+    if N < 40:
+        raise InputError(f"n_nodes must be >= 40, got {n_nodes!r}")
+    return D, d, L, N, g, lf
+
+
+def _check_room(knotted, L, D, d, ends="leg") -> float:
+    """The rod's length beyond the ``knotted`` part [m], refused in one line below 4 d for
+    each of the two ``ends`` (legs or tails)."""
+    rest = L - knotted
+    if rest < 2 * 4 * d:
+        raise InputError(
+            f"rod_length must be at least {knotted + 8 * d:.3g} m for this hitch (post "
+            f"{D:g} m, rod {d:g} m: the knotted part and 4 d of each {ends}), got {L:g}"
+        )
+    return rest
 
 
 def _hermite(p0, t0, p1, t1, n):

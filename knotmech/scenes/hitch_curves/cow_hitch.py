@@ -18,9 +18,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from knotmech.errors import InputError, check_positive, check_range
+from knotmech.errors import check_range
 from knotmech.scenes.curves import KnotCurve, _smoothstep
-from knotmech.scenes.hitch_curves._parts import _arc, _finish, _line
+from knotmech.scenes.hitch_curves._parts import _arc, _check_room, _check_sizes, _finish, _line
 
 __all__ = ["cow_hitch_curve", "knotted_length"]
 
@@ -54,25 +54,14 @@ def cow_hitch_curve(
         Parts ``leg0``, ``wrap1``, ``bight``, ``wrap2``, ``leg1``; both legs leave along
         +x at heights -/+ gap d/2.
     """
-    D = float(check_positive("post_diameter", post_diameter, scalar=True))
-    d = float(check_positive("rod_diameter", rod_diameter, scalar=True))
-    L = float(check_positive("rod_length", rod_length, scalar=True))
-    g = float(check_range("gap", gap, 1.0, 50.0, scalar=True))
-    lf = float(check_range("lift", lift, 1.0, 10.0, scalar=True))
+    D, d, L, N, g, lf = _check_sizes(post_diameter, rod_diameter, rod_length, n_nodes,
+                                     gap=gap, lift=lift)  # fmt: skip
     b = float(check_range("beta", beta, 0.5, 3.0, scalar=True))
-    N = int(n_nodes)
-    if N < 40:
-        raise InputError(f"n_nodes must be >= 40, got {n_nodes!r}")
     core, n_a, n_u, zt, zw = _cow_core(D, d, g, lf, b)
     R = 0.5 * (D + d)
     ds = 0.05 * d
     lc = float(_arc(core)[-1])
-    tail = 0.5 * (L - lc)
-    if tail < 4 * d:
-        raise InputError(
-            f"rod_length must be at least {lc + 8 * d:.3g} m for this hitch (post {D:g} m, "
-            f"rod {d:g} m: the knotted part and 4 d of each leg), got {L:g}"
-        )
+    tail = 0.5 * _check_room(lc, L, D, d)
     # both legs run along -e2 = +x, the exact tangent at psi = 0 (the run-ins are flat there)
     leg0 = _line(core[0], (1.0, 0.0, 0.0), tail, ds)[::-1]  # from the far end in to the post
     leg1 = _line(core[-1], (1.0, 0.0, 0.0), tail, ds)

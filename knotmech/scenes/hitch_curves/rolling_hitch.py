@@ -23,9 +23,9 @@ from __future__ import annotations
 
 import numpy as np
 
-from knotmech.errors import InputError, check_positive, check_range
+from knotmech.errors import check_range
 from knotmech.scenes.curves import KnotCurve, _smoothstep
-from knotmech.scenes.hitch_curves._parts import _arc, _finish, _line
+from knotmech.scenes.hitch_curves._parts import _arc, _check_room, _check_sizes, _finish, _line
 
 __all__ = ["rolling_hitch_curve", "knotted_length"]
 
@@ -70,23 +70,12 @@ def rolling_hitch_curve(
         turns), ``diagonal``, ``half_hitch``, ``tail`` (the working end, along +x);
         ``info``: ``wrap_radius`` R, ``wrap_angle`` (7 pi), ``z_levels`` [m].
     """
-    D = float(check_positive("post_diameter", post_diameter, scalar=True))
-    d = float(check_positive("rod_diameter", rod_diameter, scalar=True))
-    L = float(check_positive("rod_length", rod_length, scalar=True))
-    g = float(check_range("gap", gap, 1.1, 50.0, scalar=True))
-    lf = float(check_range("lift", lift, 1.0, 10.0, scalar=True))
+    D, d, L, N, g, lf = _check_sizes(post_diameter, rod_diameter, rod_length, n_nodes,
+                                     gap=gap, lift=lift, gap_min=1.1)  # fmt: skip
     rb = float(check_range("bend", bend, 1.0, 10.0, scalar=True))
-    N = int(n_nodes)
-    if N < 40:
-        raise InputError(f"n_nodes must be >= 40, got {n_nodes!r}")
     pieces, marks, info = _core(D, d, g, lf, rb)
     lc = sum(float(_arc(p)[-1]) for p in pieces)
-    tail = 0.5 * (L - lc)
-    if tail < 4 * d:
-        raise InputError(
-            f"rod_length must be at least {lc + 8 * d:.3g} m for this hitch (post {D:g} m, "
-            f"rod {d:g} m: the knotted part and 4 d of each leg), got {L:g}"
-        )
+    tail = 0.5 * _check_room(lc, L, D, d)
     ds = 0.05 * d
     bend_piece, core = pieces
     standing = _line(bend_piece[0], (0.0, 0.0, -1.0), tail, ds)[::-1]

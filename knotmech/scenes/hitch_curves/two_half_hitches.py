@@ -21,9 +21,17 @@ from __future__ import annotations
 
 import numpy as np
 
-from knotmech.errors import InputError, check_positive, check_range
+from knotmech.errors import check_positive
 from knotmech.scenes.curves import KnotCurve, _clove_core
-from knotmech.scenes.hitch_curves._parts import PITCH, _arc, _finish, _hermite, _line
+from knotmech.scenes.hitch_curves._parts import (
+    PITCH,
+    _arc,
+    _check_room,
+    _check_sizes,
+    _finish,
+    _hermite,
+    _line,
+)
 
 __all__ = ["two_half_hitches_curve", "knotted_length"]
 
@@ -58,26 +66,15 @@ def two_half_hitches_curve(
         Parts ``standing``, ``wrap``, ``connector``, ``hitches``, ``tail`` (the working
         end); ``info``: ``wrap_radius`` R, ``wrap_angle``, ``hitch_center`` [m].
     """
-    D = float(check_positive("post_diameter", post_diameter, scalar=True))
-    d = float(check_positive("rod_diameter", rod_diameter, scalar=True))
-    L = float(check_positive("rod_length", rod_length, scalar=True))
+    D, d, L, N, g, lf = _check_sizes(post_diameter, rod_diameter, rod_length, n_nodes,
+                                     gap=gap, lift=lift)  # fmt: skip
     th = float(check_positive("wrap_angle", wrap_angle, scalar=True))
-    g = float(check_range("gap", gap, 1.0, 50.0, scalar=True))
-    lf = float(check_range("lift", lift, 1.0, 10.0, scalar=True))
-    N = int(n_nodes)
-    if N < 40:
-        raise InputError(f"n_nodes must be >= 40, got {n_nodes!r}")
     pieces, info = _thh_pieces(D, d, th, g, lf)
     wrap, conn, core = pieces
     R = 0.5 * (D + d)
     ds = 0.05 * d
     fixed = info["x_far_min"] + sum(float(_arc(p)[-1]) for p in pieces)
-    rest = L - fixed
-    if rest < 2 * 4 * d:
-        raise InputError(
-            f"rod_length must be at least {fixed + 8 * d:.3g} m for this hitch (post "
-            f"{D:g} m, rod {d:g} m: the knotted part and 4 d of each tail), got {L:g}"
-        )
+    rest = _check_room(fixed, L, D, d, ends="tail")
     # the spare length goes half to the standing part, half to the working end's tail
     x_far = info["x_far_min"] + 0.5 * rest
     stand = _line(np.array([x_far, -R, 0.0]), (-1.0, 0.0, 0.0), x_far, ds)
