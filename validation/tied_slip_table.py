@@ -167,8 +167,10 @@ def add_rows(knot: str, mus, *, bending_scale: float = 1.0, folder=FOLDER, log=p
         _check(mu, bending_scale, 0.02)
     path = file_for(knot, bending_scale, folder)
     data = json.loads(path.read_text()) if path.is_file() else {}
+    # keys as this function writes them ("1", not "1.0"), so that a re-run replaces its row
+    rows = {f"{float(m):g}": r for m, r in data.get("rows", {}).items()}
     data = {"knot": knots.key(knot), "loading": knots.get(knot).loading,
-            "bending_scale": bending_scale, "rows": data.get("rows", {})}  # fmt: skip
+            "bending_scale": bending_scale, "rows": rows}  # fmt: skip
     for mu in mus:
         row = slip_row(knot, mu, bending_scale=bending_scale)
         data["rows"][f"{mu:g}"] = row

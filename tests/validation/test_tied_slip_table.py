@@ -186,3 +186,14 @@ def test_kappa_points_need_two_bending_scales_at_mu(folder, tmp_path):
     out = t.render(folder=folder, note=tmp_path / "n.md", image=tmp_path / "a.png",
                    image_kappa=tmp_path / "k.png")  # fmt: skip
     assert (tmp_path / "k.png").stat().st_size > 1000 and out["figure_kappa"].endswith("k.png")
+
+
+def test_a_rerun_replaces_a_row_written_as_1_0(tmp_path, monkeypatch):
+    """A file with the row "1.0" (written by hand or an older run) gets its row replaced by
+    a run at mu 1, not a second row "1" beside it (the table would show one of the two)."""
+    path = tmp_path / "sheet-bend.json"
+    path.write_text(json.dumps({"knot": "sheet-bend", "rows": {"1.0": _row("holds", None, 7.2)}}))
+    monkeypatch.setattr(t, "slip_row", lambda knot, mu, **kw: _row("slips", 0.2, 0.2))
+    t.add_rows("sheet-bend", [1.0], folder=tmp_path, log=lambda s: None)
+    rows = json.loads(path.read_text())["rows"]
+    assert list(rows) == ["1"] and rows["1"]["slip_load_N"] == 0.2
