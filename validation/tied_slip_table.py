@@ -253,7 +253,8 @@ def table(files: list[dict]) -> str:
             "slipped: it held to at least the load shown (the pull force there), a lower "
             "bound of its slip load."
         )
-    if any(_stretched(r) for f in files for r in f["rows"].values()):
+    if any(_stretched(r) and not r.get("held_to_strain_limit")
+           for f in files for r in f["rows"].values()):  # fmt: skip
         lines.append("")
         lines.append(
             "\\* the pull ended above 10 % strain (force > 0.1 EA = 1.26 N at E = 1 MPa, "
@@ -344,7 +345,8 @@ def kappa_figure(files: list[dict], mu: float = KAPPA_MU):
     """Slip load against the bending scale kappa at ``mu`` (log x), one line per knot: in
     units of :math:`B/d^2` (B = kappa E pi d^4/64, the run's own bending stiffness; left)
     and of EA (right, the strain the load puts on the rod; 0.1 is the rod model's strain
-    limit). Held runs are open markers with an up arrow (lower bounds)."""
+    limit). Held runs are open markers with an up arrow (lower bounds); a knot run at two
+    bending scales only is joined by a dotted line."""
     from matplotlib.figure import Figure
 
     b1 = 1e6 * math.pi * D**4 / 64 / D**2  # B/d^2 [N] of the solid rod (kappa = 1)
@@ -354,7 +356,8 @@ def kappa_figure(files: list[dict], mu: float = KAPPA_MU):
         kappa = [p[0] for p in pts]
         for ax, scale in zip(axes, ([b1 * k for k in kappa], [EA] * len(kappa)), strict=True):
             y = [p[1] / s for p, s in zip(pts, scale, strict=True)]
-            ax.plot(kappa, y, "-", color=f"C{i}", label=knot)
+            # two points only (kappa 1 and 0.01): dotted, nothing measured between them
+            ax.plot(kappa, y, "-" if len(pts) > 2 else ":", color=f"C{i}", label=knot)
             for x, v, (_, _, held) in zip(kappa, y, pts, strict=True):
                 ax.plot([x], [v], "o", color=f"C{i}", mfc="none" if held else f"C{i}")
                 if held:

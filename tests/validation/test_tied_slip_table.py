@@ -169,6 +169,11 @@ def test_a_hold_to_the_strain_limit_is_told_as_such(folder):
     row = next(line for line in lines if line.startswith("| figure-eight-bend"))
     assert "holds (to 1.14, strain limit) (15 s)" in row and "*" not in row
     assert any(line.startswith("strain limit: the pull stopped") for line in lines)
+    # a stop a step past the limit (1.2583 N > 0.1 EA = 1.2566 N) is no "*" hold
+    data["rows"]["1"]["max_force_N"] = 1.2583
+    (folder / "figure-eight-bend.json").write_text(json.dumps(data))
+    lines = t.table(t.read_folder(folder)).splitlines()
+    assert not any(line.startswith("\\*") for line in lines)
 
 
 def test_kappa_points_need_two_bending_scales_at_mu(folder, tmp_path):
