@@ -361,10 +361,10 @@ def kappa_figure(files: list[dict], mu: float = KAPPA_MU):
             for x, v, (_, _, held) in zip(kappa, y, pts, strict=True):
                 ax.plot([x], [v], "o", color=f"C{i}", mfc="none" if held else f"C{i}")
                 if held:
-                    ax.annotate("", xy=(x, v * 2.0), xytext=(x, v),
+                    ax.annotate("", xy=(x, v * 1.7), xytext=(x, v),
                                 arrowprops={"arrowstyle": "->", "color": f"C{i}"})  # fmt: skip
     axes[1].axhline(0.1, color="0.5", ls=":", label="0.1 EA (strain limit)")
-    for ax, unit in zip(axes, ("B/d$^2$", "EA"), strict=True):
+    for ax, unit in zip(axes, ("kappa B/d$^2$", "EA"), strict=True):
         ax.set_xscale("log")
         ax.set_yscale("log")
         ax.set_xlabel("bending scale kappa (B = kappa E pi d$^4$/64)")
