@@ -117,7 +117,8 @@ def _pull(key, *, d, E, mu, load, mat, kappa, progress):
     r = bend(key, rod_diameter=d, youngs_modulus=E, mu_rod_rod=mu, progress=progress, **kw)
     tied = {
         "tail_drawn": r.tail_drawn, "roll": r.roll, "law": r.law,
-        "frames_checked": r.frames_checked, "held_to_strain_limit": r.held_to_strain_limit,
+        "frames_checked": r.frames_checked,
+        "held_to_strain_limit": bool(getattr(r, "held_to_strain_limit", False)),
     } if hasattr(r, "tail_drawn") else {}  # fmt: skip
     der = {
         "source": "simulation", "scene": "knotmech.scenes.bends.bend", "kind": key,

@@ -138,7 +138,7 @@ def _pull(key, *, d, D, E, mu, load, mat, kappa, progress):
         "tail_draw_in": float(r.tail_draw_in[-1]) if r.tail_draw_in.size else math.nan,
         "eye_growth": float(r.eye_growth[-1]) if r.eye_growth.size else math.nan,
         "law": r.law, "frames_checked": r.frames_checked,
-        "held_to_strain_limit": r.held_to_strain_limit,
+        "held_to_strain_limit": bool(getattr(r, "held_to_strain_limit", False)),
         "wall_s": float(r.stats.get("wall_s", math.nan)),
     }  # fmt: skip
     holds, capacity, der["message"] = _pull_outcome(key, r, load)
@@ -168,8 +168,9 @@ def _answer(key, r, holds, capacity, load, kappa, message):
 
 def loop_capacity(v: Verdict, material) -> Verdict:
     """The verdict with its capacity: the slip load of the DER pull when one ran (a point
-    value; a hold: open above, :func:`knotmech.verdict.bend.der_slip_band`), and the loop's breaking load (:mod:`knotmech.strength`); at or above the
-    breaking load it breaks."""
+    value; a hold: open above, :func:`knotmech.verdict.bend.der_slip_band`), and the
+    loop's breaking load (:mod:`knotmech.strength`); at or above the breaking load it
+    breaks."""
     from knotmech.verdict import capacity as _cap
 
     slip = der_slip_band(v, "loop")
