@@ -167,17 +167,21 @@ def der_slip_band(v: Verdict, what: str):
     """The slip load of a bend's or loop's DER pull for the capacity
     (:class:`knotmech.verdict.capacity.LoadBand`), or None without one: a slip, a point
     value; a hold (the pull ended, or stopped at the rod model's strain limit), open above
-    from the largest force (nothing slipped up to it)."""
+    from the largest force (nothing slipped up to it), also when the load is above it and
+    the pull decided nothing."""
     from knotmech.verdict import capacity as _cap
 
-    dec = v.deciding
+    der, dec = v.der or {}, v.deciding
+    if der.get("verdict") == "holds":  # decided or not: nothing slipped up to its force
+        cap = float(der.get("max_force", math.nan) if dec is None else dec.capacity)
+        if not math.isfinite(cap):
+            return None
+        why = ("stopped at the rod model's strain limit, 0.1 EA"
+               if der.get("held_to_strain_limit") else "ended")  # fmt: skip
+        return _cap.LoadBand(math.inf, cap, math.inf, f"the DER pull of the {what} {why}")
     if dec is None or not math.isfinite(dec.capacity):
         return None
     cap = float(dec.capacity)
-    if (v.der or {}).get("verdict") == "holds":
-        why = ("stopped at the rod model's strain limit" if v.der.get("held_to_strain_limit")
-               else "the pull ended")  # fmt: skip
-        return _cap.LoadBand(math.inf, cap, math.inf, f"DER pull of the {what}: held ({why})")
     return _cap.LoadBand(cap, cap, cap, f"DER pull of the {what}")
 
 

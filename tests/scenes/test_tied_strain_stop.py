@@ -103,8 +103,20 @@ def test_hold_simulate_reads_a_hold_to_the_strain_limit_as_a_lower_bound():
     v = SimpleNamespace(deciding=dec, der={"verdict": "holds", "held_to_strain_limit": True})
     band = der_slip_band(v, "bend")
     assert (band.low, band.value, band.high) == (1.14, math.inf, math.inf)
-    assert "strain limit" in band.source
-    v.der = {"verdict": "slips"}
+    assert band.source == (
+        "the DER pull of the bend stopped at the rod model's strain limit, 0.1 EA"
+    )
+    from knotmech.verdict.answer import _slip_words
+
+    assert _slip_words(band) == (
+        "no slip up to 1.14 N (the DER pull of the bend stopped at "
+        "the rod model's strain limit, 0.1 EA)"
+    )
+    # a load above the held-to force: undecided, the bound still given
+    v = SimpleNamespace(deciding=None, der={"verdict": "holds", "max_force": 1.14,
+                                            "held_to_strain_limit": True})  # fmt: skip
+    assert der_slip_band(v, "loop").low == 1.14
+    v.deciding, v.der = dec, {"verdict": "slips"}
     band = der_slip_band(v, "bend")
     assert (band.low, band.value, band.high) == (1.14, 1.14, 1.14)
     assert Verdict  # the verdict module imports with the scenes'
