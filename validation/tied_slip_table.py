@@ -377,8 +377,13 @@ def kappa_figure(files: list[dict], mu: float = KAPPA_MU):
     return fig
 
 
-def render(folder=FOLDER, note=NOTE, image=FIGURE, image_kappa=FIGURE_KAPPA) -> dict:
-    """Read every file of ``folder``, write the table into ``note`` and the two figures."""
+def render(folder=FOLDER, note=NOTE, image=FIGURE, image_kappa=None) -> dict:
+    """Read every file of ``folder``, write the table into ``note`` and the two figures
+    (``image_kappa`` by default :data:`FIGURE_KAPPA` with the default ``image``, else
+    ``slip_over_kappa.png`` beside ``image``)."""
+    if image_kappa is None:
+        same = Path(image) == FIGURE
+        image_kappa = FIGURE_KAPPA if same else Path(image).with_name(FIGURE_KAPPA.name)
     files = read_folder(folder)
     write_table(files, note)
     Path(image).parent.mkdir(parents=True, exist_ok=True)

@@ -191,6 +191,9 @@ def test_kappa_points_need_two_bending_scales_at_mu(folder, tmp_path):
     out = t.render(folder=folder, note=tmp_path / "n.md", image=tmp_path / "a.png",
                    image_kappa=tmp_path / "k.png")  # fmt: skip
     assert (tmp_path / "k.png").stat().st_size > 1000 and out["figure_kappa"].endswith("k.png")
+    # given only the mu figure's path, the kappa figure goes beside it (not into docs/)
+    out = t.render(folder=folder, note=tmp_path / "n.md", image=tmp_path / "b" / "a.png")
+    assert out["figure_kappa"] == str(tmp_path / "b" / "slip_over_kappa.png")
 
 
 def test_a_rerun_replaces_a_row_written_as_1_0(tmp_path, monkeypatch):
