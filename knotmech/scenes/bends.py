@@ -16,7 +16,10 @@ the *draw-in* of each tail (how far its free end moved towards the knot, along x
 pull force stays within 10 % of its largest value (sliding at a plateau or a falling
 force; tightening draws the tails in while the force still rises), or when a tail has run
 out of the knot; the **slip load** is the largest pull force before that moment. A bend
-that has not slipped when the pull ends *holds* up to the largest force reached.
+that has not slipped when the pull ends *holds* up to the largest force reached. A tied
+bend's pull also ends when a pulled end reaches :data:`STRAIN_LIMIT` EA (the rod model's
+strain limit, :class:`StrainStop`): a bend that has not slipped by then holds to at least
+the force there (``held_to_strain_limit``).
 
 The topology is checked on every recorded frame up to the slip: the Alexander polynomial of
 the two ropes joined around the outside (:func:`~knotmech.scenes.bend_curves.bend_closure`)
@@ -211,11 +214,11 @@ class StrainStop:
     :math:`0.1 EA`) the pull stops, ``reached`` is set, and a knot that has not slipped
     by then *held to at least* the pull force of that frame.
 
-    Why the end edge and not the rod's largest edge strain: the pull force is the end
-    tension (the drag is 1 % of :math:`B/d^2`), so the stop load is the measured load; in
-    the knot the tension falls from the pulled end by friction, and a larger strain
-    inside it is a contact pinch of one edge (the penalty's overlap), not the rope's
-    load.
+    Why the end edge and not the rod's largest edge strain: the pull force is the grips'
+    reaction, the end's tension (the drag is 1 % of :math:`B/d^2`), and in the knot the
+    tension falls from the pulled end by friction; on the figure-eight bend at mu = 1 the
+    two agree at the stop (largest edge strain 0.1005, the stopping edge's 0.1002;
+    docs/notes/knots-and-curves/tied-slip-over-mu.md).
 
     Parameters
     ----------
@@ -377,8 +380,9 @@ def bend(
     -----
     Cost at the defaults (80 nodes per rope, 2 x 48 mm at 40 mm/s): about 800 steps and
     6000 Newton iterations, 1-2 minutes on a free core (docs/notes/knots.md gives the times).
-    A tied bend at its defaults: 10-60 s of CPU, the figure-eight bend (40 d set, 200 d
-    ropes) 70-80 s (``benchmarks/tied.py``; docs/notes/knots-and-curves/tied-knots-pulled.md).
+    A tied bend at its defaults: 5-53 s of CPU; the figure-eight bend 7-16 s, its pull
+    stopped at the strain limit at mu >= 0.6 (71 s at mu = 1 before the stop;
+    ``benchmarks/tied.py``; docs/notes/knots-and-curves/tied-slip-over-mu.md).
     """
     record = _record(kind)
     defaults = {"n_nodes": 80, "n_frames": 120, **record.scene_defaults}

@@ -16,7 +16,9 @@ as the tied bends' (:class:`knotmech.scenes.bends.TiedBendScene`):
    go (damped as the settling: a tail let go at the set tension would otherwise snap
    into a loose knot and count as a slip at the set tension);
 4. **pull**: the standing end pulled on along the same direction for ``pull_distance``,
-   the tail free.
+   the tail free, or until the standing end reaches 0.1 EA (the rod model's strain limit,
+   :class:`knotmech.scenes.bends.StrainStop`: the loop then held to at least that force,
+   ``held_to_strain_limit``).
 
 Measured: the pull force (the grip's reaction along the pull), and two *material*
 draw-ins (lengths of rope, not positions, so that a knot moving along its rope counts):
@@ -370,7 +372,8 @@ def loop(
     Notes
     -----
     Cost at the defaults (d = 4 mm, E = 1 MPa, D = 20 mm): bowline 10-11 s of CPU (175
-    nodes), figure-eight loop 21-56 s over mu = 0.1-1 (130 nodes, drawn-in start), alpine
+    nodes), figure-eight loop 10-27 s over mu = 0.1-1 (130 nodes, drawn-in start; at
+    mu >= 0.6 stopped at the strain limit, 56 s at mu = 1 before the stop), alpine
     butterfly (210 nodes, set up to 60 d) see the note; ``benchmarks/tied.py --loops``,
     docs/notes/knots-and-curves/tied-loops-pulled.md.
     """
