@@ -12,12 +12,18 @@ mu, and one JSON per knot is written to ``docs/notes/knots-and-curves/slip-over-
 run adds its rows to the knot's file. Rendering reads every ``*.json`` of the folder,
 whoever wrote it, and writes the table (knot x mu: slip load, or "holds (to F)" with the
 largest force, a lower bound of the slip load; CPU seconds of each run) between the
-markers of docs/notes/knots-and-curves/tied-slip-over-mu.md, and the figure
-docs/img/tied/slip_over_mu.png::
+markers of docs/notes/knots-and-curves/tied-slip-over-mu.md, and the figures
+docs/img/tied/slip_over_mu.png (load against mu) and docs/img/tied/slip_over_kappa.png (load
+against the bending scale kappa at mu = 0.3, :data:`KAPPA_MU`, for each knot run at two or
+more kappa)::
 
     OPENBLAS_NUM_THREADS=1 python -m validation.tied_slip_table --run \
         --knots sheet-bend,bowline --mu 0.1,0.3,0.6,1.0 [--bending-scale 0.01]
     python -m validation.tied_slip_table            # --render (the default)
+
+A pull stops when a pulled end reaches 0.1 EA (:data:`knotmech.scenes.bends.STRAIN_LIMIT`,
+the rod model's strain limit); a knot that has not slipped by then *held to at least* that
+load (the row's ``held_to_strain_limit``; the table's "strain limit").
 
 As a validation case (``knotmech validate``) :func:`run` renders the committed JSON into
 ``out_dir`` without simulating anything.
@@ -47,6 +53,9 @@ ROOT = Path(__file__).resolve().parent.parent
 FOLDER = ROOT / "docs" / "notes" / "knots-and-curves" / "slip-over-mu"
 NOTE = ROOT / "docs" / "notes" / "knots-and-curves" / "tied-slip-over-mu.md"
 FIGURE = ROOT / "docs" / "img" / "tied" / "slip_over_mu.png"
+FIGURE_KAPPA = ROOT / "docs" / "img" / "tied" / "slip_over_kappa.png"
+#: the friction coefficient of the bending-scale figure
+KAPPA_MU = 0.3
 START, END = "<!-- slip-table:start -->", "<!-- slip-table:end -->"
 D = 4e-3  #: the scenes' default rope diameter [m]
 #: the scenes' default axial stiffness EA [N] (E = 1 MPa): a force above
@@ -158,8 +167,10 @@ def add_rows(knot: str, mus, *, bending_scale: float = 1.0, folder=FOLDER, log=p
         _check(mu, bending_scale, 0.02)
     path = file_for(knot, bending_scale, folder)
     data = json.loads(path.read_text()) if path.is_file() else {}
+    # keys as this function writes them ("1", not "1.0"), so that a re-run replaces its row
+    rows = {f"{float(m):g}": r for m, r in data.get("rows", {}).items()}
     data = {"knot": knots.key(knot), "loading": knots.get(knot).loading,
-            "bending_scale": bending_scale, "rows": data.get("rows", {})}  # fmt: skip
+            "bending_scale": bending_scale, "rows": rows}  # fmt: skip
     for mu in mus:
         row = slip_row(knot, mu, bending_scale=bending_scale)
         data["rows"][f"{mu:g}"] = row
@@ -209,6 +220,8 @@ def _cell(row: dict) -> str:
     if row.get("verdict") == "slips" and row.get("slip_load_N") is not None:
         undone = " undone" if row.get("came_undone") else ""
         return f"{_fmt(row['slip_load_N'])}{undone}{cost}"
+    if row.get("verdict") == "holds" and row.get("held_to_strain_limit"):
+        return f"holds (to {_fmt(row.get('max_force_N'))}, strain limit){cost}"
     if row.get("verdict") == "holds":
         return f"holds (to {_fmt(row.get('max_force_N'))}{_stretched(row)}){cost}"
     return f"{row.get('verdict') or '?'}{cost}"
@@ -232,7 +245,16 @@ def table(files: list[dict]) -> str:
         rows = {float(m): r for m, r in f["rows"].items()}
         cells = [_cell(rows[m]) if m in rows else "-" for m in mus]
         lines.append(f"| {_label(f)} | " + " | ".join(cells) + " |")
-    if any(_stretched(r) for f in files for r in f["rows"].values()):
+    if any(r.get("held_to_strain_limit") for f in files for r in f["rows"].values()):
+        lines.append("")
+        lines.append(
+            "strain limit: the pull stopped when a pulled end reached 0.1 EA (1.26 N at "
+            "E = 1 MPa, d = 4 mm; 10 % strain, the rod model's limit) before the knot "
+            "slipped: it held to at least the load shown (the pull force there), a lower "
+            "bound of its slip load."
+        )
+    if any(_stretched(r) and not r.get("held_to_strain_limit")
+           for f in files for r in f["rows"].values()):  # fmt: skip
         lines.append("")
         lines.append(
             "\\* the pull ended above 10 % strain (force > 0.1 EA = 1.26 N at E = 1 MPa, "
@@ -297,13 +319,78 @@ def figure(files: list[dict]):
     return fig
 
 
-def render(folder=FOLDER, note=NOTE, image=FIGURE) -> dict:
-    """Read every file of ``folder``, write the table into ``note`` and the figure."""
+def kappa_points(files: list[dict], mu: float = KAPPA_MU) -> dict:
+    """``{(knot, loading): [(kappa, force [N], held?), ...]}`` at ``mu``, sorted by kappa,
+    for each knot and named loading (end to end; "" for a knot's own) with successful runs
+    at two or more bending scales (the slip load, or the largest force of a run that held:
+    a lower bound)."""
+    out = {}
+    for f in files:
+        row = f["rows"].get(f"{mu:g}")
+        if row is None or row.get("status") not in (None, "success"):
+            continue
+        if row.get("verdict") == "slips" and row.get("slip_load_N") is not None:
+            point = (row["slip_load_N"], False)
+        elif row.get("verdict") == "holds" and row.get("max_force_N") is not None:
+            point = (row["max_force_N"], True)
+        else:
+            continue
+        loading = f.get("loading", "")
+        key = (f["knot"], loading if loading in _NAMED_LOADINGS else "")
+        out.setdefault(key, []).append((float(f.get("bending_scale") or 1.0), *point))
+    return {k: sorted(v) for k, v in out.items() if len(v) >= 2}
+
+
+def kappa_figure(files: list[dict], mu: float = KAPPA_MU):
+    """Slip load against the bending scale kappa at ``mu`` (log x), one line per knot: in
+    units of :math:`B/d^2` (B = kappa E pi d^4/64, the run's own bending stiffness; left)
+    and of EA (right, the strain the load puts on the rod; 0.1 is the rod model's strain
+    limit). Held runs are open markers with an up arrow (lower bounds); a knot run at two
+    bending scales only is joined by a dotted line."""
+    from matplotlib.figure import Figure
+
+    b1 = 1e6 * math.pi * D**4 / 64 / D**2  # B/d^2 [N] of the solid rod (kappa = 1)
+    fig = Figure(figsize=(9.0, 4.2))
+    axes = fig.subplots(1, 2)
+    for i, ((knot, _), pts) in enumerate(sorted(kappa_points(files, mu).items())):
+        kappa = [p[0] for p in pts]
+        for ax, scale in zip(axes, ([b1 * k for k in kappa], [EA] * len(kappa)), strict=True):
+            y = [p[1] / s for p, s in zip(pts, scale, strict=True)]
+            # two points only (kappa 1 and 0.01): dotted, nothing measured between them
+            ax.plot(kappa, y, "-" if len(pts) > 2 else ":", color=f"C{i}", label=knot)
+            for x, v, (_, _, held) in zip(kappa, y, pts, strict=True):
+                ax.plot([x], [v], "o", color=f"C{i}", mfc="none" if held else f"C{i}")
+                if held:
+                    ax.annotate("", xy=(x, v * 1.7), xytext=(x, v),
+                                arrowprops={"arrowstyle": "->", "color": f"C{i}"})  # fmt: skip
+    axes[1].axhline(0.1, color="0.5", ls=":", label="0.1 EA (strain limit)")
+    for ax, unit in zip(axes, ("kappa B/d$^2$", "EA"), strict=True):
+        ax.set_xscale("log")
+        ax.set_yscale("log")
+        ax.set_xlabel("bending scale kappa (B = kappa E pi d$^4$/64)")
+        ax.set_ylabel(f"slip load / {unit}\n(open, arrow: held to at least)")
+        if ax.get_legend_handles_labels()[0]:
+            ax.legend(fontsize=7, loc="best")
+    fig.suptitle(f"Slip load against the bending scale, mu = {mu:g}, d = 4 mm, E = 1 MPa "
+                 "(EA = 12.6 N)", fontsize=9)  # fmt: skip
+    fig.tight_layout()
+    return fig
+
+
+def render(folder=FOLDER, note=NOTE, image=FIGURE, image_kappa=None) -> dict:
+    """Read every file of ``folder``, write the table into ``note`` and the two figures
+    (``image_kappa`` by default :data:`FIGURE_KAPPA` with the default ``image``, else
+    ``slip_over_kappa.png`` beside ``image``)."""
+    if image_kappa is None:
+        same = Path(image) == FIGURE
+        image_kappa = FIGURE_KAPPA if same else Path(image).with_name(FIGURE_KAPPA.name)
     files = read_folder(folder)
     write_table(files, note)
     Path(image).parent.mkdir(parents=True, exist_ok=True)
     figure(files).savefig(image, dpi=110)
-    return {"files": len(files), "note": str(note), "figure": str(image)}
+    kappa_figure(files).savefig(image_kappa, dpi=110)
+    return {"files": len(files), "note": str(note), "figure": str(image),
+            "figure_kappa": str(image_kappa)}  # fmt: skip
 
 
 def run(quick: bool = True, out_dir=".") -> dict:

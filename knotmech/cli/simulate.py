@@ -1017,13 +1017,14 @@ def _run_loop(scene, kw, progress):
     """A loop round its pin, pulled by the standing part until it slips or the pull ends."""
     import math
 
+    from knotmech.scenes.bends import held_words
     from knotmech.scenes.loops import loop
 
     res = loop(scene, progress=progress, **kw)
     if res.verdict == "slips":
         verdict = f"SLIPS at {res.slip_load:.4g} N ({res.slipped_by or 'tail'})"
     elif res.verdict == "holds":
-        verdict = f"HOLDS up to {res.max_force:.4g} N (the pull ended)"
+        verdict = held_words(res)
     else:
         verdict = "no verdict"
     end = "no pull frame"
@@ -1047,6 +1048,8 @@ def _run_pulled_knot(scene, kw, args, progress):
     """A bend, or a user's centreline: pulled by its ends until it slips or the pull ends."""
     import math
 
+    from knotmech.scenes.bends import held_words
+
     if scene == "bend":
         from knotmech.scenes.bends import bend
 
@@ -1062,7 +1065,7 @@ def _run_pulled_knot(scene, kw, args, progress):
     if res.verdict == "slips":
         verdict = f"SLIPS at {res.slip_load:.4g} N"
     elif res.verdict == "holds":
-        verdict = f"HOLDS up to {res.max_force:.4g} N (the pull ended)"
+        verdict = held_words(res)
     else:
         verdict = "no verdict"
     kept = "kept" if res.topology_preserved else "CHANGED (a strand passed through another)"

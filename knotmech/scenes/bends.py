@@ -16,7 +16,10 @@ the *draw-in* of each tail (how far its free end moved towards the knot, along x
 pull force stays within 10 % of its largest value (sliding at a plateau or a falling
 force; tightening draws the tails in while the force still rises), or when a tail has run
 out of the knot; the **slip load** is the largest pull force before that moment. A bend
-that has not slipped when the pull ends *holds* up to the largest force reached.
+that has not slipped when the pull ends *holds* up to the largest force reached. A tied
+bend's pull also ends when a pulled end reaches :data:`STRAIN_LIMIT` EA (the rod model's
+strain limit, :class:`StrainStop`): a bend that has not slipped by then holds to at least
+the force there (``held_to_strain_limit``).
 
 The topology is checked on every recorded frame up to the slip: the Alexander polynomial of
 the two ropes joined around the outside (:func:`~knotmech.scenes.bend_curves.bend_closure`)
@@ -62,6 +65,7 @@ from knotmech.scenes.tied.pulled import (
     tail_nodes,
     tails_drawn,
 )
+from knotmech.verdict.inputs import STRAIN_LIMIT
 
 __all__ = [
     "BendResult",
@@ -72,6 +76,8 @@ __all__ = [
     "TiedBendScene",
     "bend",
     "PATIL_ORDER",
+    "STRAIN_LIMIT",
+    "StrainStop",
 ]
 
 #: Stability order of the four bends attributed to Patil et al. (2020), most secure first,
@@ -98,6 +104,7 @@ def pull_summary(r) -> dict:
         "slip_load_N": r.slip_load if r.verdict == "slips" else None,
         "max_force_N": r.max_force,
         "frames_checked": int(getattr(r, "frames_checked", 0)),
+        "held_to_strain_limit": bool(getattr(r, "held_to_strain_limit", False)),
     }
 
 
@@ -185,6 +192,76 @@ def _grip(system, rope: int, end: str):
     if end == "start":
         return [int(nodes[0]), int(nodes[1])], int(edges[0])
     return [int(nodes[-1]), int(nodes[-2])], int(edges[-1])
+
+
+def inner_edge(system, grip) -> int:
+    """The first free edge next to a grip ``(nodes, end edge)`` of :func:`_grip` (the
+    edge that shares the grip's inner node; the end edge itself is rigid)."""
+    nodes, edge = grip
+    touching = np.nonzero((system.edge_nodes == nodes[1]).any(axis=1))[0]
+    return int(touching[touching != edge][0])
+
+
+class StrainStop:
+    r"""The stop of a tied pull (bends and loops): a tail run out, or a pulled end at the
+    rod model's strain limit.
+
+    Called with the positions after every accepted step of the pull; True ends the pull.
+    ``tail_out(x)`` is asked first (a tail running out wins when both happen on one step).
+    Then the tension of each pulled end is read from positions as the set phase reads it:
+    the strain :math:`l/l_0 - 1` of the first free edge next to the grip (the end edge is
+    rigid); when the largest reaches :data:`STRAIN_LIMIT` (tension
+    :math:`0.1 EA`) the pull stops, ``reached`` is set, and a knot that has not slipped
+    by then *held to at least* the pull force of that frame.
+
+    Why the end edge and not the rod's largest edge strain: the pull force is the grips'
+    reaction, the end's tension (the drag is 1 % of :math:`B/d^2`), and in the knot the
+    tension falls from the pulled end by friction; on the figure-eight bend at mu = 1 the
+    two agree at the stop (largest edge strain 0.1005, the stopping edge's 0.1002;
+    docs/notes/knots-and-curves/tied-slip-over-mu.md).
+
+    Parameters
+    ----------
+    system : knotmech.rod.RodSystem
+    grips : sequence of (nodes, end edge)
+        The pulled ends (:func:`_grip`).
+    tail_out : callable(positions) -> bool
+    """
+
+    def __init__(self, system, grips, tail_out):
+        e = np.array([inner_edge(system, g) for g in grips])
+        self.rest, self.en = system.rest_length[e], system.edge_nodes[e]
+        self.tail_out, self.reached = tail_out, False
+
+    def strain(self, x) -> float:
+        """Largest strain of the pulled ends' first free edges at positions ``x``."""
+        x = np.asarray(x)
+        length = np.linalg.norm(x[self.en[:, 1]] - x[self.en[:, 0]], axis=1)
+        return float(np.max(length / self.rest - 1.0))
+
+    def __call__(self, x) -> bool:
+        if self.tail_out(x):
+            return True
+        self.reached = self.strain(x) >= STRAIN_LIMIT
+        return self.reached
+
+
+def held_note(max_force: float) -> str:
+    """The words of a pull stopped at the strain limit that had not slipped: ``"holds to at
+    least F N (0.1 EA, the rod model's strain limit): a lower bound of the slip load"``
+    (``max_force`` F [N])."""
+    return (f"holds to at least {max_force:.4g} N ({STRAIN_LIMIT:g} EA, the rod model's "
+            "strain limit): a lower bound of the slip load")  # fmt: skip
+
+
+def held_words(r) -> str:
+    """How a pull's result ``r`` that held is told (the CLI's line): ``"HOLDS to at least F
+    N (0.1 EA, the rod model's strain limit)"`` when it stopped there
+    (``held_to_strain_limit``), else ``"HOLDS up to F N (the pull ended)"``."""
+    if getattr(r, "held_to_strain_limit", False):
+        return (f"HOLDS to at least {r.max_force:.4g} N ({STRAIN_LIMIT:g} EA, the rod "
+                "model's strain limit)")  # fmt: skip
+    return f"HOLDS up to {r.max_force:.4g} N (the pull ended)"
 
 
 @dataclass(frozen=True)
@@ -303,8 +380,9 @@ def bend(
     -----
     Cost at the defaults (80 nodes per rope, 2 x 48 mm at 40 mm/s): about 800 steps and
     6000 Newton iterations, 1-2 minutes on a free core (docs/notes/knots.md gives the times).
-    A tied bend at its defaults: 10-60 s of CPU, the figure-eight bend (40 d set, 200 d
-    ropes) 70-80 s (``benchmarks/tied.py``; docs/notes/knots-and-curves/tied-knots-pulled.md).
+    A tied bend at its defaults: 5-53 s of CPU; the figure-eight bend 7-16 s, its pull
+    stopped at the strain limit at mu >= 0.6 (71 s at mu = 1 before the stop;
+    ``benchmarks/tied.py``; docs/notes/knots-and-curves/tied-slip-over-mu.md).
     """
     record = _record(kind)
     defaults = {"n_nodes": 80, "n_frames": 120, **record.scene_defaults}
@@ -552,8 +630,13 @@ class BendScene(Scene):
                 loads=[self.drag],
                 constraints=grips,
                 save_every=self.dist / v / int(self.control.n_frames),
-                stop=self._tail_out,
+                stop=self._stop(),
             )
+
+    def _stop(self):
+        """The pull's stop: a tail run out (the tied bends: or an end at the strain limit,
+        :class:`StrainStop`)."""
+        return self._tail_out
 
     def _tail_out(self, x) -> bool:
         """Whether a tail end has run into the knot (within 1 d of its middle along x)."""
@@ -684,6 +767,10 @@ class TiedBendResult(BendResult):
         changed).
     law : str
         The rod-rod friction law.
+    held_to_strain_limit : bool
+        The pull stopped when a pulled end reached :data:`STRAIN_LIMIT` EA
+        (:class:`StrainStop`) and the bend had not slipped: it held to at least
+        ``max_force``, a lower bound of its slip load (``verdict`` "holds").
     """
 
     tail_drawn: str = ""
@@ -693,6 +780,7 @@ class TiedBendResult(BendResult):
     invariants_checked: dict = field(default_factory=dict)
     frames_checked: int = 0
     law: str = ""
+    held_to_strain_limit: bool = False
 
     @property
     def topology_preserved(self) -> bool:
@@ -718,6 +806,7 @@ class TiedBendResult(BendResult):
             roll=float(self.roll) if np.isfinite(self.roll) else None,
             frames_checked=int(self.frames_checked),
             law=self.law,
+            held_to_strain_limit=bool(self.held_to_strain_limit),
             invariants_start=_plain(self.invariants_start),
             invariants_checked=_plain(self.invariants_checked),
         )
@@ -783,6 +872,11 @@ class TiedBendScene(BendScene):
         self.free0 = tail_free_lengths(x, self.N, self.d, self.tails)
         self.x_pull0, self._run, self._t_undone = x, run, -np.inf
         super()._pull(run)
+
+    def _stop(self):
+        """A tail run out, or a pulled end at the strain limit (:class:`StrainStop`)."""
+        self.strain_stop = StrainStop(self.system, (self.ga, self.gb), self._tail_out)
+        return self.strain_stop
 
     def _ran_out(self, free) -> np.ndarray:
         """(..., 2) bool: a tail with less than 1 d outside the knot, drawn in by more than
@@ -902,7 +996,13 @@ class TiedBendScene(BendScene):
             f"anchor (sticking) friction, cap floor {TIED_CAP_FLOOR:g} (r_i + r_j), "
             f"tunnel check {self.contact_tunnel_check}"
         )
+        stop = getattr(self, "strain_stop", None)
+        held = bool(stop is not None and stop.reached and res.verdict == "holds")
+        if held:
+            base["message"] = "; ".join(filter(None, (held_note(res.max_force),
+                                                      base["message"])))  # fmt: skip
         return TiedBendResult(**base, tail_drawn=tail, roll=roll, law=law,
+                              held_to_strain_limit=held,
                               came_undone="".join(getattr(self, "undone", ())),
                               invariants_start=self.inv_start,
                               invariants_checked=getattr(self, "inv_checked", {}),

@@ -16,7 +16,9 @@ as the tied bends' (:class:`knotmech.scenes.bends.TiedBendScene`):
    go (damped as the settling: a tail let go at the set tension would otherwise snap
    into a loose knot and count as a slip at the set tension);
 4. **pull**: the standing end pulled on along the same direction for ``pull_distance``,
-   the tail free.
+   the tail free, or until the standing end reaches 0.1 EA (the rod model's strain limit,
+   :class:`knotmech.scenes.bends.StrainStop`: the loop then held to at least that force,
+   ``held_to_strain_limit``).
 
 Measured: the pull force (the grip's reaction along the pull), and two *material*
 draw-ins (lengths of rope, not positions, so that a knot moving along its rope counts):
@@ -76,8 +78,10 @@ from knotmech.scenes.bends import (
     TIED_CAP_FLOOR,
     BendPull,
     BendRopes,
+    StrainStop,
     _bend_verdict,
     _plain,
+    held_note,
     pull_summary,
 )
 from knotmech.scenes.curves import _edge_distances
@@ -138,6 +142,11 @@ class LoopResult:
     positions : (n_frames, n_nodes, 3) [m]
     status, message : str; stats : dict (steps, newton_iterations, wall_s)
     loading : {"loop", "end-to-end"}
+    held_to_strain_limit : bool
+        The pull stopped when a pulled end reached
+        :data:`knotmech.scenes.bends.STRAIN_LIMIT` EA
+        (:class:`~knotmech.scenes.bends.StrainStop`) and the loop had not slipped: it held
+        to at least ``max_force``, a lower bound of its slip load (``verdict`` "holds").
     """
 
     knot: str
@@ -163,6 +172,7 @@ class LoopResult:
     message: str
     stats: dict = field(default_factory=dict)
     loading: str = "loop"
+    held_to_strain_limit: bool = False
 
     @property
     def topology_preserved(self) -> bool:
@@ -214,6 +224,7 @@ class LoopResult:
             "topology_preserved": self.topology_preserved,
             "frames_checked": int(self.frames_checked),
             "law": self.law,
+            "held_to_strain_limit": bool(self.held_to_strain_limit),
             "invariants_start": _plain(self.invariants_start),
             "invariants_checked": _plain(self.invariants_checked),
             "status": self.status,
@@ -361,7 +372,8 @@ def loop(
     Notes
     -----
     Cost at the defaults (d = 4 mm, E = 1 MPa, D = 20 mm): bowline 10-11 s of CPU (175
-    nodes), figure-eight loop 21-56 s over mu = 0.1-1 (130 nodes, drawn-in start), alpine
+    nodes), figure-eight loop 10-27 s over mu = 0.1-1 (130 nodes, drawn-in start; at
+    mu >= 0.6 stopped at the strain limit, 56 s at mu = 1 before the stop), alpine
     butterfly (210 nodes, set up to 60 d) see the note; ``benchmarks/tied.py --loops``,
     docs/notes/knots-and-curves/tied-loops-pulled.md.
     """
@@ -610,13 +622,17 @@ class LoopScene(Scene):
         self.lengths0 = np.array(loop_lengths(x, self.d, self.h, self.eye_cut))
         self.t0 = run.t
         cons = [*self._moving(run, [(self.grip, self.u)]), Clamp(edges=[self.grip[1]])]
+        pulled = [self.grip]
         if self.ends:  # the right end pulled too, along its end tangent now
             self.u_end = end_direction(x, "end")
             cons = [*self._moving(run, [(self.grip, self.u), (self.tail, self.u_end)]),
                     Clamp(edges=[self.grip[1], self.tail[1]])]  # fmt: skip
+            pulled = [self.grip, self.tail]
+        # stops when the tail runs out or a pulled end reaches the rod model's strain limit
+        self.strain_stop = StrainStop(self.system, pulled, self._tail_out)
         run.phase("pull", self.dist / self.v, dt=self.dt, loads=[self.drag], constraints=cons,
                   save_every=self.dist / self.v / int(self.control.n_frames),
-                  stop=self._tail_out)  # fmt: skip
+                  stop=self.strain_stop)  # fmt: skip
 
     def _tail_out(self, x) -> bool:
         tail, eye = loop_lengths(x, self.d, self.h, self.eye_cut)
@@ -643,6 +659,10 @@ class LoopScene(Scene):
             status, message = "failed", "no pull frame with a positive pull force recorded"
         if status != "success":
             verdict = ""
+        stop = getattr(self, "strain_stop", None)
+        held = bool(stop is not None and stop.reached and verdict == "holds")
+        if held:
+            message = "; ".join(filter(None, (held_note(float(np.nanmax(force))), message)))
         stats = dict(run.stats)
         stats["wall_s"] = time.perf_counter() - self.t_wall
         return LoopResult(
@@ -655,6 +675,7 @@ class LoopScene(Scene):
             invariants_checked=getattr(self, "inv_checked", dict(self.inv_start)),
             frames_checked=getattr(self, "frames_checked", 0), law=self._law(),
             positions=pos, status=status, message=message, stats=stats, loading=self.loading,
+            held_to_strain_limit=held,
         )  # fmt: skip
 
     def _force(self, run, tp):

@@ -213,6 +213,8 @@ def _slip_words(slip) -> str:
     if "self-locking" in slip.source:
         up = f" up to {format_force(slip.low)}" if slip.low > 0 else ""
         return f"friction alone cannot unlock it{up}"
+    if slip.source.startswith("the DER pull"):  # a bend's or loop's pull that held
+        return f"no slip up to {format_force(slip.low)} ({slip.source})"
     return f"no slip up to {format_force(slip.low)} (nothing slipped in the DER table)"
 
 

@@ -118,6 +118,7 @@ def _pull(key, *, d, E, mu, load, mat, kappa, progress):
     tied = {
         "tail_drawn": r.tail_drawn, "roll": r.roll, "law": r.law,
         "frames_checked": r.frames_checked,
+        "held_to_strain_limit": bool(getattr(r, "held_to_strain_limit", False)),
     } if hasattr(r, "tail_drawn") else {}  # fmt: skip
     der = {
         "source": "simulation", "scene": "knotmech.scenes.bends.bend", "kind": key,
@@ -135,20 +136,53 @@ def _pull(key, *, d, E, mu, load, mat, kappa, progress):
 
 
 def _pull_outcome(key, r, load):
-    """(holds or None, capacity [N], message) of a pull against ``load`` [N]."""
+    """(holds or None, capacity [N], message) of a pull against ``load`` [N]. A pull that
+    held gives a lower bound of the slip load (its largest force); one stopped at the rod
+    model's strain limit (``held_to_strain_limit``) says so, and a load above it is not
+    decided (beyond the rod model)."""
+    from knotmech.scenes.bends import STRAIN_LIMIT, held_note
+
     if r.verdict == "slips" and math.isfinite(r.slip_load):
         return load < r.slip_load, float(r.slip_load), (
             f"DER pull of the {key}: slips at {r.slip_load:.4g} N "
             f"(the largest pull force before its tail drew in)")  # fmt: skip
+    limit = bool(getattr(r, "held_to_strain_limit", False))
     if r.verdict == "holds" and load <= r.max_force:
         return True, float(r.max_force), (
-            f"DER pull of the {key}: did not slip up to {r.max_force:.4g} N, "
-            "the largest force of the pull")  # fmt: skip
+            f"DER pull of the {key}: " + (held_note(r.max_force) if limit else
+            f"did not slip up to {r.max_force:.4g} N, the largest force of the pull"))  # fmt: skip
+    if r.verdict == "holds" and limit:
+        return None, math.nan, (
+            f"DER pull of the {key}: {held_note(r.max_force)}; the load {load:.4g} N is "
+            f"above it, where the rod is strained beyond {STRAIN_LIMIT:.0%} (outside the "
+            "rod model): not decided")  # fmt: skip
     return None, math.nan, (
         f"DER pull of the {key}: {r.verdict or 'failed'} ({r.message}); the load "
         + (f"{load:.4g} N is above the largest pull force {r.max_force:.4g} N"
            if r.verdict == "holds" else "is not decided")
     )  # fmt: skip
+
+
+def der_slip_band(v: Verdict, what: str):
+    """The slip load of a bend's or loop's DER pull for the capacity
+    (:class:`knotmech.verdict.capacity.LoadBand`), or None without one: a slip, a point
+    value; a hold (the pull ended, or stopped at the rod model's strain limit), open above
+    from the largest force (nothing slipped up to it), also when the load is above it and
+    the pull decided nothing."""
+    from knotmech.verdict import capacity as _cap
+
+    der, dec = v.der or {}, v.deciding
+    if der.get("verdict") == "holds":  # decided or not: nothing slipped up to its force
+        cap = float(der.get("max_force", math.nan) if dec is None else dec.capacity)
+        if not math.isfinite(cap):
+            return None
+        why = ("stopped at the rod model's strain limit, 0.1 EA"
+               if der.get("held_to_strain_limit") else "ended")  # fmt: skip
+        return _cap.LoadBand(math.inf, cap, math.inf, f"the DER pull of the {what} {why}")
+    if dec is None or not math.isfinite(dec.capacity):
+        return None
+    cap = float(dec.capacity)
+    return _cap.LoadBand(cap, cap, cap, f"DER pull of the {what}")
 
 
 def _pull_answer(key, r, holds, capacity, load, kappa, message):

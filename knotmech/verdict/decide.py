@@ -447,14 +447,13 @@ def _verdict(c: _Case, wrap_angle) -> Verdict:
 
 
 def _bend_capacity(v: Verdict, material) -> Verdict:
-    """A bend's verdict with its capacity: the slip load of its DER pull (a point value) when
-    one ran, and the bend's breaking load; at or above the breaking load it breaks."""
+    """A bend's verdict with its capacity: the slip load of its DER pull when one ran (a
+    point value; a hold: open above, :func:`knotmech.verdict.bend.der_slip_band`), and the
+    bend's breaking load; at or above the breaking load it breaks."""
     from knotmech.verdict import capacity as _cap
+    from knotmech.verdict.bend import der_slip_band
 
-    dec = v.deciding
-    slip = None
-    if dec is not None and math.isfinite(dec.capacity):
-        slip = _cap.LoadBand(dec.capacity, dec.capacity, dec.capacity, "DER pull of the bend")
+    slip = der_slip_band(v, "bend")
     load = v.inputs["load"]
     cap = _cap.capacity_of(knot=v.knot, slip=slip, material=v.inputs.get("material", material),
                            d=v.inputs["rod_diameter"], D=None, load=load)  # fmt: skip

@@ -12,7 +12,7 @@ from knotmech import knots
 from knotmech.errors import InputError, check_nonnegative, check_positive
 from knotmech.verdict._run import refuse_inputs, run_answer, run_shape
 from knotmech.verdict.answer import Verdict
-from knotmech.verdict.bend import BEND_WALL_RATE, _pull_outcome
+from knotmech.verdict.bend import BEND_WALL_RATE, _pull_outcome, der_slip_band
 from knotmech.verdict.command import simulate_command
 from knotmech.verdict.inputs import _bending_scale, _warnings, _youngs_modulus
 
@@ -138,6 +138,7 @@ def _pull(key, *, d, D, E, mu, load, mat, kappa, progress):
         "tail_draw_in": float(r.tail_draw_in[-1]) if r.tail_draw_in.size else math.nan,
         "eye_growth": float(r.eye_growth[-1]) if r.eye_growth.size else math.nan,
         "law": r.law, "frames_checked": r.frames_checked,
+        "held_to_strain_limit": bool(getattr(r, "held_to_strain_limit", False)),
         "wall_s": float(r.stats.get("wall_s", math.nan)),
     }  # fmt: skip
     holds, capacity, der["message"] = _pull_outcome(key, r, load)
@@ -166,15 +167,13 @@ def _answer(key, r, holds, capacity, load, kappa, message):
 
 
 def loop_capacity(v: Verdict, material) -> Verdict:
-    """The verdict with its capacity: the slip load of the DER pull (a point value) when
-    one ran, and the loop's breaking load (:mod:`knotmech.strength`); at or above the
-    breaking load it breaks."""
+    """The verdict with its capacity: the slip load of the DER pull when one ran (a point
+    value; a hold: open above, :func:`knotmech.verdict.bend.der_slip_band`), and the
+    loop's breaking load (:mod:`knotmech.strength`); at or above the breaking load it
+    breaks."""
     from knotmech.verdict import capacity as _cap
 
-    dec = v.deciding
-    slip = None
-    if dec is not None and math.isfinite(dec.capacity):
-        slip = _cap.LoadBand(dec.capacity, dec.capacity, dec.capacity, "DER pull of the loop")
+    slip = der_slip_band(v, "loop")
     load = v.inputs["load"]
     cap = _cap.capacity_of(knot=v.knot, slip=slip, material=v.inputs.get("material", material),
                            d=v.inputs["rod_diameter"], D=v.inputs["pin_diameter"],

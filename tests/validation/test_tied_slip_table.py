@@ -150,8 +150,58 @@ def test_pull_summary_is_the_row_the_table_and_benchmark_print():
     row = pull_summary(r)
     assert row == {"steps": 5, "newton_iterations": 9, "rejected_steps": 0, "nodes": 7,
                    "status": "success", "message": "", "verdict": "holds", "slip_load_N": None,
-                   "max_force_N": 0.5, "frames_checked": 3}  # fmt: skip
+                   "max_force_N": 0.5, "frames_checked": 3,
+                   "held_to_strain_limit": False}  # fmt: skip
     r.verdict, r.slip_load = "slips", 0.25
     assert pull_summary(r)["slip_load_N"] == 0.25
     # the table reads the row back: a slip is its load, a hold its largest force
     assert t._cell({"cpu_s": 12.0, **pull_summary(r)}) == "0.25 (12 s)"
+
+
+def test_a_hold_to_the_strain_limit_is_told_as_such(folder):
+    """A pull stopped at 0.1 EA before the knot slipped (the row's
+    ``held_to_strain_limit``): "strain limit" in its cell and a footnote saying it is a
+    lower bound; no "*" (it did not stretch the rod beyond the limit)."""
+    data = {"knot": "figure-eight-bend", "rows": {
+        "1": {**_row("holds", None, 1.14, 14.8), "held_to_strain_limit": True}}}  # fmt: skip
+    (folder / "figure-eight-bend.json").write_text(json.dumps(data))
+    lines = t.table(t.read_folder(folder)).splitlines()
+    row = next(line for line in lines if line.startswith("| figure-eight-bend"))
+    assert "holds (to 1.14, strain limit) (15 s)" in row and "*" not in row
+    assert any(line.startswith("strain limit: the pull stopped") for line in lines)
+    # a stop a step past the limit (1.2583 N > 0.1 EA = 1.2566 N) is no "*" hold
+    data["rows"]["1"]["max_force_N"] = 1.2583
+    (folder / "figure-eight-bend.json").write_text(json.dumps(data))
+    lines = t.table(t.read_folder(folder)).splitlines()
+    assert not any(line.startswith("\\*") for line in lines)
+
+
+def test_kappa_points_need_two_bending_scales_at_mu(folder, tmp_path):
+    """The bending-scale figure's points at mu = 0.3: the sheet bend has kappa 1 (slips at
+    0.0347 N) and 0.01 (0.5 N); the bowline only kappa 1 (left out). A held run is a lower
+    bound."""
+    files = t.read_folder(folder)
+    pts = t.kappa_points(files)
+    assert list(pts) == [("sheet-bend", "")]
+    assert [p[:2] for p in next(iter(pts.values()))] == [(0.01, 0.5), (1.0, 0.0347)]
+    held = {"knot": "bowline", "bending_scale": 0.1, "rows": {"0.3": _row("holds", None, 0.4)}}
+    (folder / "bowline-kappa0.1.json").write_text(json.dumps(held))
+    pts = t.kappa_points(t.read_folder(folder))
+    assert pts[("bowline", "")] == [(0.1, 0.4, True), (1.0, 0.0646, False)]
+    out = t.render(folder=folder, note=tmp_path / "n.md", image=tmp_path / "a.png",
+                   image_kappa=tmp_path / "k.png")  # fmt: skip
+    assert (tmp_path / "k.png").stat().st_size > 1000 and out["figure_kappa"].endswith("k.png")
+    # given only the mu figure's path, the kappa figure goes beside it (not into docs/)
+    out = t.render(folder=folder, note=tmp_path / "n.md", image=tmp_path / "b" / "a.png")
+    assert out["figure_kappa"] == str(tmp_path / "b" / "slip_over_kappa.png")
+
+
+def test_a_rerun_replaces_a_row_written_as_1_0(tmp_path, monkeypatch):
+    """A file with the row "1.0" (written by hand or an older run) gets its row replaced by
+    a run at mu 1, not a second row "1" beside it (the table would show one of the two)."""
+    path = tmp_path / "sheet-bend.json"
+    path.write_text(json.dumps({"knot": "sheet-bend", "rows": {"1.0": _row("holds", None, 7.2)}}))
+    monkeypatch.setattr(t, "slip_row", lambda knot, mu, **kw: _row("slips", 0.2, 0.2))
+    t.add_rows("sheet-bend", [1.0], folder=tmp_path, log=lambda s: None)
+    rows = json.loads(path.read_text())["rows"]
+    assert list(rows) == ["1"] and rows["1"]["slip_load_N"] == 0.2
