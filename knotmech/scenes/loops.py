@@ -74,6 +74,7 @@ from knotmech.scenes._common import check_memory, check_run_size, frames_bytes, 
 from knotmech.scenes._scene import RunControl, Scene, SceneRun, grip_path, post_contact
 from knotmech.scenes.bends import (
     TIED_CAP_FLOOR,
+    UNDONE_EVERY,
     BendPull,
     BendRopes,
     _bend_verdict,
@@ -82,7 +83,8 @@ from knotmech.scenes.bends import (
 )
 from knotmech.scenes.curves import _edge_distances
 from knotmech.scenes.tied import measure
-from knotmech.scenes.tied._common import closed_alone, linking_number
+from knotmech.scenes.tied._common import invariant, join_far
+from knotmech.scenes.tied.eye_linking import cut_linking
 from knotmech.scenes.tied.pulled import NEAR_SET, OWN, PARALLEL, end_direction, invariants_changed
 
 __all__ = ["LoopResult", "LoopScene", "loop", "LOOPS", "loop_inside", "loop_lengths"]
@@ -95,11 +97,10 @@ EYE_D = 5.0
 
 #: invariants whose change fails a run: the closed rope's knot type and its turns round the pin
 FAIL_KEYS = ("alexander", "winding_pin")  # alexander: kept by either closure (up or down)
-#: end to end (no pin), reported: the linking of the rope's halves cut at the eye (1 while
-#: the eye is through the window; 0 when it has been drawn out: the knot came undone). Not
-#: part of ``topology_preserved``: once the cut point is inside the drawn-up knot the two
-#: closures, which share it, touch and the number is not reliable
-#: (docs/notes/knots-and-curves/tied-loops-pulled.md)
+#: end to end (no pin): the linking of the rope's halves cut at the eye's tip, each closed
+#: from outside the knot (:func:`~knotmech.scenes.tied.eye_linking.cut_linking`; 1 while
+#: the tongue is through the window, 0 when it has been drawn out: the knot came undone),
+#: kept with the closed rope's knot type in ``topology_preserved``
 END_KEYS = ("linking_cut",)
 
 
@@ -138,6 +139,11 @@ class LoopResult:
     positions : (n_frames, n_nodes, 3) [m]
     status, message : str; stats : dict (steps, newton_iterations, wall_s)
     loading : {"loop", "end-to-end"}
+    came_undone : bool
+        The knot came undone in the pull (:meth:`LoopScene._undone`): the tail drawn
+        through the knot (end to end: the eye's halves unlinked, the tongue out of the
+        window); a slip at that frame (``verdict`` "slips", the slip load the largest
+        force before it; frames after it not checked).
     """
 
     knot: str
@@ -163,14 +169,15 @@ class LoopResult:
     message: str
     stats: dict = field(default_factory=dict)
     loading: str = "loop"
+    came_undone: bool = False
 
     @property
     def topology_preserved(self) -> bool:
         """The closed rope's knot type and its winding about the pin kept on every frame
-        checked (end to end: the knot type; the cut halves' linking is reported only, see
-        :data:`END_KEYS`)."""
+        checked (end to end: the knot type and the cut halves' linking, :data:`END_KEYS`;
+        a knot that came undone is checked up to that frame, ``came_undone``)."""
         s, c = self.invariants_start, self.invariants_checked
-        keys = ("alexander",) if self.loading == "end-to-end" else FAIL_KEYS
+        keys = ("alexander", *END_KEYS) if self.loading == "end-to-end" else FAIL_KEYS
         return all(s.get(k) == c.get(k) for k in keys)
 
     def summary(self, rod_diameter: float) -> dict:
@@ -188,6 +195,7 @@ class LoopResult:
             tail_draw_in_d=last(self.tail_draw_in), eye_growth_d=last(self.eye_growth),
             pull_travel_d=last(self.pull_displacement),
             topology_preserved=bool(self.topology_preserved), pin_diameter_m=self.pin_diameter,
+            came_undone=bool(self.came_undone),
         )  # fmt: skip
         return row
 
@@ -212,6 +220,7 @@ class LoopResult:
             "mu_rod_rod": self.mu_rod_rod,
             "mu_pin": self.mu_pin,
             "topology_preserved": self.topology_preserved,
+            "came_undone": bool(self.came_undone),
             "frames_checked": int(self.frames_checked),
             "law": self.law,
             "invariants_start": _plain(self.invariants_start),
@@ -609,6 +618,7 @@ class LoopScene(Scene):
         x = self.system.positions(run.state.q)
         self.lengths0 = np.array(loop_lengths(x, self.d, self.h, self.eye_cut))
         self.t0 = run.t
+        self.x_pull0, self._run, self._t_undone = x, run, -np.inf
         cons = [*self._moving(run, [(self.grip, self.u)]), Clamp(edges=[self.grip[1]])]
         if self.ends:  # the right end pulled too, along its end tangent now
             self.u_end = end_direction(x, "end")
@@ -619,10 +629,39 @@ class LoopScene(Scene):
                   stop=self._tail_out)  # fmt: skip
 
     def _tail_out(self, x) -> bool:
+        """Whether the tail has run out of the knot (end to end: the eye drawn into it) or,
+        looked at every :data:`~knotmech.scenes.bends.UNDONE_EVERY` s, the knot came undone
+        (:meth:`_undone`)."""
         tail, eye = loop_lengths(x, self.d, self.h, self.eye_cut)
         if self.ends:  # the eye drawn into the knot
-            return bool(eye < self.d and self.lengths0[1] - eye > self.slip)
-        return bool(tail < self.d and self.lengths0[0] - tail > self.slip)
+            out = eye < self.d and self.lengths0[1] - eye > self.slip
+        else:
+            out = tail < self.d and self.lengths0[0] - tail > self.slip
+        if out:
+            return True
+        t = self._run.live.t
+        if t - self._t_undone < UNDONE_EVERY:
+            return False
+        self._t_undone = t
+        return self._undone(x)
+
+    def _undone(self, x) -> bool:
+        """Whether the knot came undone at ``x`` [m]. On the loop: the closed rope's knot
+        type differs from the start's in both closures (lifted up and down:
+        :meth:`_frame_invariants`) while the tail end has moved towards the knot by more
+        than the slip draw-in since the pull began (the tail drawn through the knot, as
+        :meth:`knotmech.scenes.bends.TiedBendScene._undone`). End to end: the linking of
+        the rope's halves cut at the eye (:func:`~knotmech.scenes.tied.eye_linking.
+        cut_linking`) differs from the start's (the tongue drawn out of the window). The
+        overlap watch of every step excludes a strand passing through another; a knot type
+        changed with the tail not drawn in fails the run (:meth:`_topology`)."""
+        if self.ends:
+            now = self._cut_linking(x)
+            return now is not None and now != self.inv_start.get("linking_cut")
+        u = end_direction(self.x_pull0, "end")
+        if float((self.x_pull0[-1] - x[-1]) @ u) <= self.slip:
+            return False
+        return self._frame_invariants(x, cut=False)["alexander"] != self.inv_start["alexander"]
 
     # -- measure ---------------------------------------------------------------------
     def measure(self, run: SceneRun) -> LoopResult:
@@ -633,7 +672,11 @@ class LoopScene(Scene):
         force = self._force(run, tp)
         draw, out = self._draw(pm)
         pulled = bool(np.isfinite(force).any() and np.nanmax(force) > 0)
-        if pulled:
+        self.k_undone = None
+        if pulled:  # came undone up to the slip: a slip there (later: the slip's aftermath)
+            self.k_undone = self._first_undone(pm, _slip_frame(force, draw, out, self.slip))
+            if self.k_undone is not None:
+                out[self.k_undone :] = True
             verdict, slip_load, _ = _bend_verdict(force, draw, out, self.slip)
             k_slip = _slip_frame(force, draw, out, self.slip)
         else:  # no pull frame, or no positive pull force recorded
@@ -655,6 +698,7 @@ class LoopScene(Scene):
             invariants_checked=getattr(self, "inv_checked", dict(self.inv_start)),
             frames_checked=getattr(self, "frames_checked", 0), law=self._law(),
             positions=pos, status=status, message=message, stats=stats, loading=self.loading,
+            came_undone=status == "success" and getattr(self, "k_undone", None) is not None,
         )  # fmt: skip
 
     def _force(self, run, tp):
@@ -682,15 +726,31 @@ class LoopScene(Scene):
                 f"path tunnelling guard; pin: anchor friction mu = {self.mu_pin:g}")  # fmt: skip
 
     def _draw(self, pm):
-        """(n, 2) [m] tail draw-in and eye growth since the pull began; (n,) tail run out."""
+        """(n, 2) [m] tail draw-in and eye growth since the pull began; (n,) tail run out
+        (end to end: the eye drawn into the knot)."""
         if not len(pm):
             return np.zeros((0, 2)), np.zeros(0, bool)
         k = self.eye_cut
         now = np.array([loop_lengths(x, self.d, self.h, k) for x in pm])
         draw = np.column_stack([self.lengths0[0] - now[:, 0], now[:, 1] - self.lengths0[1]])
         if self.ends:  # rope drawn out of the knot into the right end, the eye drawn in
-            return -draw, (now[:, 1] < self.d) & (-draw[:, 1] > self.slip)
-        return draw, (now[:, 0] < self.d) & (draw[:, 0] > self.slip)
+            draw, out = -draw, (now[:, 1] < self.d) & (-draw[:, 1] > self.slip)
+        else:
+            out = (now[:, 0] < self.d) & (draw[:, 0] > self.slip)
+        return draw, out
+
+    def _first_undone(self, pm, last: int):
+        """The first pull frame up to ``last`` where the knot came undone (:meth:`_undone`),
+        or None."""
+        for j in range(min(last + 1, len(pm))):
+            if self._undone(pm[j]):
+                return j
+        return None
+
+    def _undone_note(self, t) -> str:
+        what = ("the eye's halves unlinked: the tongue drawn out of the window" if self.ends
+                else "its tail drawn through the knot")  # fmt: skip
+        return f"came undone at t = {t:.3f} s: {what} (a slip; frames after it not checked)"
 
     def _slipped_by(self, draw) -> str:
         if not draw.size:
@@ -699,29 +759,42 @@ class LoopScene(Scene):
         return {(True, False): "tail", (False, True): "eye", (True, True): "both"}.get(
             (bool(grew[0]), bool(grew[1])), "")  # fmt: skip
 
+    def _alexander(self, x) -> tuple:
+        """Alexander polynomial of the rope at ``x`` closed far outside (ends lifted up, the
+        far circle about the pin's axis; end to end about the rope's centroid): the
+        ``alexander`` of :func:`~knotmech.scenes.tied.measure`."""
+        centre = None if self.knot.pin is None else self.knot.pin["point"]
+        return invariant(join_far([x], center=centre))
+
     def _alexander_down(self, x) -> tuple:
         """Alexander polynomial of the rope closed with its ends lifted down (-z): the
         frame mirrored in z and closed as usual (the polynomial does not see the mirror)."""
-        return self._measure(x * np.array([1.0, 1.0, -1.0]))["alexander"]
+        return self._alexander(x * np.array([1.0, 1.0, -1.0]))
+
+    def _cut_linking(self, x) -> int | None:
+        """End to end: the linking of the rope's halves cut at the eye's tip (the node
+        ``eye_cut``, material), each closed from outside the knot along the ray from the
+        knot's centre (the mean of the nodes inside it, :func:`loop_inside`) through its
+        cut end (:func:`~knotmech.scenes.tied.eye_linking.cut_linking`)."""
+        inside = loop_inside(x, self.d)
+        centre = x[inside].mean(axis=0) if inside.any() else None
+        return cut_linking(x, self.eye_cut, centre)
 
     def _measure(self, x) -> dict:
         """:func:`~knotmech.scenes.tied.measure` of the rope at ``x``; end to end (no pin)
-        with ``linking_cut``: the rope cut at the eye, each half closed alone about the
-        rope's centroid, their linking number."""
+        with ``linking_cut`` (:meth:`_cut_linking`)."""
         out = measure(replace(self.knot, ropes={"rope": x}))
         if self.ends:
-            k = self.eye_cut
-            a, b = x[: k + 1], x[k:]
-            out["linking_cut"] = int(round(linking_number(
-                closed_alone(a, [b]), closed_alone(b, [a], scale=2.5))))  # fmt: skip
+            out["linking_cut"] = self._cut_linking(x)
         return out
 
-    def _frame_invariants(self, x) -> dict:
-        """:func:`~knotmech.scenes.tied.measure` of one frame; ``alexander`` the start's
-        when either closure keeps its start value: the ends lifted up (+z, the curve's
-        closure) or down. A free tail end passing under a strand changes the first, over
-        one the second; a strand through another changes both."""
-        now = self._measure(x)
+    def _frame_invariants(self, x, *, cut: bool = True) -> dict:
+        """:func:`~knotmech.scenes.tied.measure` of one frame (``cut`` False: the closed
+        rope's ``alexander`` alone); ``alexander`` the start's when either closure keeps
+        its start value: the ends lifted up (+z, the curve's closure) or down. A free tail
+        end passing under a strand changes the first, over one the second; a strand
+        through another changes both."""
+        now = self._measure(x) if cut else {"alexander": self._alexander(x)}
         if now.get("alexander") != self.inv_start.get("alexander"):
             if self._alexander_down(x) == self.alex_down0:
                 now["alexander"] = self.inv_start["alexander"]
@@ -736,6 +809,8 @@ class LoopScene(Scene):
         self.inv_checked = got = dict(self.inv_start)
         self.frames_checked, moved = 0, {}
         for k in range(len(pm)):
+            if self.k_undone is not None and k >= self.k_undone:
+                return run.status, run.message or self._undone_note(tp[k])
             try:
                 now = self._frame_invariants(pm[k])
             except InputError as e:
