@@ -84,6 +84,7 @@ from knotmech.scenes.bends import (
 from knotmech.scenes.curves import _edge_distances
 from knotmech.scenes.tied import measure
 from knotmech.scenes.tied._common import invariant, join_far
+from knotmech.scenes.tied.crossings import average_crossings
 from knotmech.scenes.tied.eye_linking import cut_linking
 from knotmech.scenes.tied.pulled import NEAR_SET, OWN, PARALLEL, end_direction, invariants_changed
 
@@ -488,6 +489,7 @@ class LoopScene(Scene):
         pin = dict(knot.pin, point=(0.0, 0.0, 0.0))
         info = dict(knot.info, pin_center=(0.0, 0.0, 0.0))
         self.eye_cut = int(knot.info["eye_cut"])
+        self.min_crossings = knot.info.get("min_crossings")
         if self.ends:  # no pin: the closed rope's knot type only (no winding, no cut halves)
             pin, info = None, {k: v for k, v in info.items() if k != "eye_cut"}
         self.knot = replace(knot, ropes={"rope": x}, pin=pin, info=info)
@@ -616,6 +618,9 @@ class LoopScene(Scene):
         if not run.ok:
             return
         x = self.system.positions(run.state.q)
+        if self._apart(x):  # fell apart in the settle or the set: nothing to pull
+            self.apart_before = average_crossings(x)
+            return
         self.lengths0 = np.array(loop_lengths(x, self.d, self.h, self.eye_cut))
         self.t0 = run.t
         self.x_pull0, self._run, self._t_undone = x, run, -np.inf
@@ -643,11 +648,12 @@ class LoopScene(Scene):
         if t - self._t_undone < UNDONE_EVERY:
             return False
         self._t_undone = t
-        return self._undone(x)
+        return bool(self._undone(x))
 
-    def _undone(self, x) -> bool:
-        """Whether the knot came undone at ``x`` [m]. On the loop: the closed rope's knot
-        type differs from the start's in both closures (lifted up and down:
+    def _undone(self, x) -> str:
+        """Why the knot came undone at ``x`` [m] (``""``: it did not). A knot with
+        ``info["min_crossings"]`` (the alpine butterfly): :meth:`_apart`. On the loop: the
+        closed rope's knot type differs from the start's in both closures (lifted up and down:
         :meth:`_frame_invariants`) while the tail end has moved towards the knot by more
         than the slip draw-in since the pull began (the tail drawn through the knot, as
         :meth:`knotmech.scenes.bends.TiedBendScene._undone`). End to end: the linking of
@@ -655,13 +661,19 @@ class LoopScene(Scene):
         cut_linking`) differs from the start's (the tongue drawn out of the window). The
         overlap watch of every step excludes a strand passing through another; a knot type
         changed with the tail not drawn in fails the run (:meth:`_topology`)."""
+        if self._apart(x):
+            return f"its average crossing number below {self.min_crossings:g} (fell apart)"
         if self.ends:
             now = self._cut_linking(x)
-            return now is not None and now != self.inv_start.get("linking_cut")
+            if now is not None and now != self.inv_start.get("linking_cut"):
+                return "the eye's halves unlinked: the tongue drawn out of the window"
+            return ""
         u = end_direction(self.x_pull0, "end")
         if float((self.x_pull0[-1] - x[-1]) @ u) <= self.slip:
-            return False
-        return self._frame_invariants(x, cut=False)["alexander"] != self.inv_start["alexander"]
+            return ""
+        if self._frame_invariants(x, cut=False)["alexander"] != self.inv_start["alexander"]:
+            return "its tail drawn through the knot"
+        return ""
 
     # -- measure ---------------------------------------------------------------------
     def measure(self, run: SceneRun) -> LoopResult:
@@ -682,6 +694,11 @@ class LoopScene(Scene):
         else:  # no pull frame, or no positive pull force recorded
             verdict, slip_load, k_slip = "", float("nan"), len(force) - 1
         status, message = self._topology(run, pm, tp, k_slip)
+        if hasattr(self, "apart_before"):
+            status, message = "failed", (
+                f"came apart before the pull (settle and set): average crossing number "
+                f"{self.apart_before:.1f} < {self.min_crossings:g} (a twisted eye, not the "
+                "knot); no slip load")  # fmt: skip
         if status == "success" and not pulled:
             status, message = "failed", "no pull frame with a positive pull force recorded"
         if status != "success":
@@ -739,18 +756,26 @@ class LoopScene(Scene):
             out = (now[:, 0] < self.d) & (draw[:, 0] > self.slip)
         return draw, out
 
+    def _apart(self, x) -> bool:
+        """Whether a knot whose curve sets ``info["min_crossings"]`` (the alpine butterfly)
+        fell apart at ``x``: its average crossing number
+        (:func:`~knotmech.scenes.tied.crossings.average_crossings`) below that (a twisted
+        eye, whose invariants are the butterfly's)."""
+        least = self.min_crossings
+        return least is not None and average_crossings(x) < least
+
     def _first_undone(self, pm, last: int):
         """The first pull frame up to ``last`` where the knot came undone (:meth:`_undone`),
         or None."""
         for j in range(min(last + 1, len(pm))):
-            if self._undone(pm[j]):
+            self.undone_why = self._undone(pm[j])
+            if self.undone_why:
                 return j
         return None
 
     def _undone_note(self, t) -> str:
-        what = ("the eye's halves unlinked: the tongue drawn out of the window" if self.ends
-                else "its tail drawn through the knot")  # fmt: skip
-        return f"came undone at t = {t:.3f} s: {what} (a slip; frames after it not checked)"
+        return (f"came undone at t = {t:.3f} s: {self.undone_why} (a slip; frames after it "
+                "not checked)")  # fmt: skip
 
     def _slipped_by(self, draw) -> str:
         if not draw.size:

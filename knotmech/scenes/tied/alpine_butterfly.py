@@ -59,6 +59,7 @@ from knotmech.scenes.tied._snug import (
     FINAL_GAP,
     FINAL_SWEEPS,
     GAP,
+    SUB,
     _dense,
     _repel,
     _resampled,
@@ -72,7 +73,11 @@ TAIL = 8.0  #: straight ends of the loose rope [d]
 EYE_R = 3.0  #: centreline radius of the loose rope's eye while it is drawn in [d]
 EXTEND = 12.0  #: both ends run on beyond the drawn-in knot [d]
 SCALE = 0.35  #: the loose rope's plane scaled by this to draw it in
-SWEEPS = 300  #: repulsion sweeps after the scaling
+ROUNDS = 10  #: rounds of repulsion sweeps after the scaling, each followed by a resampling
+#: still tied while the rope's average crossing number
+#: (:func:`~knotmech.scenes.tied.crossings.average_crossings`) is at least this: about 10
+#: drawn in, 7 loose, 2 for the twisted eye it falls apart into (same invariants)
+MIN_CROSSINGS = 4.0
 #: leg A, from where the left end leaves the line y = 0 to the top of the eye's first leg
 #: [d]; z (+/-1) orders the strands at the crossings (C1, the right arm, C2, W)
 LEG_A = (
@@ -123,7 +128,8 @@ def alpine_butterfly(*, rod_diameter: float, n_nodes: int = 150,
     nodes = equal_chords(np.vstack([left, eye[1:-1], right]) * d, n)
     far = np.array([center[0], center[1] - R, 0.0]) * d
     pin_c = (center[0] * d, center[1] * d, 0.0)
-    info = {"pin_center": pin_c, "eye_cut": cut_at(nodes, far), **start_checks([nodes], d)}
+    info = {"pin_center": pin_c, "eye_cut": cut_at(nodes, far), "min_crossings": MIN_CROSSINGS,
+            **start_checks([nodes], d)}  # fmt: skip
     return TiedKnot(
         name="alpine_butterfly",
         ropes={"rope": nodes},
@@ -158,7 +164,8 @@ def _drawn_in(leg_a: tuple, leg_b: tuple) -> tuple[np.ndarray, np.ndarray]:
     (:func:`loose_rope`) without its eye (the run below the legs' ends, y < -12.5 d and
     x < -7 d), scaled by :data:`SCALE` in the plane (the crossings' heights kept: an
     isotopy), resampled every :data:`~knotmech.scenes.tied._snug.H` and pushed apart by
-    :data:`SWEEPS` repulsion sweeps at :data:`~knotmech.scenes.tied._snug.GAP` and
+    :data:`ROUNDS` rounds of :data:`~knotmech.scenes.tied._snug.SUB` repulsion sweeps at
+    :data:`~knotmech.scenes.tied._snug.GAP` (each round resampled) and
     :data:`~knotmech.scenes.tied._snug.FINAL_SWEEPS` at
     :data:`~knotmech.scenes.tied._snug.FINAL_GAP` (each push a fraction of the overlap
     along the join of two points: no strand passes through another); each piece drawn as
@@ -169,8 +176,10 @@ def _drawn_in(leg_a: tuple, leg_b: tuple) -> tuple[np.ndarray, np.ndarray]:
     for p in ps:
         p[:, :2] *= SCALE
     ps = [_resampled(p) for p in ps]
-    for _ in range(SWEEPS):
-        ps = _repel(ps, GAP)
+    for _ in range(ROUNDS):
+        for _ in range(SUB):
+            ps = _repel(ps, GAP)
+        ps = [_resampled(p) for p in ps]
     for _ in range(FINAL_SWEEPS):
         ps = _repel(ps, FINAL_GAP)
     return _dense(ps[0]), _dense(ps[1])
