@@ -213,11 +213,13 @@ def _fmt(x) -> str:
 
 
 def _cell(row: dict) -> str:
-    """``0.0347 (8.9 s)``, ``holds (to 0.505) (11 s)`` or ``failed (12 s)``."""
+    """``0.0347 (8.9 s)``, ``holds (to 0.505) (11 s)``, ``failed (12 s)`` or ``came apart in
+    the set (2.7 s)`` (a knot fallen apart before the pull: no slip load)."""
     cpu = row.get("cpu_s")
     cost = "" if cpu is None else f" ({cpu:.0f} s)" if cpu >= 10 else f" ({cpu:.1f} s)"
     if row.get("status") not in (None, "success"):
-        return f"failed{cost}"
+        apart = str(row.get("message", "")).startswith("came apart before the pull")
+        return f"{'came apart in the set' if apart else 'failed'}{cost}"
     if row.get("verdict") == "slips" and row.get("slip_load_N") is not None:
         undone = " undone" if row.get("came_undone") else ""
         return f"{_fmt(row['slip_load_N'])}{undone}{cost}"

@@ -38,10 +38,18 @@ closure keeps its start value: the ends lifted up (+z) or down (-z) before being
 far outside (the free tail end of a bowline swings out of its eye under or over an eye
 leg, which changes one closure and not the other; a strand through another changes
 both). Up to the slip, a change of the knot type or of the winding fails the run
-(``status`` failed, the time and the invariant in ``message``); after the slip (the tail
-end travelling through the knot) and for the cut halves a change is reported. The
-overlap watch of every accepted step (no two strands closer than d/2) excludes a strand
-passing through another.
+(``status`` failed, the time and the invariant in ``message``), unless the knot **came
+undone** (:meth:`LoopScene._undone`, looked at in the pull every
+:data:`~knotmech.scenes.bends.UNDONE_EVERY` s and on every frame): the type changed in
+both closures with the tail end drawn towards the knot by more than the slip draw-in (the
+tail drawn through the knot, as the tied bends'), or, for a knot whose curve sets
+``info["min_crossings"]`` (the alpine butterfly), the rope's average crossing number
+(:func:`~knotmech.scenes.tied.crossings.average_crossings`) fallen below it: a slip at the
+largest force before that frame, ``came_undone`` True, the message "came undone at t =
+...", frames after it not checked. A butterfly fallen apart before the pull fails the run
+("came apart before the pull": no slip load). After the slip and for the cut halves a
+change is reported. The overlap watch of every accepted step (no two strands closer than
+d/2) excludes a strand passing through another.
 Friction: the tied bends' law (anchor, cap floored at
 :data:`knotmech.scenes.bends.TIED_CAP_FLOOR`), with the path tunnelling guard.
 
@@ -52,11 +60,12 @@ undone in the set), let go in the release (both ends held), free in the pull, wh
 ends are pulled apart along their end tangents (the force: the mean of the two grips'
 reactions). The draw-ins are then the eye drawn into the knot and the rope drawn out of the
 knot into the right end; the invariants, the closed rope's knot type and the linking number
-of the rope's halves cut at the eye (:data:`END_KEYS`: 1 while the eye passes through the
-window; a change up to the slip is kept in ``invariants_checked`` and reported as the knot
-coming undone; on drawn-up frames the Gauss integral of :func:`linking_number` is not
-always near an integer, so the flag is a prompt to look at the frames, not a proof, and
-``topology_preserved`` is the knot type's alone).
+of the rope's halves cut at the eye's tip, each closed from outside the knot
+(:data:`END_KEYS`, :func:`~knotmech.scenes.tied.eye_linking.cut_linking`: 1 while the
+tongue passes through the window, counted exactly; its change up to the slip is the knot
+coming undone), both in ``topology_preserved``. Neither sees the butterfly fall apart into
+an eye with its legs twisted once (the same invariants); its average crossing number does
+(:mod:`knotmech.scenes.tied.crossings`).
 """
 
 from __future__ import annotations
@@ -339,7 +348,8 @@ def loop(
         Both ends held while the contacts settle; also the length of the release (the
         standing end held, the tail let go) between the set and the pull.
     n_nodes : int, optional
-        Nodes of the rope (default: its record's, 175 bowline, 300 figure-eight loop).
+        Nodes of the rope (default: its record's, 175 bowline, 130 figure-eight loop and
+        alpine butterfly).
     dt : float [s]
         Nominal step.
     slip_draw_in : float [m], optional
@@ -372,8 +382,8 @@ def loop(
     -----
     Cost at the defaults (d = 4 mm, E = 1 MPa, D = 20 mm): bowline 10-11 s of CPU (175
     nodes), figure-eight loop 21-56 s over mu = 0.1-1 (130 nodes, drawn-in start), alpine
-    butterfly (210 nodes, set up to 60 d) see the note; ``benchmarks/tied.py --loops``,
-    docs/notes/knots-and-curves/tied-loops-pulled.md.
+    butterfly 4-6 s (130 nodes, drawn-in start: it falls apart in the set, see the note);
+    ``benchmarks/tied.py --loops``, docs/notes/knots-and-curves/tied-loops-pulled.md.
     """
     rec = _record(knot)
     defaults = {"n_nodes": 150, "n_frames": 20, "pull_distance_d": 20.0, "set_travel_d": 20.0,

@@ -22,6 +22,19 @@ inner track (south, west, north), over C2, up the window's left arm, under C1 an
 the far right. Six crossings; both ends leave the knot in opposite directions (along -x
 and +x) and the eye sticks out sideways (-y).
 
+Drawn in (:func:`_drawn_in`, as the figure-eight loop is drawn in by
+:mod:`~knotmech.scenes.tied._snug`): that loose rope (229 d at D = 5 d, the knot about
+33 x 25 d) without its eye is scaled by :data:`SCALE` in the plane (the crossings' heights
+kept, an isotopy) and pushed apart by repulsion sweeps to a clearance of 1.25 d; both ends
+are run on by :data:`EXTEND` and the eye laid for the pin between its legs, whose ends are
+2.1 d apart. The knot is then about 12 x 8 d, 73 d of rope without the ends and the eye
+(126 d in all at D = 5 d), its average crossing number
+(:func:`~knotmech.scenes.tied.crossings.average_crossings`) 9.9-10.1 (7.0 loose).
+``info["min_crossings"]`` (:data:`MIN_CROSSINGS`): the loop scene counts the knot fallen
+apart below it. A solid rod (kappa 1) springs open from this start in the first 0.2 s and
+falls apart into an eye with its legs twisted once, which has the same invariants
+(docs/notes/knots-and-curves/tied-loops-pulled.md).
+
 Topology, proven in ``tests/scenes/test_tied_curves.py``:
 
 - both ends joined far outside (the eye left as it is): the **unknot**. The knot is tied
@@ -98,7 +111,8 @@ LEG_B = (
 
 def alpine_butterfly(*, rod_diameter: float, n_nodes: int = 150,
                      pin_diameter: float) -> TiedKnot:  # fmt: skip
-    r"""Alpine butterfly, drawn in (snug, not tight), with its eye round a pin.
+    r"""Alpine butterfly, drawn in (snug, not tight; module docstring), with its eye round a
+    pin.
 
     Parameters
     ----------
