@@ -18,7 +18,8 @@ against the bending scale kappa at mu = 0.3, :data:`KAPPA_MU`, for each knot run
 more kappa)::
 
     OPENBLAS_NUM_THREADS=1 python -m validation.tied_slip_table --run \
-        --knots sheet-bend,bowline --mu 0.1,0.3,0.6,1.0 [--bending-scale 0.01]
+        --knots sheet-bend,bowline --mu 0.1,0.3,0.6,1.0 [--bending-scale 0.01] \
+        [--loading end-to-end]
     python -m validation.tied_slip_table            # --render (the default)
 
 A pull stops when a pulled end reaches 0.1 EA (:data:`knotmech.scenes.bends.STRAIN_LIMIT`,
@@ -86,7 +87,7 @@ def _check(mu: float, bending_scale: float, pin_diameter: float) -> None:
 
 
 def slip_row(knot: str, mu: float, *, bending_scale: float = 1.0,
-             pin_diameter: float = 0.02) -> dict:  # fmt: skip
+             pin_diameter: float = 0.02, loading: str = "loop") -> dict:  # fmt: skip
     """Pull one tied bend or loop at its defaults and return its row (plain JSON).
 
     Parameters
@@ -99,6 +100,9 @@ def slip_row(knot: str, mu: float, *, bending_scale: float = 1.0,
         kappa in (0, 1]: bending stiffness times the solid rod's (a rope ~ 0.01).
     pin_diameter : float [m]
         The loops' pin (default 20 mm = 5 d); not used by a bend.
+    loading : str
+        A loop's loading (``"loop"``, or ``"end-to-end"`` for the alpine butterfly); not
+        used by a bend.
 
     Returns
     -------
@@ -118,7 +122,8 @@ def slip_row(knot: str, mu: float, *, bending_scale: float = 1.0,
     family = _family(knot)
     _check(mu, bending_scale, pin_diameter)
     return (bend_row if family == "bend" else loop_row)(
-        knot, mu, bending_scale=bending_scale, pin_diameter=pin_diameter)  # fmt: skip
+        knot, mu, bending_scale=bending_scale, pin_diameter=pin_diameter,
+        loading=loading)  # fmt: skip
 
 
 def bend_row(knot: str, mu: float, *, bending_scale: float = 1.0, **_) -> dict:
@@ -131,12 +136,15 @@ def bend_row(knot: str, mu: float, *, bending_scale: float = 1.0, **_) -> dict:
 
 
 def loop_row(knot: str, mu: float, *, bending_scale: float = 1.0,
-             pin_diameter: float = 0.02, **_) -> dict:  # fmt: skip
-    """The row of one loop pull round a pin (:func:`slip_row`; no input check here)."""
+             pin_diameter: float = 0.02, loading: str = "loop", **_) -> dict:  # fmt: skip
+    """The row of one loop pull round a pin, or end to end (:func:`slip_row`; no input
+    check here)."""
     from knotmech.scenes.loops import loop
 
     t = time.process_time()
-    r = loop(knot, pin_diameter=pin_diameter, mu_rod_rod=mu, bending_scale=bending_scale)
+    pin = None if loading == "end-to-end" else pin_diameter
+    r = loop(knot, pin_diameter=pin, mu_rod_rod=mu, bending_scale=bending_scale,
+             loading=loading)  # fmt: skip
     return {"cpu_s": time.process_time() - t, **r.summary(rod_diameter=D)}
 
 
@@ -153,26 +161,30 @@ def warm_up(family: str) -> None:
              pull_distance=1e-3, n_frames=10)  # fmt: skip
 
 
-def file_for(knot: str, bending_scale: float = 1.0, folder=FOLDER) -> Path:
-    """``<folder>/<knot>.json``, or ``<knot>-kappa<k>.json`` for kappa != 1."""
+def file_for(knot: str, bending_scale: float = 1.0, folder=FOLDER, loading: str = "loop") -> Path:
+    """``<folder>/<knot>.json``, or ``<knot>-kappa<k>.json`` for kappa != 1 (end to end:
+    ``<knot>-end-to-end.json``)."""
     tail = "" if bending_scale == 1.0 else f"-kappa{bending_scale:g}"
+    tail = ("-end-to-end" if loading == "end-to-end" else "") + tail
     return Path(folder) / f"{knots.key(knot)}{tail}.json"
 
 
-def add_rows(knot: str, mus, *, bending_scale: float = 1.0, folder=FOLDER, log=print) -> Path:
+def add_rows(knot: str, mus, *, bending_scale: float = 1.0, folder=FOLDER, log=print,
+             loading: str = "loop") -> Path:  # fmt: skip
     """Run :func:`slip_row` at each mu and add the rows to the knot's file (written after
     each run, so a stopped batch keeps what it made)."""
     family = _family(knot)
     for mu in mus:
         _check(mu, bending_scale, 0.02)
-    path = file_for(knot, bending_scale, folder)
+    path = file_for(knot, bending_scale, folder, loading)
     data = json.loads(path.read_text()) if path.is_file() else {}
     # keys as this function writes them ("1", not "1.0"), so that a re-run replaces its row
     rows = {f"{float(m):g}": r for m, r in data.get("rows", {}).items()}
-    data = {"knot": knots.key(knot), "loading": knots.get(knot).loading,
+    named = loading if loading in _NAMED_LOADINGS else knots.get(knot).loading
+    data = {"knot": knots.key(knot), "loading": named,
             "bending_scale": bending_scale, "rows": rows}  # fmt: skip
     for mu in mus:
-        row = slip_row(knot, mu, bending_scale=bending_scale)
+        row = slip_row(knot, mu, bending_scale=bending_scale, loading=loading)
         data["rows"][f"{mu:g}"] = row
         data["rows"] = dict(sorted(data["rows"].items(), key=lambda kv: float(kv[0])))
         path.parent.mkdir(parents=True, exist_ok=True)
@@ -212,11 +224,13 @@ def _fmt(x) -> str:
 
 
 def _cell(row: dict) -> str:
-    """``0.0347 (8.9 s)``, ``holds (to 0.505) (11 s)`` or ``failed (12 s)``."""
+    """``0.0347 (8.9 s)``, ``holds (to 0.505) (11 s)``, ``failed (12 s)`` or ``came apart in
+    the set (2.7 s)`` (a knot fallen apart before the pull: no slip load)."""
     cpu = row.get("cpu_s")
     cost = "" if cpu is None else f" ({cpu:.0f} s)" if cpu >= 10 else f" ({cpu:.1f} s)"
     if row.get("status") not in (None, "success"):
-        return f"failed{cost}"
+        apart = str(row.get("message", "")).startswith("came apart before the pull")
+        return f"{'came apart in the set' if apart else 'failed'}{cost}"
     if row.get("verdict") == "slips" and row.get("slip_load_N") is not None:
         undone = " undone" if row.get("came_undone") else ""
         return f"{_fmt(row['slip_load_N'])}{undone}{cost}"
@@ -439,6 +453,11 @@ def main(argv=None) -> int:
     p.add_argument("--knots", default="", help="comma-separated tied bends and loops")
     p.add_argument("--mu", default="0.1,0.3,0.6,1.0")
     p.add_argument("--bending-scale", type=float, default=1.0)
+    p.add_argument(
+        "--loading",
+        default="loop",
+        help="the loops' loading: loop (default) or end-to-end (alpine butterfly)",
+    )
     a = p.parse_args(argv)
     try:
         if a.run:
@@ -450,7 +469,7 @@ def main(argv=None) -> int:
             for fam in dict.fromkeys(fams):
                 warm_up(fam)
             for k in names:
-                add_rows(k, mus, bending_scale=a.bending_scale)
+                add_rows(k, mus, bending_scale=a.bending_scale, loading=a.loading)
         print(json.dumps(render()))
     except InputError as e:
         print(f"error: {e}")

@@ -72,9 +72,7 @@ _BUTTERFLY_LOADING = (
 #: (name, aliases, summary, curve keywords, scene defaults, loading) of the loops of
 #: knotmech.scenes.tied: the bowline's tail 15 d (the curve's default 7 d is consumed when
 #: the loose knot tightens, before anything slips); scene default "loadings": the loadings
-#: its scene takes (default only "loop"); the alpine butterfly sets for up to 60 d: its
-#: loose start shape (229 d of rope, six crossings) has not reached the set tension after
-#: 20 d (docs/notes/knots-and-curves/tied-loops-pulled.md)
+#: its scene takes (default only "loop") (docs/notes/knots-and-curves/tied-loops-pulled.md)
 _TIED_LOOPS = (
     ("bowline", ("bowline-knot", "bowline-loop"),
      "a fixed eye: a bight of the tail through a nipping loop in the standing part, round "
@@ -89,7 +87,7 @@ _TIED_LOOPS = (
                           "lineman-loop", "linemans-knot"),
      "a mid-line fixed eye tied in the bight (ABoK #1053): a bight twisted twice, its end "
      "passed through the window between the twists; loadable on the loop and end to end",
-     {}, {"n_nodes": 210, "set_travel_d": 60.0, "loadings": ("loop", "end-to-end")},
+     {}, {"n_nodes": 130, "loadings": ("loop", "end-to-end")},
      _BUTTERFLY_LOADING),
 )  # fmt: skip
 

@@ -40,10 +40,18 @@ closure keeps its start value: the ends lifted up (+z) or down (-z) before being
 far outside (the free tail end of a bowline swings out of its eye under or over an eye
 leg, which changes one closure and not the other; a strand through another changes
 both). Up to the slip, a change of the knot type or of the winding fails the run
-(``status`` failed, the time and the invariant in ``message``); after the slip (the tail
-end travelling through the knot) and for the cut halves a change is reported. The
-overlap watch of every accepted step (no two strands closer than d/2) excludes a strand
-passing through another.
+(``status`` failed, the time and the invariant in ``message``), unless the knot **came
+undone** (:meth:`LoopScene._undone`, looked at in the pull every
+:data:`~knotmech.scenes.bends.UNDONE_EVERY` s and on every frame): the type changed in
+both closures with the tail end drawn towards the knot by more than the slip draw-in (the
+tail drawn through the knot, as the tied bends'), or, for a knot whose curve sets
+``info["min_crossings"]`` (the alpine butterfly), the rope's average crossing number
+(:func:`~knotmech.scenes.tied.crossings.average_crossings`) fallen below it: a slip at the
+largest force before that frame, ``came_undone`` True, the message "came undone at t =
+...", frames after it not checked. A butterfly fallen apart before the pull fails the run
+("came apart before the pull": no slip load). After the slip and for the cut halves a
+change is reported. The overlap watch of every accepted step (no two strands closer than
+d/2) excludes a strand passing through another.
 Friction: the tied bends' law (anchor, cap floored at
 :data:`knotmech.scenes.bends.TIED_CAP_FLOOR`), with the path tunnelling guard.
 
@@ -54,11 +62,12 @@ undone in the set), let go in the release (both ends held), free in the pull, wh
 ends are pulled apart along their end tangents (the force: the mean of the two grips'
 reactions). The draw-ins are then the eye drawn into the knot and the rope drawn out of the
 knot into the right end; the invariants, the closed rope's knot type and the linking number
-of the rope's halves cut at the eye (:data:`END_KEYS`: 1 while the eye passes through the
-window; a change up to the slip is kept in ``invariants_checked`` and reported as the knot
-coming undone; on drawn-up frames the Gauss integral of :func:`linking_number` is not
-always near an integer, so the flag is a prompt to look at the frames, not a proof, and
-``topology_preserved`` is the knot type's alone).
+of the rope's halves cut at the eye's tip, each closed from outside the knot
+(:data:`END_KEYS`, :func:`~knotmech.scenes.tied.eye_linking.cut_linking`: 1 while the
+tongue passes through the window, counted exactly; its change up to the slip is the knot
+coming undone), both in ``topology_preserved``. Neither sees the butterfly fall apart into
+an eye with its legs twisted once (the same invariants); its average crossing number does
+(:mod:`knotmech.scenes.tied.crossings`).
 """
 
 from __future__ import annotations
@@ -76,6 +85,7 @@ from knotmech.scenes._common import check_memory, check_run_size, frames_bytes, 
 from knotmech.scenes._scene import RunControl, Scene, SceneRun, grip_path, post_contact
 from knotmech.scenes.bends import (
     TIED_CAP_FLOOR,
+    UNDONE_EVERY,
     BendPull,
     BendRopes,
     StrainStop,
@@ -86,7 +96,9 @@ from knotmech.scenes.bends import (
 )
 from knotmech.scenes.curves import _edge_distances
 from knotmech.scenes.tied import measure
-from knotmech.scenes.tied._common import closed_alone, linking_number
+from knotmech.scenes.tied._common import invariant, join_far
+from knotmech.scenes.tied.crossings import average_crossings
+from knotmech.scenes.tied.eye_linking import cut_linking
 from knotmech.scenes.tied.pulled import NEAR_SET, OWN, PARALLEL, end_direction, invariants_changed
 
 __all__ = ["LoopResult", "LoopScene", "loop", "LOOPS", "loop_inside", "loop_lengths"]
@@ -99,11 +111,10 @@ EYE_D = 5.0
 
 #: invariants whose change fails a run: the closed rope's knot type and its turns round the pin
 FAIL_KEYS = ("alexander", "winding_pin")  # alexander: kept by either closure (up or down)
-#: end to end (no pin), reported: the linking of the rope's halves cut at the eye (1 while
-#: the eye is through the window; 0 when it has been drawn out: the knot came undone). Not
-#: part of ``topology_preserved``: once the cut point is inside the drawn-up knot the two
-#: closures, which share it, touch and the number is not reliable
-#: (docs/notes/knots-and-curves/tied-loops-pulled.md)
+#: end to end (no pin): the linking of the rope's halves cut at the eye's tip, each closed
+#: from outside the knot (:func:`~knotmech.scenes.tied.eye_linking.cut_linking`; 1 while
+#: the tongue is through the window, 0 when it has been drawn out: the knot came undone),
+#: kept with the closed rope's knot type in ``topology_preserved``
 END_KEYS = ("linking_cut",)
 
 
@@ -147,6 +158,11 @@ class LoopResult:
         :data:`knotmech.scenes.bends.STRAIN_LIMIT` EA
         (:class:`~knotmech.scenes.bends.StrainStop`) and the loop had not slipped: it held
         to at least ``max_force``, a lower bound of its slip load (``verdict`` "holds").
+    came_undone : bool
+        The knot came undone in the pull (:meth:`LoopScene._undone`): the tail drawn
+        through the knot (end to end: the eye's halves unlinked, the tongue out of the
+        window); a slip at that frame (``verdict`` "slips", the slip load the largest
+        force before it; frames after it not checked).
     """
 
     knot: str
@@ -173,14 +189,15 @@ class LoopResult:
     stats: dict = field(default_factory=dict)
     loading: str = "loop"
     held_to_strain_limit: bool = False
+    came_undone: bool = False
 
     @property
     def topology_preserved(self) -> bool:
         """The closed rope's knot type and its winding about the pin kept on every frame
-        checked (end to end: the knot type; the cut halves' linking is reported only, see
-        :data:`END_KEYS`)."""
+        checked (end to end: the knot type and the cut halves' linking, :data:`END_KEYS`;
+        a knot that came undone is checked up to that frame, ``came_undone``)."""
         s, c = self.invariants_start, self.invariants_checked
-        keys = ("alexander",) if self.loading == "end-to-end" else FAIL_KEYS
+        keys = ("alexander", *END_KEYS) if self.loading == "end-to-end" else FAIL_KEYS
         return all(s.get(k) == c.get(k) for k in keys)
 
     def summary(self, rod_diameter: float) -> dict:
@@ -198,6 +215,7 @@ class LoopResult:
             tail_draw_in_d=last(self.tail_draw_in), eye_growth_d=last(self.eye_growth),
             pull_travel_d=last(self.pull_displacement),
             topology_preserved=bool(self.topology_preserved), pin_diameter_m=self.pin_diameter,
+            came_undone=bool(self.came_undone),
         )  # fmt: skip
         return row
 
@@ -222,6 +240,7 @@ class LoopResult:
             "mu_rod_rod": self.mu_rod_rod,
             "mu_pin": self.mu_pin,
             "topology_preserved": self.topology_preserved,
+            "came_undone": bool(self.came_undone),
             "frames_checked": int(self.frames_checked),
             "law": self.law,
             "held_to_strain_limit": bool(self.held_to_strain_limit),
@@ -340,7 +359,8 @@ def loop(
         Both ends held while the contacts settle; also the length of the release (the
         standing end held, the tail let go) between the set and the pull.
     n_nodes : int, optional
-        Nodes of the rope (default: its record's, 175 bowline, 300 figure-eight loop).
+        Nodes of the rope (default: its record's, 175 bowline, 130 figure-eight loop and
+        alpine butterfly).
     dt : float [s]
         Nominal step.
     slip_draw_in : float [m], optional
@@ -374,8 +394,8 @@ def loop(
     Cost at the defaults (d = 4 mm, E = 1 MPa, D = 20 mm): bowline 10-11 s of CPU (175
     nodes), figure-eight loop 10-27 s over mu = 0.1-1 (130 nodes, drawn-in start; at
     mu >= 0.6 stopped at the strain limit, 56 s at mu = 1 before the stop), alpine
-    butterfly (210 nodes, set up to 60 d) see the note; ``benchmarks/tied.py --loops``,
-    docs/notes/knots-and-curves/tied-loops-pulled.md.
+    butterfly 4-6 s (130 nodes, drawn-in start: it falls apart in the set, see the note);
+    ``benchmarks/tied.py --loops``, docs/notes/knots-and-curves/tied-loops-pulled.md.
     """
     rec = _record(knot)
     defaults = {"n_nodes": 150, "n_frames": 20, "pull_distance_d": 20.0, "set_travel_d": 20.0,
@@ -491,6 +511,7 @@ class LoopScene(Scene):
         pin = dict(knot.pin, point=(0.0, 0.0, 0.0))
         info = dict(knot.info, pin_center=(0.0, 0.0, 0.0))
         self.eye_cut = int(knot.info["eye_cut"])
+        self.min_crossings = knot.info.get("min_crossings")
         if self.ends:  # no pin: the closed rope's knot type only (no winding, no cut halves)
             pin, info = None, {k: v for k, v in info.items() if k != "eye_cut"}
         self.knot = replace(knot, ropes={"rope": x}, pin=pin, info=info)
@@ -619,8 +640,12 @@ class LoopScene(Scene):
         if not run.ok:
             return
         x = self.system.positions(run.state.q)
+        if self._apart(x):  # fell apart in the settle or the set: nothing to pull
+            self.apart_before = average_crossings(x)
+            return
         self.lengths0 = np.array(loop_lengths(x, self.d, self.h, self.eye_cut))
         self.t0 = run.t
+        self.x_pull0, self._run, self._t_undone = x, run, -np.inf
         cons = [*self._moving(run, [(self.grip, self.u)]), Clamp(edges=[self.grip[1]])]
         pulled = [self.grip]
         if self.ends:  # the right end pulled too, along its end tangent now
@@ -635,10 +660,46 @@ class LoopScene(Scene):
                   stop=self.strain_stop)  # fmt: skip
 
     def _tail_out(self, x) -> bool:
+        """Whether the tail has run out of the knot (end to end: the eye drawn into it) or,
+        looked at every :data:`~knotmech.scenes.bends.UNDONE_EVERY` s, the knot came undone
+        (:meth:`_undone`)."""
         tail, eye = loop_lengths(x, self.d, self.h, self.eye_cut)
         if self.ends:  # the eye drawn into the knot
-            return bool(eye < self.d and self.lengths0[1] - eye > self.slip)
-        return bool(tail < self.d and self.lengths0[0] - tail > self.slip)
+            out = eye < self.d and self.lengths0[1] - eye > self.slip
+        else:
+            out = tail < self.d and self.lengths0[0] - tail > self.slip
+        if out:
+            return True
+        t = self._run.live.t
+        if t - self._t_undone < UNDONE_EVERY:
+            return False
+        self._t_undone = t
+        return bool(self._undone(x))
+
+    def _undone(self, x) -> str:
+        """Why the knot came undone at ``x`` [m] (``""``: it did not). A knot with
+        ``info["min_crossings"]`` (the alpine butterfly): :meth:`_apart`. On the loop: the
+        closed rope's knot type differs from the start's in both closures (lifted up and down:
+        :meth:`_frame_invariants`) while the tail end has moved towards the knot by more
+        than the slip draw-in since the pull began (the tail drawn through the knot, as
+        :meth:`knotmech.scenes.bends.TiedBendScene._undone`). End to end: the linking of
+        the rope's halves cut at the eye (:func:`~knotmech.scenes.tied.eye_linking.
+        cut_linking`) differs from the start's (the tongue drawn out of the window). The
+        overlap watch of every step excludes a strand passing through another; a knot type
+        changed with the tail not drawn in fails the run (:meth:`_topology`)."""
+        if self._apart(x):
+            return f"its average crossing number below {self.min_crossings:g} (fell apart)"
+        if self.ends:
+            now = self._cut_linking(x)
+            if now is not None and now != self.inv_start.get("linking_cut"):
+                return "the eye's halves unlinked: the tongue drawn out of the window"
+            return ""
+        u = end_direction(self.x_pull0, "end")
+        if float((self.x_pull0[-1] - x[-1]) @ u) <= self.slip:
+            return ""
+        if self._frame_invariants(x, cut=False)["alexander"] != self.inv_start["alexander"]:
+            return "its tail drawn through the knot"
+        return ""
 
     # -- measure ---------------------------------------------------------------------
     def measure(self, run: SceneRun) -> LoopResult:
@@ -649,12 +710,21 @@ class LoopScene(Scene):
         force = self._force(run, tp)
         draw, out = self._draw(pm)
         pulled = bool(np.isfinite(force).any() and np.nanmax(force) > 0)
-        if pulled:
+        self.k_undone = None
+        if pulled:  # came undone up to the slip: a slip there (later: the slip's aftermath)
+            self.k_undone = self._first_undone(pm, _slip_frame(force, draw, out, self.slip))
+            if self.k_undone is not None:
+                out[self.k_undone :] = True
             verdict, slip_load, _ = _bend_verdict(force, draw, out, self.slip)
             k_slip = _slip_frame(force, draw, out, self.slip)
         else:  # no pull frame, or no positive pull force recorded
             verdict, slip_load, k_slip = "", float("nan"), len(force) - 1
         status, message = self._topology(run, pm, tp, k_slip)
+        if hasattr(self, "apart_before"):
+            status, message = "failed", (
+                f"came apart before the pull (settle and set): average crossing number "
+                f"{self.apart_before:.1f} < {self.min_crossings:g} (a twisted eye, not the "
+                "knot); no slip load")  # fmt: skip
         if status == "success" and not pulled:
             status, message = "failed", "no pull frame with a positive pull force recorded"
         if status != "success":
@@ -676,6 +746,7 @@ class LoopScene(Scene):
             frames_checked=getattr(self, "frames_checked", 0), law=self._law(),
             positions=pos, status=status, message=message, stats=stats, loading=self.loading,
             held_to_strain_limit=held,
+            came_undone=status == "success" and getattr(self, "k_undone", None) is not None,
         )  # fmt: skip
 
     def _force(self, run, tp):
@@ -703,15 +774,39 @@ class LoopScene(Scene):
                 f"path tunnelling guard; pin: anchor friction mu = {self.mu_pin:g}")  # fmt: skip
 
     def _draw(self, pm):
-        """(n, 2) [m] tail draw-in and eye growth since the pull began; (n,) tail run out."""
+        """(n, 2) [m] tail draw-in and eye growth since the pull began; (n,) tail run out
+        (end to end: the eye drawn into the knot)."""
         if not len(pm):
             return np.zeros((0, 2)), np.zeros(0, bool)
         k = self.eye_cut
         now = np.array([loop_lengths(x, self.d, self.h, k) for x in pm])
         draw = np.column_stack([self.lengths0[0] - now[:, 0], now[:, 1] - self.lengths0[1]])
         if self.ends:  # rope drawn out of the knot into the right end, the eye drawn in
-            return -draw, (now[:, 1] < self.d) & (-draw[:, 1] > self.slip)
-        return draw, (now[:, 0] < self.d) & (draw[:, 0] > self.slip)
+            draw, out = -draw, (now[:, 1] < self.d) & (-draw[:, 1] > self.slip)
+        else:
+            out = (now[:, 0] < self.d) & (draw[:, 0] > self.slip)
+        return draw, out
+
+    def _apart(self, x) -> bool:
+        """Whether a knot whose curve sets ``info["min_crossings"]`` (the alpine butterfly)
+        fell apart at ``x``: its average crossing number
+        (:func:`~knotmech.scenes.tied.crossings.average_crossings`) below that (a twisted
+        eye, whose invariants are the butterfly's)."""
+        least = self.min_crossings
+        return least is not None and average_crossings(x) < least
+
+    def _first_undone(self, pm, last: int):
+        """The first pull frame up to ``last`` where the knot came undone (:meth:`_undone`),
+        or None."""
+        for j in range(min(last + 1, len(pm))):
+            self.undone_why = self._undone(pm[j])
+            if self.undone_why:
+                return j
+        return None
+
+    def _undone_note(self, t) -> str:
+        return (f"came undone at t = {t:.3f} s: {self.undone_why} (a slip; frames after it "
+                "not checked)")  # fmt: skip
 
     def _slipped_by(self, draw) -> str:
         if not draw.size:
@@ -720,29 +815,42 @@ class LoopScene(Scene):
         return {(True, False): "tail", (False, True): "eye", (True, True): "both"}.get(
             (bool(grew[0]), bool(grew[1])), "")  # fmt: skip
 
+    def _alexander(self, x) -> tuple:
+        """Alexander polynomial of the rope at ``x`` closed far outside (ends lifted up, the
+        far circle about the pin's axis; end to end about the rope's centroid): the
+        ``alexander`` of :func:`~knotmech.scenes.tied.measure`."""
+        centre = None if self.knot.pin is None else self.knot.pin["point"]
+        return invariant(join_far([x], center=centre))
+
     def _alexander_down(self, x) -> tuple:
         """Alexander polynomial of the rope closed with its ends lifted down (-z): the
         frame mirrored in z and closed as usual (the polynomial does not see the mirror)."""
-        return self._measure(x * np.array([1.0, 1.0, -1.0]))["alexander"]
+        return self._alexander(x * np.array([1.0, 1.0, -1.0]))
+
+    def _cut_linking(self, x) -> int | None:
+        """End to end: the linking of the rope's halves cut at the eye's tip (the node
+        ``eye_cut``, material), each closed from outside the knot along the ray from the
+        knot's centre (the mean of the nodes inside it, :func:`loop_inside`) through its
+        cut end (:func:`~knotmech.scenes.tied.eye_linking.cut_linking`)."""
+        inside = loop_inside(x, self.d)
+        centre = x[inside].mean(axis=0) if inside.any() else None
+        return cut_linking(x, self.eye_cut, centre)
 
     def _measure(self, x) -> dict:
         """:func:`~knotmech.scenes.tied.measure` of the rope at ``x``; end to end (no pin)
-        with ``linking_cut``: the rope cut at the eye, each half closed alone about the
-        rope's centroid, their linking number."""
+        with ``linking_cut`` (:meth:`_cut_linking`)."""
         out = measure(replace(self.knot, ropes={"rope": x}))
         if self.ends:
-            k = self.eye_cut
-            a, b = x[: k + 1], x[k:]
-            out["linking_cut"] = int(round(linking_number(
-                closed_alone(a, [b]), closed_alone(b, [a], scale=2.5))))  # fmt: skip
+            out["linking_cut"] = self._cut_linking(x)
         return out
 
-    def _frame_invariants(self, x) -> dict:
-        """:func:`~knotmech.scenes.tied.measure` of one frame; ``alexander`` the start's
-        when either closure keeps its start value: the ends lifted up (+z, the curve's
-        closure) or down. A free tail end passing under a strand changes the first, over
-        one the second; a strand through another changes both."""
-        now = self._measure(x)
+    def _frame_invariants(self, x, *, cut: bool = True) -> dict:
+        """:func:`~knotmech.scenes.tied.measure` of one frame (``cut`` False: the closed
+        rope's ``alexander`` alone); ``alexander`` the start's when either closure keeps
+        its start value: the ends lifted up (+z, the curve's closure) or down. A free tail
+        end passing under a strand changes the first, over one the second; a strand
+        through another changes both."""
+        now = self._measure(x) if cut else {"alexander": self._alexander(x)}
         if now.get("alexander") != self.inv_start.get("alexander"):
             if self._alexander_down(x) == self.alex_down0:
                 now["alexander"] = self.inv_start["alexander"]
@@ -757,6 +865,8 @@ class LoopScene(Scene):
         self.inv_checked = got = dict(self.inv_start)
         self.frames_checked, moved = 0, {}
         for k in range(len(pm)):
+            if self.k_undone is not None and k >= self.k_undone:
+                return run.status, run.message or self._undone_note(tp[k])
             try:
                 now = self._frame_invariants(pm[k])
             except InputError as e:

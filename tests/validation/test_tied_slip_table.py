@@ -101,6 +101,18 @@ def test_row_maker_refuses_bad_kappa_and_pin():
 def test_aliases_name_the_same_file(tmp_path):
     assert t.file_for("EDK", folder=tmp_path).name == "flat-overhand-bend.json"
     assert t.file_for("bowline", 0.01, tmp_path).name == "bowline-kappa0.01.json"
+    end = t.file_for("butterfly", folder=tmp_path, loading="end-to-end")
+    assert end.name == "alpine-butterfly-end-to-end.json"
+
+
+def test_a_knot_fallen_apart_before_the_pull_is_its_own_cell():
+    """A loop run that failed because its knot came apart in the settle or the set (the
+    alpine butterfly) reads so; any other failure stays "failed"."""
+    apart = {"cpu_s": 2.5, "status": "failed",
+             "message": "came apart before the pull (settle and set): average crossing "
+                        "number 2.0 < 4 (a twisted eye, not the knot); no slip load"}  # fmt: skip
+    assert t._cell(apart) == "came apart in the set (2.5 s)"
+    assert t._cell({**apart, "message": "knot type changed"}) == "failed (2.5 s)"
 
 
 def test_cli_bad_input_exits_2_in_one_line(capsys):

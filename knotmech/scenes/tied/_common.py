@@ -33,6 +33,7 @@ from scipy.spatial import cKDTree
 
 from knotmech.errors import InputError, check_positive
 from knotmech.scenes.curves import min_separation, resample_polyline
+from knotmech.scenes.tied.eye_linking import cut_linking
 from knotmech.scenes.topology import knot_invariant, winding_number
 
 __all__ = [
@@ -613,7 +614,9 @@ def measure(knot: TiedKnot) -> dict:
     - ``alexander_cut``, ``linking_cut`` (a loop's rope cut at ``info["eye_cut"]``, the
       node of the eye farthest round the pin: the two halves closed on their own, about
       the pin's axis; ``linking_cut`` unless ``info["cut_linking"]`` is False: a tail that
-      ends inside the eye makes it depend on the closure).
+      ends inside the eye makes it depend on the closure; the halves without the cut node,
+      each closed out along the ray from the pin's centre through its cut end, counted
+      exactly: :func:`~knotmech.scenes.tied.eye_linking.cut_linking`).
     """
     out = {}
     ropes = _open_ropes(knot)
@@ -637,7 +640,7 @@ def measure(knot: TiedKnot) -> dict:
         c2 = closed_alone(p2, [p1], scale=2.5, center=knot.pin["point"])
         out["alexander_cut"] = (invariant(c1), invariant(c2))
         if knot.info.get("cut_linking", True):
-            out["linking_cut"] = int(round(linking_number(c1, c2)))
+            out["linking_cut"] = cut_linking(r, k, knot.pin["point"])
     for name, rope in knot.ropes.items():
         if knot.ends[name][0] == "closed":
             out["alexander"] = invariant(np.vstack([rope]))

@@ -22,6 +22,19 @@ inner track (south, west, north), over C2, up the window's left arm, under C1 an
 the far right. Six crossings; both ends leave the knot in opposite directions (along -x
 and +x) and the eye sticks out sideways (-y).
 
+Drawn in (:func:`_drawn_in`, as the figure-eight loop is drawn in by
+:mod:`~knotmech.scenes.tied._snug`): that loose rope (229 d at D = 5 d, the knot about
+33 x 25 d) without its eye is scaled by :data:`SCALE` in the plane (the crossings' heights
+kept, an isotopy) and pushed apart by repulsion sweeps to a clearance of 1.25 d; both ends
+are run on by :data:`EXTEND` and the eye laid for the pin between its legs, whose ends are
+2.1 d apart. The knot is then about 12 x 8 d, 73 d of rope without the ends and the eye
+(126 d in all at D = 5 d), its average crossing number
+(:func:`~knotmech.scenes.tied.crossings.average_crossings`) 9.9-10.1 (7.0 loose).
+``info["min_crossings"]`` (:data:`MIN_CROSSINGS`): the loop scene counts the knot fallen
+apart below it. A solid rod (kappa 1) springs open from this start in the first 0.2 s and
+falls apart into an eye with its legs twisted once, which has the same invariants
+(docs/notes/knots-and-curves/tied-loops-pulled.md).
+
 Topology, proven in ``tests/scenes/test_tied_curves.py``:
 
 - both ends joined far outside (the eye left as it is): the **unknot**. The knot is tied
@@ -41,22 +54,43 @@ no pin): the alpine butterfly takes load in all three directions (ABoK #1053).
 
 from __future__ import annotations
 
+from functools import lru_cache
+
 import numpy as np
 
 from knotmech.scenes.tied._common import (
     TiedKnot,
+    bspline,
     build_ropes,
     check_pin,
     check_sizes,
     cut_at,
     eye_controls,
-    finish,
     start_checks,
+)
+from knotmech.scenes.tied._snug import (
+    FINAL_GAP,
+    FINAL_SWEEPS,
+    GAP,
+    SUB,
+    _dense,
+    _repel,
+    _resampled,
+    equal_chords,
+    run_on,
 )
 
 __all__ = ["alpine_butterfly"]
 
-TAIL = 8.0  #: straight ends [d]
+TAIL = 8.0  #: straight ends of the loose rope [d]
+EYE_R = 3.0  #: centreline radius of the loose rope's eye while it is drawn in [d]
+EXTEND = 12.0  #: both ends run on beyond the drawn-in knot [d]
+SCALE = 0.35  #: the loose rope's plane scaled by this to draw it in
+ROUNDS = 10  #: rounds of repulsion sweeps after the scaling, each followed by a resampling
+#: still tied while the rope's average crossing number
+#: (:func:`~knotmech.scenes.tied.crossings.average_crossings`) is at least this: about 10
+#: drawn in, 7 loose, 2 for the twisted eye it falls apart into (same invariants)
+MIN_CROSSINGS = 4.0
 #: leg A, from where the left end leaves the line y = 0 to the top of the eye's first leg
 #: [d]; z (+/-1) orders the strands at the crossings (C1, the right arm, C2, W)
 LEG_A = (
@@ -75,16 +109,17 @@ LEG_B = (
 )  # fmt: skip
 
 
-def alpine_butterfly(*, rod_diameter: float, n_nodes: int = 400,
+def alpine_butterfly(*, rod_diameter: float, n_nodes: int = 150,
                      pin_diameter: float) -> TiedKnot:  # fmt: skip
-    r"""Loosely tied alpine butterfly with its eye round a pin.
+    r"""Alpine butterfly, drawn in (snug, not tight; module docstring), with its eye round a
+    pin.
 
     Parameters
     ----------
     rod_diameter : float [m]
         d.
     n_nodes : int
-        Nodes of the rope (>= 150).
+        Nodes of the rope (>= 100).
     pin_diameter : float [m]
         D, between 0.5 d and 40 d (the eye's size; an end-to-end pull has no pin and
         uses the curve with the default pin of its scene).
@@ -96,19 +131,19 @@ def alpine_butterfly(*, rod_diameter: float, n_nodes: int = 400,
         loading), the right end at the last node; ``pin``: point, axis (z) and diameter;
         ``expected`` (module docstring); ``info["eye_cut"]``.
     """
-    d, n = check_sizes(rod_diameter, n_nodes, 150)
+    d, n = check_sizes(rod_diameter, n_nodes, 100)
     D = check_pin(pin_diameter, d, 0.5, 40)
-    a, b = np.array(LEG_A, float), np.array(LEG_B, float)
-    a = np.vstack([[a[0, 0] - TAIL - 3.0, 0, 0], [a[0, 0] - TAIL, 0, 0], a])
-    b = np.vstack([b, [b[-1, 0] + TAIL, 0, 0], [b[-1, 0] + TAIL + 3.0, 0, 0]])
+    left, right = _drawn_in(tuple(map(tuple, LEG_A)), tuple(map(tuple, LEG_B)))
+    left, right = run_on(left, EXTEND, 0.0)[:-1], run_on(right, 0.0, EXTEND)[1:]
     R = 0.5 * (D / d + 1.0)
-    center = np.array([0.5 * (a[-1, 0] + b[0, 0]), a[-1, 1] - 4.0 - 2.0 * R])
-    eye = _eye_south(a[-1], b[0], center, R)
-    (rope,), _ = build_ropes([np.vstack([a[:-1], eye, b[1:]])])
-    (nodes,) = finish([rope], d, n)
+    p_out, p_back = left[-1], right[0]
+    center = np.array([0.5 * (p_out[0] + p_back[0]), min(p_out[1], p_back[1]) - 4.0 - 2.0 * R])
+    eye = bspline(_eye_south(p_out, p_back, center, R))
+    nodes = equal_chords(np.vstack([left, eye[1:-1], right]) * d, n)
     far = np.array([center[0], center[1] - R, 0.0]) * d
     pin_c = (center[0] * d, center[1] * d, 0.0)
-    info = {"pin_center": pin_c, "eye_cut": cut_at(nodes, far), **start_checks([nodes], d)}
+    info = {"pin_center": pin_c, "eye_cut": cut_at(nodes, far), "min_crossings": MIN_CROSSINGS,
+            **start_checks([nodes], d)}  # fmt: skip
     return TiedKnot(
         name="alpine_butterfly",
         ropes={"rope": nodes},
@@ -123,6 +158,45 @@ def alpine_butterfly(*, rod_diameter: float, n_nodes: int = 400,
         },  # fmt: skip
         info=info,
     )
+
+
+def loose_rope(leg_a=LEG_A, leg_b=LEG_B, eye_radius: float = EYE_R) -> np.ndarray:
+    """The loosely tied rope [d] (dense, module docstring's construction) with its eye
+    round a pin of centreline radius ``eye_radius`` [d]."""
+    a, b = np.array(leg_a, float), np.array(leg_b, float)
+    a = np.vstack([[a[0, 0] - TAIL - 3.0, 0, 0], [a[0, 0] - TAIL, 0, 0], a])
+    b = np.vstack([b, [b[-1, 0] + TAIL, 0, 0], [b[-1, 0] + TAIL + 3.0, 0, 0]])
+    center = np.array([0.5 * (a[-1, 0] + b[0, 0]), a[-1, 1] - 4.0 - 2.0 * eye_radius])
+    eye = _eye_south(a[-1], b[0], center, eye_radius)
+    (rope,), _ = build_ropes([np.vstack([a[:-1], eye, b[1:]])])
+    return rope
+
+
+@lru_cache(maxsize=4)
+def _drawn_in(leg_a: tuple, leg_b: tuple) -> tuple[np.ndarray, np.ndarray]:
+    """The rope up to the eye and from it [d], drawn in: the loose rope
+    (:func:`loose_rope`) without its eye (the run below the legs' ends, y < -12.5 d and
+    x < -7 d), scaled by :data:`SCALE` in the plane (the crossings' heights kept: an
+    isotopy), resampled every :data:`~knotmech.scenes.tied._snug.H` and pushed apart by
+    :data:`ROUNDS` rounds of :data:`~knotmech.scenes.tied._snug.SUB` repulsion sweeps at
+    :data:`~knotmech.scenes.tied._snug.GAP` (each round resampled) and
+    :data:`~knotmech.scenes.tied._snug.FINAL_SWEEPS` at
+    :data:`~knotmech.scenes.tied._snug.FINAL_GAP` (each push a fraction of the overlap
+    along the join of two points: no strand passes through another); each piece drawn as
+    a dense spline. :func:`alpine_butterfly` lays the eye for its pin between them."""
+    rope = loose_rope(leg_a, leg_b)
+    eye = np.flatnonzero((rope[:, 1] < -12.5) & (rope[:, 0] < -7.0))
+    ps = [rope[: eye[0] + 1].copy(), rope[eye[-1] :].copy()]
+    for p in ps:
+        p[:, :2] *= SCALE
+    ps = [_resampled(p) for p in ps]
+    for _ in range(ROUNDS):
+        for _ in range(SUB):
+            ps = _repel(ps, GAP)
+        ps = [_resampled(p) for p in ps]
+    for _ in range(FINAL_SWEEPS):
+        ps = _repel(ps, FINAL_GAP)
+    return _dense(ps[0]), _dense(ps[1])
 
 
 def _quarter(p, sign: float) -> np.ndarray:
