@@ -730,6 +730,18 @@ TIED_CAP_FLOOR = rod.friction.CAP_FLOOR
 UNDONE_EVERY = 0.1
 
 
+def undone_now(scene, x) -> bool:
+    """Whether ``scene._undone(x)`` finds the knot undone, looked at no more often than every
+    :data:`UNDONE_EVERY` s of simulated time (the check closes the rope and computes its
+    knot type: too dear for every step). ``scene`` has ``_run`` (the live run), ``_t_undone``
+    (the time of the last look, -inf at the pull's start) and ``_undone``."""
+    t = scene._run.live.t
+    if t - scene._t_undone < UNDONE_EVERY:
+        return False
+    scene._t_undone = t
+    return bool(scene._undone(x))
+
+
 def _record(kind):
     """The registry record of a bend ``kind`` with a scene here; a one-line InputError
     naming the bends otherwise."""
@@ -889,11 +901,7 @@ class TiedBendScene(BendScene):
         :data:`UNDONE_EVERY` s, been drawn through it (:meth:`_undone`)."""
         if self._ran_out(tail_free_lengths(x, self.N, self.d, self.tails)).any():
             return True
-        t = self._run.live.t
-        if t - self._t_undone < UNDONE_EVERY:
-            return False
-        self._t_undone = t
-        return bool(self._undone(x))
+        return undone_now(self, x)
 
     def _undone(self, x) -> tuple:
         """The ropes (``"A"``, ``"B"``) whose tail was drawn through the knot at ``x``: the

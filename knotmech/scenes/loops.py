@@ -85,7 +85,6 @@ from knotmech.scenes._common import check_memory, check_run_size, frames_bytes, 
 from knotmech.scenes._scene import RunControl, Scene, SceneRun, grip_path, post_contact
 from knotmech.scenes.bends import (
     TIED_CAP_FLOOR,
-    UNDONE_EVERY,
     BendPull,
     BendRopes,
     StrainStop,
@@ -93,6 +92,7 @@ from knotmech.scenes.bends import (
     _plain,
     held_note,
     pull_summary,
+    undone_now,
 )
 from knotmech.scenes.curves import _edge_distances
 from knotmech.scenes.tied import measure
@@ -668,13 +668,7 @@ class LoopScene(Scene):
             out = eye < self.d and self.lengths0[1] - eye > self.slip
         else:
             out = tail < self.d and self.lengths0[0] - tail > self.slip
-        if out:
-            return True
-        t = self._run.live.t
-        if t - self._t_undone < UNDONE_EVERY:
-            return False
-        self._t_undone = t
-        return bool(self._undone(x))
+        return bool(out) or undone_now(self, x)
 
     def _undone(self, x) -> str:
         """Why the knot came undone at ``x`` [m] (``""``: it did not). A knot with

@@ -119,21 +119,15 @@ def test_alpine_butterfly_end_to_end_has_no_pin():
     assert len(_butterfly_scene(pin_diameter=20e-3).build().interactions) == 2  # and the pin
 
 
-def test_alpine_butterfly_end_to_end_comes_undone_by_linking_or_crossings(monkeypatch):
+def test_alpine_butterfly_end_to_end_comes_undone_by_linking_or_crossings(
+    butterfly_over_the_window,
+):
     """:meth:`LoopScene._undone` end to end: the start is tied; the same curve with the
     tongue laid over the window (average crossing number about 8) has its eye's halves
     unlinked; a straight rope has no crossing at all."""
-    import importlib
-
     s = _butterfly_scene(pin_diameter=20e-3, loading="end-to-end")
     assert s._undone(s.x0) == "" and s.min_crossings == 4.0
-    ab = importlib.import_module("knotmech.scenes.tied.alpine_butterfly")
-    over = {(-6.0, -6.5): 1, (-9.0, -6.5): 1, (-6.0, -9.5): 1}
-    arm = {(-5.5, -9.5), (-6.5, -8.0), (-5.5, -6.5)}
-    a = tuple((x, y, over.get((x, y), z)) for x, y, z in ab.LEG_A)
-    b = tuple((x, y, -1 if (x, y) in arm else over.get((x, y), z)) for x, y, z in ab.LEG_B)
-    monkeypatch.setattr(ab, "LEG_A", a)
-    monkeypatch.setattr(ab, "LEG_B", b)
+    ab = butterfly_over_the_window()
     x = ab.alpine_butterfly(rod_diameter=D4, pin_diameter=20e-3, n_nodes=len(s.x0)).ropes["rope"]
     assert s._undone(x) == "the eye's halves unlinked: the tongue drawn out of the window"
     straight = _polyline([(-60, 0, 0), (60, 0, 0)], 120 / (len(s.x0) - 1))
