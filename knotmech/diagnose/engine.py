@@ -567,17 +567,13 @@ def _power_law_check(rec, base, final, accepted, unexplained, fin_mis, data, sta
     power-law null explains it, so the verdict is ``undetermined``; ``reason``).
     """
     resid = rec.y - final.mean
-    sd_hf = hf_sigma(resid, rec.x, rec.trial)
-    level = float(np.sqrt(np.mean(resid**2)) / sd_hf) if sd_hf > 0 else math.inf
-    if not level <= NONE_LEVEL_MAX:
-        return None
     # the spectrum of the final remainder, standardised by its sd: an accepted effect
     # takes its own broadband power (a step's leaks to every frequency) out of it, and a
     # spurious one, fitted to the wander of 1/f noise, leaves the high frequencies as they were
-    fit = fit_power_law(resid / final.noise.sd(final.mean), starts)
-    lo, hi = POWER_LAW_BETA_RANGE
-    if fit is None or not lo <= fit.beta <= hi:
+    gate = _power_law_fit(rec, final, starts)
+    if gate is None:
         return None
+    fit, level = gate
     rng = np.random.default_rng([seed, 14])
     out = {"beta": round(fit.beta, 3), "c": float(f"{fit.c:.4g}"),
            "band_cycles_per_row": [F_HIGH, 0.5], "ordinates": fit.n_ordinates,
@@ -741,6 +737,34 @@ def _select_closed_form(base, rec, data, starts, gs, rng, alpha, effects, max_ef
     return current, accepted, tested, steps, skipped, held_before, held_cur
 
 
+def _power_law_fit(rec, model, starts):
+    """The gate of the power-law null on ``model``'s remainder, shared by
+    :func:`_power_law_candidate` and :func:`_power_law_check`.
+
+    The remainder ``rec.y - model.mean`` must be at most
+    :data:`~knotmech.diagnose.noisefloor.NONE_LEVEL_MAX` high-frequency sd (a larger one
+    is a mismatch whatever the noise), and the Whittle exponent of its high frequencies,
+    standardised by ``model``'s sd (:func:`~knotmech.diagnose.powerlaw.fit_power_law`),
+    must lie in :data:`POWER_LAW_BETA_RANGE`.
+
+    Returns
+    -------
+    tuple or None
+        ``(fit, level)``: the power-law fit and the remainder's RMS in high-frequency sd
+        (dimensionless); None when a gate fails.
+    """
+    resid = rec.y - model.mean
+    sd_hf = hf_sigma(resid, rec.x, rec.trial)
+    level = float(np.sqrt(np.mean(resid**2)) / sd_hf) if sd_hf > 0 else math.inf
+    if not level <= NONE_LEVEL_MAX:
+        return None
+    fit = fit_power_law(resid / model.noise.sd(model.mean), starts)
+    lo, hi = POWER_LAW_BETA_RANGE
+    if fit is None or not lo <= fit.beta <= hi:
+        return None
+    return fit, level
+
+
 def _power_law_candidate(rec, alt, null_c, eff, lr, data, starts, gs, rng, alpha_each):
     """A candidate effect judged against power-law (1/f-type) noise before it is accepted.
 
@@ -761,15 +785,10 @@ def _power_law_candidate(rec, alt, null_c, eff, lr, data, starts, gs, rng, alpha
         None when not tried; else ``beta``, ``p_value`` and ``bootstrap_draws`` of the
         power-law bootstrap (the candidate is accepted only if ``p_value < alpha_each``).
     """
-    resid = rec.y - alt.mean
-    sd_hf = hf_sigma(resid, rec.x, rec.trial)
-    level = float(np.sqrt(np.mean(resid**2)) / sd_hf) if sd_hf > 0 else math.inf
-    if not level <= NONE_LEVEL_MAX:
+    gate = _power_law_fit(rec, alt, starts)
+    if gate is None:
         return None
-    fit = fit_power_law(resid / alt.noise.sd(alt.mean), starts)
-    lo, hi = POWER_LAW_BETA_RANGE
-    if fit is None or not lo <= fit.beta <= hi:
-        return None
+    fit = gate[0]
     pl_null = replace(null_c, noise=PowerLawNoise.from_noise(null_c.noise, fit))
     p, b = _bootstrap_p(pl_null, eff, lr, data, starts, gs, rng, alpha_each)
     return {"beta": round(fit.beta, 3), "p_value": float(f"{p:.3g}"), "bootstrap_draws": int(b)}
