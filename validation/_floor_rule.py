@@ -1,7 +1,7 @@
 """Which rod-rod pairs should the anchor law's cap floor apply to? (issue 24, session 15)
 
 Runs one case with the anchor law's floor rule set explicitly in every scene (the hitches
-and the overhand knots alike, the hitches' own ``HITCH_CAP_FLOOR`` overridden):
+and the overhand knots alike):
 
 - ``free``: the clove-hitch paper's sec. 7 free-end hitch, as
   ``tests/cli/test_simulate_knots.py::test_clove_hitch_free_end_holds_and_tension_vanishes``
@@ -10,8 +10,11 @@ and the overhand knots alike, the hitches' own ``HITCH_CAP_FLOOR`` overridden):
   (quick mesh, 9 s pull, path guard);
 - ``kappa``: the clove-hitch point of ``benchmarks/kappa_point.py`` at ``--kappa``.
 
-``RULE`` is ``all`` (floor on every pair, the library's default law), ``sliding`` (floor
-only on pairs that slid at the last step) or ``none`` (cap floor 0, the hitches' law).
+``RULE`` is a :data:`~knotmech.rod.friction.FLOOR_RULES` entry (``all``: c (r_i + r_j) on
+every pair; ``sliding``: on the pairs that slid at the last step; ``penalty``: ``--cap-floor``
+penalty widths 1/sharpness; ``min``: the smaller of c (r_i + r_j) and c/1e-2 penalty widths,
+the library's default since session 15) or ``none`` (cap floor 0, the hitches' law of
+sessions 13-14). ``--cap-floor`` is c, except for ``penalty``, where it counts penalty widths.
 Prints one JSON line (verdict or forces, counts, process CPU [s]) and appends it to
 ``--out``::
 
@@ -44,15 +47,14 @@ def floor_rule(rule, cap_floor=CAP_FLOOR):
         cap_floor=0.0 if rule == "none" else cap_floor,
         floor_rule="all" if rule == "none" else rule,
     )
-    orig = hitch.AnchorFriction, hitch.HITCH_CAP_FLOOR, scene.AnchorFriction
-    hitch.HITCH_CAP_FLOOR = 0.0 if rule == "none" else cap_floor
+    orig = hitch.AnchorFriction, scene.AnchorFriction
     hitch.AnchorFriction = scene.AnchorFriction = lambda **k: law(
         **{kk: v for kk, v in k.items() if kk != "cap_floor"}
     )
     try:
         yield
     finally:
-        hitch.AnchorFriction, hitch.HITCH_CAP_FLOOR, scene.AnchorFriction = orig
+        hitch.AnchorFriction, scene.AnchorFriction = orig
 
 
 def free_end():

@@ -98,9 +98,16 @@ class SmoothFriction:
 #: (653 steps). Single-pair pull-out and sliding stay within 1 % of 2 mu F_n.
 CAP_FLOOR = 1e-2
 
-#: Which rod-rod pairs :attr:`AnchorFriction.cap_floor` applies to (kernel ``floor_mode``
-#: = index): every pair, or only those that slid at the last accepted step.
+#: How :attr:`AnchorFriction.floor_rule` measures the cap floor and where it applies
+#: (kernel ``floor_mode`` = index; see the class).
 FLOOR_RULES = ("all", "sliding", "penalty", "min")
+#: Default floor rule since session 15 (issue 24): the smaller of c_f (r_i + r_j) and one
+#: penalty width per 1e-2 of c_f. The clove-hitch paper's free-end hitch (sec. 7) holds with
+#: it (the radii floor alone, 3 penalty widths there, lets it slip), the coated n = 3
+#: overhand pull at mu 0.9 takes 1.31x the regularised law's steps (radii floor, 1.04
+#: penalty widths there, is the smaller), the kappa-0.01 clove point holds at 1.48x a solid
+#: rod's CPU (sticking-law-cap-width.md sec. 11).
+FLOOR_RULE = "min"
 
 
 @dataclass(frozen=True)
@@ -133,14 +140,15 @@ class AnchorFriction:
         effect on rod-cylinder contact.
     floor_rule : str
         How the floor is measured and where it applies (sticking-law-cap-width.md sec. 11):
-        "all" (default): :math:`c_f (r_i + r_j)` on every pair; "sliding": the same, only
+        "all": :math:`c_f (r_i + r_j)` on every pair (the default of issue 24 up to
+        session 15); "sliding": the same, only
         on the pairs that slid at the last accepted step (a sticking pair keeps the stiff
         cap; the commit moves an anchor whose width changes to the gap that keeps its
         force); "penalty": :math:`(c_f / \mathrm{CAP\_FLOOR}) / k` on every pair, k the
         contact penalty's sharpness [1/m], i.e. the default :math:`c_f` floors the cap at
         the penalty's own width 1/k (the tangential spring no narrower than the normal
-        one's); "min": the smaller of the two lengths, :math:`\min(c_f (r_i + r_j),
-        (c_f / \mathrm{CAP\_FLOOR}) / k)`, on every pair.
+        one's); "min" (default, :data:`FLOOR_RULE`): the smaller of the two lengths,
+        :math:`\min(c_f (r_i + r_j), (c_f / \mathrm{CAP\_FLOOR}) / k)`, on every pair.
 
     References
     ----------
@@ -151,7 +159,7 @@ class AnchorFriction:
     mu_kinetic: float | None = None
     tangential_stiffness: float | None = None
     cap_floor: float = CAP_FLOOR
-    floor_rule: str = "all"
+    floor_rule: str = FLOOR_RULE
 
     def __post_init__(self):
         check_nonnegative("mu_static", self.mu_static)
