@@ -105,7 +105,7 @@ FLOOR_RULES = ("all", "sliding", "penalty", "min")
 #: penalty width per 1e-2 of c_f. The clove-hitch paper's free-end hitch (sec. 7) holds with
 #: it (the radii floor alone, 3 penalty widths there, lets it slip), the coated n = 3
 #: overhand pull at mu 0.9 takes 1.31x the regularised law's steps (radii floor, 1.04
-#: penalty widths there, is the smaller), the kappa-0.01 clove point holds at 1.48x a solid
+#: penalty widths there, is the smaller), the kappa-0.01 clove point holds at 1.5-1.7x a solid
 #: rod's CPU (sticking-law-cap-width.md sec. 11).
 FLOOR_RULE = "min"
 
