@@ -9,7 +9,7 @@ import pytest
 from knotmech.errors import InputError
 from knotmech.rod._kernels.contact_rodrod import SLIP_GAP
 from knotmech.rod.contact import RodContact
-from knotmech.rod.friction import AnchorFriction
+from knotmech.rod.friction import FLOOR_RULES, AnchorFriction
 from tests.rod.test_contact import assemble_dense, crossing_rods, fd_jacobian
 
 K_C = 1e4
@@ -158,7 +158,7 @@ def test_friction_census_reports_the_force_the_law_applies(dx, cap_floor):
     _, anc, slip, _, known = c._anc
     rodrod_friction_census(
         q1[nd], q[nd], 1e-3, c.pairs, en, rad, c.sharpness, c.stiffness, Z_CUTOFF,
-        0.4, 0.4, 1e4, anc, slip, known, out, cap_floor,
+        0.4, 0.4, 1e4, anc, slip, known, out, cap_floor, FLOOR_RULES.index(fr.floor_rule),
     )  # fmt: skip
     main = int(np.argmax(out[:, col["fnorm"]]))
     fn = out[main, col["fnorm"]]

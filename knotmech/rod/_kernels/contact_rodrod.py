@@ -1074,9 +1074,10 @@ CENSUS_COLUMNS = (
 @njit(cache=True)
 def rodrod_friction_census(
     pos, pos_old, dt, pairs, edge_nodes, radius_edge, sharpness, stiffness, z_cutoff,
-    mu_s, mu_k, k_t, anchor, anchor_slip, known, out, cap_floor=0.0,
+    mu_s, mu_k, k_t, anchor, anchor_slip, known, out, cap_floor=0.0, floor_mode=0,
 ):  # fmt: skip
     """Diagnostics of the friction each candidate pair carries at ``pos`` (read-only).
+    ``cap_floor``, ``floor_mode``: the floor of the cap width, as in :func:`rodrod_assemble`.
 
     For each pair within the penalty's reach with a normal force, writes a row of ``out``
     (n_pairs, len(CENSUS_COLUMNS)) as named in :data:`CENSUS_COLUMNS` (rows of the other
@@ -1134,7 +1135,8 @@ def rodrod_friction_census(
         unorm, _ = _anchor_gap(x, anc, nf, cw, u)
         mu = mu_k if anchor_slip[p] else mu_s
         limit = mu * fnorm
-        a = max(limit / k_t, cap_floor * (radius_edge[ei] + radius_edge[ej]))
+        two_h = radius_edge[ei] + radius_edge[ej]
+        a = max(limit / k_t, _cap_min(cap_floor, floor_mode, two_h, sharpness, anchor_slip[p]))
         sq = np.sqrt(unorm * unorm + a * a)
         out[p, 1] = limit * unorm / sq if sq > 0.0 else 0.0
         out[p, 2] = mu
