@@ -34,7 +34,7 @@ from knotmech.rod._kernels.contact_rodrod import (
     rodrod_friction_census,
 )
 from knotmech.rod.contact import RodContact
-from knotmech.rod.friction import AnchorFriction
+from knotmech.rod.friction import FLOOR_RULES, AnchorFriction
 
 QUICK = dict(n_nodes=151, pull_speed=0.03, dt=5e-3, wait_time=0.5)
 COL = {name: i for i, name in enumerate(CENSUS_COLUMNS)}
@@ -63,15 +63,17 @@ class Census:
                 contact._align_anchors(system)
             mu_s, mu_k, k_t = contact._anchor_params()
             floor = float(contact.friction.cap_floor)
+            mode = FLOOR_RULES.index(contact.friction.floor_rule)
             _, anc, slip, _, known = contact._anc
         else:
             mu_s = mu_k = float(getattr(contact.friction, "mu", 0.0))
             k_t = floor = 0.0
+            mode = 0
             anc = np.zeros((pairs.shape[0], 2))
             slip = known = np.zeros(pairs.shape[0], dtype=bool)
         rodrod_friction_census(
             pos, pos_old, float(dt) if dt else 1.0, pairs, en, rad, contact.sharpness,
-            contact.stiffness, Z_CUTOFF, mu_s, mu_k, k_t, anc, slip, known, out, floor,
+            contact.stiffness, Z_CUTOFF, mu_s, mu_k, k_t, anc, slip, known, out, floor, mode,
         )  # fmt: skip
         return out
 

@@ -39,7 +39,7 @@ from knotmech.rod._kernels.contact_rodrod import (
     rodrod_near,
 )
 from knotmech.rod.broadphase import candidate_edge_pairs
-from knotmech.rod.friction import AnchorFriction, SmoothFriction
+from knotmech.rod.friction import FLOOR_RULES, AnchorFriction, SmoothFriction
 
 __all__ = ["Cylinder", "CylinderContact", "RodContact"]
 
@@ -394,6 +394,7 @@ class RodContact:
             known,
             slip_now,
             float(self.friction.cap_floor) if law == 1 else 0.0,
+            _floor_mode(self.friction) if law == 1 else 0,
         )
         self.last_normal_force = fn
         self._energy_cache = (pairs, pos, float(e))  # energy() at the same q is free
@@ -486,7 +487,7 @@ class RodContact:
         return rodrod_anchor_commit(
             _positions(system, q), _positions(system, q_old), self.pairs, en, rad,
             self.sharpness, self.stiffness, Z_CUTOFF, mu_s, mu_k, k_t, anc, slip, known,
-            keep, mode, float(self.friction.cap_floor),
+            keep, mode, float(self.friction.cap_floor), _floor_mode(self.friction),
         )  # fmt: skip
 
     def end_step(self, system, q_new, q_old, dt):
@@ -810,3 +811,9 @@ class CylinderContact:
             self._anchor[:] = 0.0
             self._valid[:] = False
             self._slipping[:] = False
+
+
+def _floor_mode(friction) -> int:
+    """Kernel ``floor_mode`` of an anchor law's ``floor_rule`` (its index in
+    :data:`~knotmech.rod.friction.FLOOR_RULES`)."""
+    return FLOOR_RULES.index(friction.floor_rule)

@@ -98,6 +98,17 @@ class SmoothFriction:
 #: (653 steps). Single-pair pull-out and sliding stay within 1 % of 2 mu F_n.
 CAP_FLOOR = 1e-2
 
+#: How :attr:`AnchorFriction.floor_rule` measures the cap floor and where it applies
+#: (kernel ``floor_mode`` = index; see the class).
+FLOOR_RULES = ("all", "sliding", "penalty", "min")
+#: Default floor rule since session 15 (issue 24): the smaller of c_f (r_i + r_j) and one
+#: penalty width per 1e-2 of c_f. The clove-hitch paper's free-end hitch (sec. 7) holds with
+#: it (the radii floor alone, 3 penalty widths there, lets it slip), the coated n = 3
+#: overhand pull at mu 0.9 takes 1.31x the regularised law's steps (radii floor, 1.04
+#: penalty widths there, is the smaller), the kappa-0.01 clove point holds at 1.5-1.7x a solid
+#: rod's CPU (sticking-law-cap-width.md sec. 11).
+FLOOR_RULE = "min"
+
 
 @dataclass(frozen=True)
 class AnchorFriction:
@@ -127,6 +138,17 @@ class AnchorFriction:
         law as shipped before issue 24 (the stiff cap :math:`\mu |F_n|/k_t` alone, which
         built the hold tables of ``knotmech/data`` up to then), kept to reproduce them. No
         effect on rod-cylinder contact.
+    floor_rule : str
+        How the floor is measured and where it applies (sticking-law-cap-width.md sec. 11):
+        "all": :math:`c_f (r_i + r_j)` on every pair (the default of issue 24 up to
+        session 15); "sliding": the same, only
+        on the pairs that slid at the last accepted step (a sticking pair keeps the stiff
+        cap; the commit moves an anchor whose width changes to the gap that keeps its
+        force); "penalty": :math:`(c_f / \mathrm{CAP\_FLOOR}) / k` on every pair, k the
+        contact penalty's sharpness [1/m], i.e. the default :math:`c_f` floors the cap at
+        the penalty's own width 1/k (the tangential spring no narrower than the normal
+        one's); "min" (default, :data:`FLOOR_RULE`): the smaller of the two lengths,
+        :math:`\min(c_f (r_i + r_j), (c_f / \mathrm{CAP\_FLOOR}) / k)`, on every pair.
 
     References
     ----------
@@ -137,10 +159,15 @@ class AnchorFriction:
     mu_kinetic: float | None = None
     tangential_stiffness: float | None = None
     cap_floor: float = CAP_FLOOR
+    floor_rule: str = FLOOR_RULE
 
     def __post_init__(self):
         check_nonnegative("mu_static", self.mu_static)
         check_nonnegative("cap_floor", self.cap_floor)
+        if self.floor_rule not in FLOOR_RULES:
+            raise InputError(
+                f"floor_rule must be one of {', '.join(FLOOR_RULES)}, got {self.floor_rule!r}"
+            )
         if self.mu_kinetic is not None:
             check_nonnegative("mu_kinetic", self.mu_kinetic)
             if self.mu_kinetic > self.mu_static:

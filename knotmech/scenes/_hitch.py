@@ -82,14 +82,6 @@ from knotmech.scenes._scene import RampedEndLoad, RunControl, Scene, SceneRun, p
 from knotmech.scenes.curves import _edge_distances
 from knotmech.scenes.topology import post_crossing_code, winding_number
 
-#: the cap floor of the hitches' rod-rod anchor law: 0, not the library's default
-#: (:data:`knotmech.rod.friction.CAP_FLOOR` = 1e-2 since issue 24, which lets tight overhand
-#: pulls follow mu). With the floor the clove-hitch paper's free-end hitch (sec. 7: d, D, L =
-#: 4, 30, 374 mm, T_high = 1.47 N, mu 0.3, 120 nodes) slips at t = 1.01 s; without it it
-#: holds (creep -2e-9 m/s), as in the paper's experiments and as the shipped hold tables were
-#: built (docs/notes/contact-and-friction/sticking-law-cap-width.md, session 13)
-HITCH_CAP_FLOOR = 0.0
-
 __all__ = [
     "HitchKnot",
     "HitchResult",
@@ -890,7 +882,10 @@ class HitchScene(Scene):
         if self.mrr <= 0:
             return None
         if self.fric.law == "anchor":
-            return AnchorFriction(mu_static=self.mrr, cap_floor=HITCH_CAP_FLOOR)
+            # the library's anchor law (cap floor min(1e-2 (r_i + r_j), 1/sharpness) since
+            # session 15; the hitches had cap floor 0 in session 13-14: the radii floor alone
+            # let the clove-hitch paper's free-end hitch slip, sticking-law-cap-width.md 10-11)
+            return AnchorFriction(mu_static=self.mrr)
         return SmoothFriction(self.mrr)
 
     def _dead_loads(self) -> float:

@@ -525,15 +525,16 @@ class HoldPoint:
         return f"({self.d_over_2R:.4g}, {self.t_over_EA:.3g}, mu {self.mu:g}) {state}, {why}"
 
 
-#: law of the hitch scenes that build the anchor-law hold tables since issue 24 (their meta's
-#: "law"): the hitches keep the cap floor 0 (:data:`knotmech.scenes._hitch.HITCH_CAP_FLOOR`;
-#: the library's default floor 1e-2 makes the paper's free-end clove hitch slip) and take the
-#: path tunnelling guard; a table whose law names no ``cap_floor`` was built with the law as
-#: shipped before (:attr:`HoldTable.law_note`). Written out rather than imported so that
-#: ``hold`` from a table does not load the solver (tests/rod/test_default_law.py checks that
-#: the two agree).
+#: law of the hitch scenes that build the anchor-law hold tables (their meta's "law"): the
+#: library's anchor law (cap floor min(1e-2 (r_i + r_j), 1/sharpness), floor rule "min",
+#: since session 15; the hitches had cap floor 0 in sessions 13-14) and the path tunnelling
+#: guard; a table whose law names no ``cap_floor`` was built with the law as shipped before
+#: issue 24 (:attr:`HoldTable.law_note`). Written out rather than imported so that ``hold``
+#: from a table does not load the solver (tests/rod/test_default_law.py checks that the two
+#: agree).
 ANCHOR_LAW = (
-    "anchor (rod-rod AnchorFriction, cap_floor 0, tunnel_check path; rod-post anchor friction)"
+    "anchor (rod-rod AnchorFriction, cap_floor 0.01 floor_rule min, tunnel_check path; "
+    "rod-post anchor friction)"
 )
 
 

@@ -1,5 +1,6 @@
-"""The rod-rod anchor law's defaults since issue 24: cap floor 1e-2 and the path guard; the
-hitch scenes keep the floor 0 (the paper's free-end clove hitch slips with the floor).
+"""The rod-rod anchor law's defaults since issue 24: cap floor 1e-2 and the path guard; since
+session 15 the floor rule "min" (min(1e-2 (r_i + r_j), 1/sharpness)), which every scene
+uses, the hitches included (the radii floor alone let the paper's free-end clove hitch slip).
 
 The regularised law keeps the displacement guard (the path guard moves its goldens:
 tests/golden/speed_golden.json's overhand_imc takes 15 instead of 17 steps with it), and
@@ -11,13 +12,14 @@ import pytest
 
 from knotmech.errors import InputError
 from knotmech.rod.contact import RodContact
-from knotmech.rod.friction import CAP_FLOOR, AnchorFriction, SmoothFriction
+from knotmech.rod.friction import CAP_FLOOR, FLOOR_RULE, AnchorFriction, SmoothFriction
 from knotmech.verdict import tables
 
 
 def test_anchor_law_defaults_to_the_floored_cap():
     assert CAP_FLOOR == 1e-2
     assert AnchorFriction(mu_static=0.3).cap_floor == CAP_FLOOR
+    assert AnchorFriction(mu_static=0.3).floor_rule == FLOOR_RULE == "min"
     assert AnchorFriction(mu_static=0.3, cap_floor=0.0).cap_floor == 0.0
 
 
@@ -43,15 +45,13 @@ def test_law_as_shipped_stays_reachable():
 
 
 def test_table_law_text_names_the_hitch_scenes_floor():
-    from knotmech.scenes._hitch import HITCH_CAP_FLOOR
-
-    assert HITCH_CAP_FLOOR == 0.0
-    assert f"cap_floor {HITCH_CAP_FLOOR:g}," in tables.ANCHOR_LAW
+    assert f"cap_floor {CAP_FLOOR:g} floor_rule {FLOOR_RULE}," in tables.ANCHOR_LAW
     assert "tunnel_check path" in tables.ANCHOR_LAW
 
 
-def test_hitch_scenes_build_their_anchor_law_without_the_floor():
-    """The hitch scenes' rod-rod law: anchor with cap floor 0 (the smooth law unchanged)."""
+def test_hitch_scenes_build_the_librarys_anchor_law():
+    """The hitch scenes' rod-rod law: the library's anchor law (cap floor 1e-2, rule "min",
+    since session 15; the smooth law unchanged)."""
     from types import SimpleNamespace
 
     from knotmech.scenes._hitch import HitchScene
@@ -59,7 +59,8 @@ def test_hitch_scenes_build_their_anchor_law_without_the_floor():
     def law(name):
         return HitchScene._rod_friction(SimpleNamespace(mrr=0.3, fric=SimpleNamespace(law=name)))
 
-    assert isinstance(law("anchor"), AnchorFriction) and law("anchor").cap_floor == 0.0
+    assert isinstance(law("anchor"), AnchorFriction) and law("anchor") == AnchorFriction(0.3)
+    assert (law("anchor").cap_floor, law("anchor").floor_rule) == (CAP_FLOOR, "min")
     assert isinstance(law("imc"), SmoothFriction)
 
 

@@ -59,6 +59,8 @@ def rodrod_problem(law="anchor"):
             fr = AnchorFriction(mu_static=0.5, mu_kinetic=0.3)
         elif law == "floored":
             fr = AnchorFriction(mu_static=0.5, mu_kinetic=0.3, cap_floor=1e-2)
+        elif law in ("penalty", "sliding", "min"):
+            fr = AnchorFriction(mu_static=0.5, mu_kinetic=0.3, floor_rule=law)
         else:
             fr = SmoothFriction(0.5)
         return [RodContact(stiffness=50.0, sharpness=1 / (0.05 * R), friction=fr)]
@@ -140,8 +142,10 @@ def test_solver_state_for_other_constraints_is_not_applied():
     assert rest.success and np.array_equal(rest.final_state.q, fresh.final_state.q)
 
 
-def test_resume_with_the_floored_anchor_cap_is_bit_identical(tmp_path):
-    """The anchor law with ``cap_floor`` (no state of its own) resumes bit for bit too."""
+@pytest.mark.parametrize("law", ["floored", "penalty", "sliding", "min"])
+def test_resume_with_the_floored_anchor_cap_is_bit_identical(tmp_path, law):
+    """The anchor law with ``cap_floor`` (no state of its own, whichever ``floor_rule``)
+    resumes bit for bit too."""
     test_resume_from_a_checkpoint_with_fresh_contacts_is_bit_identical(
-        lambda: rodrod_problem("floored"), True, tmp_path
+        lambda: rodrod_problem(law), True, tmp_path
     )

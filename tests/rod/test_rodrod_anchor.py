@@ -9,7 +9,7 @@ import pytest
 from knotmech.errors import InputError
 from knotmech.rod._kernels.contact_rodrod import SLIP_GAP
 from knotmech.rod.contact import RodContact
-from knotmech.rod.friction import AnchorFriction
+from knotmech.rod.friction import FLOOR_RULES, AnchorFriction
 from tests.rod.test_contact import assemble_dense, crossing_rods, fd_jacobian
 
 K_C = 1e4
@@ -158,7 +158,7 @@ def test_friction_census_reports_the_force_the_law_applies(dx, cap_floor):
     _, anc, slip, _, known = c._anc
     rodrod_friction_census(
         q1[nd], q[nd], 1e-3, c.pairs, en, rad, c.sharpness, c.stiffness, Z_CUTOFF,
-        0.4, 0.4, 1e4, anc, slip, known, out, cap_floor,
+        0.4, 0.4, 1e4, anc, slip, known, out, cap_floor, FLOOR_RULES.index(fr.floor_rule),
     )  # fmt: skip
     main = int(np.argmax(out[:, col["fnorm"]]))
     fn = out[main, col["fnorm"]]
@@ -172,13 +172,18 @@ def test_friction_census_reports_the_force_the_law_applies(dx, cap_floor):
 
 
 @pytest.mark.parametrize("dx", [2e-4, 1e-3, 5e-3])
-def test_floored_cap_force_and_jacobian(dx):
-    """cap_floor 5e-2: a = 5e-2 (r_i + r_j) = 1e-3 m (above mu_s N/k_t = 3.8e-4 m): the
+@pytest.mark.parametrize(
+    "floor", [dict(cap_floor=5e-2), dict(cap_floor=2e-2, floor_rule="penalty")],
+    ids=["radii", "penalty"],
+)  # fmt: skip
+def test_floored_cap_force_and_jacobian(dx, floor):
+    """cap_floor 5e-2: a = 5e-2 (r_i + r_j) = 1e-3 m (above mu_s N/k_t = 3.8e-4 m); or
+    floor_rule "penalty" with cap_floor 2e-2 = 2 penalty widths: a = 2/2000 m = 1e-3 m: the
     force is
     mu_s N dx / sqrt(dx^2 + a^2) and the Jacobian (whose |F_n| term is F c_n grad^T where
     the floor is active) matches central differences."""
     sysm, q = crossing_rods(gap=0.0195)
-    fr = AnchorFriction(mu_static=0.4, tangential_stiffness=1e4, cap_floor=5e-2)
+    fr = AnchorFriction(mu_static=0.4, tangential_stiffness=1e4, **floor)
     c = RodContact(stiffness=K_C, sharpness=2000.0, friction=fr)
     c.begin_step(sysm, q, None, 1e-3)
     q1 = moved(sysm, q, dx)
@@ -190,3 +195,18 @@ def test_floored_cap_force_and_jacobian(dx):
     assert np.linalg.norm(rod0) == pytest.approx(0.4 * fn * dx / np.hypot(dx, a), rel=1e-6)
     J_fd = fd_jacobian(c, sysm, q1, q, 1e-3, h=1e-9)
     np.testing.assert_allclose(J, J_fd, atol=2e-3 * np.abs(J).max())
+
+
+@pytest.mark.parametrize(
+    "mode, slipped, expected",
+    [(0, False, 4e-5), (1, False, 0.0), (1, True, 4e-5), (2, False, 2e-5), (3, False, 2e-5)],
+)  # fmt: skip
+def test_cap_floor_rules(mode, slipped, expected):
+    """a_min of each ``floor_rule`` (kernel ``floor_mode``) for cap_floor 1e-2, r_i + r_j =
+    4 mm, sharpness 5e4 /m (a penalty width of 20 um): radii 40 um on every pair (all),
+    only on a pair that slid (sliding), 20 um (penalty), the smaller (min)."""
+    from knotmech.rod._kernels.contact_rodrod import FLOOR_REF, _cap_min
+    from knotmech.rod.friction import CAP_FLOOR, FLOOR_RULES
+
+    assert FLOOR_REF == CAP_FLOOR and FLOOR_RULES == ("all", "sliding", "penalty", "min")
+    assert _cap_min(1e-2, mode, 4e-3, 5e4, slipped) == pytest.approx(expected, rel=1e-12)

@@ -144,14 +144,23 @@ def test_a_load_below_two_mu_s_fn_does_not_move_the_rod(friction, holds):
 
 # cap_floor 1e-2: a_min = 1e-2 (2 R) = 2e-5 m, above mu_s |F_n|/k_t (about 2.8e-6 m here),
 # so the floor is what sets the cap in these two tests
-FLOORED = AnchorFriction(mu_static=MU_S, mu_kinetic=MU_K, cap_floor=1e-2)
+FLOORED = AnchorFriction(mu_static=MU_S, mu_kinetic=MU_K, cap_floor=1e-2, floor_rule="all")
+# floor_rule "min": min(1e-2 (2 R), 1/sharpness = 5e-5 m) = 2e-5 m, the same cap here
+MIN_RULE = AnchorFriction(mu_static=MU_S, mu_kinetic=MU_K, cap_floor=1e-2, floor_rule="min")
+FLOOR_LAWS = pytest.mark.parametrize("law", [FLOORED, MIN_RULE], ids=["all", "min"])
 
 
-def test_floored_cap_keeps_pull_out_at_two_mu_s_fn_and_sliding_at_two_mu_k_fn():
+@FLOOR_LAWS
+def test_floored_cap_keeps_pull_out_at_two_mu_s_fn_and_sliding_at_two_mu_k_fn(law):
     """The anchor law with a floored cap width (``cap_floor``): the same Coulomb limits as
-    the law as shipped, the onset only after a longer elastic give (10 a = 0.2 mm)."""
+    the law as shipped, the onset only after a longer elastic give (10 a = 0.2 mm).
+
+    With the floor at the penalty's width here (floor_rule "penalty", a = 5e-5 m, a give
+    of 0.5 mm, a quarter of P's edge) the onset read 1.0685 x 2 mu_s F_n, as with the radii
+    floor at the same width (cap_floor 2.5e-2): the penalty's cogging along the edge, not
+    the rule (sticking-law-cap-width.md sec. 11)."""
     system, clamp = pinch_system()
-    contact = RodContact(stiffness=500.0, sharpness=1 / (0.05 * R), friction=FLOORED)
+    contact = RodContact(stiffness=500.0, sharpness=1 / (0.05 * R), friction=law)
     v, t0 = 5e-3, 0.2
     x_end = system.positions(system.initial_state().q)[N_P - 1].copy()
 
@@ -177,11 +186,12 @@ def test_floored_cap_keeps_pull_out_at_two_mu_s_fn_and_sliding_at_two_mu_k_fn():
     assert pull[sl].mean() / (MU_K * two_fn[sl].mean()) == pytest.approx(1.0, abs=0.01)
 
 
-def test_floored_cap_holds_a_load_below_two_mu_s_fn_without_creep():
+@FLOOR_LAWS
+def test_floored_cap_holds_a_load_below_two_mu_s_fn_without_creep(law):
     """Dead load 0.9 * 2 mu_s F_n with the floored cap: held, creep < 1e-9 m/s; the give
     is the softer spring's, u = 0.9/sqrt(1 - 0.81) a = 2.06 a per contact (about 41 um)."""
     system, clamp = pinch_system()
-    contact = RodContact(stiffness=500.0, sharpness=1 / (0.05 * R), friction=FLOORED)
+    contact = RodContact(stiffness=500.0, sharpness=1 / (0.05 * R), friction=law)
     opt = SolverOptions(save_every=0.01)
     damp = ViscousDamping(0.05)
     kw = dict(dt=1e-3, constraints=[clamp], interactions=[contact], options=opt)

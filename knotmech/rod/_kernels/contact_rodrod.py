@@ -377,6 +377,7 @@ def rodrod_assemble(
     anchor_known,
     out_slip,
     cap_floor=0.0,
+    floor_mode=0,
 ):
     """Contact + friction forces and Jacobian blocks of the near candidate pairs.
 
@@ -404,7 +405,9 @@ def rodrod_assemble(
     for a pair without an anchor yet: it is made from ``pos_old`` and the flag set;
     ``out_slip`` (n_pairs,) receives whether each pair slides at ``pos``); the energy then
     includes the anchor springs' (see :func:`rodrod_anchor_commit`). ``cap_floor`` > 0
-    floors the cap's width at ``cap_floor`` (r_i + r_j) (see :func:`_anchor_friction`).
+    floors the cap's width at ``cap_floor`` (r_i + r_j) (see :func:`_anchor_friction`):
+    on every pair (``floor_mode`` 0) or only on the pairs that slid at the last accepted
+    step (``floor_mode`` 1, ``anchor_slip``; see :func:`rodrod_anchor_commit`).
     """
     x = np.empty(12)
     grad = np.empty(12)
@@ -480,7 +483,7 @@ def rodrod_assemble(
             e_f, slip, cnt = _anchor_friction(
                 x, anchor[p], anchor_slip[p], n, fnorm, mu, mu_k, k_t, cn, grad, dofs, jac,
                 force, rows, cols, vals, cnt, cw, u, ft, nf, coef, dist, B, U, dndx, G3,
-                cap_floor * two_h,
+                _cap_min(cap_floor, floor_mode, two_h, sharpness, anchor_slip[p]),
             )  # fmt: skip
             energy += e_f
             out_slip[p] = slip
@@ -892,7 +895,7 @@ def align_anchors(keys_old, anc_old, slip_old, keys, anc, slip, known):
 @njit(cache=True)
 def rodrod_anchor_commit(
     pos, pos_old, pairs, edge_nodes, radius_edge, sharpness, stiffness, z_cutoff,
-    mu_s, mu_k, k_t, anchor, anchor_slip, known, keep, mode, cap_floor=0.0,
+    mu_s, mu_k, k_t, anchor, anchor_slip, known, keep, mode, cap_floor=0.0, floor_mode=0,
 ):  # fmt: skip
     """Commit (``mode`` 1) or stored energy (``mode`` 2) of the rod-rod anchors at ``pos``.
 
@@ -903,7 +906,12 @@ def rodrod_anchor_commit(
     gets it from ``pos_old``; mode 2 skips it); mode 1 writes whether it slides to
     ``anchor_slip`` and, if it does, moves the anchor's material points along the two edges
     (:func:`_shift_anchor`) so that the tangential gap shrinks to SLIP_GAP mu |F_n|/k_t.
-    ``cap_floor``: see :func:`rodrod_assemble`. Returns the anchors' stored energy (mode 2).
+    ``cap_floor``, ``floor_mode``: see :func:`rodrod_assemble`. With ``floor_mode`` 1 (the
+    floor only on pairs that slid at the last step) the width a changes between steps, so
+    the commit moves the anchor to the gap of the next step's width: a sliding pair to
+    SLIP_GAP max(mu_k |F_n|/k_t, floor), a sticking pair that was floored to the gap that
+    keeps its friction force under the unfloored spring (force-preserving transfer).
+    Returns the anchors' stored energy (mode 2).
     """
     x = np.empty(12)
     grad = np.empty(12)
@@ -934,7 +942,9 @@ def rodrod_anchor_commit(
         mu = mu_k if anchor_slip[p] else mu_s
         limit = mu * fnorm
         a = limit / k_t
-        a_min = cap_floor * (radius_edge[ei] + radius_edge[ej])
+        two_h = radius_edge[ei] + radius_edge[ej]
+        a_full = _cap_min(cap_floor, floor_mode, two_h, sharpness, True)
+        a_min = _cap_min(cap_floor, floor_mode, two_h, sharpness, anchor_slip[p])
         if a < a_min:
             a = a_min
         slip = unorm > SLIP_GAP * a
@@ -943,12 +953,50 @@ def rodrod_anchor_commit(
             energy += limit * (np.sqrt(unorm * unorm + a * a) - a)
             continue
         anchor_slip[p] = slip
-        if slip:
-            shrink = (unorm - SLIP_GAP * a) / unorm
+        target = SLIP_GAP * a if slip else unorm
+        if floor_mode == 1:
+            target = _next_gap(unorm, a, limit, slip, fnorm, mu_s, mu_k, k_t, a_full)
+        if unorm > 0.0 and target != unorm:
+            shrink = (unorm - target) / unorm
             for m in range(3):
                 u[m] *= -shrink
             _shift_anchor(x, anchor[p], u)
     return energy
+
+
+#: the ``cap_floor`` that is one penalty width 1/sharpness under ``floor_mode`` 2 and 3
+FLOOR_REF = 1e-2
+
+
+@njit(cache=True)
+def _cap_min(cap_floor, floor_mode, two_h, sharpness, slipped):
+    """Floor a_min [m] of a pair's cap width: ``cap_floor`` (r_i + r_j) on every pair
+    (``floor_mode`` 0) or on the pairs that slid at the last step (1); (``cap_floor`` /
+    :data:`FLOOR_REF`) / ``sharpness`` (penalty widths) on every pair (2); the smaller
+    of the two lengths on every pair (3)."""
+    if floor_mode == 1 and not slipped:
+        return 0.0
+    radii = cap_floor * two_h
+    if floor_mode < 2:
+        return radii
+    penalty = cap_floor / FLOOR_REF / sharpness
+    return penalty if floor_mode == 2 else min(radii, penalty)
+
+
+@njit(cache=True)
+def _next_gap(unorm, a, limit, slip, fnorm, mu_s, mu_k, k_t, a_full):
+    """Anchor gap [m] after the commit under ``floor_mode`` 1 (the cap floored only on
+    pairs that slid at the last step): a sliding pair at SLIP_GAP times the next step's
+    (floored) width; a sticking pair at the gap whose force under the next step's
+    (unfloored, mu_s) width equals the force it carries now (``limit`` |u|/s)."""
+    if slip:
+        return SLIP_GAP * max(mu_k * fnorm / k_t, a_full)
+    a_next = mu_s * fnorm / k_t
+    if a_next == a or mu_s <= 0.0:
+        return unorm
+    t = limit * unorm / np.sqrt(unorm * unorm + a * a) / (mu_s * fnorm)
+    t = min(t, SLIP_GAP / np.sqrt(1.0 + SLIP_GAP * SLIP_GAP))
+    return a_next * t / np.sqrt(1.0 - t * t)
 
 
 @njit(cache=True)
@@ -1026,9 +1074,10 @@ CENSUS_COLUMNS = (
 @njit(cache=True)
 def rodrod_friction_census(
     pos, pos_old, dt, pairs, edge_nodes, radius_edge, sharpness, stiffness, z_cutoff,
-    mu_s, mu_k, k_t, anchor, anchor_slip, known, out, cap_floor=0.0,
+    mu_s, mu_k, k_t, anchor, anchor_slip, known, out, cap_floor=0.0, floor_mode=0,
 ):  # fmt: skip
     """Diagnostics of the friction each candidate pair carries at ``pos`` (read-only).
+    ``cap_floor``, ``floor_mode``: the floor of the cap width, as in :func:`rodrod_assemble`.
 
     For each pair within the penalty's reach with a normal force, writes a row of ``out``
     (n_pairs, len(CENSUS_COLUMNS)) as named in :data:`CENSUS_COLUMNS` (rows of the other
@@ -1086,7 +1135,8 @@ def rodrod_friction_census(
         unorm, _ = _anchor_gap(x, anc, nf, cw, u)
         mu = mu_k if anchor_slip[p] else mu_s
         limit = mu * fnorm
-        a = max(limit / k_t, cap_floor * (radius_edge[ei] + radius_edge[ej]))
+        two_h = radius_edge[ei] + radius_edge[ej]
+        a = max(limit / k_t, _cap_min(cap_floor, floor_mode, two_h, sharpness, anchor_slip[p]))
         sq = np.sqrt(unorm * unorm + a * a)
         out[p, 1] = limit * unorm / sq if sq > 0.0 else 0.0
         out[p, 2] = mu
