@@ -1,7 +1,7 @@
 """Whether a loop is still tied: the linking of its halves cut at the eye, closed from
 outside the knot (:mod:`knotmech.scenes.tied.eye_linking`), and the rope's average crossing
 number (:mod:`knotmech.scenes.tied.crossings`), on the alpine butterfly, the same curve
-with its tongue laid over the window, a straight rope and two circles."""
+with its tongue's tip laid over the lower twist, a straight rope and two circles."""
 
 import importlib
 
