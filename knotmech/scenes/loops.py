@@ -394,7 +394,7 @@ def loop(
     Cost at the defaults (d = 4 mm, E = 1 MPa, D = 20 mm): bowline 10-11 s of CPU (175
     nodes), figure-eight loop 10-27 s over mu = 0.1-1 (130 nodes, drawn-in start; at
     mu >= 0.6 stopped at the strain limit, 56 s at mu = 1 before the stop), alpine
-    butterfly 4-6 s (130 nodes, drawn-in start: it falls apart in the set, see the note);
+    butterfly 2-10 s (130 nodes, drawn-in start);
     ``benchmarks/tied.py --loops``, docs/notes/knots-and-curves/tied-loops-pulled.md.
     """
     rec = _record(knot)

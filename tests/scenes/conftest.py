@@ -6,20 +6,19 @@ import pytest
 
 
 @pytest.fixture
-def butterfly_over_the_window(monkeypatch):
-    """A function that changes the alpine butterfly's control polygon so that the tongue
-    lies over both arms of the window, not through it (the same crossings, not tied: the
-    eye's halves unlinked), and returns the module (call its ``alpine_butterfly``); undone
-    after the test."""
+def butterfly_tip_over_the_twist(monkeypatch):
+    """A function that changes the alpine butterfly's control polygon so that the tongue's
+    tip lies over the lower twist (C1) instead of being tucked under it and up through the
+    window (a false butterfly, which pulls out: its cut halves are unknots, linked once),
+    and returns the module (call its ``alpine_butterfly``); undone after the test."""
 
     def patch():
         ab = importlib.import_module("knotmech.scenes.tied.alpine_butterfly")
-        over = {(-6.0, -6.5): 1, (-9.0, -6.5): 1, (-6.0, -9.5): 1}
-        arm = {(-5.5, -9.5), (-6.5, -8.0), (-5.5, -6.5)}
-        a = tuple((x, y, over.get((x, y), z)) for x, y, z in ab.LEG_A)
-        b = tuple((x, y, -1 if (x, y) in arm else over.get((x, y), z)) for x, y, z in ab.LEG_B)
-        monkeypatch.setattr(ab, "LEG_A", a)
-        monkeypatch.setattr(ab, "LEG_B", b)
+        over = {(-1.5, -1.8): 2.5, (-1.5, -3.1): 3.0, (-1.5, -4.9): 3.0, (-1.5, -6.2): 2.5,
+                (1.5, -1.8): 2.5, (1.5, -3.1): 3.0, (1.5, -4.9): 3.0, (1.5, -6.5): 2.5}  # fmt: skip
+        for leg in ("LEG_A", "LEG_B"):
+            pts = getattr(ab, leg)
+            monkeypatch.setattr(ab, leg, tuple((x, y, over.get((x, y), z)) for x, y, z in pts))
         return ab
 
     return patch

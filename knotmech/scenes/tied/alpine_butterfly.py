@@ -1,39 +1,25 @@
 r"""Alpine butterfly (butterfly loop, lineman's loop; ABoK #1053): a mid-line eye round a pin.
 
-Construction: tied in the bight, as by hand. A bight is given a full twist (its two legs
-cross twice: C1 near the ends, C2 below it; between them the *window* W), and the loop
-beyond C2 (the *tongue*) is laid over the window's right arm and passed through the
-window to the back, out under its left arm: the tongue's tip is the eye (Ashley, *The
-Ashley Book of Knots*, 1944, #1053; the twist method). In the plane (rod diameters d, the
-ends along y = 0)::
-
-      far left  ====\        /====  far right         node 0: the left end (x < 0)
-                     \  C1  /                          last node: the right end (x > 0)
-                      \/\/                             the eye: south-west, round a pin
-          eye <==== (  W   ) ====\                     (axis z) of diameter D at
-          legs      \  /\  /     |   the tongue,       centreline radius (D + d)/2
-                     C2    ======/   laid over W
-
-Along the rope from node 0: leg A from the far left over C1, down the window's right arm,
-under C2, round the tongue's outer track (south, east, north), west over the right arm,
-through W and under its left arm, south round the pin (the eye), back north and east as
-the tongue's inner track under the left arm and over the right arm, round the tongue's
-inner track (south, west, north), over C2, up the window's left arm, under C1 and out to
-the far right. Six crossings; both ends leave the knot in opposite directions (along -x
-and +x) and the eye sticks out sideways (-y).
+Construction: tied in the bight, as by hand (the twist method: G. Budworth and J. Dalton,
+*The Little Book of Incredibly Useful Knots*, p. 106). A bight is given two twists the same
+way (its legs cross twice: C1 near the ends, C2 below it; between them the *window* W);
+the loop beyond C2 (the *tongue*) is brought round and up in front of both arms, over the
+two standing parts, and its tip is tucked down under C1 and up through the window to the
+front: the tip is the eye, laid west over the window's left arm and the tongue's left
+side, round a pin (axis z) of diameter D at centreline radius (D + d)/2, south-west of the
+knot. 12 crossings in the loose projection; both ends leave the knot in opposite
+directions (along -x and +x). (A tongue passed sideways through the window, or its tip
+laid over C1 instead of under it, pulls straight out into an eye with its legs twisted
+once: docs/notes/knots-and-curves/tied-loops-pulled.md.)
 
 Drawn in (:func:`_drawn_in`, as the figure-eight loop is drawn in by
-:mod:`~knotmech.scenes.tied._snug`): that loose rope (229 d at D = 5 d, the knot about
-33 x 25 d) without its eye is scaled by :data:`SCALE` in the plane (the crossings' heights
-kept, an isotopy) and pushed apart by repulsion sweeps to a clearance of 1.25 d; both ends
-are run on by :data:`EXTEND` and the eye laid for the pin between its legs, whose ends are
-2.1 d apart. The knot is then about 12 x 8 d, 73 d of rope without the ends and the eye
-(126 d in all at D = 5 d), its average crossing number
-(:func:`~knotmech.scenes.tied.crossings.average_crossings`) 9.9-10.1 (7.0 loose).
+:mod:`~knotmech.scenes.tied._snug`): the loose rope without its eye is scaled by
+:data:`SCALE` in the plane (the crossings' heights kept, an isotopy) and pushed apart by
+repulsion sweeps to a clearance of 1.25 d; both ends are run on by :data:`EXTEND` and the
+eye laid for the pin between its legs. 129 d of rope at D = 5 d, its average crossing
+number (:func:`~knotmech.scenes.tied.crossings.average_crossings`) 20-22.
 ``info["min_crossings"]`` (:data:`MIN_CROSSINGS`): the loop scene counts the knot fallen
-apart below it. A solid rod (kappa 1) springs open from this start in the first 0.2 s and
-falls apart into an eye with its legs twisted once, which has the same invariants
-(docs/notes/knots-and-curves/tied-loops-pulled.md).
+apart below it. It stays tied through the settle and the set at mu 0.1-1.
 
 Topology, proven in ``tests/scenes/test_tied_curves.py``:
 
@@ -41,11 +27,10 @@ Topology, proven in ``tests/scenes/test_tied_curves.py``:
   in the bight (no end is passed through anything): every move of the tying is an
   isotopy of the rope with its ends held, so the ends joined far away bound a disk.
 - its winding about the pin: **1 turn** (the eye round the pin).
-- cut at the far side of the pin (the butterfly bend: the eye's two legs become two
-  ropes' tails), each half closed on its own: **two unknots** (each half crosses itself
-  once: a kink), **linked once**. The twisted bight alone (the tongue not through the
-  window, pulled out) would give two unlinked halves: the linking number is the tongue
-  threaded through the window.
+- cut at the far side of the pin (the butterfly bend, one of the interlocked-overhand
+  bends: the eye's two legs become two ropes' tails), each half closed on its own: **two
+  overhand knots** (3_1), **linked once**. The tip laid over C1 instead of tucked under
+  it gives two unknots linked once, the invariants of an eye with its legs twisted once.
 
 Loadings (:func:`knotmech.scenes.loops.loop`): on the loop (the eye round the pin, node 0
 pulled, the right end the free tail) or end to end (both ends pulled apart, the eye free,
@@ -86,26 +71,36 @@ TAIL = 8.0  #: straight ends of the loose rope [d]
 EYE_R = 3.0  #: centreline radius of the loose rope's eye while it is drawn in [d]
 EXTEND = 12.0  #: both ends run on beyond the drawn-in knot [d]
 SCALE = 0.35  #: the loose rope's plane scaled by this to draw it in
+EYE_X, EYE_Y = -11.0, -12.5  #: the loose rope's eye: the run with x < EYE_X and y < EYE_Y [d]
 ROUNDS = 10  #: rounds of repulsion sweeps after the scaling, each followed by a resampling
 #: still tied while the rope's average crossing number
-#: (:func:`~knotmech.scenes.tied.crossings.average_crossings`) is at least this: about 10
-#: drawn in, 7 loose, 2 for the twisted eye it falls apart into (same invariants)
+#: (:func:`~knotmech.scenes.tied.crossings.average_crossings`) is at least this: 20-22
+#: drawn in, 14-16 set and pulled, about 2 for an eye with its legs twisted once
 MIN_CROSSINGS = 4.0
 #: leg A, from where the left end leaves the line y = 0 to the top of the eye's first leg
-#: [d]; z (+/-1) orders the strands at the crossings (C1, the right arm, C2, W)
+#: [d]: C1 (over), the window's right arm, C2 (under), the tongue's left side (round and up
+#: outside the window, over the left standing part), the tip tucked down under C1 into the
+#: window (z -2.6) and out of it in front, west over the window's left arm and the
+#: tongue's left side to the eye; z orders the strands at the crossings
 LEG_A = (
-    (-9, 0, 0), (-6, -0.3, 0), (-2.5, -2.5, 1), (0, -4, 1), (2.5, -5.5, 0), (5.5, -6.5, -1),
-    (6.5, -8, -1), (5.5, -9.5, -1), (2.5, -11.5, 0), (0, -13, -1), (-2, -15, -1),
-    (-2.5, -18, 0), (-2, -21.5, 0), (1, -22.5, 0), (14, -22.5, 0), (17, -21, 0),
-    (17.5, -18, 0), (17.5, -9, 0), (16, -6.5, 0), (12, -6.5, 1), (8, -6.5, 1), (5.5, -6.5, 1),
-    (0, -6.5, 0), (-6, -6.5, -1), (-9, -6.5, -1), (-13, -6.5, 0), (-15, -8, 0), (-15, -12, 0),
+    (-12, 0, 0), (-9, 0, 0), (-6, -0.3, 0), (-2.5, -2.5, 1), (0, -4, 1), (2.5, -5.5, 0.5),
+    (5.5, -7, 0), (6.5, -9, 0), (4, -11.5, -0.5), (0, -13, -1), (-2, -15.5, -0.5), (-5, -17, 0),
+    (-6.5, -15, 0), (-8.5, -11.5, 0), (-9, -9, 0), (-9, -4, 0), (-8.5, -1.5, 1),
+    (-6.5, 1, 2), (-3.5, 1.8, 2), (-1.5, 0.3, 1), (-1.5, -1.8, -1), (-1.5, -3.1, -2.6),
+    (-1.5, -4.9, -2.6), (-1.5, -6.2, -1), (-2.8, -7, 1), (-4.5, -7, 2), (-7.5, -7, 2),
+    (-11, -7, 1.5), (-15, -7.5, 0.5), (-18.5, -9.5, 0), (-19, -12, 0),
 )  # fmt: skip
-#: leg B, from the bottom of the eye's second leg to where the right end joins y = 0 [d]
+#: leg B, from the bottom of the eye's second leg (the same way back: over the tongue's left
+#: side and the left arm, into the window, up under C1, over the right standing part, down
+#: outside the window as the tongue's right side) over C2, up the left arm, under C1 to
+#: where the right end joins y = 0 [d]
 LEG_B = (
-    (-9, -12, 0), (-9, -10, 0), (-8, -9.5, 0), (-6, -9.5, -1), (0, -9.5, 0), (5.5, -9.5, 1),
-    (9, -9.5, 1), (13, -10, 0), (14, -12, 0), (14, -17, 0), (12.5, -19.2, 0), (4, -19.2, 0),
-    (2, -18, 0), (2, -15, 1), (0, -13, 1), (-2.5, -11.5, 0), (-5.5, -9.5, 1), (-6.5, -8, 1),
-    (-5.5, -6.5, 1), (-2.5, -5.5, 0), (0, -4, -1), (2.5, -2.5, -1), (6, -0.3, 0), (9, 0, 0),
+    (-13, -12, 0), (-13, -10.5, 0.5), (-11, -9.5, 1.5), (-8, -9.5, 2), (-3, -9.5, 2),
+    (0.5, -9.5, 1.5), (1.5, -8.5, 0), (1.5, -6.5, -1.5), (1.5, -4.9, -2.6),
+    (1.5, -3.1, -2.6), (1.5, -1.8, -1), (1.5, 0.3, 1), (3.5, 1.8, 2), (6.5, 1, 2),
+    (8.5, -1.5, 1), (9, -4, 0), (9, -9, 0), (8.5, -11.5, 0), (6.5, -15, 0), (5, -17, 0),
+    (2, -15.5, 0.5), (0, -13, 1), (-4, -11.5, 0.5), (-6.5, -9, 0), (-6, -7, 0),
+    (-2.5, -5.5, -0.5), (0, -4, -1), (2.5, -2.5, -1), (6, -0.3, 0), (9, 0, 0), (12, 0, 0),
 )  # fmt: skip
 
 
@@ -153,7 +148,7 @@ def alpine_butterfly(*, rod_diameter: float, n_nodes: int = 150,
         expected={
             "alexander": (1,),
             "winding_pin": 1,
-            "alexander_cut": ((1,), (1,)),
+            "alexander_cut": ((1, -1, 1), (1, -1, 1)),
             "linking_cut": 1,
         },  # fmt: skip
         info=info,
@@ -185,7 +180,7 @@ def _drawn_in(leg_a: tuple, leg_b: tuple) -> tuple[np.ndarray, np.ndarray]:
     along the join of two points: no strand passes through another); each piece drawn as
     a dense spline. :func:`alpine_butterfly` lays the eye for its pin between them."""
     rope = loose_rope(leg_a, leg_b)
-    eye = np.flatnonzero((rope[:, 1] < -12.5) & (rope[:, 0] < -7.0))
+    eye = np.flatnonzero((rope[:, 1] < EYE_Y) & (rope[:, 0] < EYE_X))
     ps = [rope[: eye[0] + 1].copy(), rope[eye[-1] :].copy()]
     for p in ps:
         p[:, :2] *= SCALE

@@ -18,7 +18,7 @@ pin) or with its eye round a pin is, as a tangle, the same as an eye whose two l
 twisted once round each other (the tongue drawn back out of the window with the eye
 turned once): the closed rope's knot type, the winding about the pin and the linking of
 the halves cut at the eye are the same for both. Their average crossing numbers are not:
-about 10 for the drawn-in butterfly, about 2 for the twisted eye it falls apart into
+20-22 for the drawn-in butterfly, about 2 for the twisted eye a false one falls into
 (docs/notes/knots-and-curves/tied-loops-pulled.md).
 """
 
