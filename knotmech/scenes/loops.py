@@ -98,7 +98,7 @@ from knotmech.scenes.curves import _edge_distances
 from knotmech.scenes.tied import measure
 from knotmech.scenes.tied._common import invariant, join_far
 from knotmech.scenes.tied.crossings import average_crossings
-from knotmech.scenes.tied.eye_linking import cut_linking
+from knotmech.scenes.tied.eye_linking import cut_knot_types, cut_linking
 from knotmech.scenes.tied.pulled import NEAR_SET, OWN, PARALLEL, end_direction, invariants_changed
 
 __all__ = ["LoopResult", "LoopScene", "loop", "LOOPS", "loop_inside", "loop_lengths"]
@@ -676,17 +676,24 @@ class LoopScene(Scene):
         closed rope's knot type differs from the start's in both closures (lifted up and down:
         :meth:`_frame_invariants`) while the tail end has moved towards the knot by more
         than the slip draw-in since the pull began (the tail drawn through the knot, as
-        :meth:`knotmech.scenes.bends.TiedBendScene._undone`). End to end: the linking of
-        the rope's halves cut at the eye (:func:`~knotmech.scenes.tied.eye_linking.
-        cut_linking`) differs from the start's (the tongue drawn out of the window). The
+        :meth:`knotmech.scenes.bends.TiedBendScene._undone`). End to end: the knot types
+        of both halves of the rope cut at the eye (:meth:`_cut_types`) differ from the
+        start's (the tongue drawn out of the window: the butterfly's overhand halves become
+        unknots; their linking is not used, as a turn of the free eye about its own axis
+        changes it with the knot still tied). The
         overlap watch of every step excludes a strand passing through another; a knot type
         changed with the tail not drawn in fails the run (:meth:`_topology`)."""
         if self._apart(x):
             return f"its average crossing number below {self.min_crossings:g} (fell apart)"
         if self.ends:
-            now = self._cut_linking(x)
-            if now is not None and now != self.inv_start.get("linking_cut"):
-                return "the eye's halves unlinked: the tongue drawn out of the window"
+            if not hasattr(self, "cut_types0"):  # the start's, computed once
+                self.cut_types0 = self._cut_types(self.x0)
+            now, start = self._cut_types(x), self.cut_types0
+            if now is None or start is None:
+                return ""
+            if all(a != b for a, b in zip(now, start, strict=True)):
+                return ("both halves cut at the eye changed their knot type: the tongue "
+                        "drawn out of the window")  # fmt: skip
             return ""
         u = end_direction(self.x_pull0, "end")
         if float((self.x_pull0[-1] - x[-1]) @ u) <= self.slip:
@@ -829,6 +836,14 @@ class LoopScene(Scene):
         inside = loop_inside(x, self.d)
         centre = x[inside].mean(axis=0) if inside.any() else None
         return cut_linking(x, self.eye_cut, centre)
+
+    def _cut_types(self, x) -> tuple | None:
+        """End to end: the knot types of the rope's halves cut at the eye's tip, closed as
+        in :meth:`_cut_linking` (:func:`~knotmech.scenes.tied.eye_linking.cut_knot_types`;
+        the butterfly's: two overhand knots while tied)."""
+        inside = loop_inside(x, self.d)
+        centre = x[inside].mean(axis=0) if inside.any() else None
+        return cut_knot_types(x, self.eye_cut, centre)
 
     def _measure(self, x) -> dict:
         """:func:`~knotmech.scenes.tied.measure` of the rope at ``x``; end to end (no pin)

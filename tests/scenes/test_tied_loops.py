@@ -119,14 +119,25 @@ def test_alpine_butterfly_end_to_end_has_no_pin():
     assert len(_butterfly_scene(pin_diameter=20e-3).build().interactions) == 2  # and the pin
 
 
-def test_alpine_butterfly_end_to_end_comes_undone_by_linking_or_crossings(monkeypatch):
-    """:meth:`LoopScene._undone` end to end: the start is tied; a frame whose eye's halves
-    link differently from the start's (here the start's linking set to 0; the drawn curve
-    links once) has come undone; a straight rope has no crossing at all."""
+def test_alpine_butterfly_end_to_end_comes_undone_by_knot_types_or_crossings(
+    butterfly_tip_over_the_twist,
+):
+    """:meth:`LoopScene._undone` end to end: the start is tied (its halves cut at the eye
+    are overhand knots, Alexander 1 - t + t^2); a start linking set to 0 changes nothing
+    (the linking is not used: a turn of the free eye changes it); the false butterfly, its
+    tip over the twist (halves unknots, average crossing number 11.4 > 4), has come
+    undone; a straight rope has no crossing at all."""
     s = _butterfly_scene(pin_diameter=20e-3, loading="end-to-end")
     assert s._undone(s.x0) == "" and s.min_crossings == 4.0
-    monkeypatch.setitem(s.inv_start, "linking_cut", 0)
-    assert s._undone(s.x0) == "the eye's halves unlinked: the tongue drawn out of the window"
+    assert s._cut_types(s.x0) == ((1, -1, 1), (1, -1, 1))
+    s.inv_start["linking_cut"] = 0
+    assert s._undone(s.x0) == ""
+    ab = butterfly_tip_over_the_twist()
+    x = ab.alpine_butterfly(rod_diameter=D4, pin_diameter=20e-3, n_nodes=len(s.x0)).ropes["rope"]
+    assert s._cut_types(x) == ((1,), (1,))
+    assert s._undone(x) == (
+        "both halves cut at the eye changed their knot type: the tongue drawn out of the window"
+    )
     straight = _polyline([(-60, 0, 0), (60, 0, 0)], 120 / (len(s.x0) - 1))
     assert s._undone(straight) == "its average crossing number below 4 (fell apart)"
 

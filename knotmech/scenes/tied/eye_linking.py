@@ -31,7 +31,9 @@ from __future__ import annotations
 
 import numpy as np
 
-__all__ = ["cut_linking", "crossing_linking"]
+from knotmech.scenes.topology import knot_invariant
+
+__all__ = ["cut_halves", "cut_knot_types", "cut_linking", "crossing_linking"]
 
 #: the direction the closed halves are seen along when their crossings are counted
 #: (generic: no segment of the closures along it)
@@ -90,9 +92,30 @@ def crossing_linking(c1, c2, view=VIEW) -> int:
     return int(round(0.5 * float(sign.sum())))
 
 
+def cut_halves(x, k: int, center=None) -> tuple | None:
+    """The rope ``x`` ((n, 3), any unit) cut at node ``k`` (the eye's tip, left out of both
+    halves), each half closed from outside the knot (module docstring): two closed
+    polygons, or None when a half's closure is not defined (the eye pointing straight back
+    along a rope end: its ray and its end's direction opposite). ``center`` (3,): the
+    knot's centre (default the mean of the nodes)."""
+    x = np.asarray(x, float)
+    if not 0 < k < len(x) - 1:
+        raise ValueError(f"the cut node must be inside the rope, got {k}")
+    c = x.mean(axis=0) if center is None else np.asarray(center, float)
+    ext = float(np.ptp(x, axis=0).max())
+    a, b = x[:k], x[k + 1 :]
+    far_l = _unit(x[0] + ext * _end_dir(x, "start") - c)
+    far_r = _unit(x[-1] + ext * _end_dir(x, "end") - c)
+    ca = _closed(a, c, 3.0 * ext, _unit(a[-1] - c), far_l, eye_first=False)
+    cb = _closed(b, c, 2.0 * ext, _unit(b[0] - c), far_r, eye_first=True)
+    if ca is None or cb is None:
+        return None
+    return ca, cb
+
+
 def cut_linking(x, k: int, center=None) -> int | None:
     """Linking number of the rope ``x`` ((n, 3), any unit) cut at node ``k`` (the eye's
-    tip), each half closed from outside the knot (module docstring).
+    tip), each half closed from outside the knot (:func:`cut_halves`).
 
     Parameters
     ----------
@@ -109,16 +132,18 @@ def cut_linking(x, k: int, center=None) -> int | None:
     int, or None when a half's closure is not defined (the eye pointing straight back
     along a rope end: its ray and its end's direction opposite).
     """
-    x = np.asarray(x, float)
-    if not 0 < k < len(x) - 1:
-        raise ValueError(f"the cut node must be inside the rope, got {k}")
-    c = x.mean(axis=0) if center is None else np.asarray(center, float)
-    ext = float(np.ptp(x, axis=0).max())
-    a, b = x[:k], x[k + 1 :]
-    far_l = _unit(x[0] + ext * _end_dir(x, "start") - c)
-    far_r = _unit(x[-1] + ext * _end_dir(x, "end") - c)
-    ca = _closed(a, c, 3.0 * ext, _unit(a[-1] - c), far_l, eye_first=False)
-    cb = _closed(b, c, 2.0 * ext, _unit(b[0] - c), far_r, eye_first=True)
-    if ca is None or cb is None:
+    halves = cut_halves(x, k, center)
+    return None if halves is None else crossing_linking(*halves)
+
+
+def cut_knot_types(x, k: int, center=None) -> tuple | None:
+    """Knot types (Alexander polynomials as coefficient tuples, ``(1,)`` the unknot) of the
+    two halves of the rope ``x`` cut at node ``k`` and closed from outside the knot
+    (:func:`cut_halves`), or None where those closures are not defined. The alpine
+    butterfly's halves are overhand knots while its tongue is through the window, and
+    unknots once it is out; unlike :func:`cut_linking`, they do not change when the free
+    eye turns about its own axis (each half's type is its own)."""
+    halves = cut_halves(x, k, center)
+    if halves is None:
         return None
-    return crossing_linking(ca, cb)
+    return tuple(knot_invariant(h, closed=True).alexander for h in halves)
