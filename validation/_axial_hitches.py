@@ -21,7 +21,11 @@ diameter) and the exponent of a log-log fit of it against T, each run with its C
     python -m validation._axial_hitches --out validation-out [--knots clove-hitch,rolling-hitch]
 
 ``--knots`` runs a subset (the JSON keeps the rows; :func:`summarise` assembles the figure
-from rows of several runs).
+from rows of several runs). ``--sweep`` drags each hitch at T = 0.5 N instead, at mu = 0.1,
+0.3 and 0.6 (rod-rod and rod-pole alike) and at the bending scale kappa = 0.01 (a fibre
+rope's: EI / 100) at mu = 0.3, into ``axial_hitches_mu_kappa.json`` and its figure::
+
+    python -m validation._axial_hitches --out validation-out --sweep
 """
 
 from __future__ import annotations
@@ -54,13 +58,22 @@ DRAG = {
 }  # fmt: skip
 
 
-def drag_row(knot: str, normal_load: float) -> dict:
-    """One drag of ``knot`` at ``normal_load`` [N]: its numbers, CPU [s] and curve."""
+#: the sweep over friction and bending scale (:func:`sweep`): each hitch at SWEEP_LOAD [N],
+#: at these (mu, kappa)
+SWEEP_LOAD = 0.5
+SWEEP = ((0.1, 1.0), (0.3, 1.0), (0.6, 1.0), (0.3, 0.01))
+
+
+def drag_row(knot: str, normal_load: float, *, mu: float = 0.3, bending_scale: float = 1.0) -> dict:
+    """One drag of ``knot`` at ``normal_load`` [N], friction ``mu`` (rod-rod and rod-pole)
+    and bending scale ``bending_scale``: its numbers, CPU [s] and curve."""
     t0 = time.process_time()
-    r = axial_pull(knot, normal_load=normal_load, **DRAG[knot])
+    r = axial_pull(knot, normal_load=normal_load, mu_rod_post=mu, mu_rod_rod=mu,
+                   bending_scale=bending_scale, **DRAG[knot])  # fmt: skip
     cpu = time.process_time() - t0
     return {
-        "knot": knot, "normal_load": normal_load, "sliding_force": r.sliding_force,
+        "knot": knot, "normal_load": normal_load, "mu": mu, "bending_scale": bending_scale,
+        "sliding_force": r.sliding_force,
         "peak_force": r.peak_force, "plateau_force": r.plateau_force, "slid": r.slid,
         "topology_preserved": r.topology_preserved, "status": r.status, "message": r.message,
         "cpu_s": cpu, "wall_s": float(r.stats.get("wall_s", np.nan)),
@@ -141,12 +154,75 @@ def summarise(rows, *, quick=True, out_dir=".") -> dict:
                   notes=notes, quick=quick, extra={"rows": rows})  # fmt: skip
 
 
+def _sweep_point(r) -> float:
+    """A drag's load on the sweep's figure [N]: its sliding force, or its peak force when
+    it held within the drag (a lower bound of the sliding force)."""
+    return r["sliding_force"] if r["slid"] else r["peak_force"]
+
+
+def _sweep_figure(rows):
+    """F_s against mu for each hitch (kappa = 1, filled line; kappa 0.01, open marker); a
+    drag that held is drawn at its peak force with an up arrow (a lower bound)."""
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(6.2, 4.2), layout="constrained")
+    ax = fig.subplots()
+    marks = {"clove-hitch": "o", "rolling-hitch": "s", "prusik": "^"}
+    for k, knot in enumerate(dict.fromkeys(r["knot"] for r in rows)):
+        mine = [r for r in rows if r["knot"] == knot]
+        solid = sorted((r["mu"], _sweep_point(r)) for r in mine if r["bending_scale"] == 1.0)
+        if solid:
+            mu, f = zip(*solid, strict=True)
+            ax.plot(mu, f, marks.get(knot, "o") + "-", color=f"C{k}", label=f"{knot}, kappa 1")
+        for r in mine:
+            if r["bending_scale"] != 1.0:
+                label = f"{knot}, kappa {r['bending_scale']:g}"
+                ax.plot([r["mu"]], [_sweep_point(r)], marks.get(knot, "o"), color=f"C{k}",
+                        mfc="none", ms=9, label=label)  # fmt: skip
+            if not r["slid"]:
+                ax.annotate("", (r["mu"], 1.25 * _sweep_point(r)), (r["mu"], _sweep_point(r)),
+                            arrowprops={"arrowstyle": "->", "color": f"C{k}"})  # fmt: skip
+    ax.set_ylim(0.0, 1.35 * max(_sweep_point(r) for r in rows))  # room for the arrows
+    ax.set_xlabel("friction coefficient mu (rod-rod and rod-pole)")
+    ax.set_ylabel("sliding force F_s [N] (1 d of knot travel)")
+    ax.set_title(f"d = 4 mm VPS32, D = 30 mm, T = {SWEEP_LOAD:g} N a leg; arrow: held "
+                 "within the drag, at its peak force", fontsize=8)  # fmt: skip
+    ax.legend(fontsize=7)
+    return fig
+
+
+def sweep(out_dir=".", knots=tuple(LOADS), rows=()) -> dict:
+    """Each hitch of ``knots`` dragged at :data:`SWEEP_LOAD` for each (mu, kappa) of
+    :data:`SWEEP` (plus the given ``rows``): the table, the figure and the JSON
+    ``axial_hitches_mu_kappa.json``. Check: every drag kept its knot type; a drag that did
+    not slide held to at least its peak force (``numbers``: ``[F_s or None, peak, CPU]``)."""
+    rows = list(rows) + [drag_row(k, SWEEP_LOAD, mu=m, bending_scale=b)
+                         for k in knots for m, b in SWEEP]  # fmt: skip
+    name = f"{NAME}_mu_kappa"
+    figures = [save_figure(_sweep_figure(rows), out_dir, name)]
+    checks = {"topology_kept": all(r["topology_preserved"] for r in rows)}
+    numbers = {
+        knot: {f"mu {r['mu']:g}, kappa {r['bending_scale']:g}":
+               [r["sliding_force"] if r["slid"] else None, r["peak_force"], r["cpu_s"]]
+               for r in rows if r["knot"] == knot}
+        for knot in dict.fromkeys(r["knot"] for r in rows)
+    }  # fmt: skip
+    notes = [
+        "[sliding force N (None: held within the drag), peak force N, CPU s] per "
+        "(mu, kappa); one drag per point, coarse meshes"
+    ]
+    return finish(name, out_dir=out_dir, checks=checks, numbers=numbers, figures=figures,
+                  notes=notes, quick=True, extra={"rows": rows})  # fmt: skip
+
+
 def _main(argv=None) -> int:
     p = argparse.ArgumentParser(description="validation._axial_hitches: the sliding curves")
     p.add_argument("--out", default="validation-out", help="output folder")
     p.add_argument("--knots", default=",".join(LOADS), help="comma-separated hitches to drag")
     p.add_argument("--rows", nargs="*", default=(), help="JSON files of earlier runs: their "
                    "rows are summarised with (or instead of) the new ones")  # fmt: skip
+    p.add_argument("--sweep", action="store_true", help="drag each hitch at T = 0.5 N over "
+                   "mu and kappa instead (axial_hitches_mu_kappa.json)")  # fmt: skip
     args = p.parse_args(argv)
     rows = []
     for path in args.rows:
@@ -155,6 +231,10 @@ def _main(argv=None) -> int:
                 r[key] = float(r[key])  # NaN was written as a string
             rows.append(r)
     knots = [k for k in args.knots.split(",") if k]
+    if args.sweep:
+        result = sweep(args.out, knots, rows)
+        print(format_result(result))
+        return 0 if result["verdict"] == "pass" else 1
     rows += [drag_row(k, t) for k in knots for t in LOADS[k]]
     result = summarise(rows, out_dir=args.out)
     print(format_result(result))
