@@ -61,11 +61,12 @@ End to end (the alpine butterfly, a mid-line loop isolating a damaged stretch: i
 undone in the set), let go in the release (both ends held), free in the pull, where both
 ends are pulled apart along their end tangents (the force: the mean of the two grips'
 reactions). The draw-ins are then the eye drawn into the knot and the rope drawn out of the
-knot into the right end; the invariants, the closed rope's knot type and the linking number
+knot into the right end; the invariants, the closed rope's knot type and the knot types
 of the rope's halves cut at the eye's tip, each closed from outside the knot
-(:data:`END_KEYS`, :func:`~knotmech.scenes.tied.eye_linking.cut_linking`: 1 while the
-tongue passes through the window, counted exactly; its change up to the slip is the knot
-coming undone), both in ``topology_preserved``. Neither sees the butterfly fall apart into
+(:data:`END_KEYS`, :func:`~knotmech.scenes.tied.eye_linking.cut_knot_types`: two overhand
+knots while the tongue passes through the window; their change up to the slip is the knot
+coming undone), both in ``topology_preserved`` (the halves' linking, reported only). Neither
+sees the butterfly fall apart into
 an eye with its legs twisted once (the same invariants); its average crossing number does
 (:mod:`knotmech.scenes.tied.crossings`).
 """
@@ -111,11 +112,13 @@ EYE_D = 5.0
 
 #: invariants whose change fails a run: the closed rope's knot type and its turns round the pin
 FAIL_KEYS = ("alexander", "winding_pin")  # alexander: kept by either closure (up or down)
-#: end to end (no pin): the linking of the rope's halves cut at the eye's tip, each closed
-#: from outside the knot (:func:`~knotmech.scenes.tied.eye_linking.cut_linking`; 1 while
-#: the tongue is through the window, 0 when it has been drawn out: the knot came undone),
-#: kept with the closed rope's knot type in ``topology_preserved``
-END_KEYS = ("linking_cut",)
+#: end to end (no pin): the knot types of the rope's halves cut at the eye's tip, each
+#: closed from outside the knot (:func:`~knotmech.scenes.tied.eye_linking.cut_knot_types`;
+#: the butterfly's: two overhand knots while the tongue is through the window, unknots once
+#: it has been drawn out: the knot came undone), kept with the closed rope's knot type in
+#: ``topology_preserved``; the halves' linking (``linking_cut``) is reported only: a turn
+#: of the free eye about its own axis changes it with the knot still tied
+END_KEYS = ("types_cut",)
 
 
 @dataclass
@@ -194,7 +197,7 @@ class LoopResult:
     @property
     def topology_preserved(self) -> bool:
         """The closed rope's knot type and its winding about the pin kept on every frame
-        checked (end to end: the knot type and the cut halves' linking, :data:`END_KEYS`;
+        checked (end to end: the knot type and the cut halves' knot types, :data:`END_KEYS`;
         a knot that came undone is checked up to that frame, ``came_undone``)."""
         s, c = self.invariants_start, self.invariants_checked
         keys = ("alexander", *END_KEYS) if self.loading == "end-to-end" else FAIL_KEYS
@@ -686,9 +689,7 @@ class LoopScene(Scene):
         if self._apart(x):
             return f"its average crossing number below {self.min_crossings:g} (fell apart)"
         if self.ends:
-            if not hasattr(self, "cut_types0"):  # the start's, computed once
-                self.cut_types0 = self._cut_types(self.x0)
-            now, start = self._cut_types(x), self.cut_types0
+            now, start = self._cut_types(x), self.inv_start.get("types_cut")
             if now is None or start is None:
                 return ""
             if all(a != b for a, b in zip(now, start, strict=True)):
@@ -761,11 +762,15 @@ class LoopScene(Scene):
             force = 0.5 * (force + other)
         return force
 
-    @property
-    def _early(self) -> str:
-        """Why an invariant reported may change before the slip: the free tail swinging;
-        end to end, the eye drawn out of the window (the knot came undone)."""
-        return " (the knot came undone)" if self.ends else " (free tail)"
+    def _early(self, key: str) -> str:
+        """Why the invariant ``key`` reported may change before the slip: the free tail
+        swinging; end to end, the eye drawn out of the window (the knot came undone: the
+        halves' knot types), or a turn of the free eye (their linking alone)."""
+        if not self.ends:
+            return " (free tail)"
+        if key in END_KEYS:
+            return " (the knot came undone)"
+        return " (reported only: a turn of the free eye changes it)"
 
     def _law(self) -> str:
         if self.ends:
@@ -847,10 +852,11 @@ class LoopScene(Scene):
 
     def _measure(self, x) -> dict:
         """:func:`~knotmech.scenes.tied.measure` of the rope at ``x``; end to end (no pin)
-        with ``linking_cut`` (:meth:`_cut_linking`)."""
+        with ``linking_cut`` (:meth:`_cut_linking`) and ``types_cut`` (:meth:`_cut_types`)."""
         out = measure(replace(self.knot, ropes={"rope": x}))
         if self.ends:
             out["linking_cut"] = self._cut_linking(x)
+            out["types_cut"] = self._cut_types(x)
         return out
 
     def _frame_invariants(self, x, *, cut: bool = True) -> dict:
@@ -894,6 +900,6 @@ class LoopScene(Scene):
                 if self.ends:  # a change up to the slip stays recorded (kept on every frame)
                     got.update({key: v for key, (_, v) in moved.items() if key in END_KEYS})
         note = "; ".join(f"{key} {self.inv_start[key]} -> {v} at t = {t:.3f} s"
-                         + (" (after the slip)" if t > tp[k_slip] else self._early)
+                         + (" (after the slip)" if t > tp[k_slip] else self._early(key))
                          for key, (t, v) in moved.items())  # fmt: skip
         return run.status, run.message or note
