@@ -1156,20 +1156,17 @@ def _grip(x0, u, v, t_start):
     return path
 
 
-#: frames of a run on which the knot invariants are recomputed (evenly spaced)
-N_CHECKED_FRAMES = 12
-
-
 def _check_invariants(invariants, x0, pos, disp, d):
-    """Invariants of the start shape and of up to :data:`N_CHECKED_FRAMES` frames while end 0
-    has moved less than 10 d (beyond, a slipping hitch legitimately comes apart)."""
+    """Invariants of the start shape and of every recorded frame while end 0 has moved
+    less than 10 d (beyond, a slipping hitch legitimately comes apart): (start's, last
+    frame checked's, kept) with kept None when no frame qualifies, False at the first frame
+    whose invariants differ (or that cannot be closed)."""
     inv0 = invariants(x0)
     frames = np.flatnonzero(np.abs(disp) < 10 * d)
     if frames.size == 0:
         return inv0, None, None
-    pick = np.unique(np.linspace(0, frames.size - 1, N_CHECKED_FRAMES).round().astype(int))
     last = inv0
-    for k in frames[pick]:
+    for k in frames:
         try:
             last = invariants(pos[k])
         except InputError:  # a degenerate projection: strands touching at rounding

@@ -188,3 +188,26 @@ def test_round_turn_holds_what_two_half_hitches_hold():
     (t_thh, th_thh), (t_rt, th_rt) = _post_exit_tension(thh), _post_exit_tension(rt)
     assert th_rt > th_thh + 1.8 * np.pi  # a round turn wraps 2 pi more
     assert t_rt < 0.6 * t_thh
+
+
+def test_invariants_are_checked_on_every_frame_within_10_d():
+    """:func:`knotmech.scenes._hitch._check_invariants` looks at every recorded frame while
+    end 0 is within 10 d (was 12 evenly spaced ones: a change on frame 7 of 50 was missed)."""
+    from knotmech.scenes._hitch import _check_invariants
+
+    d, n = 4e-3, 50
+    pos = np.zeros((n, 3, 3))
+    pos[7, 0, 0] = 1.0  # the one frame whose "knot type" differs
+    disp = np.zeros(n)
+    disp[40:] = 11 * d  # beyond 10 d: not checked
+    seen = []
+
+    def inv(x):
+        seen.append(x)
+        return (2,) if x[0, 0] == 1.0 else (1,)
+
+    assert _check_invariants(inv, pos[0], pos, disp, d) == ((1,), (2,), False)
+    pos[7, 0, 0] = 0.0
+    seen.clear()
+    assert _check_invariants(inv, pos[0], pos, disp, d) == ((1,), (1,), True)
+    assert len(seen) == 1 + 40  # the start and the 40 frames within 10 d
