@@ -211,3 +211,17 @@ def test_invariants_are_checked_on_every_frame_within_10_d():
     seen.clear()
     assert _check_invariants(inv, pos[0], pos, disp, d) == ((1,), (1,), True)
     assert len(seen) == 1 + 40  # the start and the 40 frames within 10 d
+
+
+@pytest.mark.slow
+def test_cow_hitch_loaded_on_both_legs_keeps_its_knot_type_on_every_frame():
+    """The cow hitch with both legs loaded (``loading="symmetric"``, 0.3 N each, mu = 0.3,
+    the clove-hitch paper's rod and post): the unknot linked 0 times with the post on every
+    recorded frame, and each leg carries its load."""
+    r = hitch("cow_hitch", loading="symmetric", t_high=0.3, mu_rod_post=0.3, mu_rod_rod=0.3,
+              **PROTOCOL)  # fmt: skip
+    assert r.status == "success", r.message
+    assert r.topology_preserved and r.invariants_kept is True
+    assert r.invariants_end == INVARIANTS["cow_hitch"] == ((1,), 0)
+    assert r.tension[0] == pytest.approx(0.3, rel=0.05)
+    assert r.tension[-1] == pytest.approx(0.3, rel=0.05)
