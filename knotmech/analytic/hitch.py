@@ -282,10 +282,12 @@ def thick_hitch_lock_parameter(knot, mu, mu_rr=None, *, rod_diameter, post_diame
     D = check_positive("post_diameter", post_diameter)
     m_post, m_rope, n_post, n_rope, g_post, g_rope = _thick_parts(g, mu, mrr, d, D)
     lock = np.zeros(np.broadcast(mu, mrr, d, D).shape)
-    if g.post_nips:
-        lock = np.maximum(lock, g_post * n_post * np.exp(m_post * g.post_wrap_out))
-    if g.half_hitches:
-        lock = np.maximum(lock, g_rope * n_rope * np.exp(m_rope * g.half_hitch_wrap))
+    # a huge mu overflows the exponential: inf, read as locked (as _ideal_ratio does)
+    with np.errstate(over="ignore"):
+        if g.post_nips:
+            lock = np.maximum(lock, g_post * n_post * np.exp(m_post * g.post_wrap_out))
+        if g.half_hitches:
+            lock = np.maximum(lock, g_rope * n_rope * np.exp(m_rope * g.half_hitch_wrap))
     return lock
 
 
