@@ -13,7 +13,11 @@ Breaking load
     in :math:`d^2` (strength scales with the cross-section), so a tabulated diameter
     returns its row exactly. The first table of a material covering :math:`d` gives the
     nominal value; the lowest and highest of all tables covering :math:`d` give the
-    range (tables differ by maker and construction). Outside every table: InputError.
+    range (tables differ by maker and construction). A material without a table may
+    have a law instead (``laws`` in ``mbs.json``): :math:`F = s\,d^2` with :math:`s`
+    from published single breaks, a stated band and diameter range (HMPE: two breaks,
+    an estimate, not a maker's table; its source says so). Outside every table and
+    law: InputError.
 Knot efficiency
     :math:`\eta = F_\mathrm{knot} / F_\mathrm{rope}` per knot, as a range over the rows
     that apply: the traditional tables (Cordage Institute, Plymouth Cordage 1946), which
@@ -49,8 +53,10 @@ __all__ = [
     "Estimate",
     "FrictionRange",
     "NoDataError",
+    "StrengthLaw",
     "StrengthTable",
     "breaking_load",
+    "breaking_load_laws",
     "breaking_load_tables",
     "counterface_names",
     "friction_range",
@@ -179,6 +185,70 @@ def _mbs_tables() -> tuple:
     return tuple(tables)
 
 
+class StrengthLaw(NamedTuple):
+    """A breaking-strength law :math:`F = s\\,d^2` over ``[d_min, d_max]`` [m].
+
+    ``s_nominal``, ``s_low``, ``s_high`` [N/m^2] (F in N for d in m); ``source`` starts
+    with the law's kind (an estimate) and names every point with where it stands.
+    """
+
+    id: str
+    material: str
+    s_nominal: float  # [N/m^2]
+    s_low: float  # [N/m^2]
+    s_high: float  # [N/m^2]
+    d_min: float  # [m]
+    d_max: float  # [m]
+    source: str
+
+
+@cache
+def _mbs_laws() -> tuple:
+    laws = []
+    for law in _data("mbs.json").get("laws", []):
+        s = [
+            float(p["load"])
+            * LOAD_UNITS[p["load_unit"]]
+            / _length(p["diameter"], p["diameter_unit"]) ** 2
+            for p in law["points"]
+        ]
+        d_min, d_max = (_length(x, law["diameter_unit"]) for x in law["diameter_range"])
+        points = "; ".join(f"{p['source']} ({p['where']})" for p in law["points"])
+        source = f"{law['kind']}, valid {d_min * 1e3:g}-{d_max * 1e3:g} mm: {points}"
+        band = law["band"]
+        laws.append(
+            StrengthLaw(
+                law["id"],
+                law["material"],
+                float(np.mean(s)),
+                min(s) * band["low_factor"],
+                max(s) * band["high_factor"],
+                d_min,
+                d_max,
+                source,
+            )
+        )
+    return tuple(laws)
+
+
+def breaking_load_laws(material) -> tuple:
+    """The breaking-strength laws (:class:`StrengthLaw`) of a material, in priority order.
+
+    Parameters
+    ----------
+    material : str or Material
+        A preset name or alias (see :func:`knotmech.materials.material`).
+
+    Returns
+    -------
+    tuple of StrengthLaw
+        Used after the material's tables (:func:`breaking_load_tables`); HMPE has one,
+        an estimate through two published single breaks.
+    """
+    key = _material_key(material)
+    return tuple(law for law in _mbs_laws() if law.material == key)
+
+
 def breaking_load_tables(material) -> tuple:
     """The breaking-strength tables of a material, in priority order.
 
@@ -230,56 +300,80 @@ def breaking_load(material, rod_diameter) -> Estimate:
     .. math:: F(d) = F_i + (F_{i+1} - F_i)\,\frac{d^2 - d_i^2}{d_{i+1}^2 - d_i^2},
               \quad d_i \le d \le d_{i+1}
 
+    between the rows of a table, or :math:`F = s\,d^2` for a law.
+
     Parameters
     ----------
     material : str or Material
         Rope preset (``nylon``, ``polyester``, ``manila``, ``polypropylene``,
-        ``steel-wire``; ``hmpe`` has no table: :class:`NoDataError`).
+        ``steel-wire`` from makers' tables; ``hmpe`` from an estimate, not a table:
+        :math:`F = s\,d^2` through two published single breaks, 1/8 in AmSteel rated
+        2500 lbf (hwstock.org) and the 7 mm SK78 core of Marlow D2 Racing broken at
+        5360 kgf (Yachting Monthly, Nov. 2017, p. 70), valid 3-8 mm; ``vps32``:
+        :class:`NoDataError`).
     rod_diameter : float or array_like
         Nominal rope diameter d [m].
 
     Returns
     -------
     Estimate
-        ``nominal`` from the material's first table covering d, ``low``/``high`` the
-        least and greatest of all its tables covering d [N] (arrays for array input);
-        ``source`` names the tables used. Makers' values are new-rope minimums (or
-        averages where the table says so), straight pull, no knot.
+        ``nominal`` from the material's first table (then law) covering d,
+        ``low``/``high`` the least and greatest of all its tables and law bands covering
+        d [N] (arrays for array input); ``source`` names the tables or laws used (a law's
+        starts with its kind, ``estimate: ...``). Makers' values are new-rope minimums
+        (or averages where the table says so), straight pull, no knot.
 
     Raises
     ------
     InputError
-        Bad diameter, unknown material, or d outside every table of the material.
+        Bad diameter, unknown material, or d outside every table and law of the
+        material.
     NoDataError
-        The material has no breaking-strength table.
+        The material has neither a breaking-strength table nor a law.
     """
     key = _material_key(material)
     d = _diameter("rod_diameter", rod_diameter)
     tables = breaking_load_tables(key)
-    if not tables:
+    laws = breaking_load_laws(key)
+    if not tables and not laws:
         note = _data("mbs.json")["not_found"].get(key, "no table found")
         raise NoDataError(f"no breaking-strength table for {key}: {note}")
     flat = np.atleast_1d(d).ravel()
-    values = np.stack([_interp_d2(t, flat) for t in tables])
-    covered = ~np.isnan(values)
+    bands = [(v, v, v) for v in (_interp_d2(t, flat) for t in tables)]
+    bands += [_law_d2(law, flat) for law in laws]
+    nominals, lows, highs = (np.stack(b) for b in zip(*bands, strict=True))
+    covered = ~np.isnan(nominals)
     if not np.all(covered.any(axis=0)):
-        lo = min(t.diameters[0] for t in tables) * 1e3
-        hi = max(t.diameters[-1] for t in tables) * 1e3
-        bad = flat[~covered.any(axis=0)][0]
-        raise InputError(
-            f"rod_diameter {bad * 1e3:g} mm is outside the breaking-strength tables "
-            f"for {key} ({lo:.3g}-{hi:.3g} mm)"
-        )
+        _raise_outside(key, tables, laws, flat[~covered.any(axis=0)][0])
     first = np.argmax(covered, axis=0)
-    nominal = values[first, np.arange(flat.size)]
-    used = [t.source for t, c in zip(tables, covered.any(axis=1), strict=True) if c]
+    nominal = nominals[first, np.arange(flat.size)]
+    sources = [t.source for t in tables] + [law.source for law in laws]
+    used = [src for src, c in zip(sources, covered.any(axis=1), strict=True) if c]
     shape = np.shape(d)
     return Estimate(
         _shaped(nominal, shape),
-        _shaped(np.nanmin(values, axis=0), shape),
-        _shaped(np.nanmax(values, axis=0), shape),
+        _shaped(np.nanmin(lows, axis=0), shape),
+        _shaped(np.nanmax(highs, axis=0), shape),
         "; ".join(used),
     )
+
+
+def _raise_outside(key: str, tables: tuple, laws: tuple, bad: float):
+    """The one-line InputError for a diameter ``bad`` [m] outside every table and law."""
+    lo = min([t.diameters[0] for t in tables] + [law.d_min for law in laws]) * 1e3
+    hi = max([t.diameters[-1] for t in tables] + [law.d_max for law in laws]) * 1e3
+    what = "tables" if not laws else ("d^2 law" if not tables else "tables and laws")
+    raise InputError(
+        f"rod_diameter {bad * 1e3:g} mm is outside the breaking-strength {what} "
+        f"for {key} ({lo:.3g}-{hi:.3g} mm)"
+    )
+
+
+def _law_d2(law: StrengthLaw, d: np.ndarray) -> tuple:
+    """(nominal, low, high) loads [N] of ``law`` at diameters ``d`` [m]; NaN outside."""
+    inside = (d >= law.d_min * (1 - 1e-12)) & (d <= law.d_max * (1 + 1e-12))
+    d2 = np.where(inside, d**2, np.nan)
+    return law.s_nominal * d2, law.s_low * d2, law.s_high * d2
 
 
 def _interp_d2(table: StrengthTable, d: np.ndarray) -> np.ndarray:

@@ -73,15 +73,24 @@ def test_capacity_is_the_lower_of_slip_and_break():
     c = cap.capacity_of(knot="clove-hitch", slip=strong, material="nylon", d=0.0102, D=0.04,
                         load=200.0)  # fmt: skip
     assert c.limited_by == "break" and c.value == c.breaking.value
-    # open above and no breaking load (HMPE has no table): undecided
+    # open above: HMPE 6 mm breaks at eta F, F = s d^2 (s = 1.088 kN/mm^2, the estimate
+    # through two published single breaks) and eta the makers' rule for any knot in HMPE
+    # (Marlow 40 %; rund-ums-tauwerk.de 25-50 %: median of mid-points 0.3875)
     open_ = cap.LoadBand(math.inf, 500.0, math.inf, "table")
     c = cap.capacity_of(knot="clove-hitch", slip=open_, material="hmpe", d=0.006, D=0.04,
                         load=200.0)  # fmt: skip
+    assert c.limited_by == "break" and c.low == 500.0
+    assert c.breaking.value == pytest.approx(0.3875 * 1.08794e9 * 0.006**2, rel=1e-5)
+    assert "estimate: d^2 scaling through two published single breaks" in c.breaking.source
+    # open above and no breaking load (HMPE 10 mm: outside the law's 3-8 mm): undecided
+    c = cap.capacity_of(knot="clove-hitch", slip=open_, material="hmpe", d=0.010, D=0.04,
+                        load=200.0)  # fmt: skip
     assert not c.decided and math.isnan(c.fraction(200.0))
     assert c.breaking_note == (
-        "breaking load: no published knot efficiency for clove-hitch in hmpe; source needed"
+        "breaking load: no published data (rod_diameter 10 mm is outside the breaking-strength"
+        " d^2 law for hmpe (3-8 mm)); source needed"
     )
-    assert c.rope_strength is None  # nor a rope strength table for HMPE
+    assert c.rope_strength is None
 
 
 def test_without_a_knot_efficiency_the_rope_strength_bounds_the_break():

@@ -132,9 +132,59 @@ def test_a_measured_break_exceeds_the_makers_minimum():
     assert strength.breaking_load("polyester", 0.010).nominal < 2640 * KGF
 
 
-def test_hmpe_has_no_breaking_strength_table():
-    with pytest.raises(NoDataError, match="hmpe"):
-        strength.breaking_load("hmpe", 0.010)
+# HMPE: no maker's table; F = s d^2 through two published single breaks, read again by
+# hand: 1/8 in Amsteel "2500 lb bs" (hwstock.org/rope/amsteeltrilene, second paragraph)
+# and the 7 mm SK78 core of Marlow D2 Racing 10 mm broken at 5360 kg (Yachting Monthly,
+# Nov. 2017, p. 70, row 'D2 Racing', 'Rope Break Load (kg)').
+AMSTEEL = (0.125 * INCH, 2500 * LBF)
+D2_CORE = (7e-3, 5360 * KGF)
+S_POINTS = [f / d**2 for d, f in (AMSTEEL, D2_CORE)]  # 1.103 and 1.073 kN/mm^2
+
+
+@pytest.mark.parametrize(("d", "f"), [AMSTEEL, D2_CORE])
+def test_hmpe_law_passes_each_published_break_within_its_band(d, f):
+    est = strength.breaking_load("hmpe", d)
+    assert est.low <= f <= est.high
+    # nominal s = mean of the two points: 1.4 % below the Amsteel rating, 1.4 % above D2
+    assert est.nominal == pytest.approx(np.mean(S_POINTS) * d**2, rel=1e-12)
+    assert est.nominal == pytest.approx(f, rel=0.015)
+    assert est.nominal != pytest.approx(f, rel=0.01)  # a fit through two points, not one
+    assert est.source.startswith(
+        "estimate: d^2 scaling through two published single breaks (not a maker's table)"
+    )
+    assert "hwstock.org" in est.source and "Yachting Monthly" in est.source
+
+
+def test_hmpe_law_scales_with_d_squared_and_its_band_is_stated():
+    est = strength.breaking_load("hmpe", [3e-3, 6e-3, 8e-3])
+    assert est.nominal[1] / est.nominal[0] == pytest.approx(4.0, rel=1e-12)
+    assert est.nominal[2] / est.nominal[1] == pytest.approx(16 / 9, rel=1e-12)
+    # s: nominal 1.088 kN/mm^2; the band 0.88 x 1.073 = 0.944 to 1.14 x 1.103 = 1.258
+    # covers the other published single values: lowest 7/64 in Amsteel 1650 lb average
+    # (0.951, hwstock.org/rope/sheathed_amsteel), highest Marlow Excel D12 4 mm 2050 kg
+    # (1.257, totalwind.net forum)
+    assert est.nominal[1] == pytest.approx(1.08794e9 * 36e-6, rel=1e-5)
+    assert est.low[1] == pytest.approx(0.88 * min(S_POINTS) * 36e-6, rel=1e-12)
+    assert est.high[1] == pytest.approx(1.14 * max(S_POINTS) * 36e-6, rel=1e-12)
+    assert est.low[1] < 1650 * LBF / (7 / 64 * INCH) ** 2 * 36e-6 < est.nominal[1]
+    assert est.nominal[1] < 2050 * KGF / 4e-3**2 * 36e-6 < est.high[1]
+
+
+@pytest.mark.parametrize("d", [2.9e-3, 8.1e-3, 10e-3])
+def test_hmpe_outside_the_law_range_is_a_one_line_input_error(d):
+    with pytest.raises(
+        InputError, match=r"outside the breaking-strength d\^2 law for hmpe \(3-8 mm\)"
+    ):
+        strength.breaking_load("hmpe", d)
+
+
+def test_hmpe_not_found_says_what_is_used_and_vps32_has_nothing():
+    note = strength._data("mbs.json")["not_found"]["hmpe"]
+    assert "hmpe-d2-law-amsteel-d2racing" in note and "3-8 mm" in note
+    (law,) = strength.breaking_load_laws("dyneema")
+    assert (law.d_min, law.d_max) == (3e-3, 8e-3)
+    with pytest.raises(NoDataError, match="vps32"):
+        strength.breaking_load("vps32", 0.004)
 
 
 # ----------------------------------------------------------------- knot efficiency

@@ -367,6 +367,7 @@ def format_verdict(verdict, *, verbose: bool = False) -> str:
     lines = [verdict.summary()]
     if verdict.friction_line():
         lines.append(verdict.friction_line())
+    lines += _breaking_lines(verdict.capacity)
     lines += [f"warning: {_FLAGS.get(w.name, w.name)}: {w.message}" for w in verdict.warnings]
     lines += [f"assumed: {s}" for s in verdict.assumptions]
     if verdict.creep is not None:
@@ -384,6 +385,29 @@ def format_verdict(verdict, *, verbose: bool = False) -> str:
     lines += _der_lines(verdict.der)
     lines += [f"note: {s}" for s in verdict.notes]
     return "\n".join(lines)
+
+
+def _breaking_lines(cap) -> list:
+    """The breaking load, its band and its source in one line (issue 23); none when no
+    material or no published number gives one (the verdict line says so)."""
+    from knotmech.verdict.answer import format_force as _f
+
+    def pct(eta):
+        same = f"{eta[1]:.0%}" == f"{eta[2]:.0%}"
+        return f"{eta[0]:.0%}" + ("" if same else f" ({eta[1]:.0%} to {eta[2]:.0%})")
+
+    if cap is None:
+        return []
+    if cap.breaking is not None:
+        b = cap.breaking
+        knot = "" if cap.efficiency is None else f", knot efficiency {pct(cap.efficiency)}"
+        return [f"breaking load: {_f(b.value)} ({_f(b.low)} to {_f(b.high)}){knot}; "
+                f"source: {b.source}"]  # fmt: skip
+    if cap.rope_strength is not None:
+        r = cap.rope_strength
+        return [f"breaking load: below the rope's own {_f(r.value)} ({_f(r.low)} to "
+                f"{_f(r.high)}; no published knot efficiency); source: {r.source}"]  # fmt: skip
+    return []
 
 
 def _others_line(verdict) -> list:

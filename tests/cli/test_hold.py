@@ -477,3 +477,43 @@ def test_bending_scale_factor_three_is_the_edge(capsys):
     # the thick nip is self-locking; no material bounds the slip load: undecided (issue 23)
     assert no["decided_by"] is None and no["der"]["refused"] == "bending_scale"
     assert "--bending-scale 0.33 --simulate" in no["der"]["message"]
+
+
+# issue 23: the breaking load on the verdict with its source; HMPE from the d^2 law
+# through two published single breaks (s = 1.088 kN/mm^2: 39.17 kN at 6 mm)
+HMPE_LAW = "estimate: d^2 scaling through two published single breaks (not a maker's table)"
+
+
+def test_hmpe_clove_hitch_prints_the_breaking_load_with_its_source(capsys):
+    argv = ["hold", "clove-hitch", "--rod-diameter", "6mm", "--post-diameter", "40mm",
+            "--load", "200N", "--material", "hmpe"]  # fmt: skip
+    assert main(argv) == 0
+    lines = capsys.readouterr().out.splitlines()
+    # eta: the makers' rule for any knot in HMPE (Marlow 40 %, rund-ums-tauwerk 25-50 %)
+    assert "breaks near 15 kN (knot efficiency 39 %)" in lines[0]
+    (brk,) = [s for s in lines if s.startswith("breaking load:")]
+    assert brk.startswith("breaking load: 15 kN (8.5 kN to 23 kN), knot efficiency 39%")
+    assert HMPE_LAW in brk and "hwstock.org" in brk and "Yachting Monthly" in brk
+    data = _json(argv, capsys)
+    b = data["capacity"]["breaking"]
+    assert b["value_N"] == pytest.approx(0.3875 * 1.08794e9 * 36e-6, rel=1e-5)
+    assert HMPE_LAW in b["source"]
+
+
+def test_hmpe_bowline_prints_the_breaking_load_with_its_source(capsys):
+    argv = ["hold", "bowline", "--rod-diameter", "6mm", "--pin-diameter", "20mm",
+            "--load", "200N", "--material", "hmpe"]  # fmt: skip
+    assert main(argv) == 0
+    out = capsys.readouterr().out
+    # HMPE bowline rows: D2 Racing 39.0 % (Yachting Monthly p. 70), Hartter ~1/3
+    assert "breaks near 14 kN (knot efficiency 36 %)" in out.splitlines()[0]
+    (brk,) = [s for s in out.splitlines() if s.startswith("breaking load:")]
+    assert HMPE_LAW in brk and "(2500 lb bs) Amsteel" in brk
+
+
+def test_hmpe_outside_the_law_range_says_source_needed(capsys):
+    argv = ["hold", "clove-hitch", "--rod-diameter", "10mm", "--post-diameter", "40mm",
+            "--load", "200N", "--material", "hmpe"]  # fmt: skip
+    assert main(argv) == 0
+    first = capsys.readouterr().out.splitlines()[0]
+    assert "outside the breaking-strength d^2 law for hmpe (3-8 mm)); source needed" in first
