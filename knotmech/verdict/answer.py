@@ -72,7 +72,13 @@ class Verdict:
         not given (with its ``source``; the verdict is at the low end), the verdict over it
         (``words``, ``holds_at_low``, ``holds_at_high``) and ``critical_mu``, the least mu
         at which the knot holds at this load (0: without friction; inf, null in JSON with
-        ``critical_mu_none``: none up to 1.5).
+        ``critical_mu_none``: none up to 1.5). ``published`` says whether the range is
+        published; where it is not (``published`` False, ``source`` None), ``range`` is the
+        searched 0.05-1.5, ``missing`` and ``why`` say what is missing,
+        ``published_post_materials`` where a coefficient exists, and ``verdict_at_mu``
+        (``verdict_at``: ``low end``, ``critical mu`` or ``top of the search``) the mu at
+        which the verdict's numbers (slip load, margin, capacity) are computed
+        (:func:`knotmech.verdict.friction.unknown_friction_verdict`).
     fails_by : str or None
         ``"slip"`` or ``"break"`` when it does not hold (``"break"``: the load is at or above
         the knot's breaking load; the state is then ``BREAKS``).

@@ -69,7 +69,14 @@ def hold(
         Rope-post friction coefficient [-], >= 0 (a bend: rope-rope). Without it, the
         published range of ``material`` on ``post_material``
         (:func:`knotmech.strength.friction_range`): the verdict is given at its low end and
-        scanned over the range (:attr:`Verdict.friction`).
+        scanned over the range (:attr:`Verdict.friction`). Where none is published for the
+        pair, the friction is unknown and the verdict covers the searched range
+        [:data:`~knotmech.verdict.friction.MU_UNKNOWN_LOW`,
+        :data:`~knotmech.verdict.friction.MU_SEARCH_MAX`]
+        (:func:`knotmech.verdict.friction.unknown_friction_verdict`): HOLDS only if it holds
+        at the low end, SLIPS (or BREAKS) only if it does not hold at the top, else
+        undecided with the critical mu; ``friction["published"]`` is False,
+        ``friction["verdict_at_mu"]`` the mu of its numbers; ``simulate`` then needs ``mu``.
     pin_diameter : float, optional
         A loop's pin diameter [m] (the pin its eye goes round), required for a loop and
         refused for any other knot.
@@ -141,7 +148,8 @@ def hold(
     ------
     InputError
         Bad or inconsistent inputs, an unknown knot or material, a phase table that
-        does not read.
+        does not read; no ``mu`` and no ``material``; ``simulate`` without ``mu`` where no
+        friction coefficient is published.
 
     Examples
     --------
