@@ -70,6 +70,19 @@ def test_does_not_hold_at_the_top_slips():
     assert d["friction"]["holds_at_high"] is False and d["verdict"] == "slips"
 
 
+def test_a_load_at_the_breaking_load_breaks_at_any_friction():
+    """The manila capstan at 3 kN against 300 N: holds by friction at 0.05 already, but
+    3 kN is above the rope's 2.255 kN breaking load, so BREAKS (a real verdict: the
+    breaking load does not depend on mu), numbers at 1.5 as hold(mu=1.5) gives them."""
+    kw = dict(POST, load=3000.0, free_end_load=300.0, material="manila", wrap_angle=20 * math.pi)
+    v = knotmech.hold("capstan", **kw)
+    at = knotmech.hold("capstan", mu=1.5, **kw)
+    assert v.state == at.state == "BREAKS" and v.fails_by == "break"
+    assert v.capacity.value == at.capacity.value == pytest.approx(2254.90, rel=1e-5)
+    assert v.friction["words"] == "breaks at any friction: the load reaches the breaking load"
+    assert math.isinf(v.friction["critical_mu"]) and v.friction["verdict_at_mu"] == 1.5
+
+
 @pytest.mark.parametrize(
     ("material", "mu_star", "decided_by"),
     [("polypropylene", 0.166098, "thick-nip"), ("steel-wire", 0.2957, "DER-table")],
@@ -136,6 +149,10 @@ def test_bend_without_rope_on_rope_data():
         "published friction coefficient for manila on rope); at mu = 1.5: slip load not known"
     )
     assert v.summary().endswith("next: give --mu (mu=) measured for this rope")
+    # a bend's rope on rope is never "the default post material" (published or not)
+    poly = knotmech.hold("reef", rod_diameter=10e-3, load=200, material="polyester")
+    assert poly.friction["range"] == [0.12, 0.2] and poly.friction["default_post_material"] is False
+    assert "default post material" not in poly.friction_line()
     d = _strict(v)
     assert d["friction"]["critical_mu"] is None and d["critical_mu_none"] is False
 

@@ -136,7 +136,8 @@ def friction_preset(knot: str, material, post_material) -> FrictionPreset:
                               known=known, default_face=post_material is None and not bend,
                               material=name, why=str(exc))  # fmt: skip
     return FrictionPreset(float(r.low), float(r.high), face, r.source,
-                          default_face=post_material is None, material=name)  # fmt: skip
+                          default_face=post_material is None and not bend,
+                          material=name)  # fmt: skip
 
 
 def _has(strength, material, face) -> bool:
@@ -249,7 +250,7 @@ def unknown_friction_verdict(preset: FrictionPreset, at):
     v_hi = cache.setdefault(hi, at(hi))
     if v_hi.holds is False:
         if v_hi.fails_by == "break":
-            words = "breaks whatever the friction (the load reaches the breaking load)"
+            words = "breaks at any friction: the load reaches the breaking load"
             text = "the load breaks the rope whatever the friction"
         else:
             words = f"does not hold for any mu up to {hi:g}"
