@@ -8,6 +8,7 @@ import json
 import math
 from pathlib import Path
 
+import numpy as np
 import pytest
 
 import knotmech
@@ -186,3 +187,41 @@ def test_simulate_needs_a_friction_coefficient():
         "or post_material \\(aluminium, rope\\)$",
     ):
         knotmech.hold("clove-hitch", **POST, material="nylon", simulate=True)
+
+
+def test_random_questions_agree_with_hold_at_a_given_mu():
+    """Random questions without mu on every material without a published value (hitches,
+    capstan, a bend; rope 2-20 mm, post 1-30 d, loads 1 N-10 kN): HOLDS is the verdict at
+    0.05, SLIPS/BREAKS the verdict at 1.5, an UNDECIDED mu* holds at mu* and not 1e-3
+    below it; strict JSON throughout."""
+    rng = np.random.default_rng(2323)
+    knots = ("clove-hitch", "two-half-hitches", "round-turn-two-half-hitches", "cow-hitch",
+             "round-turn", "capstan", "reef")  # fmt: skip
+    mats = ("manila", "polypropylene", "steel-wire", "vps32", "nylon")
+    seen = set()
+    for _ in range(24):
+        knot = knots[rng.integers(len(knots))]
+        d = 10 ** rng.uniform(math.log10(2e-3), math.log10(2e-2))
+        mat = mats[rng.integers(len(mats))]
+        if knot == "reef" and mat == "nylon":  # nylon on nylon is published
+            mat = "manila"
+        post = None if knot == "reef" else d * rng.uniform(1, 30)
+        kw = dict(rod_diameter=d, post_diameter=post, load=10 ** rng.uniform(0, 4), material=mat)
+        if knot == "capstan":
+            kw.update(wrap_angle=2 * math.pi * rng.integers(1, 6), free_end_load=kw["load"] / 20)
+        v = knotmech.hold(knot, **kw)
+        f = v.friction
+        _strict(v)
+        seen.add(v.state)
+        assert f["published"] is False and v.inputs["mu"] == f["verdict_at_mu"]
+        if v.state == "HOLDS":
+            assert f["verdict_at_mu"] == 0.05 and knotmech.hold(knot, mu=0.05, **kw).holds
+        elif v.state in ("SLIPS", "BREAKS"):
+            assert knotmech.hold(knot, mu=1.5, **kw).state == v.state
+        elif math.isfinite(f["critical_mu"]):
+            m = f["critical_mu"]
+            assert knotmech.hold(knot, mu=m, **kw).holds is True
+            assert knotmech.hold(knot, mu=m - MU_RESOLUTION, **kw).holds is not True
+        else:
+            assert knotmech.hold(knot, mu=1.5, **kw).holds is None
+    assert {"SLIPS", "UNDECIDED"} <= seen
