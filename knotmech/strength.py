@@ -58,6 +58,7 @@ __all__ = [
     "breaking_load",
     "breaking_load_laws",
     "breaking_load_tables",
+    "counterface_key",
     "counterface_names",
     "friction_range",
     "knot_breaking_load",
@@ -542,6 +543,22 @@ def counterface_names() -> tuple[str, ...]:
     return tuple(sorted(set(_COUNTERFACE_ALIASES.values())))
 
 
+def counterface_key(counterface) -> str:
+    """The canonical name of a counterface (``stainless`` -> ``steel``).
+
+    Raises
+    ------
+    InputError
+        An unknown counterface (the message lists the known names).
+    """
+    face = _COUNTERFACE_ALIASES.get(_name("counterface", counterface))
+    if face is None:
+        raise InputError(
+            f"unknown counterface {counterface!r}; known: {', '.join(counterface_names())}"
+        )
+    return face
+
+
 def friction_range(material, counterface) -> FrictionRange:
     """Coulomb friction coefficient of a rope on a counterface, as a range.
 
@@ -566,11 +583,7 @@ def friction_range(material, counterface) -> FrictionRange:
         No citable coefficient for this pair (give ``mu`` yourself).
     """
     key = _material_key(material)
-    face = _COUNTERFACE_ALIASES.get(_name("counterface", counterface))
-    if face is None:
-        raise InputError(
-            f"unknown counterface {counterface!r}; known: {', '.join(counterface_names())}"
-        )
+    face = counterface_key(counterface)
     data = _data("friction.json")
     rows = [r for r in data["rows"] if r["material"] == key and r["counterface"] == face]
     if not rows:

@@ -254,12 +254,21 @@ def test_mu_from_the_material_and_post():
     assert m.inputs["mu"] == 0.4 and m.friction["range"] is None
 
 
-def test_no_published_friction_is_one_line():
-    with pytest.raises(knotmech.InputError, match="no published friction coefficient for "
-                       "nylon on steel \\(published: aluminium, rope\\): give mu or "
-                       "post_material$"):  # fmt: skip
-        knotmech.hold("clove-hitch", rod_diameter=6e-3, post_diameter=40e-3, load=200,
-                      material="nylon")  # fmt: skip
+def test_no_published_friction_answers_over_the_searched_range():
+    """Nylon on steel has no published coefficient (friction.json not_found): no error any
+    more (issue 23: mu optional for every preset) but UNDECIDED over mu 0.05-1.5, holding
+    only above mu* (the thick nip's 0.16610 at d/D 0.15, found by bisection of the whole
+    verdict to 1e-3), its numbers at mu*; mu stays required without a material."""
+    kw = dict(rod_diameter=6e-3, post_diameter=40e-3, load=200, material="nylon")
+    v = knotmech.hold("clove-hitch", **kw)
+    f = v.friction
+    assert v.state == "UNDECIDED" and f["published"] is False and f["source"] is None
+    assert f["range"] == [0.05, 1.5] and f["published_post_materials"] == ["aluminium", "rope"]
+    nip = next(a for a in v.answers if a.model == "thick-nip").critical_mu
+    assert nip == pytest.approx(0.166098, abs=1e-6)
+    assert nip < f["critical_mu"] <= nip + 1e-3 and v.inputs["mu"] == f["critical_mu"]
+    assert knotmech.hold("clove-hitch", mu=f["critical_mu"], **kw).holds is True
+    assert knotmech.hold("clove-hitch", mu=f["critical_mu"] - 1e-3, **kw).holds is False
     with pytest.raises(knotmech.InputError, match="mu is required unless material is given"):
         knotmech.hold("clove-hitch", rod_diameter=6e-3, post_diameter=40e-3, load=200)
 

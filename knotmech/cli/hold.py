@@ -90,7 +90,11 @@ def register(subparsers) -> None:
         default=None,
         help="rope-post friction coefficient, e.g. 0.3 (bends: rope-rope). Optional with "
         "--material: the published range of the rope on --post-material is used, the verdict "
-        "given at its low end and scanned over it; overrides --post-material",
+        "given at its low end and scanned over it; where none is published (e.g. nylon on "
+        "steel, manila, polypropylene, steel-wire) the friction is unknown and the verdict "
+        "covers mu 0.05-1.5: HOLDS only if it holds at 0.05, SLIPS only if it does not hold "
+        "at 1.5, else UNDECIDED with the critical mu (its numbers at that mu) and what to "
+        "give; --simulate then needs --mu. Overrides --post-material",
     )
     p.add_argument(
         "--post-material",

@@ -29,7 +29,9 @@ user's d/2R and friction, with its band, or the deciding closed form's) and its 
 load (:func:`knotmech.strength.knot_breaking_load`); a self-locking closed form bounds the
 slip load from below only, so without a table or a breaking load above it the verdict is
 undecided, never "unbounded". Without ``mu``, the material's published friction range on
-``post_material`` (:mod:`~knotmech.verdict.friction`); the critical mu is always given.
+``post_material`` (:mod:`~knotmech.verdict.friction`); where none is published, the
+verdict over mu 0.05-1.5 (HOLDS only if it holds at 0.05, else undecided with the critical
+mu unless it slips at 1.5); the critical mu is always given.
 
 **The rule.** The most faithful model whose inputs lie inside its validity and that
 gives a definite answer decides, in the order DER simulation, DER table, then the

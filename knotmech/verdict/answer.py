@@ -72,7 +72,13 @@ class Verdict:
         not given (with its ``source``; the verdict is at the low end), the verdict over it
         (``words``, ``holds_at_low``, ``holds_at_high``) and ``critical_mu``, the least mu
         at which the knot holds at this load (0: without friction; inf, null in JSON with
-        ``critical_mu_none``: none up to 1.5).
+        ``critical_mu_none``: none up to 1.5). ``published`` says whether the range is
+        published; where it is not (``published`` False, ``source`` None), ``range`` is the
+        searched 0.05-1.5, ``missing`` and ``why`` say what is missing,
+        ``published_post_materials`` where a coefficient exists, and ``verdict_at_mu``
+        (``verdict_at``: ``low end``, ``critical mu`` or ``top of the search``) the mu at
+        which the verdict's numbers (slip load, margin, capacity) are computed
+        (:func:`knotmech.verdict.friction.unknown_friction_verdict`).
     fails_by : str or None
         ``"slip"`` or ``"break"`` when it does not hold (``"break"``: the load is at or above
         the knot's breaking load; the state is then ``BREAKS``).
@@ -114,10 +120,26 @@ class Verdict:
     def summary(self) -> str:
         """The answer in one line: verdict, slip load, breaking load, the load's fraction of
         the capacity and the deciding model (or, undecided, the next step)."""
+        f = self.friction or {}
+        if f.get("published") is False:
+            return self._unknown_friction_summary(f)
         head = f"verdict: {self.state}: " + capacity_words(self.capacity, self.inputs.get("load"))
         if self.holds is None:
             why = "" if self.decided_by is not None else " (no model inside its validity decides)"
             return f"{head}{why}; {self.next_step}" if self.next_step else head + why
+        return f"{head}; decided by the {self.decided_by} model (inputs inside its validity)"
+
+    def _unknown_friction_summary(self, f: dict) -> str:
+        """The first line without a published friction coefficient: the verdict over the
+        searched range, why the friction is unknown, the mu the numbers are at and, when
+        undecided, how to decide (:func:`knotmech.verdict.friction.unknown_friction_verdict`)."""
+        at = f"at mu = {f['verdict_at_mu']:.3g}"
+        if f["verdict_at"] == "critical mu":
+            at = f"at mu* = {f['verdict_at_mu']:.3g}"
+        cap = capacity_words(self.capacity, self.inputs.get("load"))
+        head = f"verdict: {self.state}: {f['words']} ({f['missing']}); {at}: {cap}"
+        if self.holds is None:
+            return f"{head}; {self.next_step}" if self.next_step else head
         return f"{head}; decided by the {self.decided_by} model (inputs inside its validity)"
 
     def to_dict(self) -> dict:
@@ -161,7 +183,14 @@ class Verdict:
         if not f:
             return ""
         parts = []
-        if f.get("range"):
+        if f.get("published") is False:
+            lo, hi = f["range"]
+            dflt = ", the default post material" if f.get("default_post_material") else ""
+            parts.append(f"unknown for {self.inputs.get('material', 'the rope')} on "
+                         f"{f['post_material']} (none published{dflt}), searched over mu "
+                         f"{lo:.3g}-{hi:.3g}; {f['words']}; numbers at mu = "
+                         f"{f['verdict_at_mu']:.3g}, the {f['verdict_at']}")  # fmt: skip
+        elif f.get("range"):
             lo, hi = f["range"]
             mat = self.inputs.get("material", "the rope")
             dflt = " (default post material)" if f.get("default_post_material") else ""
@@ -175,6 +204,8 @@ class Verdict:
             parts.append(f"critical mu: none ({f.get('critical_mu_text', '')})")
         elif not math.isnan(m):
             parts.append(f"critical mu {m:.3g} ({f.get('critical_mu_text', '')})")
+        elif f.get("published") is False:
+            parts.append(f"critical mu: {f['critical_mu_text']}")
         return "friction: " + "; ".join(parts) if parts else ""
 
     def to_json(self) -> str:

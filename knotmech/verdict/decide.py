@@ -15,7 +15,12 @@ from knotmech.errors import InputError, check_nonnegative, check_positive
 from knotmech.verdict.answer import Verdict
 from knotmech.verdict.axial import AXIAL_HOLD_KNOTS, BOTH_LEGS_KNOTS
 from knotmech.verdict.command import SIMULATE_COST, simulate_command
-from knotmech.verdict.friction import critical_mu, friction_preset, range_words
+from knotmech.verdict.friction import (
+    critical_mu,
+    friction_preset,
+    range_words,
+    unknown_friction_verdict,
+)
 from knotmech.verdict.inputs import STRAIN_LIMIT, _bending_scale, _warnings, _youngs_modulus
 from knotmech.verdict.rule import decide, with_validity
 from knotmech.verdict.scope import BENDS, can_simulate, has_der_answer, knot_key
@@ -64,7 +69,14 @@ def hold(
         Rope-post friction coefficient [-], >= 0 (a bend: rope-rope). Without it, the
         published range of ``material`` on ``post_material``
         (:func:`knotmech.strength.friction_range`): the verdict is given at its low end and
-        scanned over the range (:attr:`Verdict.friction`).
+        scanned over the range (:attr:`Verdict.friction`). Where none is published for the
+        pair, the friction is unknown and the verdict covers the searched range
+        [:data:`~knotmech.verdict.friction.MU_UNKNOWN_LOW`,
+        :data:`~knotmech.verdict.friction.MU_SEARCH_MAX`]
+        (:func:`knotmech.verdict.friction.unknown_friction_verdict`): HOLDS only if it holds
+        at the low end, SLIPS (or BREAKS) only if it does not hold at the top, else
+        undecided with the critical mu; ``friction["published"]`` is False,
+        ``friction["verdict_at_mu"]`` the mu of its numbers; ``simulate`` then needs ``mu``.
     pin_diameter : float, optional
         A loop's pin diameter [m] (the pin its eye goes round), required for a loop and
         refused for any other knot.
@@ -136,7 +148,8 @@ def hold(
     ------
     InputError
         Bad or inconsistent inputs, an unknown knot or material, a phase table that
-        does not read.
+        does not read; no ``mu`` and no ``material``; ``simulate`` without ``mu`` where no
+        friction coefficient is published.
 
     Examples
     --------
@@ -152,10 +165,17 @@ def hold(
     bisect = _check_bisect(key, bisect, simulate)
     friction = None
     if mu is None:
-        lo, hi, face, src = friction_preset(key, material, post_material)
-        mu = lo
-        friction = {"post_material": face, "default_post_material": post_material is None,
-                    "range": [lo, hi], "source": src}  # fmt: skip
+        preset = friction_preset(key, material, post_material)
+        if not preset.published:
+            return _unknown_friction(
+                preset, knot, rod_diameter=rod_diameter, post_diameter=post_diameter,
+                load=load, free_end_load=free_end_load, mu_rr=mu_rr, wrap_angle=wrap_angle,
+                material=material, youngs_modulus=youngs_modulus, simulate=simulate,
+                phase_table=phase_table, creep_limit=creep_limit, bending_scale=bending_scale,
+                pin_diameter=pin_diameter,
+            )  # fmt: skip
+        mu = preset.low
+        friction = preset.as_dict()
     if knots.get(key).family == "loop":
         from knotmech.verdict.loop import hold_loop
 
@@ -200,6 +220,19 @@ def hold(
     c.bisect = bisect
     v = _verdict(c, wrap_angle)
     return replace(v, friction=_friction_part(c, wrap_angle, v, friction))
+
+
+def _unknown_friction(preset, knot, *, simulate, **kw) -> Verdict:
+    """The verdict without a published friction coefficient: over the searched range
+    (:func:`knotmech.verdict.friction.unknown_friction_verdict`), from the verdicts at given
+    mu. A DER run (``simulate``) answers at one friction only: refused (InputError)."""
+    if simulate:
+        raise InputError(
+            "simulate runs at one friction coefficient and there is "
+            f"{preset.missing()}: give mu (measured)"
+            + (f" or post_material ({', '.join(preset.known)})" if preset.known else "")
+        )
+    return unknown_friction_verdict(preset, lambda m: hold(knot, mu=m, **kw))
 
 
 def _check_bisect(key: str, bisect, simulate) -> int:

@@ -154,9 +154,12 @@ def _draw_capacity(ax, verdict: Verdict, table, limit: float) -> None:
         ax.axhline(b.value, color="tab:purple", label="breaking load")
     ax.axhline(i["load"], color="k", ls="--", lw=1, label=f"load {i['load']:.4g} N")
     ax.axvline(i["mu"], color="tab:blue", ls=":", label=f"mu = {i['mu']:.3g}")
-    rng = (verdict.friction or {}).get("range")
+    f = verdict.friction or {}
+    rng = f.get("range")
     if rng:
-        ax.axvspan(rng[0], rng[1], color="tab:blue", alpha=0.1, label="material's mu range")
+        what = "searched mu (none published)" if f.get("published") is False else (
+            "material's mu range")  # fmt: skip
+        ax.axvspan(rng[0], rng[1], color="tab:blue", alpha=0.1, label=what)
     ax.set_yscale("log")
     ax.set_xlabel("mu = mu_rr")
     ax.set_ylabel("load [N]")

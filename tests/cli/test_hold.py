@@ -517,3 +517,64 @@ def test_hmpe_outside_the_law_range_says_source_needed(capsys):
     assert main(argv) == 0
     first = capsys.readouterr().out.splitlines()[0]
     assert "outside the breaking-strength d^2 law for hmpe (3-8 mm)); source needed" in first
+
+
+# issue 23's done-when: --mu optional for every material preset
+NO_MU = ["hold", "clove-hitch", "--rod-diameter", "6mm", "--post-diameter", "40mm",
+         "--load", "200N", "--material", "nylon"]  # fmt: skip
+
+
+def test_no_published_friction_still_answers(capsys):
+    """Nylon on steel (no published coefficient) without --mu: exit 0, UNDECIDED, holds only
+    above mu* (the thick nip's 0.16610 at d/D 0.15, to 1e-3), the post materials that have
+    a coefficient and what to give; the friction line says which mu the numbers are at;
+    --mu 1e-3 above mu* holds, 1e-3 below it slips."""
+    assert main(NO_MU) == 0
+    out = capsys.readouterr().out.splitlines()
+    assert out[0].startswith(
+        "verdict: UNDECIDED: holds only for mu above mu* = 0.166 (no published friction "
+        "coefficient for nylon on steel; published on aluminium, rope); at mu* = 0.166: "
+        "friction alone cannot unlock it up to 707 N, breaks near 4.5 kN"
+    )
+    assert out[0].endswith(
+        "next: give --mu (mu=) measured for this rope on this post, or --post-material "
+        "aluminium or rope (post_material=)"
+    )
+    assert out[1].startswith(
+        "friction: unknown for nylon on steel (none published, the default post material), "
+        "searched over mu 0.05-1.5; holds only for mu above mu* = 0.166; numbers at mu = "
+        "0.166, the critical mu; critical mu 0.166"
+    )
+    data = _json(NO_MU, capsys)
+    f = data["friction"]
+    assert data["holds"] is None and f["published"] is False and f["source"] is None
+    assert f["range"] == [0.05, 1.5] and 0.166098 < f["critical_mu"] <= 0.167098
+    for mu, state in ((f["critical_mu"] + 1e-3, "HOLDS"), (f["critical_mu"] - 1e-3, "SLIPS")):
+        assert main(NO_MU + ["--mu", repr(mu)]) == 0
+        assert capsys.readouterr().out.startswith(f"verdict: {state}: ")
+
+
+@pytest.mark.parametrize("material", ["manila", "polypropylene", "steel-wire"])
+def test_materials_without_any_friction_row_answer(material, capsys):
+    """The presets with no friction row at all answer on a post and in a bend (exit 0)."""
+    argv = NO_MU[:-1] + [material]
+    assert main(argv) == 0
+    assert (
+        f"no published friction coefficient for {material} on steel)"
+        in (capsys.readouterr().out.splitlines()[0])
+    )
+    bend = ["hold", "reef", "--rod-diameter", "10mm", "--load", "200N", "--material", material]
+    data = _json(bend, capsys)
+    assert data["friction"]["post_material"] == "rope" and data["friction"]["published"] is False
+    assert data["verdict"] == "undecided"
+
+
+def test_simulate_without_mu_and_without_data_is_one_line(capsys):
+    assert _run(NO_MU + ["--simulate"]) == 2
+    err = capsys.readouterr().err.strip()
+    assert len(err.splitlines()) == 1 and "Traceback" not in err
+    assert err.endswith(
+        "--simulate runs at one friction coefficient and there is no published friction "
+        "coefficient for nylon on steel; published on aluminium, rope: give --mu (measured) "
+        "or --post-material (aluminium, rope)"
+    )
