@@ -78,6 +78,7 @@ __all__ = [
     "PATIL_ORDER",
     "STRAIN_LIMIT",
     "StrainStop",
+    "GripEdgeStrains",
 ]
 
 #: Stability order of the four bends attributed to Patil et al. (2020), most secure first,
@@ -202,15 +203,49 @@ def inner_edge(system, grip) -> int:
     return int(touching[touching != edge][0])
 
 
+class GripEdgeStrains:
+    r"""The strain of the first free edge next to each grip (:func:`inner_edge`): how the
+    set phases (:class:`BendScene`, :class:`knotmech.scenes.loops.LoopScene`) and the
+    pull's stop (:class:`StrainStop`) read a gripped end's tension from positions.
+
+    Called with positions ``x`` (n_nodes, 3) [m], it returns the strains
+    :math:`l/l_0 - 1` [-] of those edges, one a grip in the order of ``grips``; the
+    tension of an end is ``ea`` times its strain [N] (axial stiffness :math:`EA` of the
+    edge). The end edge itself is not read: both its nodes are gripped, it is rigid.
+
+    Parameters
+    ----------
+    system : knotmech.rod.RodSystem
+    grips : sequence of (nodes, end edge)
+        The gripped ends (:func:`_grip`).
+
+    Attributes
+    ----------
+    edges : ndarray of int
+        The edges read, one a grip.
+    ea : ndarray
+        Their axial stiffness :math:`EA` [N].
+    """
+
+    def __init__(self, system, grips):
+        self.edges = e = np.array([inner_edge(system, g) for g in grips])
+        self.ea, self.rest, self.en = system.ea[e], system.rest_length[e], system.edge_nodes[e]
+
+    def __call__(self, x) -> np.ndarray:
+        x = np.asarray(x)
+        length = np.linalg.norm(x[self.en[:, 1]] - x[self.en[:, 0]], axis=1)
+        return length / self.rest - 1.0
+
+
 class StrainStop:
     r"""The stop of a tied pull (bends and loops): a tail run out, or a pulled end at the
     rod model's strain limit.
 
     Called with the positions after every accepted step of the pull; True ends the pull.
     ``tail_out(x)`` is asked first (a tail running out wins when both happen on one step).
-    Then the tension of each pulled end is read from positions as the set phase reads it:
-    the strain :math:`l/l_0 - 1` of the first free edge next to the grip (the end edge is
-    rigid); when the largest reaches :data:`STRAIN_LIMIT` (tension
+    Then the tension of each pulled end is read from positions as the set phase reads it
+    (:class:`GripEdgeStrains`): the strain :math:`l/l_0 - 1` of the first free edge next to
+    the grip (the end edge is rigid); when the largest reaches :data:`STRAIN_LIMIT` (tension
     :math:`0.1 EA`) the pull stops, ``reached`` is set, and a knot that has not slipped
     by then *held to at least* the pull force of that frame.
 
@@ -229,15 +264,12 @@ class StrainStop:
     """
 
     def __init__(self, system, grips, tail_out):
-        e = np.array([inner_edge(system, g) for g in grips])
-        self.rest, self.en = system.rest_length[e], system.edge_nodes[e]
+        self.strains = GripEdgeStrains(system, grips)
         self.tail_out, self.reached = tail_out, False
 
     def strain(self, x) -> float:
         """Largest strain of the pulled ends' first free edges at positions ``x``."""
-        x = np.asarray(x)
-        length = np.linalg.norm(x[self.en[:, 1]] - x[self.en[:, 0]], axis=1)
-        return float(np.max(length / self.rest - 1.0))
+        return float(np.max(self.strains(x)))
 
     def __call__(self, x) -> bool:
         if self.tail_out(x):
@@ -246,21 +278,26 @@ class StrainStop:
         return self.reached
 
 
+def _held_to(max_force: float) -> str:
+    """The one sentence of a hold to the strain limit, :func:`held_note`'s and
+    :func:`held_words`' both: ``"to at least F N (0.1 EA, the rod model's strain limit)"``
+    (``max_force`` F [N])."""
+    return f"to at least {max_force:.4g} N ({STRAIN_LIMIT:g} EA, the rod model's strain limit)"
+
+
 def held_note(max_force: float) -> str:
     """The words of a pull stopped at the strain limit that had not slipped: ``"holds to at
     least F N (0.1 EA, the rod model's strain limit): a lower bound of the slip load"``
     (``max_force`` F [N])."""
-    return (f"holds to at least {max_force:.4g} N ({STRAIN_LIMIT:g} EA, the rod model's "
-            "strain limit): a lower bound of the slip load")  # fmt: skip
+    return f"holds {_held_to(max_force)}: a lower bound of the slip load"
 
 
 def held_words(r) -> str:
     """How a pull's result ``r`` that held is told (the CLI's line): ``"HOLDS to at least F
-    N (0.1 EA, the rod model's strain limit)"`` when it stopped there
-    (``held_to_strain_limit``), else ``"HOLDS up to F N (the pull ended)"``."""
+    N (0.1 EA, the rod model's strain limit)"`` (:func:`held_note`'s sentence) when it
+    stopped there (``held_to_strain_limit``), else ``"HOLDS up to F N (the pull ended)"``."""
     if getattr(r, "held_to_strain_limit", False):
-        return (f"HOLDS to at least {r.max_force:.4g} N ({STRAIN_LIMIT:g} EA, the rod "
-                "model's strain limit)")  # fmt: skip
+        return f"HOLDS {_held_to(r.max_force)}"
     return f"HOLDS up to {r.max_force:.4g} N (the pull ended)"
 
 
@@ -585,13 +622,10 @@ class BendScene(Scene):
         on the first free edge of each end (the end edge itself is rigid: both its nodes
         are gripped)."""
         system, ga, gb = self.system, self.ga, self.gb
-        inner = np.array([e[1] + 1 if k % 2 == 0 else e[1] - 1 for k, e in enumerate(self.ends)])
-        ea, rest, en = system.ea[inner], system.rest_length[inner], system.edge_nodes[inner]
+        strains = GripEdgeStrains(system, self.ends)
 
         def end_tension(x):
-            return float(
-                np.mean(ea * (np.linalg.norm(x[en[:, 1]] - x[en[:, 0]], axis=1) / rest - 1))
-            )
+            return float(np.mean(strains.ea * strains(x)))
 
         x_set = system.positions(run.state.q)
         t_set = run.t

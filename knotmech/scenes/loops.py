@@ -88,6 +88,7 @@ from knotmech.scenes.bends import (
     TIED_CAP_FLOOR,
     BendPull,
     BendRopes,
+    GripEdgeStrains,
     StrainStop,
     _bend_verdict,
     _plain,
@@ -603,13 +604,10 @@ class LoopScene(Scene):
         ``set_tension`` (read on the first free edge: the end edges are rigid). A loose
         loop pulled by its standing part alone, the tail free, does not set: it capsizes
         and unties (docs/notes/knots-and-curves/tied-loops-pulled.md)."""
-        s = self.system
-        e = np.array([self.grip[1] + 1, self.tail[1] - 1])
-        ea, rest, en = s.ea[e], s.rest_length[e], s.edge_nodes[e]
+        strains = GripEdgeStrains(self.system, [self.grip, self.tail])
 
         def tension(x):
-            strain = np.linalg.norm(x[en[:, 1]] - x[en[:, 0]], axis=1) / rest - 1
-            return float(np.min(ea * strain))
+            return float(np.min(strains.ea * strains(x)))
 
         if run.ok:
             x = self.system.positions(run.state.q)

@@ -2,9 +2,10 @@
 free edge reaches 10 % strain (tension 0.1 EA) ends the pull, and a knot that has not
 slipped by then *held to at least* the pull force there, a lower bound of its slip load.
 
-Default suite: the stop on a straight rod stretched by hand, the words of the result and
-of ``hold --simulate`` (well under a second). Slow: the figure-eight bend at mu = 1, which
-locks and held to the strain limit (about 15 s of CPU, 71 s without the stop).
+Default suite: the grip edges' strain and the stop on a straight rod stretched by hand, the
+words of the result and of ``hold --simulate`` (well under a second). Slow: the
+figure-eight bend at mu = 1, which locks and held to the strain limit (about 15 s of CPU,
+71 s without the stop).
 """
 
 import math
@@ -16,6 +17,7 @@ import pytest
 from knotmech import rod
 from knotmech.scenes.bends import (
     STRAIN_LIMIT,
+    GripEdgeStrains,
     StrainStop,
     _grip,
     bend,
@@ -54,6 +56,25 @@ def test_inner_edge_is_the_first_free_edge_next_to_either_grip():
     start, end = _grip(system, 0, "start"), _grip(system, 0, "end")
     assert (start[1], inner_edge(system, start)) == (0, 1)
     assert (end[1], inner_edge(system, end)) == (9, 8)
+
+
+def test_grip_edge_strains_of_a_five_node_rod_with_one_edge_stretched_by_one_percent():
+    """5 nodes 25 mm apart along x, gripped at both ends (end edges 0 and 3): the edges
+    read are 1 and 2. Edge 1 stretched by 1 % (to 25.25 mm, the nodes after it moved
+    rigidly): strains (0.01, 0) by hand, tension EA x 0.01 = 1e6 Pa x pi (2 mm)^2 x 0.01
+    = 0.04 pi N; the stop reads the larger, 0.01, and edge 2 stretched instead swaps them."""
+    system, x = _rope(n=5)
+    grips = (_grip(system, 0, "start"), _grip(system, 0, "end"))
+    strains = GripEdgeStrains(system, grips)
+    assert strains.edges.tolist() == [1, 2]
+    assert strains(x) == pytest.approx([0.0, 0.0], abs=1e-12)
+    y = x.copy()
+    y[2:, 0] += 0.25e-3
+    assert np.linalg.norm(y[2] - y[1]) == pytest.approx(25.25e-3, rel=1e-12)
+    assert strains(y) == pytest.approx([0.01, 0.0], rel=1e-12, abs=1e-12)
+    assert strains.ea * strains(y) == pytest.approx([0.04 * math.pi, 0.0], rel=1e-12, abs=1e-12)
+    assert StrainStop(system, grips, lambda x: False).strain(y) == pytest.approx(0.01)
+    assert strains(_stretch(x, 2, 0.01)) == pytest.approx([0.0, 0.01], rel=1e-12, abs=1e-12)
 
 
 def test_stop_at_ten_percent_strain_of_a_pulled_ends_first_free_edge():
