@@ -257,9 +257,10 @@ def _unknown_friction(preset, key, *, simulate, **kw) -> Verdict:
             f"{preset.missing()}: give mu (measured)"
             + (f" or post_material ({', '.join(preset.known)})" if preset.known else "")
         )
-    return unknown_friction_verdict(
-        preset, lambda m: _verdict_at(key, m, mu_unknown=True, **kw)
-    )
+    v = unknown_friction_verdict(preset, lambda m: _verdict_at(key, m, mu_unknown=True, **kw))
+    if math.isnan(v.friction["critical_mu"]):
+        v.friction["critical_mu_text"] = _not_found(v, (preset.low, preset.high))
+    return v
 
 
 def _check_bisect(key: str, bisect, simulate) -> int:
@@ -311,9 +312,10 @@ def _friction_part(key, mu, v: Verdict, friction, simulate, at) -> dict:
         if "search_command" in extra:
             text += f"; {extra.pop('search_command')} searches it in the table and closed forms"
     else:
-        m, text = critical_mu(at, asked)
+        mm = extra.get("model_critical_mu", math.nan)
+        m, text = critical_mu(at, asked, hints=[(mm, v.decided_by or "deciding")])
         if math.isnan(m):
-            text = _not_found(key, v, mu)
+            text = _not_found(v, (mu, MU_SEARCH_MAX))
     out.update(critical_mu=m, critical_mu_text=text, **extra)
     if friction is None:
         return out
@@ -326,14 +328,17 @@ def _friction_part(key, mu, v: Verdict, friction, simulate, at) -> dict:
     return out
 
 
-def _not_found(key, v: Verdict, mu) -> str:
-    """Why mu* was not found: no model decides at ``mu`` nor at the top of the search; a
-    knot that only a DER run answers needs one run per mu."""
-    top = f"{MU_SEARCH_MAX:g}"
+def _not_found(v: Verdict, mus) -> str:
+    """Why mu* was not found: no model decides at any of ``mus`` (the question's and the top
+    of the search); a knot that only a DER run answers needs one run per mu."""
+    at = " or ".join(f"{m:.3g}" for m in sorted(set(mus)))
+    if not v.answers:  # a loop, a bend, the Prusik: no closed form and no table
+        return (f"not searched: no closed form and no table answers the {v.knot}, only a DER "
+                "run, so mu* needs one DER run per mu (--simulate at each --mu)")  # fmt: skip
     if "--simulate" in (v.next_step or "") or (v.der or {}).get("refused"):
-        return (f"not found: no closed form or table decides at mu = {mu:.3g} or {top}; only "
-                "a DER run answers, so mu* needs one DER run per mu (--simulate at each --mu)")  # fmt: skip
-    return f"not found: no model decides at mu = {mu:.3g} or {top}"
+        return (f"not found: no closed form or table decides at mu = {at}; only a DER run "
+                "answers here, so mu* needs one DER run per mu (--simulate at each --mu)")  # fmt: skip
+    return f"not found: no model decides at mu = {at}"
 
 
 def _critical_mu(c, v: Verdict) -> tuple:

@@ -151,7 +151,7 @@ def _has(strength, material, face) -> bool:
     return True
 
 
-def critical_mu(at, asked: dict, *, what: str = "the whole verdict") -> tuple:
+def critical_mu(at, asked: dict, *, what: str = "the whole verdict", hints=()) -> tuple:
     """(mu*, text): the least friction coefficient at which ``at(mu)`` holds, by bisection
     of the whole verdict in mu, more friction never turning a hold into a slip.
 
@@ -171,6 +171,9 @@ def critical_mu(at, asked: dict, *, what: str = "the whole verdict") -> tuple:
         {mu: Verdict} already known (at least the question's own), filled in place.
     what : str
         What is bisected, in the text.
+    hints : sequence of (float, str)
+        (mu, model): critical mus to try first, before the closed forms' (such as the
+        deciding DER table's own, from its lookups alone).
 
     Returns
     -------
@@ -179,7 +182,7 @@ def critical_mu(at, asked: dict, *, what: str = "the whole verdict") -> tuple:
         :data:`MU_SEARCH_MAX` holds (the load breaks the rope, or it slips); NaN when it
         holds nowhere it was asked and no model decides at :data:`MU_SEARCH_MAX`.
     """
-    s = _Search(at, asked)
+    s = _Search(at, asked, hints)
     held = [m for m, v in asked.items() if v.holds is True]
     if not held:
         top = s.verdict(MU_SEARCH_MAX)
@@ -222,8 +225,8 @@ def _none_found(top, what: str = "the whole verdict") -> tuple:
 class _Search:
     """The verdicts asked in one critical-mu search (a cache: each mu asked once)."""
 
-    def __init__(self, at, asked: dict):
-        self.at, self.asked, self.hint_model = at, asked, ""
+    def __init__(self, at, asked: dict, hints=()):
+        self.at, self.asked, self.given, self.hint_model = at, asked, tuple(hints), ""
 
     def verdict(self, m: float):
         if m not in self.asked:
@@ -236,13 +239,13 @@ class _Search:
     def hints(self) -> list:
         """(mu, model): the finite critical mu of each closed form inside its validity in
         the verdicts asked, the deciding ones first (at most :data:`MAX_HINTS`)."""
-        out = []
+        out = [(float(m), model) for m, model in self.given if 0 < m < MU_SEARCH_MAX]
         for v in list(self.asked.values()):
             for a in sorted(getattr(v, "answers", ()), key=lambda a: not a.decides):
                 m = float(getattr(a, "critical_mu", math.nan))
                 if a.inside_validity and 0 < m < MU_SEARCH_MAX and m not in dict(out):
                     out.append((m, a.model))
-        return out[:MAX_HINTS]
+        return out[: MAX_HINTS + len(self.given)]
 
     def try_hints(self, lo: int, hi: int) -> tuple:
         """(exact mu* or None, lo, hi): each hint within the bracket (lo, hi) of grid
@@ -263,14 +266,15 @@ class _Search:
 
 def range_words(at_low, at_high, low: float, high: float, mu_star: float) -> str:
     """The verdict over [low, high] from its ends (monotone in mu) and the critical mu."""
+    rng = f"mu = {low:.3g}" if low == high else f"mu in [{low:.3g}, {high:.3g}]"
     if at_low is True:
-        return f"holds for any mu in [{low:.3g}, {high:.3g}]"
+        return f"holds for any {rng}" if low != high else f"holds at {rng}"
     if at_high is True:
         where = f"mu* = {mu_star:.3g}" if math.isfinite(mu_star) else "the critical mu"
         return f"holds only for mu above {where} (range {low:.3g}-{high:.3g})"
     if at_low is False and at_high is False:
-        return f"does not hold for any mu in [{low:.3g}, {high:.3g}]"
-    return f"undecided over mu in [{low:.3g}, {high:.3g}]"
+        return f"does not hold for any {rng}" if low != high else f"does not hold at {rng}"
+    return f"undecided over {rng}" if low != high else f"undecided at {rng}"
 
 
 def unknown_friction_verdict(preset: FrictionPreset, at):

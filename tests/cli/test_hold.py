@@ -192,11 +192,11 @@ def test_short_answer_first_detail_under_verbose(capsys):
     long = capsys.readouterr().out.splitlines()
     assert short[0] == long[0] and short[0].startswith("verdict: HOLDS")
     # the friction line second: mu* at 1.47 N (0.0928 EA, d/2R 0.1176), where the DER table
-    # decides: slips at mu 0.2, holds at 0.3; the whole verdict bisected on the grid of step
-    # 1.5/2^11: 403 steps (0.29517) holds, 402 is undecided
+    # decides: slips at mu 0.2, holds at 0.3; the table's lookups alone bisected on the grid
+    # of step 1.5/2^11 give 403 steps (0.29517), and the whole verdict holds there, not at 402
     assert short[1] == (
-        "friction: critical mu 0.295 (holds for mu >= 0.295 (bisection of the whole verdict "
-        "to 0.001))"
+        "friction: critical mu 0.295 (the DER-table model's, where the whole verdict starts to "
+        "hold: checked there and 0.00073 below)"
     )
     assert len(short) <= 7 < len(long)
     assert not any("assumes:" in s for s in short)
