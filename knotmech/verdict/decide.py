@@ -329,16 +329,16 @@ def _friction_part(key, mu, v: Verdict, friction, simulate, at) -> dict:
 
 
 def _not_found(v: Verdict, mus) -> str:
-    """Why mu* was not found: no model decides at any of ``mus`` (the question's and the top
-    of the search); a knot that only a DER run answers needs one run per mu."""
-    at = " or ".join(f"{m:.3g}" for m in sorted(set(mus)))
+    """Why mu* was not found: the verdict is undecided at each of ``mus`` (the question's mu
+    and the top of the search); a knot that only a DER run answers needs one run per mu."""
+    at = " and at ".join(f"{m:.3g}" for m in sorted(set(mus)))
     if not v.answers:  # a loop, a bend, the Prusik: no closed form and no table
         return (f"not searched: no closed form and no table answers the {v.knot}, only a DER "
                 "run, so mu* needs one DER run per mu (--simulate at each --mu)")  # fmt: skip
+    text = f"not found: the verdict is undecided at mu = {at}"
     if "--simulate" in (v.next_step or "") or (v.der or {}).get("refused"):
-        return (f"not found: no closed form or table decides at mu = {at}; only a DER run "
-                "answers here, so mu* needs one DER run per mu (--simulate at each --mu)")  # fmt: skip
-    return f"not found: no model decides at mu = {at}"
+        text += "; a DER run decides one mu per run (--simulate at each --mu)"
+    return text
 
 
 def _critical_mu(c, v: Verdict) -> tuple:

@@ -1,7 +1,8 @@
 """Friction from materials for the hold verdict: the published rope-on-post friction range of a
 material preset (:func:`knotmech.strength.friction_range`) when ``mu`` is not given, the
-verdict over that range, and the critical friction coefficient mu* (the least mu at which
-the knot holds at the user's load, found by bisection of the verdict in mu).
+verdict over that range, and the critical friction coefficient mu* (:func:`critical_mu`: the
+least mu at which the whole verdict holds at the user's load, by bisection of the verdict in
+mu; the same search for a given mu, a published range and an unknown friction).
 
 The scan assumes what the DER tables' bracketing already assumes: more friction never turns
 a hold into a slip, so the verdict over [a, b] is one of "holds for any mu in [a, b]",
@@ -195,8 +196,9 @@ def critical_mu(at, asked: dict, *, what: str = "the whole verdict", hints=()) -
     hi = math.ceil(first / MU_STEP)
     exact, lo, hi = s.try_hints(lo, hi)
     if exact is not None:
-        return exact, (f"{s.hint_model}'s, where {what} starts to hold: checked there "
-                       f"and {MU_STEP:.2g} below")
+        return exact, (
+            f"{s.hint_model}'s, where {what} starts to hold: checked there and {MU_STEP:.2g} below"
+        )
     if lo < 0:
         if s.holds(0.0):
             return 0.0, "holds without friction"
@@ -294,8 +296,8 @@ def unknown_friction_verdict(preset: FrictionPreset, at):
     Verdict
         HOLDS (numbers at the low end) if it holds there; SLIPS or BREAKS (numbers at
         the top) if it does not hold at the top; else UNDECIDED: with numbers at mu* (the
-        least mu found to hold, by bisection of the whole verdict to
-        :data:`MU_RESOLUTION`; there it holds, and by monotony its slip load there is the
+        least mu found to hold, :func:`critical_mu`, to :data:`MU_RESOLUTION`; there it
+        holds, and by monotony its slip load there is the
         least over the frictions at which it holds) when it holds at the top, or at the
         top when it is undecided there. ``friction`` says which (``verdict_at_mu``,
         ``verdict_at``), the range, ``published`` False, ``source`` None and mu*
