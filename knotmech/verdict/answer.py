@@ -71,8 +71,12 @@ class Verdict:
         The friction: ``range`` [low, high] of the material on ``post_material`` when mu was
         not given (with its ``source``; the verdict is at the low end), the verdict over it
         (``words``, ``holds_at_low``, ``holds_at_high``) and ``critical_mu``, the least mu
-        at which the knot holds at this load (0: without friction; inf, null in JSON with
-        ``critical_mu_none``: none up to 1.5). ``published`` says whether the range is
+        at which the whole verdict holds at this load
+        (:func:`knotmech.verdict.friction.critical_mu`; 0: without friction; inf, null in
+        JSON with ``critical_mu_none``: none up to 1.5; NaN, null: not found or not searched,
+        ``critical_mu_text`` says why), also with a given mu; a hitch's
+        ``model_critical_mu`` (and its text): the deciding model's own. ``published`` says
+        whether the range is
         published; where it is not (``published`` False, ``source`` None), ``range`` is the
         searched 0.05-1.5, ``missing`` and ``why`` say what is missing,
         ``published_post_materials`` where a coefficient exists, and ``verdict_at_mu``

@@ -74,7 +74,10 @@ def hold(
     rod_diameter, post_diameter : float
         Rope diameter d and post diameter D [m], > 0 (no post for a bend: None).
     mu : float, optional
-        Rope-post friction coefficient [-], >= 0 (a bend: rope-rope). Without it, the
+        Rope-post friction coefficient [-], >= 0 (a bend: rope-rope). The critical mu
+        ``friction["critical_mu"]`` is the least mu at which the whole verdict holds at this
+        load (:func:`knotmech.verdict.friction.critical_mu`; not searched with ``simulate``
+        nor for the knots only a DER run answers). Without it, the
         published range of ``material`` on ``post_material``
         (:func:`knotmech.strength.friction_range`): the verdict is given at its low end and
         scanned over the range (:attr:`Verdict.friction`). Where none is published for the

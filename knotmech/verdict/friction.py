@@ -23,7 +23,7 @@ from dataclasses import dataclass, replace
 from knotmech.errors import InputError
 
 __all__ = [
-    "DEFAULT_POST_MATERIAL", "MU_RESOLUTION", "MU_SEARCH_MAX", "MU_UNKNOWN_LOW",
+    "DEFAULT_POST_MATERIAL", "MU_RESOLUTION", "MU_SEARCH_MAX", "MU_STEP", "MU_UNKNOWN_LOW",
     "FrictionPreset", "critical_mu", "friction_preset", "range_words",
     "unknown_friction_verdict",
 ]  # fmt: skip
