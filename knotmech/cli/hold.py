@@ -370,7 +370,7 @@ def format_verdict(verdict, *, verbose: bool = False) -> str:
     """
     lines = [verdict.summary()]
     if verdict.friction_line():
-        lines.append(verdict.friction_line())
+        lines.append(verdict.friction_line(verbose))
     lines += _breaking_lines(verdict.capacity)
     lines += [f"warning: {_FLAGS.get(w.name, w.name)}: {w.message}" for w in verdict.warnings]
     lines += [f"assumed: {s}" for s in verdict.assumptions]

@@ -71,8 +71,12 @@ class Verdict:
         The friction: ``range`` [low, high] of the material on ``post_material`` when mu was
         not given (with its ``source``; the verdict is at the low end), the verdict over it
         (``words``, ``holds_at_low``, ``holds_at_high``) and ``critical_mu``, the least mu
-        at which the knot holds at this load (0: without friction; inf, null in JSON with
-        ``critical_mu_none``: none up to 1.5). ``published`` says whether the range is
+        at which the whole verdict holds at this load
+        (:func:`knotmech.verdict.friction.critical_mu`; 0: without friction; inf, null in
+        JSON with ``critical_mu_none``: none up to 1.5; NaN, null: not found or not searched,
+        ``critical_mu_text`` says why), also with a given mu; a hitch's
+        ``model_critical_mu`` (and its text): the deciding model's own. ``published`` says
+        whether the range is
         published; where it is not (``published`` False, ``source`` None), ``range`` is the
         searched 0.05-1.5, ``missing`` and ``why`` say what is missing,
         ``published_post_materials`` where a coefficient exists, and ``verdict_at_mu``
@@ -176,9 +180,10 @@ class Verdict:
             }
         )
 
-    def friction_line(self) -> str:
+    def friction_line(self, verbose: bool = False) -> str:
         """The friction in one line: the range and where it comes from, the verdict over it
-        and the critical mu ("" when not computed)."""
+        and the critical mu ("" when not computed); ``verbose`` adds the deciding model's own
+        critical mu (``model_critical_mu``) where it differs from the whole verdict's."""
         f = self.friction
         if not f:
             return ""
@@ -204,8 +209,13 @@ class Verdict:
             parts.append(f"critical mu: none ({f.get('critical_mu_text', '')})")
         elif not math.isnan(m):
             parts.append(f"critical mu {m:.3g} ({f.get('critical_mu_text', '')})")
-        elif f.get("published") is False:
+        elif "critical_mu_text" in f:
             parts.append(f"critical mu: {f['critical_mu_text']}")
+        if verbose and _adds(f.get("model_critical_mu", math.nan), m):
+            mm = f["model_critical_mu"]
+            val = "none" if math.isinf(mm) else f"{mm:.3g}"
+            parts.append(f"the deciding model alone: critical mu {val} "
+                         f"({f['model_critical_mu_text']})")  # fmt: skip
         return "friction: " + "; ".join(parts) if parts else ""
 
     def to_json(self) -> str:
@@ -309,3 +319,15 @@ def _answer_dict(a) -> dict:
         "reference": a.reference,
         "notes": list(a.notes),
     }
+
+
+def _adds(model_mu: float, mu_star: float) -> bool:
+    """Whether the deciding model's own critical mu says more than the verdict's mu*: it
+    is a number (or none) and differs from mu* by more than the search's resolution."""
+    from knotmech.verdict.friction import MU_RESOLUTION
+
+    if math.isnan(model_mu):
+        return False
+    if math.isinf(model_mu) or math.isinf(mu_star) or math.isnan(mu_star):
+        return not (math.isinf(model_mu) and math.isinf(mu_star))
+    return abs(model_mu - mu_star) > MU_RESOLUTION

@@ -28,13 +28,14 @@ def simulate_command(
     knot, *, d, D, mu, mu_rr=None, load, material=None, youngs_modulus=None, creep_limit=None,
     bending_scale=None, pin=None, free_end_load=None,
 ) -> str:  # fmt: skip
-    """The full ``knotmech hold ... --simulate`` command that decides this case by one DER run."""
+    """The full ``knotmech hold ... --simulate`` command that decides this case by one DER run
+    (``mu`` a number, or a placeholder such as ``MU`` the user replaces)."""
     parts = ["knotmech", "hold", knot, "--rod-diameter", _q(d, "m")]
     if D is not None:
         parts += ["--post-diameter", _q(D, "m")]
     if pin is not None:  # a loop's eye round a pin
         parts += ["--pin-diameter", _q(pin, "m")]
-    parts += ["--mu", f"{mu:g}"]
+    parts += ["--mu", mu if isinstance(mu, str) else f"{mu:g}"]  # str: a placeholder
     if mu_rr is not None and mu_rr != mu:
         parts += ["--mu-rr", f"{mu_rr:g}"]
     parts += ["--load", _q(load, "N")]

@@ -16,6 +16,7 @@ from knotmech.verdict.answer import Verdict
 from knotmech.verdict.axial import AXIAL_HOLD_KNOTS, BOTH_LEGS_KNOTS
 from knotmech.verdict.command import SIMULATE_COST, simulate_command
 from knotmech.verdict.friction import (
+    MU_SEARCH_MAX,
     critical_mu,
     friction_preset,
     range_words,
@@ -25,6 +26,13 @@ from knotmech.verdict.inputs import STRAIN_LIMIT, _bending_scale, _warnings, _yo
 from knotmech.verdict.rule import decide, with_validity
 from knotmech.verdict.scope import BENDS, can_simulate, has_der_answer, knot_key
 
+#: the ``--mu`` of a suggested DER run when no friction coefficient is published
+MU_PLACEHOLDER = "MU"
+#: what :data:`MU_PLACEHOLDER` stands for
+MU_PLACEHOLDER_WORDS = (
+    "this rope's friction coefficient on this post, measured; none is published, and a run "
+    "at an assumed one decides nothing"
+)
 #: the loops (their eye round a pin): the registry's
 LOOP_NAMES = tuple(k.name for k in knots.records(family="loop"))
 
@@ -66,7 +74,10 @@ def hold(
     rod_diameter, post_diameter : float
         Rope diameter d and post diameter D [m], > 0 (no post for a bend: None).
     mu : float, optional
-        Rope-post friction coefficient [-], >= 0 (a bend: rope-rope). Without it, the
+        Rope-post friction coefficient [-], >= 0 (a bend: rope-rope). The critical mu
+        ``friction["critical_mu"]`` is the least mu at which the whole verdict holds at this
+        load (:func:`knotmech.verdict.friction.critical_mu`; not searched with ``simulate``
+        nor for the knots only a DER run answers). Without it, the
         published range of ``material`` on ``post_material``
         (:func:`knotmech.strength.friction_range`): the verdict is given at its low end and
         scanned over the range (:attr:`Verdict.friction`). Where none is published for the
@@ -163,30 +174,43 @@ def hold(
     key = knot_key(knot)
     _check_sizes(rod_diameter, post_diameter, load)
     bisect = _check_bisect(key, bisect, simulate)
+    kw = dict(
+        rod_diameter=rod_diameter, post_diameter=post_diameter, load=load,
+        free_end_load=free_end_load, mu_rr=mu_rr, wrap_angle=wrap_angle, material=material,
+        youngs_modulus=youngs_modulus, phase_table=phase_table, creep_limit=creep_limit,
+        bending_scale=bending_scale, pin_diameter=pin_diameter,
+    )  # fmt: skip
     friction = None
     if mu is None:
         preset = friction_preset(key, material, post_material)
         if not preset.published:
-            return _unknown_friction(
-                preset, knot, rod_diameter=rod_diameter, post_diameter=post_diameter,
-                load=load, free_end_load=free_end_load, mu_rr=mu_rr, wrap_angle=wrap_angle,
-                material=material, youngs_modulus=youngs_modulus, simulate=simulate,
-                phase_table=phase_table, creep_limit=creep_limit, bending_scale=bending_scale,
-                pin_diameter=pin_diameter,
-            )  # fmt: skip
+            return _unknown_friction(preset, key, simulate=simulate, **kw)
         mu = preset.low
         friction = preset.as_dict()
+    v = _verdict_at(key, mu, simulate=simulate, progress=progress, bisect=bisect, top=True, **kw)
+    return replace(v, friction=_friction_part(key, mu, v, friction, simulate,
+                                              lambda m: _verdict_at(key, m, **kw)))  # fmt: skip
+
+
+def _verdict_at(
+    key, mu, *, rod_diameter, post_diameter, load, free_end_load, mu_rr, wrap_angle, material,
+    youngs_modulus, phase_table, creep_limit, bending_scale, pin_diameter, simulate=False,
+    progress=False, bisect=0, top=False, mu_unknown=False,
+) -> Verdict:  # fmt: skip
+    """The verdict at friction ``mu`` (keywords of :func:`hold`), without the critical-mu
+    search: what the search asks at each mu. ``top``: the question itself (a hitch's
+    ``friction`` then carries its deciding model's own critical mu); ``mu_unknown``: no
+    friction coefficient is published, so the DER command asks for a measured one."""
     if knots.get(key).family == "loop":
         from knotmech.verdict.loop import hold_loop
 
-        v = hold_loop(
+        return hold_loop(
             key, rod_diameter=rod_diameter, post_diameter=post_diameter,
             pin_diameter=pin_diameter, mu=mu, load=load, free_end_load=free_end_load,
             mu_rr=mu_rr, wrap_angle=wrap_angle, material=material,
             youngs_modulus=youngs_modulus, simulate=simulate, phase_table=phase_table,
             progress=progress, bending_scale=bending_scale,
         )  # fmt: skip
-        return v if friction is None else replace(v, friction=friction)
     if pin_diameter is not None:
         raise InputError(f"pin_diameter applies to a loop ({', '.join(LOOP_NAMES)}), not {key}")
     if key in BENDS:
@@ -198,8 +222,7 @@ def hold(
             youngs_modulus=youngs_modulus, simulate=simulate, phase_table=phase_table,
             progress=progress, bending_scale=bending_scale,
         )  # fmt: skip
-        v = _bend_capacity(v, material)
-        return v if friction is None else replace(v, friction=friction)
+        return _bend_capacity(v, material)
     if key in AXIAL_HOLD_KNOTS:  # the Prusik: pulled along its pole (verdict/axial.py)
         from knotmech.verdict.axial import hold_axial, with_capacity
 
@@ -209,20 +232,25 @@ def hold(
             youngs_modulus=youngs_modulus, simulate=simulate, phase_table=phase_table,
             progress=progress, bending_scale=bending_scale,
         )  # fmt: skip
-        v = with_capacity(v, material)
-        return v if friction is None else replace(v, friction=friction)
+        return with_capacity(v, material)
     c = _case(
         key, rod_diameter=rod_diameter, post_diameter=post_diameter, mu=mu, load=load,
         free_end_load=free_end_load, mu_rr=mu_rr, material=material,
         youngs_modulus=youngs_modulus, simulate=simulate, phase_table=phase_table,
         progress=progress, creep_limit=creep_limit, bending_scale=bending_scale,
     )  # fmt: skip
-    c.bisect = bisect
+    c.bisect, c.mu_unknown = bisect, mu_unknown
     v = _verdict(c, wrap_angle)
-    return replace(v, friction=_friction_part(c, wrap_angle, v, friction))
+    if not top:
+        return v
+    m, text = _critical_mu(c, v)
+    extra = {"model_critical_mu": m, "model_critical_mu_text": text}
+    if c.simulate and c.simulable:
+        extra["search_command"] = c.command().removesuffix(" --simulate")
+    return replace(v, friction=extra)
 
 
-def _unknown_friction(preset, knot, *, simulate, **kw) -> Verdict:
+def _unknown_friction(preset, key, *, simulate, **kw) -> Verdict:
     """The verdict without a published friction coefficient: over the searched range
     (:func:`knotmech.verdict.friction.unknown_friction_verdict`), from the verdicts at given
     mu. A DER run (``simulate``) answers at one friction only: refused (InputError)."""
@@ -232,7 +260,10 @@ def _unknown_friction(preset, knot, *, simulate, **kw) -> Verdict:
             f"{preset.missing()}: give mu (measured)"
             + (f" or post_material ({', '.join(preset.known)})" if preset.known else "")
         )
-    return unknown_friction_verdict(preset, lambda m: hold(knot, mu=m, **kw))
+    v = unknown_friction_verdict(preset, lambda m: _verdict_at(key, m, mu_unknown=True, **kw))
+    if math.isnan(v.friction["critical_mu"]):
+        v.friction["critical_mu_text"] = _not_found(v, (preset.low, preset.high))
+    return v
 
 
 def _check_bisect(key: str, bisect, simulate) -> int:
@@ -266,28 +297,57 @@ def _check_sizes(rod_diameter, post_diameter, load) -> None:
         check_positive("load", load, scalar=True)
 
 
-def _friction_part(c, wrap_angle, v: Verdict, friction) -> dict:
-    """The critical mu and, when mu came from the material (``friction``: the preset), the
-    verdict at the range's high end and over the range (the verdict itself is at its low
-    end); assumes more friction never turns a hold into a slip."""
+def _friction_part(key, mu, v: Verdict, friction, simulate, at) -> dict:
+    """The critical mu mu* (:func:`knotmech.verdict.friction.critical_mu`: bisection of the
+    whole verdict ``at(mu)`` in mu; not searched after a DER run) and, when mu came from the
+    material (``friction``: the preset), the verdict at the range's high end and over the
+    range (the verdict itself is at its low end); a hitch's deciding model's own critical
+    mu as ``model_critical_mu``."""
+    extra = dict(v.friction or {})
     out = dict(friction or {"range": None})
-    m, text = _critical_mu(c, v)
-    out.update(critical_mu=m, critical_mu_text=text)
+    asked = {mu: v}
+    if friction is not None and not simulate:
+        hi = friction["range"][1]
+        asked.setdefault(hi, at(hi))
+    if simulate:
+        m = math.nan
+        text = "not searched: a DER run answers at one mu only, mu* needs one run per mu"
+        if "search_command" in extra:
+            text += f"; {extra.pop('search_command')} searches it in the table and closed forms"
+    else:
+        mm = extra.get("model_critical_mu", math.nan)
+        m, text = critical_mu(at, asked, hints=[(mm, v.decided_by or "deciding")])
+        if math.isnan(m):
+            text = _not_found(v, (mu, MU_SEARCH_MAX))
+    out.update(critical_mu=m, critical_mu_text=text, **extra)
     if friction is None:
         return out
     lo, hi = friction["range"]
-    at_high = v.holds if c.simulate else _verdict(replace(c, mu=hi), wrap_angle).holds
+    at_high = v.holds if simulate else asked[hi].holds
     out.update(holds_at_low=v.holds, holds_at_high=at_high,
                words=range_words(v.holds, at_high, lo, hi, m))  # fmt: skip
-    if c.simulate:
+    if simulate:
         out["words"] = f"simulated at mu = {lo:.3g} only (range {lo:.3g}-{hi:.3g})"
     return out
 
 
+def _not_found(v: Verdict, mus) -> str:
+    """Why mu* was not found: the verdict is undecided at each of ``mus`` (the question's mu
+    and the top of the search); a knot that only a DER run answers needs one run per mu."""
+    at = " and at ".join(f"{m:.3g}" for m in sorted(set(mus)))
+    if not v.answers:  # a loop, a bend, the Prusik: no closed form and no table
+        return (f"not searched: no closed form and no table answers the {v.knot}, only a DER "
+                "run, so mu* needs one DER run per mu (--simulate at each --mu)")  # fmt: skip
+    text = f"not found: the verdict is undecided at mu = {at}"
+    if "--simulate" in (v.next_step or "") or (v.der or {}).get("refused"):
+        text += "; a DER run decides one mu per run (--simulate at each --mu)"
+    return text
+
+
 def _critical_mu(c, v: Verdict) -> tuple:
-    """(mu*, how): the least mu at which the knot holds at this load: the deciding closed
-    form's own critical mu, or a bisection in mu of the DER hold table's lookup; none when
-    the load breaks the rope."""
+    """(mu, how): the deciding model's own critical mu at this load (``model_critical_mu``,
+    beside the whole verdict's mu*): a closed form's, or a bisection in mu of the DER hold
+    table's lookup alone; none when the load breaks the rope."""
     from knotmech.verdict.criterion import CREEP_LIMIT
 
     if v.fails_by == "break":
@@ -305,10 +365,9 @@ def _critical_mu(c, v: Verdict) -> tuple:
 
             def ask(m):
                 return table.lookup(x, y, mu=m, mu_rr=mr if mr is not None else m,
-                                    creep_limit=lim).holds  # fmt: skip
+                                    creep_limit=lim)  # fmt: skip
 
-            m, how = critical_mu(ask, c.mu, v.holds)
-            return m, how.replace("the verdict", "the DER table's verdict")
+            return critical_mu(ask, {c.mu: ask(c.mu)}, what="the DER table's verdict")
     if dec.model.startswith("DER"):
         return math.nan, f"not searched for the {dec.model} answer"
     m = float(dec.critical_mu)
@@ -348,6 +407,9 @@ class _Case:
     nip_locks: bool = False
     #: extra DER runs that bisect the slip load (``simulate``, a free end)
     bisect: int = 0
+    #: no friction coefficient is published (mu is one the search assumed): the DER
+    #: command asks for a measured one (:data:`MU_PLACEHOLDER`)
+    mu_unknown: bool = False
 
     @property
     def simulable(self) -> bool:
@@ -359,13 +421,16 @@ class _Case:
         """The one DER run that decides this case ("" when there is none)."""
         if not self.simulable:
             return ""
-        return simulate_command(
-            self.key, d=self.d, D=self.D, mu=self.mu,
+        cmd = simulate_command(
+            self.key, d=self.d, D=self.D, mu=MU_PLACEHOLDER if self.mu_unknown else self.mu,
             mu_rr=None if self.mu_rr is None else float(self.mu_rr), load=self.load,
             material=None if self.mat is None else self.mat.key,
             youngs_modulus=self.youngs_modulus, creep_limit=self.creep_limit,
             bending_scale=self.bending_scale, free_end_load=self.free,
         )  # fmt: skip
+        if self.mu_unknown:  # a run at an assumed friction would answer nothing
+            cmd += f" ({MU_PLACEHOLDER}: {MU_PLACEHOLDER_WORDS})"
+        return cmd
 
 
 def _case(

@@ -1,7 +1,8 @@
 """Friction from materials for the hold verdict: the published rope-on-post friction range of a
 material preset (:func:`knotmech.strength.friction_range`) when ``mu`` is not given, the
-verdict over that range, and the critical friction coefficient mu* (the least mu at which
-the knot holds at the user's load, found by bisection of the verdict in mu).
+verdict over that range, and the critical friction coefficient mu* (:func:`critical_mu`: the
+least mu at which the whole verdict holds at the user's load, by bisection of the verdict in
+mu; the same search for a given mu, a published range and an unknown friction).
 
 The scan assumes what the DER tables' bracketing already assumes: more friction never turns
 a hold into a slip, so the verdict over [a, b] is one of "holds for any mu in [a, b]",
@@ -22,7 +23,7 @@ from dataclasses import dataclass, replace
 from knotmech.errors import InputError
 
 __all__ = [
-    "DEFAULT_POST_MATERIAL", "MU_RESOLUTION", "MU_SEARCH_MAX", "MU_UNKNOWN_LOW",
+    "DEFAULT_POST_MATERIAL", "MU_RESOLUTION", "MU_SEARCH_MAX", "MU_STEP", "MU_UNKNOWN_LOW",
     "FrictionPreset", "critical_mu", "friction_preset", "range_words",
     "unknown_friction_verdict",
 ]  # fmt: skip
@@ -37,10 +38,13 @@ MU_SEARCH_MAX = 1.5
 #: at 0.05 holds at the friction of every rope there. Not 0: no knot with a free end holds
 #: without friction in any model here, so a search from 0 could never answer HOLDS.
 MU_UNKNOWN_LOW = 0.05
-#: bisection steps of the critical-mu search (resolution 2^-steps of the bracket)
-BISECTION_STEPS = 6
-#: the resolution of mu* when the friction is unknown (bisection of the whole verdict) [-]
+#: the resolution of mu* (bisection of the whole verdict) [-]
 MU_RESOLUTION = 1e-3
+#: the step of the grid mu* is searched on [-]: MU_SEARCH_MAX / 2^11 = 7.3e-4, finer than
+#: :data:`MU_RESOLUTION`; a power of two, so that k * MU_STEP / MU_STEP == k exactly
+MU_STEP = MU_SEARCH_MAX / 2**11
+#: the most closed-form critical mus tried first in a critical-mu search
+MAX_HINTS = 3
 
 
 @dataclass(frozen=True)
@@ -148,66 +152,131 @@ def _has(strength, material, face) -> bool:
     return True
 
 
-def _bisect(ask, slip_mu: float, hold_mu: float) -> float:
-    """The boundary between a friction that does not hold and one that does (upper end)."""
-    for _ in range(BISECTION_STEPS):
-        m = 0.5 * (slip_mu + hold_mu)
-        if ask(m) is True:
-            hold_mu = m
-        else:
-            slip_mu = m
-    return hold_mu
+def critical_mu(at, asked: dict, *, what: str = "the whole verdict", hints=()) -> tuple:
+    """(mu*, text): the least friction coefficient at which ``at(mu)`` holds, by bisection
+    of the whole verdict in mu, more friction never turning a hold into a slip.
 
+    The search runs on a fixed grid of step :data:`MU_STEP` on [0, :data:`MU_SEARCH_MAX`]
+    (so mu* does not depend on the mu the question was asked at): first at the critical
+    mu of every closed form inside its validity in the verdicts asked (a model deciding at
+    the boundary gives mu* exactly, checked at mu* and mu* - :data:`MU_STEP`), then by
+    halving the bracket the verdicts leave. Undecided counts as not holding; the mu*
+    returned is one ``at`` was asked at and held (its verdict is ``asked[mu*]``).
 
-def critical_mu(ask, mu: float, held) -> tuple:
-    """(mu*, text): the least friction coefficient at which ``ask(mu)`` holds, searched
-    from the verdict ``held`` at ``mu`` (bisection; undecided counts as not holding).
+    Parameters
+    ----------
+    at : callable
+        ``at(mu)``: the :class:`~knotmech.verdict.answer.Verdict` at friction mu [-]; asked
+        only where ``asked`` has no verdict (no DER run: the caller's ``at`` must be cheap).
+    asked : dict
+        {mu: Verdict} already known (at least the question's own), filled in place.
+    what : str
+        What is bisected, in the text.
+    hints : sequence of (float, str)
+        (mu, model): critical mus to try first, before the closed forms' (such as the
+        deciding DER table's own, from its lookups alone).
 
-    mu* is 0 when it holds without friction, inf when nothing up to
-    :data:`MU_SEARCH_MAX` holds, NaN when the verdict at ``mu`` is undecided and nothing
-    brackets it.
+    Returns
+    -------
+    tuple
+        (mu*, text): 0 when it holds without friction; inf when nothing up to
+        :data:`MU_SEARCH_MAX` holds (the load breaks the rope, or it slips); NaN when it
+        holds nowhere it was asked and no model decides at :data:`MU_SEARCH_MAX`.
     """
-    if held is True:
-        if ask(0.0) is True:
+    s = _Search(at, asked, hints)
+    held = [m for m, v in asked.items() if v.holds is True]
+    if not held:
+        top = s.verdict(MU_SEARCH_MAX)
+        if top.holds is not True:
+            return _none_found(top, what)
+        held = [MU_SEARCH_MAX]
+    first = min(held)
+    lo = max((math.floor(m / MU_STEP) for m, v in asked.items()
+              if v.holds is not True and m < first), default=-1)  # fmt: skip
+    hi = math.ceil(first / MU_STEP)
+    exact, lo, hi = s.try_hints(lo, hi)
+    if exact is not None:
+        return exact, (
+            f"{s.hint_model}'s, where {what} starts to hold: checked there and {MU_STEP:.2g} below"
+        )
+    if lo < 0:
+        if s.holds(0.0):
             return 0.0, "holds without friction"
-        m = _bisect(ask, 0.0, mu)
-        return m, f"holds for mu >= {m:.3g} (bisection of the verdict)"
-    if ask(MU_SEARCH_MAX) is not True:
+        lo = 0
+    while hi - lo > 1:
+        mid = (lo + hi) // 2
+        if s.holds(mid * MU_STEP):
+            hi = mid
+        else:
+            lo = mid
+    m = hi * MU_STEP
+    if not s.holds(m):  # only when ``first`` (off the grid) holds and the grid point above not
+        m = first
+    return m, f"holds for mu >= {m:.3g} (bisection of {what} to {MU_RESOLUTION:g})"
+
+
+def _none_found(top, what: str = "the whole verdict") -> tuple:
+    """(mu*, text) when nothing asked holds and ``top`` (the verdict at the top) does not."""
+    if top.holds is False and getattr(top, "fails_by", None) == "break":
+        return math.inf, "the load breaks the rope whatever the friction"
+    if top.holds is False:
         return math.inf, f"does not hold for any mu up to {MU_SEARCH_MAX:g}"
-    m = _bisect(ask, mu, MU_SEARCH_MAX)
-    return m, f"holds for mu >= {m:.3g} (bisection of the verdict)"
+    return math.nan, f"not found: {what} is undecided even at mu = {MU_SEARCH_MAX:g}"
+
+
+class _Search:
+    """The verdicts asked in one critical-mu search (a cache: each mu asked once)."""
+
+    def __init__(self, at, asked: dict, hints=()):
+        self.at, self.asked, self.given, self.hint_model = at, asked, tuple(hints), ""
+
+    def verdict(self, m: float):
+        if m not in self.asked:
+            self.asked[m] = self.at(m)
+        return self.asked[m]
+
+    def holds(self, m: float) -> bool:
+        return self.verdict(m).holds is True
+
+    def hints(self) -> list:
+        """(mu, model): the finite critical mu of each closed form inside its validity in
+        the verdicts asked, the deciding ones first (at most :data:`MAX_HINTS`)."""
+        out = [(float(m), model) for m, model in self.given if 0 < m < MU_SEARCH_MAX]
+        for v in list(self.asked.values()):
+            for a in sorted(getattr(v, "answers", ()), key=lambda a: not a.decides):
+                m = float(getattr(a, "critical_mu", math.nan))
+                if a.inside_validity and 0 < m < MU_SEARCH_MAX and m not in dict(out):
+                    out.append((m, a.model))
+        return out[: MAX_HINTS + len(self.given)]
+
+    def try_hints(self, lo: int, hi: int) -> tuple:
+        """(exact mu* or None, lo, hi): each hint within the bracket (lo, hi) of grid
+        indices is asked; one that holds while the verdict MU_STEP below does not is mu*;
+        the others narrow the bracket."""
+        for m, model in self.hints():
+            if not lo * MU_STEP < m < hi * MU_STEP:
+                continue
+            if self.holds(m):
+                if not self.holds(max(0.0, m - MU_STEP)):
+                    self.hint_model = f"the {model} model"
+                    return m, lo, hi
+                hi = math.floor(m / MU_STEP)  # at or above m - MU_STEP, which holds
+            else:
+                lo = max(lo, math.floor(m / MU_STEP))
+        return None, lo, hi
 
 
 def range_words(at_low, at_high, low: float, high: float, mu_star: float) -> str:
     """The verdict over [low, high] from its ends (monotone in mu) and the critical mu."""
+    rng = f"mu = {low:.3g}" if low == high else f"mu in [{low:.3g}, {high:.3g}]"
     if at_low is True:
-        return f"holds for any mu in [{low:.3g}, {high:.3g}]"
+        return f"holds for any {rng}" if low != high else f"holds at {rng}"
     if at_high is True:
         where = f"mu* = {mu_star:.3g}" if math.isfinite(mu_star) else "the critical mu"
         return f"holds only for mu above {where} (range {low:.3g}-{high:.3g})"
     if at_low is False and at_high is False:
-        return f"does not hold for any mu in [{low:.3g}, {high:.3g}]"
-    return f"undecided over mu in [{low:.3g}, {high:.3g}]"
-
-
-def _least_holding(at, slip_mu: float, hold_mu: float, cache: dict) -> float:
-    """The least mu within :data:`MU_RESOLUTION` above which ``at(mu)`` (a Verdict) holds,
-    from ``slip_mu`` (not holding) and ``hold_mu`` (holding): the holding end of the last
-    bracket, so ``at`` holds there."""
-
-    def holds(m):
-        if m not in cache:
-            cache[m] = at(m)
-        return cache[m].holds is True
-
-    steps = max(1, math.ceil(math.log2((hold_mu - slip_mu) / MU_RESOLUTION)))
-    for _ in range(steps):
-        m = 0.5 * (slip_mu + hold_mu)
-        if holds(m):
-            hold_mu = m
-        else:
-            slip_mu = m
-    return hold_mu
+        return f"does not hold for any {rng}" if low != high else f"does not hold at {rng}"
+    return f"undecided over {rng}" if low != high else f"undecided at {rng}"
 
 
 def unknown_friction_verdict(preset: FrictionPreset, at):
@@ -227,42 +296,32 @@ def unknown_friction_verdict(preset: FrictionPreset, at):
     Verdict
         HOLDS (numbers at the low end) if it holds there; SLIPS or BREAKS (numbers at
         the top) if it does not hold at the top; else UNDECIDED: with numbers at mu* (the
-        least mu found to hold, by bisection of the whole verdict to
-        :data:`MU_RESOLUTION`; there it holds, and by monotony its slip load there is the
+        least mu found to hold, :func:`critical_mu`, to :data:`MU_RESOLUTION`; there it
+        holds, and by monotony its slip load there is the
         least over the frictions at which it holds) when it holds at the top, or at the
         top when it is undecided there. ``friction`` says which (``verdict_at_mu``,
         ``verdict_at``), the range, ``published`` False, ``source`` None and mu*
         (``critical_mu``: 0 holds without friction, inf none up to the top, NaN unknown).
     """
     lo, hi = preset.low, preset.high
-    cache: dict = {}
-    v_lo = cache.setdefault(lo, at(lo))
+    asked = {lo: at(lo)}
+    v_lo = asked[lo]
     if v_lo.holds is True:
-        m = 0.0 if cache.setdefault(0.0, at(0.0)).holds is True else (
-            _least_holding(at, 0.0, lo, cache))  # fmt: skip
-        text = (
-            "holds without friction"
-            if m == 0
-            else (f"holds for mu >= {m:.3g} (bisection of the verdict to {MU_RESOLUTION:g})")
-        )
+        m, text = critical_mu(at, asked)
         words = f"holds for any mu from {lo:.3g} up"
         return _unknown(v_lo, preset, lo, "low end", words, m, text, True, True)
-    v_hi = cache.setdefault(hi, at(hi))
+    v_hi = asked.setdefault(hi, at(hi))
     if v_hi.holds is False:
-        if v_hi.fails_by == "break":
-            words = "breaks at any friction: the load reaches the breaking load"
-            text = "the load breaks the rope whatever the friction"
-        else:
-            words = f"does not hold for any mu up to {hi:g}"
-            text = words
-        return _unknown(v_hi, preset, hi, "top of the search", words,
-                        math.inf, text, v_lo.holds, False)  # fmt: skip
+        m, text = _none_found(v_hi)
+        words = ("breaks at any friction: the load reaches the breaking load"
+                 if v_hi.fails_by == "break" else text)  # fmt: skip
+        return _unknown(v_hi, preset, hi, "top of the search", words, m, text,
+                        v_lo.holds, False)  # fmt: skip
     advice = f"next: {preset.advice()}"
     if v_hi.holds is True:
-        m = _least_holding(at, lo, hi, cache)
-        text = f"holds for mu >= {m:.3g} (bisection of the verdict to {MU_RESOLUTION:g})"
+        m, text = critical_mu(at, asked)
         words = f"holds only for mu above mu* = {m:.3g}"
-        base = replace(cache[m], holds=None, fails_by=None, next_step=advice)
+        base = replace(asked[m], holds=None, fails_by=None, next_step=advice)
         return _unknown(base, preset, m, "critical mu", words, m, text, v_lo.holds, True)
     base = replace(v_hi, holds=None, fails_by=None, next_step=advice)
     words = f"friction unknown and no model decides even at mu = {hi:g}"

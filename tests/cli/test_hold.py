@@ -191,10 +191,12 @@ def test_short_answer_first_detail_under_verbose(capsys):
     assert main(CLOVE + ["--material", "vps32", "--verbose"]) == 0
     long = capsys.readouterr().out.splitlines()
     assert short[0] == long[0] and short[0].startswith("verdict: HOLDS")
-    # the friction line second: the DER table's critical mu at 1.47 N (0.0928 EA, d/2R
-    # 0.1176): slips at mu 0.2, holds at 0.3, bisected to the table's tolerance
+    # the friction line second: mu* at 1.47 N (0.0928 EA, d/2R 0.1176), where the DER table
+    # decides: slips at mu 0.2, holds at 0.3; the table's lookups alone bisected on the grid
+    # of step 1.5/2^11 give 403 steps (0.29517), and the whole verdict holds there, not at 402
     assert short[1] == (
-        "friction: critical mu 0.295 (holds for mu >= 0.295 (bisection of the DER table's verdict))"
+        "friction: critical mu 0.295 (the DER-table model's, where the whole verdict starts to "
+        "hold: checked there and 0.00073 below)"
     )
     assert len(short) <= 7 < len(long)
     assert not any("assumes:" in s for s in short)
@@ -548,7 +550,7 @@ def test_no_published_friction_still_answers(capsys):
     data = _json(NO_MU, capsys)
     f = data["friction"]
     assert data["holds"] is None and f["published"] is False and f["source"] is None
-    assert f["range"] == [0.05, 1.5] and 0.166098 < f["critical_mu"] <= 0.167098
+    assert f["range"] == [0.05, 1.5] and 0.166097 < f["critical_mu"] <= 0.167098
     for mu, state in ((f["critical_mu"] + 1e-3, "HOLDS"), (f["critical_mu"] - 1e-3, "SLIPS")):
         assert main(NO_MU + ["--mu", repr(mu)]) == 0
         assert capsys.readouterr().out.startswith(f"verdict: {state}: ")
