@@ -21,6 +21,7 @@ correlated noise (Box, Jenkins & Reinsel, *Time Series Analysis*, ch. 7).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -66,6 +67,14 @@ class NoiseModel:
         Reference signal level ``f_ref`` (max |baseline|) [units of y].
     given_sigma : (n,) array or None
         Per-row standard deviation from the file's ``sigma`` column.
+
+    Raises
+    ------
+    DiagnoseError
+        ``scale`` or ``fref`` not finite and positive, or ``growth`` not finite and
+        non-negative: :meth:`sd` would be zero or not finite, and every whitening,
+        likelihood and located z-score a silent NaN (issue 26: a zero high-frequency
+        noise level once reached the white model of the noise-floor check).
     """
 
     scale: float
@@ -73,6 +82,22 @@ class NoiseModel:
     rho: float
     fref: float
     given_sigma: np.ndarray | None = None
+
+    def __post_init__(self):
+        ok = (
+            math.isfinite(self.scale)
+            and self.scale > 0
+            and math.isfinite(self.fref)
+            and self.fref > 0
+            and math.isfinite(self.growth)
+            and self.growth >= 0
+        )
+        if not ok:
+            raise DiagnoseError(
+                f"noise model: scale {self.scale!r}, growth {self.growth!r} and reference "
+                f"level {self.fref!r} must be finite, scale and level > 0; the recording's "
+                "noise is zero or not finite, so the diagnosis has no noise level to judge by"
+            )
 
     def sd(self, mean: np.ndarray) -> np.ndarray:
         """Marginal standard deviation per row [units of y]."""
