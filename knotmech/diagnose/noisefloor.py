@@ -113,9 +113,9 @@ _DRAWS = 400
 #: up to this many rows the p-values are counted from full-size white draws
 _N_COUNTED = 20_000
 _MAD = 1.482602218505602
-#: the least high-frequency sd, relative to the model's largest absolute value: the
-#: floor of the engine's noise model (:func:`~knotmech.diagnose.stats.estimate_noise`),
-#: below which data count as noise-free
+#: the high-frequency sd used in place of a zero one, relative to the model's largest
+#: absolute value: the floor of the engine's noise model
+#: (:func:`~knotmech.diagnose.stats.estimate_noise`), below which data count as noise-free
 HF_SD_FLOOR = 1e-7
 
 
@@ -275,9 +275,9 @@ class NoiseFloor:
     p_ripple_pl : float
         As ``p_ripple``, counted from those power-law draws (0 when not tried).
     hf_floored : bool
-        The remainder's high-frequency sd was below :data:`HF_SD_FLOOR` times the
-        model's largest absolute value (zero: noise-free or quantised readings), and
-        ``sigma_hf`` is that floor.
+        The remainder's high-frequency sd was zero (noise-free, constant or quantised
+        readings), and ``sigma_hf`` is :data:`HF_SD_FLOOR` times the model's largest
+        absolute value instead.
     """
 
     sigma_hf: float
@@ -406,14 +406,17 @@ def noise_floor(
 
 
 def _floored_hf_sd(r2d: np.ndarray, seg: np.ndarray, fref: float) -> tuple[float, bool]:
-    """The remainder's high-frequency sd, at least :data:`HF_SD_FLOOR` times ``fref``.
+    """The remainder's high-frequency sd; :data:`HF_SD_FLOOR` times ``fref`` when it is
+    zero (or not finite).
 
     A zero high-frequency sd (more than half of the second differences vanish:
     noise-free, constant or coarsely quantised readings) is no noise level, and dividing
     by it made the level infinite and the white model of the engine's noise-floor check
     singular (issue 26). The floor is the one of the engine's own noise model
     (:func:`~knotmech.diagnose.stats.estimate_noise`): below it the data count as
-    noise-free.
+    noise-free. A positive sd below the floor is kept (as before issue 26: flooring it
+    too turned 8 of 653 extreme recordings, round-off remainders, from ``unexplained``
+    or ``undetermined`` into ``none``).
 
     Returns
     -------
@@ -423,10 +426,9 @@ def _floored_hf_sd(r2d: np.ndarray, seg: np.ndarray, fref: float) -> tuple[float
         True when the floor replaced the measured sd.
     """
     sd = float(_hf_sd(r2d, seg)[0])
-    floor = HF_SD_FLOOR * float(fref)
-    if sd >= floor:
+    if sd > 0 and math.isfinite(sd):
         return sd, False
-    return floor, True
+    return HF_SD_FLOOR * float(fref), True
 
 
 def _log_level_z(level: float, sims_level: np.ndarray, shrink: float) -> float:
@@ -705,8 +707,8 @@ def noise_floor_verdict(nf: NoiseFloor, alpha: float) -> tuple[str, str]:
     if nf.p_level >= alpha:
         return "none", ""
     floor = (
-        f" (the floor {HF_SD_FLOOR:g} of the model's largest value: the remainder's "
-        "high-frequency noise is below it, noise-free or quantised readings)"
+        f" (the floor, {HF_SD_FLOOR:g} of the model's largest value: the remainder's "
+        "high-frequency noise is zero, noise-free or quantised readings)"
         if nf.hf_floored
         else ""
     )
