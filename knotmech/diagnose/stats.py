@@ -71,10 +71,11 @@ class NoiseModel:
     Raises
     ------
     DiagnoseError
-        ``scale`` or ``fref`` not finite and positive, or ``growth`` not finite and
-        non-negative: :meth:`sd` would be zero or not finite, and every whitening,
-        likelihood and located z-score a silent NaN (issue 26: a zero high-frequency
-        noise level once reached the white model of the noise-floor check).
+        ``scale`` or ``fref`` not finite and positive, ``growth`` not finite and
+        non-negative, or ``given_sigma`` not finite and positive in every row: :meth:`sd`
+        would be zero or not finite, and every whitening, likelihood and located
+        z-score a silent NaN (issue 26: a zero high-frequency noise level once reached
+        the white model of the noise-floor check).
     """
 
     scale: float
@@ -98,6 +99,9 @@ class NoiseModel:
                 f"level {self.fref!r} must be finite, scale and level > 0; the recording's "
                 "noise is zero or not finite, so the diagnosis has no noise level to judge by"
             )
+        gs = self.given_sigma
+        if gs is not None and not (np.all(gs > 0) and np.all(np.isfinite(gs))):
+            raise DiagnoseError("noise model: the sigma column must be finite and > 0 in every row")
 
     def sd(self, mean: np.ndarray) -> np.ndarray:
         """Marginal standard deviation per row [units of y]."""

@@ -66,6 +66,11 @@ def test_noise_model_of_zero_reference_level_is_refused():
         NoiseModel(1.0, 0.0, 0.0, 0.0)
 
 
+def test_noise_model_of_a_zero_sigma_column_is_refused():
+    with pytest.raises(DiagnoseError, match="sigma column"):
+        NoiseModel(1.0, 0.0, 0.0, 1.0, np.array([1.0, 0.0, 1.0]))
+
+
 def test_noise_floor_of_a_kinked_remainder_uses_the_floor():
     """A V-shaped remainder: high-frequency sd 0, so sigma_hf = 1e-7 * fref, and the level
     is its rms over that (rms of |i - 25| / 4 for i < 50: sqrt(sum / 50) / 4; quarters
