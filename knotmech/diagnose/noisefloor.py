@@ -46,6 +46,7 @@ most 5 % of the rows; the engine fits without them and reports them.
 
 from __future__ import annotations
 
+import math
 import warnings
 from dataclasses import dataclass, replace
 
@@ -77,6 +78,7 @@ __all__ = [
     "short_recording_verdict",
     "OUTLIER_SD",
     "outlier_threshold",
+    "HF_SD_FLOOR",
 ]
 
 #: the fewest independent stretches, n (1 - rho)/(1 + rho), at which a fitted AR(1)
@@ -111,6 +113,10 @@ _DRAWS = 400
 #: up to this many rows the p-values are counted from full-size white draws
 _N_COUNTED = 20_000
 _MAD = 1.482602218505602
+#: the high-frequency sd used in place of a zero one, relative to the model's largest
+#: absolute value: the floor of the engine's noise model
+#: (:func:`~knotmech.diagnose.stats.estimate_noise`), below which data count as noise-free
+HF_SD_FLOOR = 1e-7
 
 
 def _order(x: np.ndarray, trial: np.ndarray) -> np.ndarray:
@@ -192,10 +198,23 @@ def _white_draws(seg, draws, rng):
     return np.concatenate(sims_level), np.concatenate(sims_hf)
 
 
+def _rms(r2d: np.ndarray) -> np.ndarray:
+    """Root mean square of each column."""
+    return np.sqrt(np.mean(r2d * r2d, axis=0))
+
+
 def _level(r2d: np.ndarray, seg: np.ndarray) -> np.ndarray:
+    """rms / high-frequency sd of each column (rows sorted, ``seg`` their trial).
+
+    A column whose high-frequency sd is zero (more than half of its second differences
+    vanish: a piecewise-linear or constant column) carries no noise scale: its level is
+    0 when the column is zero too, else infinite (every draw is below it), never a
+    division by zero.
+    """
     sd = _hf_sd(r2d, seg)
-    rms = np.sqrt(np.mean(r2d * r2d, axis=0))
-    return rms / np.where(sd > 0, sd, np.finfo(float).tiny)
+    rms = _rms(r2d)
+    out = np.where(rms > 0, np.inf, 0.0)
+    return np.divide(rms, sd, out=out, where=sd > 0)
 
 
 @dataclass(frozen=True)
@@ -255,6 +274,10 @@ class NoiseFloor:
         ``beta`` is None or outside :data:`~knotmech.diagnose.powerlaw.BETA_RANGE`.
     p_ripple_pl : float
         As ``p_ripple``, counted from those power-law draws (0 when not tried).
+    hf_floored : bool
+        The remainder's high-frequency sd was zero (noise-free, constant or quantised
+        readings), and ``sigma_hf`` is :data:`HF_SD_FLOOR` times the model's largest
+        absolute value instead.
     """
 
     sigma_hf: float
@@ -275,13 +298,14 @@ class NoiseFloor:
     beta: float | None = None
     p_power_law: float = 0.0
     p_ripple_pl: float = 0.0
+    hf_floored: bool = False
 
     def describe(self) -> dict:
-        """JSON-ready numbers (3 significant digits)."""
+        """JSON-ready numbers (3 significant digits); ``hf_floored`` only when True."""
         out = {
             k: (float(f"{v:.3g}") if isinstance(v, float) else v)
             for k, v in vars(self).items()
-            if k != "ar"
+            if k != "ar" and not (k == "hf_floored" and not v)
         }
         if self.ar is not None:
             out["ar"] = self.ar.describe()
@@ -323,7 +347,8 @@ def noise_floor(
     o = _order(x, trial)
     seg = np.unique(trial, return_inverse=True)[1][o]
     r = resid[o][:, None]
-    level = float(_level(r, seg)[0])
+    sd, floored = _floored_hf_sd(r, seg, noise.fref)
+    level = float(_rms(r)[0] / sd)
     hf_l1 = float(_d1_lag1(r, seg)[0])
     if n <= _N_COUNTED:
         sims_level, sims_hf = _white_draws(seg, draws, rng)
@@ -335,11 +360,10 @@ def noise_floor(
         # and the sd scaled by sqrt(_N_COUNTED / n)
         sims_level, sims_hf = _white_draws(np.zeros(_N_COUNTED, int), min(draws, 200), rng)
         shrink = np.sqrt(_N_COUNTED / n)
-        ll = np.log(sims_level)
-        z_l = (np.log(level) - np.mean(ll)) / (np.std(ll) * shrink)
+        z_l = _log_level_z(level, sims_level, shrink)
         z_h = (hf_l1 - np.mean(sims_hf)) / (np.std(sims_hf) * shrink)
         p_level, p_hf = float(stats.norm.sf(z_l)), float(stats.norm.sf(z_h))
-    rho_needed = float(2.0 - np.sqrt(1.0 + 3.0 / max(level, 1.0) ** 2))
+    rho_needed = _rho_needed(level)
     e = noise.whiten(resid, noise.sd(mean), starts)
     pair = ~starts[1:]
     a, b_ = e[1:][pair], e[:-1][pair]
@@ -349,7 +373,6 @@ def noise_floor(
     p_model = float(2.0 * stats.norm.sf(abs(inn) * np.sqrt(max(m, 1))))
     rho = float(noise.rho)
     n_eff = n * (1.0 - rho) / (1.0 + rho) if rho > 0 else float(n)
-    sd = _hf_sd(r, seg)[0]
     # the coloured-noise explanation: an AR(p) of the standardised remainder, in row
     # (time) order, restarted at every trial
     ar = fit_ar(resid / noise.sd(mean), np.cumsum(starts))
@@ -377,8 +400,54 @@ def noise_floor(
         p_consistent=float(p_cons),
         p_ripple=float(p_rip),
         p_ripple_ar=float(p_rip_ar),
+        hf_floored=floored,
         **alt,
     )
+
+
+def _floored_hf_sd(r2d: np.ndarray, seg: np.ndarray, fref: float) -> tuple[float, bool]:
+    """The remainder's high-frequency sd; :data:`HF_SD_FLOOR` times ``fref`` when it is
+    zero (or not finite).
+
+    A zero high-frequency sd (more than half of the second differences vanish:
+    noise-free, constant or coarsely quantised readings) is no noise level, and dividing
+    by it made the level infinite and the white model of the engine's noise-floor check
+    singular (issue 26). The floor is the one of the engine's own noise model
+    (:func:`~knotmech.diagnose.stats.estimate_noise`): below it the data count as
+    noise-free. A positive sd below the floor is kept (as before issue 26: flooring it
+    too turned 8 of 653 extreme recordings, round-off remainders, from ``unexplained``
+    or ``undetermined`` into ``none``).
+
+    Returns
+    -------
+    sd : float
+        The sd used [units of y].
+    floored : bool
+        True when the floor replaced the measured sd.
+    """
+    sd = float(_hf_sd(r2d, seg)[0])
+    if sd > 0 and math.isfinite(sd):
+        return sd, False
+    return HF_SD_FLOOR * float(fref), True
+
+
+def _log_level_z(level: float, sims_level: np.ndarray, shrink: float) -> float:
+    """Normal score of log(level) against white draws' log-levels (long recordings); a
+    zero level (a zero remainder) lies below every draw."""
+    if not level > 0:
+        return -math.inf
+    ll = np.log(sims_level)
+    return (np.log(level) - np.mean(ll)) / (np.std(ll) * shrink)
+
+
+def _rho_needed(level: float) -> float:
+    """Lag-one correlation AR(1) noise needs for ``level``: :math:`2 - \\sqrt{1 +
+    3/R^2}` (module docstring), 1 in the limit of a huge level (no overflow of
+    :math:`R^2`)."""
+    big = max(level, 1.0)
+    if big > 1e100:
+        return 1.0
+    return float(2.0 - np.sqrt(1.0 + 3.0 / big**2))
 
 
 def _alternatives(u, x, o, seg, starts, ar, draws, rng) -> dict:
@@ -448,9 +517,7 @@ def _p_consistent_model(u, seg, sims) -> float:
     else:  # long recordings: normal tails, sd scaled by sqrt(_N_COUNTED / n)
         shrink = np.sqrt(_N_COUNTED / seg.size)
         p_hf = float(stats.norm.cdf((hf - np.mean(s_hf)) / (np.std(s_hf) * shrink)))
-        ll = np.log(s_level)
-        z_l = (np.log(level) - np.mean(ll)) / (np.std(ll) * shrink)
-        p_lev = float(stats.norm.sf(z_l))
+        p_lev = float(stats.norm.sf(_log_level_z(level, s_level, shrink)))
     return float(min(1.0, 2.0 * min(p_hf, p_lev)))
 
 
@@ -487,7 +554,7 @@ def _p_consistent(u, seg, draws, rng) -> float:
     level = float(_level(u, seg)[0])
     if not level > 1.0:
         return 1.0
-    rho = float(2.0 - np.sqrt(1.0 + 3.0 / level**2))
+    rho = _rho_needed(level)
     hf = float(_d1_lag1(u, seg)[0])
     n = seg.size
     if n <= _N_COUNTED:
@@ -639,10 +706,16 @@ def noise_floor_verdict(nf: NoiseFloor, alpha: float) -> tuple[str, str]:
     """
     if nf.p_level >= alpha:
         return "none", ""
+    floor = (
+        f" (the floor, {HF_SD_FLOOR:g} of the model's largest value: the remainder's "
+        "high-frequency noise is zero, noise-free or quantised readings)"
+        if nf.hf_floored
+        else ""
+    )
     head = (
         f"the remainder's rms is {nf.level:.3g} times the high-frequency noise "
-        f"{nf.sigma_hf:.3g} (p = {nf.p_level:.2g} under white noise; only noise with a "
-        f"lag-one correlation of {nf.rho_needed:.3g} would explain it)"
+        f"{nf.sigma_hf:.3g}{floor} (p = {nf.p_level:.2g} under white noise; only noise "
+        f"with a lag-one correlation of {nf.rho_needed:.3g} would explain it)"
     )
     whiter = nf.p_consistent < alpha
     if nf.level > NONE_LEVEL_MAX:

@@ -21,6 +21,7 @@ correlated noise (Box, Jenkins & Reinsel, *Time Series Analysis*, ch. 7).
 
 from __future__ import annotations
 
+import math
 from dataclasses import dataclass, replace
 
 import numpy as np
@@ -66,6 +67,15 @@ class NoiseModel:
         Reference signal level ``f_ref`` (max |baseline|) [units of y].
     given_sigma : (n,) array or None
         Per-row standard deviation from the file's ``sigma`` column.
+
+    Raises
+    ------
+    DiagnoseError
+        ``scale`` or ``fref`` not finite and positive, ``growth`` not finite and
+        non-negative, or ``given_sigma`` not finite and positive in every row: :meth:`sd`
+        would be zero or not finite, and every whitening, likelihood and located
+        z-score a silent NaN (issue 26: a zero high-frequency noise level once reached
+        the white model of the noise-floor check).
     """
 
     scale: float
@@ -73,6 +83,25 @@ class NoiseModel:
     rho: float
     fref: float
     given_sigma: np.ndarray | None = None
+
+    def __post_init__(self):
+        ok = (
+            math.isfinite(self.scale)
+            and self.scale > 0
+            and math.isfinite(self.fref)
+            and self.fref > 0
+            and math.isfinite(self.growth)
+            and self.growth >= 0
+        )
+        if not ok:
+            raise DiagnoseError(
+                f"noise model: scale {self.scale!r}, growth {self.growth!r} and reference "
+                f"level {self.fref!r} must be finite, scale and level > 0; the recording's "
+                "noise is zero or not finite, so the diagnosis has no noise level to judge by"
+            )
+        gs = self.given_sigma
+        if gs is not None and not (np.all(gs > 0) and np.all(np.isfinite(gs))):
+            raise DiagnoseError("noise model: the sigma column must be finite and > 0 in every row")
 
     def sd(self, mean: np.ndarray) -> np.ndarray:
         """Marginal standard deviation per row [units of y]."""
