@@ -17,10 +17,10 @@ table's ``meta.cpu_s_total``. ``--json`` prints the same as one JSON object. Two
 different knots or grids, or a file that does not read as a hold table: a one-line error,
 exit status 2.
 
-As a validation case (``knotmech validate``) :func:`run` compares the shipped clove-hitch
-table (anchor law with cap floor 0) with its rebuild under the floor rule 'min'
-(``validation/tables/hold_phase_table_clove-hitch.floor-min.json``; docs note sec. 12 of
-the floor-rule study) and checks that no verdict changed at the clove-hitch paper's
+As a validation case (``knotmech validate``) :func:`run` compares the clove-hitch table as
+shipped until session 15 (anchor law with cap floor 0, kept as
+``validation/tables/hold_phase_table_clove-hitch.floor0.json``) with the shipped one, rebuilt
+under the floor rule 'min' (docs note sec. 12 of the floor-rule study), and checks that no verdict changed at the clove-hitch paper's
 geometry (d = 4 mm on a 30 mm post, d/2R = 0.1176) at mu 0.3.
 """
 
@@ -40,12 +40,13 @@ from validation._common import finish
 
 NAME = "compare_hold_tables"
 SUMMARY = (
-    "The shipped clove-hitch hold table against its rebuild with the anchor law's floor "
-    "rule 'min': verdicts point by point, none changed at the paper's geometry at mu 0.3."
+    "The clove-hitch hold table built with cap floor 0 against the shipped one, rebuilt with "
+    "the anchor law's floor rule 'min': verdicts point by point, none changed at the "
+    "paper's geometry at mu 0.3."
 )
 ROOT = Path(__file__).resolve().parent.parent
 SHIPPED = ROOT / "knotmech" / "data" / "hold_phase_table_clove-hitch.json"
-FLOOR_MIN = ROOT / "validation" / "tables" / "hold_phase_table_clove-hitch.floor-min.json"
+FLOOR0 = ROOT / "validation" / "tables" / "hold_phase_table_clove-hitch.floor0.json"
 #: the clove-hitch paper's geometry (d = 4 mm, D = 30 mm: d/2R = 4/34) and friction
 PAPER_D_OVER_2R, PAPER_MU = 0.1176, 0.3
 _AXES = ("d_over_2R", "t_over_EA", "mu")
@@ -164,9 +165,9 @@ def format_comparison(r: dict) -> str:
 
 
 def run(quick: bool = True, out_dir=".") -> dict:
-    """Validation case: the shipped clove-hitch table against its floor-rule 'min' rebuild
-    (reads two committed files, no simulation)."""
-    r = compare_files(SHIPPED, FLOOR_MIN)
+    """Validation case: the clove-hitch table built with cap floor 0 against the shipped one
+    (floor rule 'min'; reads two committed files, no simulation)."""
+    r = compare_files(FLOOR0, SHIPPED)
     paper = [c for c in r["changed"]
              if abs(c["d_over_2R"] - PAPER_D_OVER_2R) < 1e-3 and c["mu"] == PAPER_MU]  # fmt: skip
     checks = {

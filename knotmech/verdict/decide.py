@@ -169,7 +169,7 @@ def hold(
     >>> v.holds, v.decided_by, v.der["rule"]
     (True, 'DER-table', 'grid')
     >>> round(v.creep["speed_d_per_s"], 7)
-    6.21e-05
+    5.09e-05
     """
     key = knot_key(knot)
     _check_sizes(rod_diameter, post_diameter, load)

@@ -65,12 +65,14 @@ def test_hitch_scenes_build_the_librarys_anchor_law():
 
 
 def test_old_tables_say_which_law_built_them():
-    table = tables.load_hold_tables()["two-half-hitches"]
-    assert "cap_floor" not in table.meta["law"]  # built before issue 24
+    """The shipped hold tables are built with the hitch scenes' law (no note); a table built
+    with the law as shipped before issue 24 (its meta's law names no cap_floor) says so."""
+    shipped = tables.load_hold_tables()["two-half-hitches"]
+    assert shipped.meta["law"] == tables.ANCHOR_LAW and shipped.law_note == ""
+    old_law = "anchor (rod-rod AnchorFriction, rod-post anchor friction)"
+    table = tables.HoldTable(shipped.knot, shipped.points, {**shipped.meta, "law": old_law})
     a = table.lookup(0.1, 1e-3, mu=0.3)
     assert a.message.endswith(table.law_note)
     assert "as shipped before issue 24 (cap_floor 0, tunnel_check displacement)" in a.message
     assert "not the hitch scenes' law since" in a.message
-    rebuilt = tables.HoldTable(table.knot, table.points, {**table.meta, "law": tables.ANCHOR_LAW})
-    assert rebuilt.law_note == ""
-    assert rebuilt.lookup(0.1, 1e-3, mu=0.3).message == a.message[: -len(table.law_note) - 2]
+    assert shipped.lookup(0.1, 1e-3, mu=0.3).message == a.message[: -len(table.law_note) - 2]

@@ -99,7 +99,7 @@ def test_refusals_are_one_line_exit_2(make, words, tmp_path, capsys):
 
 
 def test_committed_clove_hitch_pair_and_the_case(tmp_path):
-    r = c.compare_files(c.SHIPPED, c.FLOOR_MIN)
+    r = c.compare_files(c.FLOOR0, c.SHIPPED)
     assert r["holds"] == [48, 47] and len(r["changed"]) == 5 and r["points"] == 100
     assert r["cpu_s_total"] == [1855.3, 593.3]
     got = {(p["d_over_2R"], p["t_over_EA"], p["mu"]): (p["old"], p["new"]) for p in r["changed"]}
