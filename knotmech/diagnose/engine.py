@@ -101,6 +101,11 @@ _SMOOTH_REASON = (
 #: most additions of one repeatable effect (nips)
 _MAX_REPEATS = 6
 
+#: batches an effect's parametric bootstrap draws beyond its 199 while the draws cannot
+#: tell its p-value from the per-effect level (:func:`monte_carlo_pvalue`'s ``extend``):
+#: up to 999 draws, so that ``alpha_each (B + 1)`` is 2.5-5 for 2-4 effects tested
+_EXTEND_DRAWS = (200, 300, 300)
+
 #: the power-law null is tried when the remainder's high-frequency spectral exponent lies in
 #: this range (:data:`knotmech.diagnose.powerlaw.BETA_RANGE`); :func:`_power_law_check`
 POWER_LAW_BETA_RANGE = BETA_RANGE
@@ -883,7 +888,7 @@ def _bootstrap_p(current, effect, lr, data, starts, gs, rng, decide_at):
         return out
 
     del rec
-    return monte_carlo_pvalue(lr, draw, decide_at=decide_at)
+    return monte_carlo_pvalue(lr, draw, decide_at=decide_at, extend=_EXTEND_DRAWS)
 
 
 def _effect_regions(rec, base, final, effects):

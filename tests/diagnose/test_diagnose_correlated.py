@@ -7,10 +7,17 @@ recordings, static friction at 6 sd 50-68, against a 1 % critical value near 12.
 
 import numpy as np
 import pytest
+from scipy.stats import chi2
 
 from knotmech.diagnose import diagnose, make_recording
 from knotmech.diagnose.fitting import heldout_innovation_rms
-from knotmech.diagnose.stats import NoiseModel, _tail_p, monte_carlo_pvalue, trial_starts
+from knotmech.diagnose.stats import (
+    NoiseModel,
+    _tail_p,
+    monte_carlo_pvalue,
+    trial_starts,
+    wilson_interval,
+)
 
 
 @pytest.mark.parametrize(
@@ -90,3 +97,79 @@ def test_first_small_batch_does_not_decide_a_borderline_case():
     p, b = monte_carlo_pvalue(12.15, draw, decide_at=0.005)
     assert calls[0] == 9 and b == 199
     assert p >= 0.005  # not significant at 0.005; chi2_3 draws: P(chi2_3 > 12.15) = 0.0069
+
+
+def _scripted_draws(exceed_at, observed, total=999):
+    """A draw function handing out ``total`` chi2_3 draws below ``observed`` in order,
+    except at the rows ``exceed_at`` (above it), and the batch sizes it was asked for."""
+    sims = np.minimum(np.random.default_rng(3).chisquare(3.0, total), observed - 1.0)
+    sims[list(exceed_at)] = observed + 1.0
+    calls = []
+
+    def draw(m):
+        a = sum(calls)
+        calls.append(m)
+        return sims[a : a + m]
+
+    return draw, calls
+
+
+def test_undecided_bootstrap_draws_on_until_the_level_is_outside_its_interval():
+    # one exceedance in the first 199 draws: p = 2/200 = 0.01 cannot go below 0.005;
+    # 800 more draws without one give p = 2/1000 (99 % Wilson interval of 1/699
+    # reaches 0.0121, of 1/999 0.0085: still undecided, so every batch is drawn)
+    draw, calls = _scripted_draws([50], 15.0)
+    p, b = monte_carlo_pvalue(15.0, draw, decide_at=0.005)
+    assert (p, b, calls) == (0.01, 199, [9, 30, 60, 100])
+    draw, calls = _scripted_draws([50], 15.0)
+    p, b = monte_carlo_pvalue(15.0, draw, decide_at=0.005, extend=(200, 300, 300))
+    assert (p, b, calls) == (pytest.approx(0.002), 999, [9, 30, 60, 100, 200, 300, 300])
+
+
+def test_decided_bootstrap_draws_no_more():
+    # four exceedances in 199 draws: the 99 % Wilson interval of 4/199 is 0.0060-0.065,
+    # above 0.005, so the extension is not drawn and p = 5/200
+    draw, calls = _scripted_draws([10, 60, 100, 150], 15.0)
+    p, b = monte_carlo_pvalue(15.0, draw, decide_at=0.005, extend=(200, 300, 300))
+    assert (p, b, calls) == (0.025, 199, [9, 30, 60, 100])
+
+
+def _rejections(rates, decide_at, seed):
+    """Runs of the extended test on chi2_3 draws, one per true p in ``rates`` (the
+    observed statistic's exceedance probability): how many reject at ``decide_at``, and
+    how many of those stopped the extension early (between 199 and 999 draws)."""
+    rng = np.random.default_rng(seed)
+    rejected = early = 0
+    for rate in rates:
+        p, b = monte_carlo_pvalue(
+            float(chi2.isf(rate, 3.0)),
+            lambda m: rng.chisquare(3.0, m),
+            decide_at=decide_at,
+            extend=(200, 300, 300),
+        )
+        rejected += p < decide_at
+        early += p < decide_at and 199 < b < 999
+    return rejected, early
+
+
+@pytest.mark.parametrize(("decide_at", "fixed_size"), [(0.005, 0.004), (0.0025, 0.002)])
+def test_undecided_bootstrap_keeps_its_level(decide_at, fixed_size):
+    # the extension rejects only at 999 draws (the 99 % Wilson upper bound of 0/B,
+    # z^2/(B + z^2), is 0.0094 at B = 699, above the level), so its level is that of
+    # the fixed 999-draw test, (1 + k)/1000 < decide_at: k <= 3 (0.004) at 0.005, k <= 1
+    # (0.002) at 0.0025, plus the tail-fit decisions of the first 199 draws. Under the
+    # null the true p is uniform; above 0.02 no run rejects (P(Bin(999, 0.02) <= 3) ~ 1e-5)
+    u = np.random.default_rng(31).uniform(0.0, 0.02, 2000)
+    rej, early = _rejections(u, decide_at, 32)
+    assert early == 0
+    lo, hi = wilson_interval(rej, 2000, 3.29)
+    assert 0.02 * lo <= decide_at and 0.02 * hi >= fixed_size
+
+
+def test_undecided_bootstrap_gains_power_at_half_the_level():
+    # a true p of 0.0025 at the level 0.005: 199 draws reject only with no exceedance,
+    # (1 - 0.0025)^199 = 0.608 of the time; drawn on to 999, P(Bin(999, 0.0025) <= 3) =
+    # 0.758
+    rej, _ = _rejections(np.full(400, 0.0025), 0.005, 23)
+    lo, _ = wilson_interval(rej, 400, 3.29)
+    assert lo > (1 - 0.0025) ** 199
