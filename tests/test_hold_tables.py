@@ -203,10 +203,11 @@ def test_cow_hitch_from_its_table(capsys):
     hitch.json, docs/notes/tables.md; HOLD_GRID's loads and frictions on the d/2R columns
     built so far, 0.1176 and 0.2308 at least). On a 30 mm post (the 0.1176 column): 0.3 N
     (0.019 EA, between 0.01 and 0.1 EA) holds at mu = 0.8 (both held, creeps 2.1e-5 and
-    9.8e-6 d/s; the column held to 0.3 EA; table rebuilt with the floor rule "min"), slips at mu = 0.3 (both ran off) and is
-    undecided at mu = 0.5 (0.01 EA held, 0.1 EA ran off), with the --simulate command, the
-    ideal rope being outside its validity at d/D = 0.133; 0.1 N (0.0063 EA) holds at mu = 0.5
-    (1e-3 and 0.01 EA held, largest creep 7.1e-5 d/s, margin 0.01 EA / 0.1 N - 1)."""
+    9.8e-6 d/s; the column held to 0.3 EA; table rebuilt with the floor rule "min"), slips
+    at mu = 0.3 (both ran off) and is undecided at mu = 0.5 (0.01 EA held, 0.1 EA ran off),
+    with the --simulate command, the ideal rope being outside its validity at d/D = 0.133;
+    0.1 N (0.0063 EA) holds at mu = 0.5 (1e-3 and 0.01 EA held, largest creep 7.1e-5 d/s,
+    margin 0.01 EA / 0.1 N - 1)."""
     t = pt.load_hold_tables()["cow-hitch"]
     assert len(t.points) == t.axes["d_over_2R"].size * 25 and t.mus == [0.1, 0.2, 0.3, 0.5, 0.8]
     kw = dict(rod_diameter=4e-3, post_diameter=30e-3, material="vps32")

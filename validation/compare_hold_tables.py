@@ -20,8 +20,9 @@ exit status 2.
 As a validation case (``knotmech validate``) :func:`run` compares the clove-hitch table as
 shipped until session 15 (anchor law with cap floor 0, kept as
 ``validation/tables/hold_phase_table_clove-hitch.floor0.json``) with the shipped one, rebuilt
-under the floor rule 'min' (docs note sec. 12 of the floor-rule study), and checks that no verdict changed at the clove-hitch paper's
-geometry (d = 4 mm on a 30 mm post, d/2R = 0.1176) at mu 0.3.
+under the floor rule 'min' (docs note sec. 12 of the floor-rule study), and checks that no
+verdict changed at the clove-hitch paper's geometry (d = 4 mm on a 30 mm post,
+d/2R = 0.1176) at mu 0.3.
 """
 
 from __future__ import annotations
