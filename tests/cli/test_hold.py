@@ -448,9 +448,9 @@ def test_huge_friction_does_not_overflow(knot, free, capsys):
 
 def test_nylon_rope_is_answered_by_the_kappa_001_table(capsys):
     """Nylon's bending scale kappa = 0.01 picks the shipped kappa-0.01 clove-hitch table
-    (loads 1e-4 to 1e-2 EA, on the flexural clock). 200 N = 0.0283 EA is above its heaviest
-    load, which held there: no answer one way, so the DER is undecided with --simulate and
-    thick-nip decides (inside its validity). 50 N (0.0071 EA) lies inside: the table's eight
+    (loads 1e-4 to 0.3 EA since session 16, on the flexural clock). At 200 N = 0.0283 EA its
+    neighbours disagree (the 0.1 EA points at d/2R 0.2308 change topology): the DER is
+    undecided with --simulate and thick-nip decides (inside its validity). 50 N (0.0071 EA) lies inside: the table's eight
     neighbours (d/2R 0.1176, 0.2308 x 1e-3, 1e-2 EA x mu 0.3, 0.5) held, and it decides."""
     assert main(ISSUE + ["--material", "nylon"]) == 0
     out = capsys.readouterr().out
@@ -465,7 +465,8 @@ def test_nylon_rope_is_answered_by_the_kappa_001_table(capsys):
     nxt = next(x for x in out.splitlines() if x.startswith("next:"))
     assert "--material nylon --simulate" in nxt
     data = _json(ISSUE + ["--material", "nylon"], capsys)
-    assert "above the heaviest tabulated (0.01 EA)" in data["der"]["message"]
+    assert "lies between DER points that disagree" in data["der"]["message"]
+    assert "(0.2308, 0.1, mu 0.3) slipped, topology changed" in data["der"]["message"]
     assert data["der"]["holds"] is None and "refused" not in data["der"]
     assert data["der"]["table_bending_scale"] == 0.01 and data["inputs"]["bending_scale"] == 0.01
     light = _json([a if a != "200N" else "50N" for a in ISSUE] + ["--material", "nylon"], capsys)
@@ -545,7 +546,7 @@ def test_no_published_friction_still_answers(capsys):
     assert out[0].startswith(
         "verdict: UNDECIDED: holds only for mu above mu* = 0.166 (no published friction "
         "coefficient for nylon on steel; published on aluminium, rope); at mu* = 0.166: "
-        "friction alone cannot unlock it up to 707 N, breaks near 4.5 kN"
+        "slips near 376 N (200-707 N), breaks near 4.5 kN"
     )
     assert out[0].endswith(
         "next: give --mu (mu=) measured for this rope on this post, or --post-material "
