@@ -233,16 +233,24 @@ def test_wider_random_grid():
 
 def test_mu_from_the_material_and_post():
     """No mu: polyester on steel (default) is 0.19-0.25 (Delaney, RopeLab p. 88); the verdict
-    is at 0.19 and holds over the range (the thick nip locks above mu* = 0.169 at d/D 1/8)."""
+    is at 0.19. Two half hitches of 10 mm on 80 mm at 1 kN (d/2R 0.111, 0.0064 EA): the
+    fibre-rope (kappa 0.01) table slips at mu 0.1 and 0.2 in every neighbouring column, so
+    it slips at 0.19; from mu just above 0.2 the table's columns disagree and the thick nip
+    (locked above 0.169 at d/D 1/8) decides: it holds only above mu* = 0.205. The clove
+    hitch on the same post holds over the whole range."""
     v = knotmech.hold("two-half-hitches", rod_diameter=10e-3, post_diameter=80e-3, load=1000,
                       material="polyester")  # fmt: skip
     f = v.friction
     assert f["range"] == [0.19, 0.25] and f["post_material"] == "steel"
     assert f["default_post_material"] is True and "Delaney" in f["source"]
-    assert v.inputs["mu"] == 0.19 and v.holds is True and f["holds_at_high"] is True
-    assert f["words"] == "holds for any mu in [0.19, 0.25]"
+    assert v.inputs["mu"] == 0.19 and v.holds is False and v.decided_by == "DER-table"
+    assert v.der["table_bending_scale"] == 0.01 and f["holds_at_high"] is True
+    assert f["words"] == "holds only for mu above mu* = 0.205 (range 0.19-0.25)"
     nip = next(a for a in v.answers if a.model == "thick-nip")
-    assert f["critical_mu"] == nip.critical_mu and 0.16 < f["critical_mu"] < 0.19
+    assert 0.16 < nip.critical_mu < 0.19 < f["critical_mu"] < 0.21
+    c = knotmech.hold("clove-hitch", rod_diameter=10e-3, post_diameter=80e-3, load=1000,
+                      material="polyester")  # fmt: skip
+    assert c.holds is True and c.friction["words"] == "holds for any mu in [0.19, 0.25]"
     # on aluminium (0.14-0.221) the low end is below mu*: it holds only above it
     a = knotmech.hold("clove-hitch", rod_diameter=10e-3, post_diameter=80e-3, load=1000,
                       material="polyester", post_material="aluminium")  # fmt: skip
@@ -289,14 +297,15 @@ def test_json_carries_the_capacity_and_friction():
 
 
 def test_plot_draws_the_capacity_panel(tmp_path):
-    """The capacity panel is drawn even where the table refuses (two half hitches in nylon,
-    kappa 0.01, against solid-rod tables): the breaking load, load and mu alone."""
+    """The capacity panel is drawn even where the table refuses (two half hitches in nylon
+    at kappa 0.2, a factor 5 from the solid-rod table and 20 from the fibre-rope one): the
+    breaking load, load and mu alone."""
     import matplotlib.image
 
     from knotmech.verdict import plot_verdict
 
     v = knotmech.hold("two-half-hitches", rod_diameter=6e-3, post_diameter=40e-3, mu=0.4,
-                      load=200, material="nylon")  # fmt: skip
+                      load=200, material="nylon", bending_scale=0.2)  # fmt: skip
     assert v.der["refused"] == "bending_scale"
     p = plot_verdict(v, tmp_path / "cap.png")
     assert matplotlib.image.imread(p).shape[1] == pytest.approx(5.2 * 100, rel=0.05)
