@@ -233,21 +233,10 @@ def _mbs_laws() -> tuple:
 
 
 def breaking_load_laws(material) -> tuple:
-    """The breaking-strength laws (:class:`StrengthLaw`) of a material, in priority order.
-
-    Parameters
-    ----------
-    material : str or Material
-        A preset name or alias (see :func:`knotmech.materials.material`).
-
-    Returns
-    -------
-    tuple of StrengthLaw
-        Used after the material's tables (:func:`breaking_load_tables`); HMPE has one,
-        an estimate through two published single breaks.
-    """
-    key = _material_key(material)
-    return tuple(law for law in _mbs_laws() if law.material == key)
+    """The breaking-strength laws (:class:`StrengthLaw`) of a material (a preset name or
+    alias), in priority order; used after its tables (:func:`breaking_load_tables`). HMPE
+    has one, an estimate through two published single breaks."""
+    return _of_material(_mbs_laws(), material)
 
 
 def breaking_load_tables(material) -> tuple:
@@ -263,8 +252,13 @@ def breaking_load_tables(material) -> tuple:
     tuple of StrengthTable
         (id, material, diameters [m], loads [N], source), in priority order.
     """
+    return _of_material(_mbs_tables(), material)
+
+
+def _of_material(items, material) -> tuple:
+    """The items (tables or laws) whose ``material`` is that of the preset ``material``."""
     key = _material_key(material)
-    return tuple(t for t in _mbs_tables() if t.material == key)
+    return tuple(x for x in items if x.material == key)
 
 
 # ------------------------------------------------------------------ input checks
