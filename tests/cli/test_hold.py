@@ -450,8 +450,9 @@ def test_nylon_rope_is_answered_by_the_kappa_001_table(capsys):
     """Nylon's bending scale kappa = 0.01 picks the shipped kappa-0.01 clove-hitch table
     (loads 1e-4 to 0.3 EA since session 16, on the flexural clock). At 200 N = 0.0283 EA its
     neighbours disagree (the 0.1 EA points at d/2R 0.2308 change topology): the DER is
-    undecided with --simulate and thick-nip decides (inside its validity). 50 N (0.0071 EA) lies inside: the table's eight
-    neighbours (d/2R 0.1176, 0.2308 x 1e-3, 1e-2 EA x mu 0.3, 0.5) held, and it decides."""
+    undecided with --simulate and thick-nip decides (inside its validity). 50 N (0.0071 EA)
+    lies inside: the table's eight neighbours (d/2R 0.1176, 0.2308 x 1e-3, 1e-2 EA x mu 0.3,
+    0.5) held, and it decides."""
     assert main(ISSUE + ["--material", "nylon"]) == 0
     out = capsys.readouterr().out
     # the thick nip holds up to its validity's 0.1 EA = 707 N; the 3-strand nylon MBS 5.95 kN
