@@ -267,3 +267,31 @@ def test_random_questions_mu_star_agrees_with_hold():
             assert knotmech.hold(knot, mu=m, **kw).holds is True
             assert knotmech.hold(knot, mu=m - MU_RESOLUTION, **kw).holds is not True
     assert {"finite", "inf"} <= kinds
+
+
+def _fake(rule):
+    """``at(mu)`` returning a stand-in verdict whose ``holds`` is ``rule(mu)``."""
+    from types import SimpleNamespace
+
+    return lambda m: SimpleNamespace(holds=rule(m), answers=())
+
+
+def test_mu_star_is_searched_again_above_a_slip_it_asked():
+    # holds on [0.2, 0.4) and from 0.9 up: the published range's high end (0.6) slipped,
+    # so the first mu* (0.2) is not where the whole verdict starts to hold for good
+    from knotmech.verdict.friction import critical_mu
+
+    at = _fake(lambda m: 0.2 <= m < 0.4 or m >= 0.9)
+    asked = {0.3: at(0.3), 0.6: at(0.6)}
+    m, text = critical_mu(at, asked)
+    assert 0.9 <= m < 0.9 + MU_STEP and "bisection" in text
+    assert all(v.holds for k, v in asked.items() if k >= m)
+
+
+def test_mu_star_not_found_when_more_friction_slips_up_to_the_top():
+    from knotmech.verdict.friction import critical_mu
+
+    at = _fake(lambda m: 0.2 <= m < 0.4)
+    m, text = critical_mu(at, {0.3: at(0.3), 0.6: at(0.6)})
+    assert math.isnan(m)
+    assert "not monotone in mu" in text and "mu = 0.6" in text

@@ -188,8 +188,12 @@ def hold(
         mu = preset.low
         friction = preset.as_dict()
     v = _verdict_at(key, mu, simulate=simulate, progress=progress, bisect=bisect, top=True, **kw)
-    return replace(v, friction=_friction_part(key, mu, v, friction, simulate,
-                                              lambda m: _verdict_at(key, m, **kw)))  # fmt: skip
+    part = _friction_part(key, mu, v, friction, simulate, lambda m: _verdict_at(key, m, **kw))
+    if part.get("holds_at_low") is True and part.get("holds_at_high") is False:
+        # holds at the range's low end, slips at its high end: no monotone reading decides
+        v = replace(v, holds=None, fails_by=None,
+                    next_step=f"{part['words']}; next: ask at a measured mu (--mu)")  # fmt: skip
+    return replace(v, friction=part)
 
 
 def _verdict_at(

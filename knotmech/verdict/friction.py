@@ -45,6 +45,8 @@ MU_RESOLUTION = 1e-3
 MU_STEP = MU_SEARCH_MAX / 2**11
 #: the most closed-form critical mus tried first in a critical-mu search
 MAX_HINTS = 3
+#: searches again above a friction found to slip above the mu* found, before giving up
+MAX_RESEARCH = 2
 
 
 @dataclass(frozen=True)
@@ -161,7 +163,10 @@ def critical_mu(at, asked: dict, *, what: str = "the whole verdict", hints=()) -
     mu of every closed form inside its validity in the verdicts asked (a model deciding at
     the boundary gives mu* exactly, checked at mu* and mu* - :data:`MU_STEP`), then by
     halving the bracket the verdicts leave. Undecided counts as not holding; the mu*
-    returned is one ``at`` was asked at and held (its verdict is ``asked[mu*]``).
+    returned is one ``at`` was asked at and held (its verdict is ``asked[mu*]``). Every
+    verdict asked above mu* is checked: where one slips, mu* is searched again above it
+    (at most :data:`MAX_RESEARCH` times), and NaN is returned if the verdict still turns
+    from holding to slipping as mu grows.
 
     Parameters
     ----------
@@ -181,7 +186,8 @@ def critical_mu(at, asked: dict, *, what: str = "the whole verdict", hints=()) -
     tuple
         (mu*, text): 0 when it holds without friction; inf when nothing up to
         :data:`MU_SEARCH_MAX` holds (the load breaks the rope, or it slips); NaN when it
-        holds nowhere it was asked and no model decides at :data:`MU_SEARCH_MAX`.
+        holds nowhere it was asked and no model decides at :data:`MU_SEARCH_MAX`, or when
+        the verdict is not monotone in mu.
     """
     s = _Search(at, asked, hints)
     held = [m for m, v in asked.items() if v.holds is True]
@@ -189,10 +195,31 @@ def critical_mu(at, asked: dict, *, what: str = "the whole verdict", hints=()) -
         top = s.verdict(MU_SEARCH_MAX)
         if top.holds is not True:
             return _none_found(top, what)
-        held = [MU_SEARCH_MAX]
-    first = min(held)
+    floor = -1.0  # mu* lies above every friction found to slip above an earlier mu*
+    for _ in range(MAX_RESEARCH + 1):
+        m, text = _bisect(s, floor, what)
+        slipped = [k for k, v in asked.items() if k > m and v.holds is False]
+        if not slipped:
+            return m, text
+        floor = max(slipped)
+        if not any(v.holds is True for k, v in asked.items() if k > floor):
+            top = s.verdict(MU_SEARCH_MAX)
+            if top.holds is not True:
+                break
+    return math.nan, (
+        f"not found: {what} is not monotone in mu (holds at mu = {m:.3g}, does not at "
+        f"mu = {floor:.3g}); more friction should not turn a hold into a slip"
+    )
+
+
+def _bisect(s, floor: float, what: str) -> tuple:
+    """(mu*, text): the least mu above ``floor`` (-1: none) at which the verdicts asked in
+    the search ``s`` hold, by the hints, then bisection on the grid of step MU_STEP; the
+    least mu asked above ``floor`` that held brackets it from above."""
+    asked = s.asked
+    first = min(m for m, v in asked.items() if v.holds is True and m > floor)
     lo = max((math.floor(m / MU_STEP) for m, v in asked.items()
-              if v.holds is not True and m < first), default=-1)  # fmt: skip
+              if v.holds is not True and floor <= m < first), default=-1)  # fmt: skip
     hi = math.ceil(first / MU_STEP)
     exact, lo, hi = s.try_hints(lo, hi)
     if exact is not None:
@@ -269,6 +296,9 @@ class _Search:
 def range_words(at_low, at_high, low: float, high: float, mu_star: float) -> str:
     """The verdict over [low, high] from its ends (monotone in mu) and the critical mu."""
     rng = f"mu = {low:.3g}" if low == high else f"mu in [{low:.3g}, {high:.3g}]"
+    if at_low is True and at_high is False:
+        return (f"undecided over {rng}: holds at mu = {low:.3g} and slips at {high:.3g}, "
+                "against more friction never turning a hold into a slip")  # fmt: skip
     if at_low is True:
         return f"holds for any {rng}" if low != high else f"holds at {rng}"
     if at_high is True:
@@ -294,7 +324,9 @@ def unknown_friction_verdict(preset: FrictionPreset, at):
     Returns
     -------
     Verdict
-        HOLDS (numbers at the low end) if it holds there; SLIPS or BREAKS (numbers at
+        HOLDS (numbers at the low end) if it holds there and does not slip at the top
+        (holding at the low end and slipping at the top is UNDECIDED: not monotone in
+        mu); SLIPS or BREAKS (numbers at
         the top) if it does not hold at the top; else UNDECIDED: with numbers at mu* (the
         least mu found to hold, :func:`critical_mu`, to :data:`MU_RESOLUTION`; there it
         holds, and by monotony its slip load there is the
@@ -304,22 +336,30 @@ def unknown_friction_verdict(preset: FrictionPreset, at):
         (``critical_mu``: 0 holds without friction, inf none up to the top, NaN unknown).
     """
     lo, hi = preset.low, preset.high
-    asked = {lo: at(lo)}
-    v_lo = asked[lo]
-    if v_lo.holds is True:
+    asked = {lo: at(lo), hi: at(hi)}
+    v_lo, v_hi = asked[lo], asked[hi]
+    advice = f"next: {preset.advice()}"
+    if v_lo.holds is True and v_hi.holds is not False:
         m, text = critical_mu(at, asked)
         words = f"holds for any mu from {lo:.3g} up"
-        return _unknown(v_lo, preset, lo, "low end", words, m, text, True, True)
-    v_hi = asked.setdefault(hi, at(hi))
+        return _unknown(v_lo, preset, lo, "low end", words, m, text, True, v_hi.holds)
+    if v_lo.holds is True:  # holds at the low end and slips at the top: not monotone
+        base = replace(v_lo, holds=None, fails_by=None, next_step=advice)
+        words = range_words(True, False, lo, hi, math.nan)
+        return _unknown(base, preset, lo, "low end", words, math.nan,
+                        f"not found: {words}", True, False)  # fmt: skip
     if v_hi.holds is False:
         m, text = _none_found(v_hi)
         words = ("breaks at any friction: the load reaches the breaking load"
                  if v_hi.fails_by == "break" else text)  # fmt: skip
         return _unknown(v_hi, preset, hi, "top of the search", words, m, text,
                         v_lo.holds, False)  # fmt: skip
-    advice = f"next: {preset.advice()}"
     if v_hi.holds is True:
         m, text = critical_mu(at, asked)
+        if not math.isfinite(m):  # not monotone in mu
+            base = replace(v_hi, holds=None, fails_by=None, next_step=advice)
+            return _unknown(base, preset, hi, "top of the search", text, m, text,
+                            v_lo.holds, True)  # fmt: skip
         words = f"holds only for mu above mu* = {m:.3g}"
         base = replace(asked[m], holds=None, fails_by=None, next_step=advice)
         return _unknown(base, preset, m, "critical mu", words, m, text, v_lo.holds, True)

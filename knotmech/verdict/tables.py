@@ -12,6 +12,7 @@ hold tables, ``knotmech/data/hold_phase_table_<knot>[_kappa<k>].json``). Buildin
 
 from __future__ import annotations
 
+import itertools
 import json
 import math
 from dataclasses import dataclass, field, replace
@@ -611,8 +612,12 @@ def _hold_query(d_over_2R, t_over_EA, mu, mu_rr, creep_limit):
     return x, y, m, mr, lim
 
 
-def _split_message(where: str, pts: str, votes: list) -> str:
-    """Why neighbours that do not agree (or a run that failed) leave a query undecided."""
+def _split_message(where: str, pts: str, votes: list, against: bool = False) -> str:
+    """Why neighbours that do not agree (or a run that failed, or runs that contradict each
+    other in mu: ``against``) leave a query undecided."""
+    if against:
+        return (f"{where}: neighbouring DER points contradict more friction never turning a "
+                f"hold into a slip ({pts}): undecided")  # fmt: skip
     if None in votes:
         return f"{where}: a neighbouring DER run failed ({pts}): undecided"
     return f"{where} lies between DER points that disagree ({pts}): undecided"
@@ -670,6 +675,10 @@ class HoldTable:
       slips where that friction slipped;
     - outside the d/2R range: never decided (no monotonicity in d/2R is assumed).
 
+    Runs that contradict these assumptions in mu (a column that held at one friction and
+    slipped at a larger one: :meth:`against_mu`) are read as undecided, both of them, so
+    that no rule builds on either.
+
     A rope-rope friction ``mu_rr`` other than ``mu`` brackets the mu axis by
     ``[min(mu, mu_rr), max(mu, mu_rr)]`` (assumes more friction of either kind does not
     turn a hold into a slip). Everything else is undecided, with the reason.
@@ -718,6 +727,45 @@ class HoldTable:
     @property
     def mus(self) -> list:
         return [float(m) for m in self.axes["mu"]]
+
+    def holds_at(self, x, y, m, limit: float = CREEP_LIMIT):
+        """The verdict of the grid point at (d/2R, T_high/EA, mu) (exact grid values) read
+        against its column in mu: None (undecided) where it contradicts more friction never
+        turning a hold into a slip (:meth:`against_mu`), else :meth:`HoldPoint.holds`."""
+        if self._key(x, y, m) in self.against_mu(limit):
+            return None
+        return self.point(x, y, m).holds(limit)
+
+    def against_mu(self, limit: float = CREEP_LIMIT) -> dict:
+        """{point key: text} of the grid points whose verdicts contradict each other in mu:
+        in one (d/2R, T_high/EA) column, a point that held at a friction below one that
+        slipped, and that one (either run may be the wrong one; a failed run contradicts
+        nothing). Every rule of :meth:`lookup` assumes that more friction does not turn a
+        hold into a slip, so such points are read as undecided."""
+        cache = self.__dict__.setdefault("_against_cache", {})
+        if limit not in cache:
+            cache[limit] = self._contradictions(limit)
+        return cache[limit]
+
+    def _contradictions(self, limit: float) -> dict:
+        """:meth:`against_mu`, computed."""
+        out = {}
+        mus = self.axes["mu"]
+        for x in self.axes["d_over_2R"]:
+            for y in self.axes["t_over_EA"]:
+                pts = [self.point(x, y, m) for m in mus]
+                votes = [p.holds(limit) for p in pts]
+                for a, b in itertools.combinations(range(len(pts)), 2):
+                    if votes[a] is True and votes[b] is False:
+                        text = f"held at mu {mus[a]:g}, slipped at mu {mus[b]:g}"
+                        for p in (pts[a], pts[b]):
+                            out.setdefault(self._key(p.d_over_2R, p.t_over_EA, p.mu), text)
+        return out
+
+    def _describe(self, p: HoldPoint, limit: float) -> str:
+        """:meth:`HoldPoint.describe`, with the contradiction in mu where there is one."""
+        text = self.against_mu(limit).get(self._key(p.d_over_2R, p.t_over_EA, p.mu))
+        return p.describe(limit) + (f" (against mu: {text})" if text else "")
 
     def slice(self, mu: float, *, creep_limit: float = CREEP_LIMIT) -> PhaseTable:
         """The (d/2R, T_high/EA) slice at a tabulated ``mu`` as a :class:`PhaseTable`."""
@@ -775,13 +823,15 @@ class HoldTable:
             )  # fmt: skip
         corners = [self.point(ax["d_over_2R"][i], ax["t_over_EA"][j], ax["mu"][k])
                    for i in xi for j in yi for k in mi]  # fmt: skip
-        votes = [p.holds(lim) for p in corners]
-        pts = "; ".join(p.describe(lim) for p in corners)
+        votes = [self.holds_at(p.d_over_2R, p.t_over_EA, p.mu, lim) for p in corners]
+        pts = "; ".join(self._describe(p, lim) for p in corners)
         common = self._common(corners, votes, xi, mi, y, lim, mus_used)
         inside = yw in ("on", "between") and mw in ("on", "between")
         if None in votes or len(set(votes)) > 1:
-            return HoldAnswer(None, inside, "undecided", _split_message(where, pts, votes),
-                              **common)  # fmt: skip
+            against = any(p.holds(lim) is not None and v is None
+                          for p, v in zip(corners, votes, strict=True))  # fmt: skip
+            return HoldAnswer(None, inside, "undecided",
+                              _split_message(where, pts, votes, against), **common)  # fmt: skip
         return self._agreed(votes[0], where, pts, inside, _beyond_grid(ax, yw, mw, votes[0]),
                             common)  # fmt: skip
 

@@ -136,6 +136,41 @@ def test_a_failed_neighbour_leaves_it_undecided():
     assert t.lookup(0.1, 5e-3, mu=0.2).holds is True
 
 
+def test_runs_against_mu_are_undecided_and_the_others_keep_their_verdicts():
+    # at (0.1, 0.01 EA) the table held at mu 0.2 and slipped at mu 0.4: more friction
+    # turned a hold into a slip, so both runs are read as undecided; the column at
+    # (0.1, 0.001 EA), held at both, and (0.05, *), slipped at 0.2, held at 0.4, are monotone
+    t = _table(lambda x, y, m: not (x == 0.1 and y == 1e-2 and m == 0.4) and (m == 0.4 or x == 0.1))
+    assert set(t.against_mu()) == {(0.1, 1e-2, 0.2), (0.1, 1e-2, 0.4)}
+    for m in MUS:
+        a = t.lookup(0.1, 1e-2, mu=m)
+        assert a.holds is None and "contradict more friction" in a.message
+        assert "against mu: held at mu 0.2, slipped at mu 0.4" in a.message
+        assert t.point(0.1, 1e-2, m).holds() is (m == 0.2)  # the stored runs are unchanged
+        assert t.holds_at(0.1, 1e-2, m) is None
+    assert t.lookup(0.1, 1e-3, mu=0.4).holds is True
+    assert t.lookup(0.05, 1e-2, mu=0.2).holds is False
+    assert t.lookup(0.05, 1e-2, mu=0.4).holds is True
+    # between loads, a contradicted corner leaves it undecided; a query off that column not
+    assert t.lookup(0.1, 3e-3, mu=0.2).holds is None
+    assert t.lookup(0.1, 1e-3, mu=0.3).holds is True
+    # a failed run contradicts nothing
+    f = _table(lambda x, y, m: None if (x, y, m) == (0.1, 1e-2, 0.4) else m == 0.4 or x == 0.1)
+    assert f.against_mu() == {}
+
+
+def test_the_shipped_tables_contradictions_are_undecided():
+    """The shipped fibre-rope clove-hitch table: at (d/2R 0.1176, 0.3 EA) it held at
+    mu 0.3 (creep -2.4e-6 d/s) and ran off at mu 0.5 and 0.8; all three are undecided."""
+    t = pt.load_hold_table_sets()["clove-hitch"][0.01]
+    assert t.point(0.1176, 0.3, 0.3).holds() is True
+    assert t.point(0.1176, 0.3, 0.5).holds() is False
+    bad = {k for k in t.against_mu() if k[:2] == (0.1176, 0.3)}
+    assert bad == {(0.1176, 0.3, 0.3), (0.1176, 0.3, 0.5), (0.1176, 0.3, 0.8)}
+    assert t.lookup(0.1176, 0.3, mu=0.3).holds is None
+    assert t.lookup(0.1176, 0.3, mu=0.2).holds is False  # below every hold: monotone
+
+
 def test_mu_rr_brackets_the_friction_axis(table):
     # mu = 0.4 held everywhere, mu_rr = 0.2 slips at d/2R 0.05: the bracket disagrees
     assert table.lookup(0.05, 1e-2, mu=0.4, mu_rr=0.2).holds is None
