@@ -60,6 +60,7 @@ __all__ = [
     "breaking_load_tables",
     "counterface_key",
     "counterface_names",
+    "friction_counterfaces",
     "friction_range",
     "knot_breaking_load",
     "knot_efficiency",
@@ -588,6 +589,20 @@ def friction_range(material, counterface) -> FrictionRange:
         )
     sources = "; ".join(f"{r['source']} ({r['where']})" for r in rows)
     return FrictionRange(min(r["mu"][0] for r in rows), max(r["mu"][1] for r in rows), sources)
+
+
+def friction_counterfaces(material) -> tuple[str, ...]:
+    """The counterfaces with a published friction coefficient for ``material`` (canonical
+    names, sorted; empty when none is published).
+
+    Raises
+    ------
+    InputError
+        Unknown material (the message lists the known names).
+    """
+    key = _material_key(material)
+    rows = _data("friction.json")["rows"]
+    return tuple(sorted({r["counterface"] for r in rows if r["material"] == key}))
 
 
 # ------------------------------------------------------------------- slip tests

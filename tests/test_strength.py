@@ -368,3 +368,19 @@ def test_a_material_object_is_accepted():
 
     est = strength.breaking_load(material("nylon"), 0.0127)
     assert est.nominal == strength.breaking_load("polyamide", 0.0127).nominal
+
+
+def test_friction_counterfaces_are_those_with_a_published_range():
+    from knotmech import strength
+
+    for name in ("nylon", "polyester", "hmpe", "vps32"):
+        faces = strength.friction_counterfaces(name)
+        for face in strength.counterface_names():
+            try:
+                strength.friction_range(name, face)
+                published = True
+            except strength.NoDataError:
+                published = False
+            assert (face in faces) is published, (name, face)
+    with pytest.raises(InputError, match="unknown"):
+        strength.friction_counterfaces("kevlar-ish")

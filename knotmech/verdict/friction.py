@@ -135,8 +135,7 @@ def friction_preset(knot: str, material, post_material) -> FrictionPreset:
     try:
         r = strength.friction_range(material, face)
     except strength.NoDataError as exc:
-        known = () if bend else tuple(f for f in strength.counterface_names()
-                                      if _has(strength, material, f))  # fmt: skip
+        known = () if bend else strength.friction_counterfaces(material)
         face = strength.counterface_key(face)
         return FrictionPreset(MU_UNKNOWN_LOW, MU_SEARCH_MAX, face, None, published=False,
                               known=known, default_face=post_material is None and not bend,
@@ -144,14 +143,6 @@ def friction_preset(knot: str, material, post_material) -> FrictionPreset:
     return FrictionPreset(float(r.low), float(r.high), face, r.source,
                           default_face=post_material is None and not bend,
                           material=name)  # fmt: skip
-
-
-def _has(strength, material, face) -> bool:
-    try:
-        strength.friction_range(material, face)
-    except strength.NoDataError:
-        return False
-    return True
 
 
 def critical_mu(at, asked: dict, *, what: str = "the whole verdict", hints=()) -> tuple:
