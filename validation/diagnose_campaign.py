@@ -147,13 +147,27 @@ def _unit_noise(generator: str, noise: str, n: int, seed: int) -> np.ndarray:
     return out / np.sqrt(8.0)
 
 
-def _outliers(generator: str, n: int, seed: int) -> np.ndarray:
-    """Displacements of the ``outliers`` noise in noise sd (zero on most rows)."""
+#: the tune generator's outliers: share of the rows, smallest and largest size [noise sd]
+TUNE_OUTLIERS = (0.02, 10.0, 10.0)
+
+
+def _outliers(generator: str, n: int, seed: int, tune=TUNE_OUTLIERS) -> np.ndarray:
+    """Displacements of the ``outliers`` noise in noise sd (zero on most rows).
+
+    ``tune``: (share of rows, smallest, largest size [sd]) of the tune generator's
+    outliers, sizes uniform between the two (default 2 % at 10 sd; (0.03, 8, 15) gives
+    the held-out generator's share and sizes by the tune generator's own code).
+    """
     out = np.zeros(n)
     if generator == "tune":
+        share, lo, hi = tune
         rng = np.random.default_rng([seed, 3])
-        k = max(1, round(0.02 * n))
-        out[rng.choice(n, k, replace=False)] = 10.0 * rng.choice([-1.0, 1.0], k)
+        k = max(1, round(share * n))
+        # the signs are drawn before the rows (the order of the original one-line draw)
+        sign = rng.choice([-1.0, 1.0], k)
+        rows = rng.choice(n, k, replace=False)
+        size = lo if hi == lo else rng.uniform(lo, hi, k)
+        out[rows] = size * sign
     else:
         rng = np.random.Generator(np.random.SFC64([seed, 3]))
         k = max(1, round(0.03 * n))
@@ -163,18 +177,19 @@ def _outliers(generator: str, n: int, seed: int) -> np.ndarray:
     return out
 
 
-def make(generator, kind, effect, size, noise, seed, n=None):
+def make(generator, kind, effect, size, noise, seed, n=None, tune_outliers=TUNE_OUTLIERS):
     """One recording of the campaign and its truth.
 
     White and AR(1) noise are :func:`validation.effect_recovery.make`'s own (the same
-    recording for the same seed); AR(2), 1/f and outliers are drawn here.
+    recording for the same seed); AR(2), 1/f and outliers are drawn here
+    (``tune_outliers``: see :func:`_outliers`).
     """
     if noise in ("white", "ar1"):
         return gen.make(generator, kind, effect, size, noise, seed, n)
     meta, x, mean, trial, speed, truth, sd = gen.make_mean(generator, kind, effect, size, seed, n)
     z = _unit_noise(generator, noise, x.size, seed + 1)
     if noise == "outliers":
-        z = z + _outliers(generator, x.size, seed + 1)
+        z = z + _outliers(generator, x.size, seed + 1, tune_outliers)
     rec = gen.as_recording(kind, meta, x, mean + sd * z, trial, speed)
     truth.update(effect=effect or "none", size=size, noise=noise, n=int(x.size))
     truth["sd_median"] = float(np.median(sd))
