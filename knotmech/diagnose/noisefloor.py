@@ -38,12 +38,10 @@ Three statistics of the remainder ``r`` of the would-be ``none`` model:
 ``undetermined`` (with the reason), see its docstring.
 
 Outliers (:func:`find_outliers`): rows farther than :func:`outlier_threshold` noise sd
-(4.5 up to 100 rows, 6 at 1e4; the larger of the recording's noise sd and its local
-value, both from the rows not yet flagged and from pseudo-residuals that a straight
-signal leaves no trace in on any grid) from all of their neighbours' references (the
-median of three rows each side, the lines through six rows on either side; rows sorted
-by the control within each trial), at most 5 % of the rows; the engine fits without
-them and reports them.
+(4.5 up to 100 rows, 6 at 1e4; the larger of the high-frequency sd and its local value)
+from all of their neighbours' references (the median of three rows each side, the lines
+through four rows on either side; rows sorted by the control within each trial), at
+most 5 % of the rows; the engine fits without them and reports them.
 """
 
 from __future__ import annotations
@@ -106,10 +104,8 @@ SHORT_ROWS = 30
 OUTLIER_SD = 4.5
 #: most rows of the running noise scale of :func:`find_outliers`
 _LOCAL_ROWS = 201
-#: rows on each side through which :func:`find_outliers` draws a line (six: a second
-#: outlier among them bends 5 of the 15 pairwise slopes, not the median; with four it
-#: bent 3 of 6, and two adjacent outliers hid each other)
-_SIDE_ROWS = 6
+#: rows on each side through which :func:`find_outliers` draws a line
+_SIDE_ROWS = 4
 #: most rows called outliers (a larger share is not outliers but the data)
 OUTLIER_SHARE = 0.05
 #: white-noise draws calibrating ``level`` and ``hf_white``
@@ -837,53 +833,16 @@ def outlier_threshold(n: int) -> float:
     return OUTLIER_SD + 0.75 * max(0.0, np.log10(max(n, 1)) - 2.0)
 
 
-def _pseudo_residuals(t: np.ndarray, v: np.ndarray) -> np.ndarray:
-    r"""Gasser-Sargent-Engel pseudo-residuals of one trial's sorted rows (interior rows).
-
-    Each interior row's distance from the straight line through its two neighbours,
-    scaled to the noise's own variance,
-
-    .. math::
-        \tilde e_i = \frac{a_i v_{i-1} + b_i v_{i+1} - v_i}{\sqrt{1 + a_i^2 + b_i^2}},
-        \quad a_i = \frac{t_{i+1} - t_i}{t_{i+1} - t_{i-1}}, \; b_i = 1 - a_i,
-
-    (Gasser, Sargent & Engel 1986, Biometrika 73, 625-633, eq. 2): a straight stretch of
-    the signal cancels on any grid, where the plain second difference keeps its slope
-    times the change of spacing; on an even grid it is the second difference over
-    :math:`\sqrt 6` (:func:`_hf_sd`). Equal neighbouring controls take a = b = 1/2.
-    """
-    h1, h2 = t[1:-1] - t[:-2], t[2:] - t[1:-1]
-    span = h1 + h2
-    a = np.divide(h2, span, out=np.full(span.size, 0.5), where=span > 0)
-    b = 1.0 - a
-    return (a * v[:-2] + b * v[2:] - v[1:-1]) / np.sqrt(1.0 + a * a + b * b)
-
-
-def _grid_hf_sd(ys: np.ndarray, xs: np.ndarray, seg: np.ndarray) -> float:
-    """Recording-wide noise sd [units of y] from the pseudo-residuals of
-    :func:`_pseudo_residuals` (1.4826 MAD about their median; rows sorted, ``seg`` their
-    trial); :func:`_hf_sd` on an even grid."""
-    e = [_pseudo_residuals(xs[seg == s_], ys[seg == s_]) for s_ in np.unique(seg)]
-    e = np.concatenate([v for v in e if v.size])
-    if e.size == 0:
-        return 0.0
-    return float(_MAD * np.median(np.abs(e - np.median(e))))
-
-
-def _local_scale(
-    ys: np.ndarray, seg: np.ndarray, kept: np.ndarray, xs: np.ndarray | None = None
-) -> np.ndarray:
+def _local_scale(ys: np.ndarray, seg: np.ndarray, kept: np.ndarray) -> np.ndarray:
     """Running high-frequency sd of each kept row (MAD-type, over a quarter of the
-    trial's rows, at least 31, at most :data:`_LOCAL_ROWS`), from the pseudo-residuals
-    of :func:`_pseudo_residuals` (``xs`` the sorted control; None: an even grid)."""
+    trial's rows, at least 31, at most :data:`_LOCAL_ROWS`)."""
     out = np.zeros(ys.size)
     for s_ in np.unique(seg[kept]):
         idx = np.flatnonzero((seg == s_) & kept)
         if idx.size < 5:
             continue
         v = ys[idx]
-        t = np.arange(idx.size, dtype=float) if xs is None else xs[idx]
-        d2 = np.abs(_pseudo_residuals(t, v))
+        d2 = np.abs(v[2:] - 2.0 * v[1:-1] + v[:-2])
         # a quarter of the trial, 31-201 rows (mirrored at the ends: a padded window
         # would repeat the end values)
         w = int(min(_LOCAL_ROWS, max(31, idx.size // 4)))
@@ -891,7 +850,7 @@ def _local_scale(
             loc = np.full(d2.size, np.median(d2))
         else:
             loc = ndimage.median_filter(d2, size=w, mode="mirror")
-        loc = loc * _MAD
+        loc = loc * _MAD / np.sqrt(6.0)
         out[idx] = np.concatenate([[loc[0]], loc, [loc[-1]]])
     return out
 
@@ -965,13 +924,9 @@ def find_outliers(y: np.ndarray, x: np.ndarray, trial: np.ndarray):
     control within each trial) exceeds :func:`outlier_threshold` noise sd, the noise sd
     being the larger of the recording's high-frequency sd and the local one of its
     :data:`_LOCAL_ROWS` neighbours (noise that grows with the signal does not make its
-    loud rows outliers), both from the pseudo-residuals of :func:`_pseudo_residuals`
-    (the second difference over sqrt(6) on an even grid; on an uneven one the
-    second difference keeps the signal's slope times the change of spacing). Passes
-    repeat without the rows already flagged, their scales measured again on the rows
-    kept (each outlier inflates three pseudo-residuals: 3 % of the rows at 8-15 sd made
-    the scale 1.1-1.3 times the noise sd), one local maximum of the distance flagged per
-    stretch of 5 rows and pass (a huge row does not drag its neighbours' references).
+    loud rows outliers). Passes repeat without the rows already flagged, one local
+    maximum of the distance flagged per stretch of 5 rows and pass (a huge row does not
+    drag its neighbours' references).
 
     Parameters
     ----------
@@ -995,18 +950,16 @@ def find_outliers(y: np.ndarray, x: np.ndarray, trial: np.ndarray):
     o = _order(x, trial)
     seg = np.unique(trial, return_inverse=True)[1][o]
     ys, xs = y[o], x[o]
-    if not _grid_hf_sd(ys, xs, seg) > 0:
+    sd = float(_hf_sd(ys[:, None], seg)[0])
+    if not sd > 0:
         return empty
     limit = outlier_threshold(n)
     flagged = np.zeros(n, bool)
     dev = np.zeros(n)
     for _ in range(20):
         keep = ~flagged
-        # the scales of the rows kept: each outlier inflates three pseudo-residuals
-        sd = _grid_hf_sd(ys[keep], xs[keep], seg[keep])
-        if not sd > 0:
-            break
-        local = np.maximum(_local_scale(ys, seg, keep, xs), sd)
+        # the local scale of the rows kept (flagged rows would inflate it near them)
+        local = np.maximum(_local_scale(ys, seg, keep), sd)
         d = np.zeros(n)
         for s_ in np.unique(seg):
             idx = np.flatnonzero((seg == s_) & keep)

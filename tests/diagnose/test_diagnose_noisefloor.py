@@ -342,54 +342,38 @@ def test_replicates_measure_the_noise_of_a_short_recording():
     assert "short_recording" not in rep.details
 
 
-def test_pseudo_residuals_ignore_a_straight_signal_on_an_uneven_grid():
-    """Gasser-Sargent-Engel pseudo-residuals (Biometrika 73, 1986, eq. 2): zero for a
-    straight line on any grid (the plain second difference of 3 + 50 x on 200 sorted
-    uniform rows keeps 50 times the change of spacing, here up to 0.84), and the second
-    difference over sqrt(6) on an even grid."""
-    from knotmech.diagnose.noisefloor import _pseudo_residuals
-
-    rng = np.random.default_rng(17)
-    x = np.sort(rng.uniform(0.0, 1.0, 200))
-    y = 3.0 + 50.0 * x
-    assert np.max(np.abs(_pseudo_residuals(x, y))) < 1e-12
-    assert np.max(np.abs(np.diff(y, 2))) == pytest.approx(0.84148, abs=1e-5)
-    xe = np.linspace(0.0, 1.0, 50)
-    v = rng.standard_normal(50)
-    assert np.allclose(_pseudo_residuals(xe, v), np.diff(v, 2) / np.sqrt(6.0), atol=1e-12)
+#: the tune generator's outliers at the held-out share and sizes: 3 % of rows at 8-15 sd
+_TUNE_OUTLIERS_HELDOUT_SIZE = (0.03, 8.0, 15.0)
 
 
-def test_adjacent_outliers_on_an_uneven_grid_are_all_left_out():
-    """A pinch line (F_t = 0.6 F_n, 200 sorted uniform rows, sd 0.01, seed 2618) with two
-    adjacent pairs of outliers, rows 60/61 at -11/-8.5 sd and 140/141 at +9/+12 sd, and
-    the last row at +12 sd. Before (lines through four rows, scale from plain second
-    differences): rows 60, 61, 199 found, the 140/141 pair hid itself (each in the
-    other's line), verdict unexplained. Now all five are listed and the verdict is none."""
-    rng = np.random.default_rng(2618)
-    x = np.sort(rng.uniform(0.2, 10.0, 200))
-    y = 0.6 * x + 0.01 * rng.standard_normal(200)
-    planted = {60: -11.0, 61: -8.5, 140: 9.0, 141: 12.0, 199: 12.0}
-    for row, size in planted.items():
-        y[row] += 0.01 * size
-    rep = diagnose(recording_from_arrays("pinch", x, y, metadata=PINCH_META), seed=0)
+def test_tune_capstan_null_with_outliers_at_8_to_15_sd_is_none():
+    """A capstan-pull null of the tune generator (200 rows, white noise, seed 300300)
+    with 6 rows (3 %) displaced by 8-15 sd (``diagnose_campaign.make`` with
+    ``tune_outliers=(0.03, 8, 15)``): verdict none, and the six rows left out of the fit
+    are exactly the planted ones, each beyond the threshold of 4.73 sd at 200 rows."""
+    from validation.diagnose_campaign import _outliers
+    from validation.diagnose_campaign import make as campaign_make
+
+    spec = _TUNE_OUTLIERS_HELDOUT_SIZE
+    rec, _ = campaign_make("tune", "capstan_pull", None, 0.0, "outliers", 300300, None, spec)
+    planted = np.flatnonzero(_outliers("tune", rec.n, 300301, spec))
+    assert planted.size == 6
+    rep = diagnose(rec, seed=300300 % 100_000)
     assert rep.verdict == "none", rep.summary
     out = rep.to_dict()["outliers"]
-    assert sorted(out["rows"]) == sorted(planted)
-    # the end row counts half its distance (one side line only): 12 sd -> about 6
-    assert all(abs(s) > outlier_threshold(200) for s in out["size_sd"])
-    # F_t = 2 mu F_n: mu = 0.3 within 3 standard errors (0.01 / (2 sqrt(sum F_n^2)) = 5.7e-5)
-    assert rep.final["parameters"]["mu"] == pytest.approx(0.3, abs=2e-4)
+    assert sorted(out["rows"]) == planted.tolist()
+    assert outlier_threshold(200) == pytest.approx(4.7258, abs=1e-4)
+    assert min(abs(s) for s in out["size_sd"]) > outlier_threshold(200)
 
 
 def test_outlier_search_leaves_a_nip_edge_alone():
     """A 10-sd self-contact nip of the tune generator (tension profile, 200 rows, seed
-    301000) with 3 % of the rows (6) at 8-15 sd (``diagnose_campaign.make`` with
-    ``tune_outliers=(0.03, 8, 15)``): the nip is named, and the rows left out are
-    exactly the six planted ones (none of the nip's 43 rows)."""
+    301000) with 6 rows (3 %) at 8-15 sd: the nip is named, and the rows left out are
+    exactly the six planted ones (none of the 43 rows the nip changes by over 1 sd)."""
     from validation.diagnose_campaign import _outliers
     from validation.diagnose_campaign import make as campaign_make
 
-    spec = (0.03, 8.0, 15.0)
+    spec = _TUNE_OUTLIERS_HELDOUT_SIZE
     rec, _ = campaign_make("tune", "tension_profile", "self_contact_nip", 10.0, "outliers",
                            301000, None, spec)  # fmt: skip
     planted = np.flatnonzero(_outliers("tune", rec.n, 301001, spec))
