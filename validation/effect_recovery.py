@@ -233,7 +233,7 @@ def _capstan(g, rng, effect, size, n):
             c, w = float(rng.uniform(0.35, 0.65)), 0.1
             bump = -np.where(on, np.exp(-0.5 * ((t - c) / w) ** 2), 0.0)
         mean = mean0 + size * float(np.max(sd0)) * bump
-    return meta, x, mean, trial, (speed if speeds.size > 1 else None), truth
+    return meta, x, mean, trial, (speed if speeds.size > 1 else None), truth, mean0
 
 
 def _pinch(g, rng, effect, size, n):
@@ -283,7 +283,7 @@ def _pinch(g, rng, effect, size, n):
             bump = (t - 0.0) * (t - 0.5) * (t - 1.0) / 0.0481125
             bump *= float(rng.choice([-1.0, 1.0]))
         mean = mean0 + size * float(np.max(sd0)) * bump
-    return meta, x, mean, trial, (speed if speeds.size > 1 else None), truth
+    return meta, x, mean, trial, (speed if speeds.size > 1 else None), truth, mean0
 
 
 def _tension(g, rng, effect, size, n):
@@ -339,10 +339,29 @@ def _tension(g, rng, effect, size, n):
             c = float(rng.uniform(0.25, 0.75))
             bump = np.exp(-0.5 * ((t - c) / 0.06) ** 2)
         mean = mean0 + size * float(np.max(sd0)) * bump
-    return meta, x, mean, trial, None, truth
+    return meta, x, mean, trial, None, truth, mean0
 
 
 _KINDS = {"capstan_pull": _capstan, "pinch": _pinch, "tension_profile": _tension}
+
+
+def make_means(generator, kind, effect, size, seed, n=None):
+    """The noiseless curve of one recording with and without its effect, and its noise sd.
+
+    The same draws as :func:`make_mean` (the same recording for the same seed); the curve
+    without the effect is the one the generator plants the effect on (same parameters,
+    same rows), so ``mean - mean0`` is the planted effect (zero for a null).
+
+    Returns
+    -------
+    meta, x, mean, mean0, trial, speed, truth, sd
+        As :func:`make_mean`, plus ``mean0``, the curve without the effect [N].
+    """
+    rng = np.random.default_rng(seed) if generator == "tune" else np.random.default_rng([seed, 7])
+    n_own = 200 if generator == "tune" else int(rng.integers(150, 261))
+    out = _KINDS[kind](generator, rng, effect, size, n or n_own)
+    meta, x, mean, trial, speed, truth, mean0 = out
+    return meta, x, mean, mean0, trial, speed, truth, _sd(generator, mean)
 
 
 def make_mean(generator, kind, effect, size, seed, n=None):
@@ -357,10 +376,8 @@ def make_mean(generator, kind, effect, size, seed, n=None):
         Metadata, control variable, mean [N], trial and speed per row (``speed`` None
         for one speed), the planted truth, the noise sd per row [N].
     """
-    rng = np.random.default_rng(seed) if generator == "tune" else np.random.default_rng([seed, 7])
-    n_own = 200 if generator == "tune" else int(rng.integers(150, 261))
-    meta, x, mean, trial, speed, truth = _KINDS[kind](generator, rng, effect, size, n or n_own)
-    return meta, x, mean, trial, speed, truth, _sd(generator, mean)
+    meta, x, mean, _, trial, speed, truth, sd = make_means(generator, kind, effect, size, seed, n)
+    return meta, x, mean, trial, speed, truth, sd
 
 
 def as_recording(kind, meta, x, y, trial, speed):
