@@ -1,0 +1,86 @@
+"""The oracle noncentrality of validation/diagnose_oracle_power.py against closed forms,
+and the generator's curve without the effect (validation/effect_recovery.make_means)."""
+
+import numpy as np
+import pytest
+from scipy.stats import norm
+
+from knotmech.cli.validate import load_case
+from knotmech.errors import InputError
+
+case = load_case("diagnose_oracle_power")
+gen = load_case("effect_recovery")
+
+
+def test_white_step_is_h_sqrt_n_over_sd():
+    # a step of h = 0.37 on the last 57 of 200 rows, sd 0.021: delta = 0.37 sqrt(57)/0.021
+    f = np.zeros(200)
+    f[-57:] = 0.37
+    delta = case.noncentrality(f, np.full(200, 0.021))
+    assert delta == pytest.approx(0.37 * np.sqrt(57) / 0.021, rel=1e-12)
+    assert delta == pytest.approx(133.0209, rel=1e-6)
+
+
+@pytest.mark.parametrize(("n", "rho"), [(200, 0.9), (7, -0.5), (2, 0.3)])
+def test_ar1_offset_matches_the_tridiagonal_closed_form(n, rho):
+    # c^2/sd^2 (N - (N - 2) rho)/(1 + rho), from the precision (1/(1 - rho^2)) tridiag
+    c, sd = 0.05, 0.021
+    delta = case.noncentrality(np.full(n, c), np.full(n, sd), rho=rho)
+    exact = c / sd * np.sqrt((n - (n - 2) * rho) / (1.0 + rho))
+    assert delta == pytest.approx(exact, rel=1e-12)
+
+
+def test_ar1_offset_at_rho_09_over_200_rows_is_a_third_of_white():
+    # (200 - 198 * 0.9)/1.9 = 21.8/1.9: delta = (c/sd) sqrt(11.47...) against sqrt(200) white
+    ratio = case.noncentrality(np.ones(200), np.ones(200), rho=0.9) / np.sqrt(200.0)
+    assert ratio == pytest.approx(np.sqrt(21.8 / 1.9 / 200.0), rel=1e-12)
+    assert ratio == pytest.approx(0.23951, rel=1e-4)
+
+
+def test_independent_trials_add_and_heteroscedastic_sd_matches_a_dense_solve():
+    rng = np.random.default_rng(4)
+    n, rho = 60, 0.8
+    f, sd = rng.normal(size=n), rng.uniform(0.5, 2.0, n)
+    trial = np.repeat([0, 1, 2], 20)
+    idx = np.arange(n)
+    corr = rho ** np.abs(idx[:, None] - idx[None, :]) * (trial[:, None] == trial[None, :])
+    dense = f @ np.linalg.solve(sd[:, None] * corr * sd[None, :], f)
+    assert case.noncentrality(f, sd, trial, rho) ** 2 == pytest.approx(dense, rel=1e-10)
+    parts = [case.noncentrality(f[trial == t], sd[trial == t], rho=rho) ** 2 for t in range(3)]
+    assert case.noncentrality(f, sd, trial, rho) ** 2 == pytest.approx(sum(parts), rel=1e-12)
+
+
+def test_power_is_alpha_at_zero_and_one_half_at_the_critical_value():
+    assert case.oracle_power(0.0, 0.005) == pytest.approx(0.005, rel=1e-12)
+    assert case.oracle_power(norm.isf(0.005), 0.005) == pytest.approx(0.5, abs=1e-15)
+    # 3 sd at 0.005: Phi(3 - 2.5758) = 0.6643
+    assert case.oracle_power(3.0, 0.005) == pytest.approx(0.66428, abs=1e-5)
+
+
+@pytest.mark.parametrize(
+    ("f", "sd", "kw"),
+    [(np.ones(3), np.ones(4), {}), (np.ones(3), np.zeros(3), {}), (np.ones(3), np.ones(3),
+     {"rho": 1.0}), (np.array([1.0, np.nan]), np.ones(2), {})],
+)  # fmt: skip
+def test_bad_input_is_refused(f, sd, kw):
+    with pytest.raises(InputError):
+        case.noncentrality(f, sd, **kw)
+
+
+def test_make_means_plants_on_the_curve_without_the_effect():
+    # a null: no effect; pinch adhesion: a constant of size x sd at the first row
+    *_, mean, mean0, _, _, _, sd = gen.make_means("heldout", "pinch", None, 0.0, 97040)
+    assert np.array_equal(mean, mean0)
+    _, x, mean, mean0, _, _, truth, _ = gen.make_means("heldout", "pinch", "adhesion", 3.0, 97021)
+    f = mean - mean0
+    assert np.allclose(f, truth["adhesion_force_N"], rtol=0, atol=1e-15)
+    sd0 = 0.003 * np.max(mean0) * (0.6 + 0.4 * mean0[0] / np.max(mean0))
+    assert f[0] == pytest.approx(3.0 * sd0, rel=1e-12)
+
+
+def test_finite_thickness_oracle_is_its_size():
+    row = case.recording_oracle(("heldout", "tension_profile", "finite_thickness", 3.0,
+                                 "ar1", None, 97045))  # fmt: skip
+    assert row["delta"] == 3.0
+    assert row["power"] == pytest.approx(0.66428, abs=1e-5)
+    assert row["prior_pull"] == pytest.approx(2.57, abs=0.005)
