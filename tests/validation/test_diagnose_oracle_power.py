@@ -84,3 +84,41 @@ def test_finite_thickness_oracle_is_its_size():
     assert row["delta"] == 3.0
     assert row["power"] == pytest.approx(0.66428, abs=1e-5)
     assert row["prior_pull"] == pytest.approx(2.57, abs=0.005)
+
+
+def _pinch(x, y):
+    meta = {"rod_diameter_m": 0.003, "pinch_diameter_m": 0.01, "youngs_modulus_Pa": 1.0e6}
+    return gen.as_recording("pinch", meta, x, y, np.zeros(x.size, int), None)
+
+
+def test_refit_of_pinch_adhesion_removes_its_part_along_x():
+    # baseline 2 mu x, linear in mu: an offset c keeps only its part orthogonal to x,
+    # delta^2 = (c/sd)^2 (N - (sum x)^2 / sum x^2)
+    x = np.linspace(0.2, 3.0, 80)
+    mean0, c, sd = 0.6 * x, 0.01, np.full(80, 0.004)
+    rec = _pinch(x, mean0)
+    delta, misfit = case.refitted_noncentrality("pinch", rec, mean0 + c, mean0, sd,
+                                                np.zeros(80, int), 0.0)  # fmt: skip
+    exact = c / 0.004 * np.sqrt(80 - x.sum() ** 2 / (x @ x))
+    assert delta == pytest.approx(exact, rel=1e-8)
+    assert misfit < 1e-12
+
+
+def test_refit_in_ar1_noise_equals_the_linear_projection_for_a_linear_baseline():
+    x = np.linspace(0.2, 3.0, 80)
+    mean0 = 0.6 * x
+    sd = 0.004 * (0.6 + 0.4 * x / 3.0)
+    f = 0.01 * np.tanh(x - 1.5)
+    trial = np.zeros(80, int)
+    delta, _ = case.refitted_noncentrality("pinch", _pinch(x, mean0), mean0 + f, mean0, sd,
+                                           trial, 0.9)  # fmt: skip
+    linear = case.profiled_noncentrality(f, sd, trial, 0.9, 2.0 * x[:, None])
+    assert delta == pytest.approx(linear, rel=1e-8)
+    assert delta < case.noncentrality(f, sd, trial, 0.9)
+
+
+def test_a_finite_thickness_curve_is_a_baseline_curve_with_another_mu():
+    row = case.recording_oracle(("heldout", "capstan_pull", "finite_thickness", 3.0,
+                                 "white", None, 97006))  # fmt: skip
+    assert row["delta_curve"] > 100.0  # the mu change is hundreds of sd on the curve
+    assert row["delta_curve_profiled"] < 1e-9 * row["delta_curve"]  # and no evidence
