@@ -485,7 +485,11 @@ def main(argv=None) -> int:
     p.add_argument("--seed0", type=int, nargs="*", default=None, help="first seeds of the sets")
     p.add_argument("--results", nargs="*", default=(), help="campaign output folders")
     a = p.parse_args(argv)
-    res = run(not a.full, a.out, a.seed0, tuple(a.results))
+    try:
+        res = run(not a.full, a.out, a.seed0, tuple(a.results))
+    except InputError as exc:
+        print(f"{NAME}: {exc}")
+        return 2
     print(res["table_markdown"])
     print("\n".join(res["numbers"]["misses"]))
     print(json.dumps(res["checks"], indent=1))

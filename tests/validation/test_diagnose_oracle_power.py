@@ -122,3 +122,9 @@ def test_a_finite_thickness_curve_is_a_baseline_curve_with_another_mu():
                                  "white", None, 97006))  # fmt: skip
     assert row["delta_curve"] > 100.0  # the mu change is hundreds of sd on the curve
     assert row["delta_curve_profiled"] < 1e-9 * row["delta_curve"]  # and no evidence
+
+
+def test_a_missing_campaign_folder_is_one_line(tmp_path, capsys):
+    assert case.main(["--out", str(tmp_path), "--results", str(tmp_path / "none")]) == 2
+    out = capsys.readouterr().out.strip()
+    assert out.count("\n") == 0 and "no campaign cache" in out
