@@ -84,6 +84,19 @@ def test_papers_case_holds_from_the_table_with_its_creep():
     assert w.der["holds"] is None and "contradict more friction" in w.der["message"]
     assert "(0.1176, 0.01, mu 0.3) slipped, 5.1e-05 d/s" in w.der["message"]
     assert "against mu: held at mu 0.3, slipped at mu 0.5" in w.der["message"]
+    assert "contradict" not in v.summary()
+
+
+def test_an_undecided_first_line_names_runs_that_contradict_each_other_in_mu():
+    """4 mm nylon two half hitches on 30 mm, mu 0.5, 50 N: the fibre-rope table's
+    (0.1176, 0.01 EA) held at mu 0.5 and slipped at mu 0.8, and no closed form decides."""
+    v = knotmech.hold("two-half-hitches", rod_diameter=4e-3, post_diameter=30e-3, mu=0.5,
+                      load=50.0, material="nylon")  # fmt: skip
+    assert v.holds is None and v.decided_by is None
+    assert "against mu: held at mu 0.5, slipped at mu 0.8" in v.der["message"]
+    assert v.summary().startswith("verdict: UNDECIDED")
+    assert "the DER table's neighbouring runs contradict more friction" in v.summary()
+    assert "--simulate" in v.summary()
 
 
 def test_large_post_slips_where_the_thick_nip_says_it_holds():

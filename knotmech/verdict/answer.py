@@ -129,9 +129,18 @@ class Verdict:
             return self._unknown_friction_summary(f)
         head = f"verdict: {self.state}: " + capacity_words(self.capacity, self.inputs.get("load"))
         if self.holds is None:
-            why = "" if self.decided_by is not None else " (no model inside its validity decides)"
+            why = "" if self.decided_by is not None else f" ({self._undecided_why()})"
             return f"{head}{why}; {self.next_step}" if self.next_step else head + why
         return f"{head}; decided by the {self.decided_by} model (inputs inside its validity)"
+
+    def _undecided_why(self) -> str:
+        """Why no model decides, for the first line: the DER table's neighbouring runs that
+        contradict each other in mu are named (:meth:`HoldTable.against_mu`)."""
+        why = "no model inside its validity decides"
+        if "contradict more friction" in str((self.der or {}).get("message", "")):
+            why += ("; the DER table's neighbouring runs contradict more friction never "
+                    "turning a hold into a slip")  # fmt: skip
+        return why
 
     def _unknown_friction_summary(self, f: dict) -> str:
         """The first line without a published friction coefficient: the verdict over the
