@@ -136,10 +136,11 @@ class Verdict:
     def _undecided_why(self) -> str:
         """Why no model decides, for the first line: the DER table's neighbouring runs that
         contradict each other in mu are named (:meth:`HoldTable.against_mu`)."""
+        from knotmech.verdict.tables import AGAINST_MU
+
         why = "no model inside its validity decides"
-        if "contradict more friction" in str((self.der or {}).get("message", "")):
-            why += ("; the DER table's neighbouring runs contradict more friction never "
-                    "turning a hold into a slip")  # fmt: skip
+        if AGAINST_MU in str((self.der or {}).get("message", "")):
+            why += f"; the DER table's neighbouring runs {AGAINST_MU}"
         return why
 
     def _unknown_friction_summary(self, f: dict) -> str:

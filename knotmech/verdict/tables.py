@@ -612,12 +612,16 @@ def _hold_query(d_over_2R, t_over_EA, mu, mu_rr, creep_limit):
     return x, y, m, mr, lim
 
 
+#: how an undecided lookup names runs that contradict each other in mu
+#: (:meth:`HoldTable.against_mu`); the verdict's first line looks for it
+AGAINST_MU = "contradict more friction never turning a hold into a slip"
+
+
 def _split_message(where: str, pts: str, votes: list, against: bool = False) -> str:
     """Why neighbours that do not agree (or a run that failed, or runs that contradict each
     other in mu: ``against``) leave a query undecided."""
     if against:
-        return (f"{where}: neighbouring DER points contradict more friction never turning a "
-                f"hold into a slip ({pts}): undecided")  # fmt: skip
+        return f"{where}: neighbouring DER points {AGAINST_MU} ({pts}): undecided"
     if None in votes:
         return f"{where}: a neighbouring DER run failed ({pts}): undecided"
     return f"{where} lies between DER points that disagree ({pts}): undecided"
@@ -732,9 +736,13 @@ class HoldTable:
         """The verdict of the grid point at (d/2R, T_high/EA, mu) (exact grid values) read
         against its column in mu: None (undecided) where it contradicts more friction never
         turning a hold into a slip (:meth:`against_mu`), else :meth:`HoldPoint.holds`."""
-        if self._key(x, y, m) in self.against_mu(limit):
-            return None
-        return self.point(x, y, m).holds(limit)
+        return self._reading(self.point(x, y, m), limit)[0]
+
+    def _reading(self, p: HoldPoint, limit: float) -> tuple:
+        """(verdict, text): the run ``p`` read against its column in mu (:meth:`holds_at`),
+        and the contradiction's text (None where there is none)."""
+        note = self.against_mu(limit).get(self._key(p.d_over_2R, p.t_over_EA, p.mu))
+        return (None if note else p.holds(limit)), note
 
     def against_mu(self, limit: float = CREEP_LIMIT) -> dict:
         """{point key: text} of the grid points whose verdicts contradict each other in mu:
@@ -761,11 +769,6 @@ class HoldTable:
                         for p in (pts[a], pts[b]):
                             out.setdefault(self._key(p.d_over_2R, p.t_over_EA, p.mu), text)
         return out
-
-    def _describe(self, p: HoldPoint, limit: float) -> str:
-        """:meth:`HoldPoint.describe`, with the contradiction in mu where there is one."""
-        text = self.against_mu(limit).get(self._key(p.d_over_2R, p.t_over_EA, p.mu))
-        return p.describe(limit) + (f" (against mu: {text})" if text else "")
 
     def slice(self, mu: float, *, creep_limit: float = CREEP_LIMIT) -> PhaseTable:
         """The (d/2R, T_high/EA) slice at a tabulated ``mu`` as a :class:`PhaseTable`."""
@@ -823,15 +826,14 @@ class HoldTable:
             )  # fmt: skip
         corners = [self.point(ax["d_over_2R"][i], ax["t_over_EA"][j], ax["mu"][k])
                    for i in xi for j in yi for k in mi]  # fmt: skip
-        votes = [self.holds_at(p.d_over_2R, p.t_over_EA, p.mu, lim) for p in corners]
-        pts = "; ".join(self._describe(p, lim) for p in corners)
+        votes, notes = zip(*(self._reading(p, lim) for p in corners), strict=True)
+        pts = "; ".join(p.describe(lim) + (f" (against mu: {n})" if n else "")
+                        for p, n in zip(corners, notes, strict=True))  # fmt: skip
         common = self._common(corners, votes, xi, mi, y, lim, mus_used)
         inside = yw in ("on", "between") and mw in ("on", "between")
         if None in votes or len(set(votes)) > 1:
-            against = any(p.holds(lim) is not None and v is None
-                          for p, v in zip(corners, votes, strict=True))  # fmt: skip
             return HoldAnswer(None, inside, "undecided",
-                              _split_message(where, pts, votes, against), **common)  # fmt: skip
+                              _split_message(where, pts, votes, any(notes)), **common)  # fmt: skip
         return self._agreed(votes[0], where, pts, inside, _beyond_grid(ax, yw, mw, votes[0]),
                             common)  # fmt: skip
 
