@@ -115,13 +115,7 @@ def noncentrality(f, sd, trial=None, rho: float = 0.0) -> float:
     trial = np.zeros(f.size, int) if trial is None else np.asarray(trial)
     if trial.shape != f.shape:
         raise InputError(f"trial must have one entry per row, got {trial.shape} for {f.shape}")
-    g = f / sd
-    total = 0.0
-    for t in np.unique(trial):
-        gt = g[trial == t]
-        innov = gt[1:] - rho * gt[:-1]
-        total += gt[0] ** 2 + float(innov @ innov) / (1.0 - rho**2)
-    return float(np.sqrt(total))
+    return float(np.linalg.norm(_whiten(f, sd, trial, rho)))
 
 
 def _whiten(a, sd, trial, rho):
