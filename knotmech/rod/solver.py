@@ -101,11 +101,14 @@ class SolverOptions:
         ten halvings, then 500 attempts that together advance at most half a nominal step;
         a step cut by a transient recovers within ~4 steps per halving, see
         ``grow_after``); ``stall_steps=None`` turns it off
-    max_wall_per_sim_second : float or None [s/s]  stall guard on the wall clock: the run
-        stops with status "failed" when, over a window of ``stall_wall_window`` seconds
-        of wall time, it spent more than this many wall seconds per simulated second
-        (default 3600: less than 1/60 s simulated in a minute; None: off)
-    stall_wall_window : float [s]  wall-clock window of that rate (default 60)
+    max_wall_per_sim_second : float or None [s/s]  stall guard on the clock: the run
+        stops with status "failed" when, over a window of ``stall_wall_window`` seconds,
+        it spent more than this many seconds per simulated second (default 3600: less
+        than 1/60 s simulated in a minute; None: off). The clock is this process's CPU
+        time (:func:`time.process_time`), not the wall clock, so a paused process
+        (``kill -STOP``) or a shared machine does not fail a run that is not crawling;
+        the name is kept from when it read the wall clock
+    stall_wall_window : float [s]  window of that rate, in CPU seconds (default 60)
     max_strain : float or None  an accepted step whose largest edge strain ``|l/l0 - 1|``
         exceeds this ends the run with status "failed" (last good state kept): a rod
         stretched to many times its length, or crushed to a point, is no longer a result of
@@ -775,12 +778,12 @@ class _StallGuard:
     ``stall_steps``, ``max_wall_per_sim_second``): :meth:`check` is called before every
     step attempt and returns the failure message once the run crawls, else ""."""
 
-    def __init__(self, opt: SolverOptions, dt: float, t0: float, wall0: float):
+    def __init__(self, opt: SolverOptions, dt: float, t0: float, cpu0: float):
         self.opt = opt
         self.dt = dt
         self.small_dt = opt.stall_fraction * dt
         self.n_small = 0
-        self.win_wall = wall0
+        self.win_cpu = cpu0  # [s of process CPU time]
         self.win_t = t0
         self.last_reason = ""
 
@@ -794,16 +797,16 @@ class _StallGuard:
                 f"({self.small_dt:.3g} s) for {self.n_small} attempts (now {dt_cur:.3g} s)"
             )
         elif opt.max_wall_per_sim_second is not None:
-            now = time.perf_counter()
-            if now - self.win_wall >= opt.stall_wall_window:
-                rate = (now - self.win_wall) / max(t - self.win_t, 1e-300)
+            now = time.process_time()
+            if now - self.win_cpu >= opt.stall_wall_window:
+                rate = (now - self.win_cpu) / max(t - self.win_t, 1e-300)
                 if rate > opt.max_wall_per_sim_second:
                     why = (
-                        f"{rate:.3g} s of wall time per simulated second over the last "
-                        f"{now - self.win_wall:.3g} s (bound max_wall_per_sim_second = "
+                        f"{rate:.3g} s of CPU time per simulated second over the last "
+                        f"{now - self.win_cpu:.3g} s (bound max_wall_per_sim_second = "
                         f"{opt.max_wall_per_sim_second:g}; step now {dt_cur:.3g} s)"
                     )
-                self.win_wall, self.win_t = now, t
+                self.win_cpu, self.win_t = now, t
         if not why:
             return ""
         last = f"; last rejection: {self.last_reason}" if self.last_reason else ""
@@ -870,7 +873,7 @@ def simulate(
     f0 = stepper.ws.grad - stepper.fext  # interactions excluded: they have not begun
     recorder.record(st, f0)
     wall0 = time.perf_counter()
-    run = _Run(stepper, recorder, st, dt=dt, t_end=t_end, wall0=wall0, callback=callback)
+    run = _Run(stepper, recorder, st, dt=dt, t_end=t_end, callback=callback)
     bar = None
     if progress:
         from tqdm.auto import tqdm
@@ -988,7 +991,7 @@ class _Run:
     the strain and stall guards, the callback. ``status``, ``message``, ``stats`` and the
     last good state ``st`` are its outcome."""
 
-    def __init__(self, stepper, recorder, st, *, dt, t_end, wall0, callback):
+    def __init__(self, stepper, recorder, st, *, dt, t_end, callback):
         opt = stepper.opt
         self.stepper, self.recorder, self.opt = stepper, recorder, opt
         self.st, self.dt, self.t_end, self.callback = st, dt, t_end, callback
@@ -1001,7 +1004,7 @@ class _Run:
         # largest edge strain of the failed attempts since the last step
         self.worst = (0, 0.0, st.t)
         stepper.last_iterate = None
-        self.stall = _StallGuard(opt, dt, st.t, wall0)
+        self.stall = _StallGuard(opt, dt, st.t, time.process_time())
 
     def _fail(self, message: str) -> bool:
         self.status, self.message = "failed", message

@@ -377,18 +377,37 @@ def test_a_transient_drop_of_the_step_does_not_trip_the_stall_guard():
 
 
 def test_wall_time_per_simulated_second_guard():
-    """max_wall_per_sim_second: a bound no run can meet (1 ms of wall per simulated
+    """max_wall_per_sim_second: a bound no run can meet (1 ms of CPU per simulated
     second) over a 0.05 s window stops the run with a message naming the rate."""
     system = _falling_rod()
     opts = rod.SolverOptions(throw=False, max_wall_per_sim_second=1e-3, stall_wall_window=0.05)
     res = rod.simulate(system, t_end=1e3, dt=1e-3, loads=rod.Gravity(), options=opts)
     assert res.status == "failed"
-    assert "s of wall time per simulated second" in res.message
+    assert "s of CPU time per simulated second" in res.message
     assert "max_wall_per_sim_second = 0.001" in res.message
     assert 0.0 < res.final_state.t < 1e3
     # off by default for this run's rate: the same run with the defaults succeeds
     ok = rod.simulate(system, t_end=0.05, dt=1e-3, loads=rod.Gravity())
     assert ok.status == "success"
+
+
+def test_stall_guard_reads_cpu_time_so_a_paused_run_is_not_failed():
+    """The rate guard reads the process's CPU time: a run whose wall clock runs on while it
+    does no work (a paused build, here 20 ms of sleep after every 1 ms step: 20 s of wall
+    per simulated second, against a bound of 5) is not failed; the falling rod's own CPU
+    rate is far below 5 s/s (11 nodes). The same sleeps failed it when the guard read
+    the wall clock (two false failures of the session-17 fibre-table builds)."""
+    import time
+
+    system = _falling_rod()
+    opts = rod.SolverOptions(throw=False, max_wall_per_sim_second=5.0, stall_wall_window=0.05)
+    t0 = time.perf_counter()
+    res = rod.simulate(system, t_end=0.03, dt=1e-3, loads=rod.Gravity(), options=opts,
+                       callback=lambda state: time.sleep(0.02))  # fmt: skip
+    wall = time.perf_counter() - t0
+    assert wall / 0.03 > 5.0  # the wall-clock rate would have failed it
+    assert res.status == "success", res.message
+    assert res.final_state.t == pytest.approx(0.03, rel=1e-12)
 
 
 @pytest.mark.parametrize(
