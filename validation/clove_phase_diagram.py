@@ -599,18 +599,22 @@ def write_table(
 
 
 def write_hold_table(path=None, *, knot="clove-hitch", cache_dir=None, processes=2,
-                     progress=True, note=None, bending_scale=1.0, loads=None):  # fmt: skip
+                     progress=True, note=None, bending_scale=1.0, loads=None,
+                     t_low_fraction=0.0):  # fmt: skip
     """Run the anchor-law hold-table grid of ``knot`` (:data:`knotmech.scenes.phase_table.
     HOLD_GRID`; ``loads``, a sequence of T_high/EA, replaces its loads) through the sweep,
-    with the rods' bending scale ``bending_scale``, and write the shipped table (default
-    ``knotmech/data/`` + :func:`~knotmech.scenes.phase_table.hold_table_resource`)."""
+    with the rods' bending scale ``bending_scale`` and the other end at ``t_low_fraction`` x
+    T_high (0: a free end; the cow hitch on both legs otherwise), and write the shipped table
+    (default ``knotmech/data/`` + :func:`~knotmech.scenes.phase_table.hold_table_resource`)."""
     t0 = datetime.datetime.now()
-    k = float(bending_scale)
+    k, frac = float(bending_scale), float(t_low_fraction)
     if path is None:
-        path = TABLE_PATH.parent / pt.hold_table_resource(knot, k)
+        path = TABLE_PATH.parent / pt.hold_table_resource(knot, k, frac)
     gen = f"python -m validation.clove_phase_diagram --write-hold-table --knot {knot}"
     if k != 1.0:
         gen += f" --bending-scale {k:g}"
+    if frac != 0.0:
+        gen += f" --t-low-fraction {frac:g}"
     grid = None
     if loads is not None:
         ys = sorted({float(y) for y in loads})
@@ -622,7 +626,8 @@ def write_hold_table(path=None, *, knot="clove-hitch", cache_dir=None, processes
     if note:
         meta["note"] = note
     table = pt.build_hold_table(knot, grid, processes=processes, cache_dir=cache_dir,
-                                progress=progress, meta=meta, bending_scale=k)  # fmt: skip
+                                progress=progress, meta=meta, bending_scale=k,
+                                t_low_fraction=frac)  # fmt: skip
     table.meta["written"] = datetime.datetime.now(datetime.timezone.utc).isoformat(
         timespec="seconds")  # fmt: skip
     table.meta["elapsed_s"] = round((datetime.datetime.now() - t0).total_seconds(), 1)
@@ -669,6 +674,11 @@ def _main(argv=None) -> int:
         "--loads", default=None, metavar="Y1,Y2,...",
         help="--write-hold-table: the T_high/EA values (default the grid's 1e-4,1e-3,1e-2,0.1,0.3)",
     )  # fmt: skip
+    parser.add_argument(
+        "--t-low-fraction", type=float, default=0.0, metavar="F",
+        help="--write-hold-table: load the cow hitch's other leg with F x T_high in every run "
+        "(default 0, a free end)",
+    )  # fmt: skip
     args = parser.parse_args(argv)
     if args.write_hold_table is not None:
         loads = None
@@ -681,7 +691,7 @@ def _main(argv=None) -> int:
             table = write_hold_table(args.write_hold_table or None, knot=args.knot,
                                      cache_dir=args.cache, processes=args.processes,
                                      note=args.note, bending_scale=args.bending_scale,
-                                     loads=loads)  # fmt: skip
+                                     loads=loads, t_low_fraction=args.t_low_fraction)  # fmt: skip
         except InputError as e:
             parser.exit(2, f"error: {e}\n")
         print(f"wrote the {table.knot} hold table (kappa = {table.bending_scale:g}): "

@@ -355,17 +355,22 @@ HOLD_GRID = {
 }
 
 
-def hold_table_params(grid=None, knot: str = "clove-hitch", bending_scale: float = 1.0) -> list:
+def hold_table_params(
+    grid=None, knot: str = "clove-hitch", bending_scale: float = 1.0, t_low_fraction: float = 0.0
+) -> list:
     """The :func:`knotmech.sweep.sweep` parameter sets of a hold-table grid (mu outermost).
 
-    ``knot`` enters the parameters only for knots other than the clove hitch, and
-    ``bending_scale`` only when it is not 1 (so the solid-rod tables' cached points keep
-    their keys).
+    ``knot`` enters the parameters only for knots other than the clove hitch,
+    ``bending_scale`` only when it is not 1 and ``t_low_fraction`` (T_low / T_high on the
+    other end: the cow hitch loaded on both legs) only when it is not 0, so the tables'
+    cached points keep their keys.
     """
     g = HOLD_GRID if grid is None else grid
     extra = {} if knot == "clove-hitch" else {"knot": knot}
     if float(bending_scale) != 1.0:
         extra["bending_scale"] = float(bending_scale)
+    if float(t_low_fraction) != 0.0:
+        extra["t_low_fraction"] = float(t_low_fraction)
     return [
         {"d_over_2R": float(x), "t_over_EA": float(y), "mu": float(m), "friction": "anchor",
          **extra}
@@ -385,6 +390,7 @@ def build_hold_table(
     progress: bool = False,
     meta=None,
     bending_scale: float = 1.0,
+    t_low_fraction: float = 0.0,
 ) -> HoldTable:
     """Run the DER points of a hold table through :func:`knotmech.sweep.sweep` and tabulate.
 
@@ -394,19 +400,24 @@ def build_hold_table(
     protocol, rod, criterion, the CPU time per point and in total. ``bending_scale`` kappa
     (in (0, 1]) is the rods' bending scale (B = kappa E pi d^4/64) of every run;
     it is kept in the meta as ``bending_scale``, which ``knotmech.hold`` reads to decide
-    whether the table may answer for a rope.
+    whether the table may answer for a rope. ``t_low_fraction`` (in [0, 1]; 0, a free
+    end, by default) loads the other end with that fraction of T_high in every run (the
+    cow hitch loaded on both legs, :func:`simulate_point`); kept in the meta as
+    ``t_low_fraction`` when it is not 0.
 
     Raises
     ------
     InputError
-        An unknown knot; a point whose run raised (the message names it).
+        An unknown knot; a ``t_low_fraction`` outside [0, 1], or above 0 for a knot other
+        than the cow hitch; a point whose run raised (the message names it).
     """
     from knotmech.errors import check_bending_scale
     from knotmech.sweep import sweep
 
     hold_scene(knot)  # InputError for an unknown knot or a missing scene
     kappa = check_bending_scale(bending_scale)
-    params = hold_table_params(grid, knot, kappa)
+    frac = _check_t_low_fraction(knot, t_low_fraction)
+    params = hold_table_params(grid, knot, kappa, frac)
     res = sweep(
         simulate_point,
         params,
@@ -441,7 +452,23 @@ def build_hold_table(
             r2["first_creep_speed"] = results[i]["creep_speed"]
             r2["cpu_s"] = float(r2.get("cpu_s", 0.0)) + float(results[i].get("cpu_s", 0.0))
             results[i] = r2
-    return hold_table_from_results(knot, results, meta={"bending_scale": kappa, **(meta or {})})
+    legs = {"t_low_fraction": frac} if frac > 0 else {}
+    meta = {"bending_scale": kappa, **legs, **(meta or {})}
+    return hold_table_from_results(knot, results, meta=meta)
+
+
+def _check_t_low_fraction(knot: str, t_low_fraction) -> float:
+    """T_low / T_high of a hold table's runs: in [0, 1]; above 0 only for the cow hitch (the
+    one hitch of the tables whose other end is a second standing part)."""
+    frac = float(check_nonnegative("t_low_fraction", t_low_fraction, scalar=True))
+    if frac > 1.0:
+        raise InputError(f"t_low_fraction must be at most 1 (T_low <= T_high), got {frac:g}")
+    if frac > 0 and knot != "cow-hitch":
+        raise InputError(
+            f"t_low_fraction > 0 loads the cow hitch's second leg; {knot} has a free end "
+            f"(got t_low_fraction = {frac:g})"
+        )
+    return frac
 
 
 def _signed(r: dict) -> dict:

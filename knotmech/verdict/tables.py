@@ -1031,9 +1031,12 @@ def load_hold_table_sets() -> dict:
     return out
 
 
-def hold_table_resource(knot: str, bending_scale: float = 1.0) -> str:
+def hold_table_resource(knot: str, bending_scale: float = 1.0, t_low_fraction: float = 0.0) -> str:
     """File name in ``knotmech/data`` of the shipped hold table of ``knot`` built with the
     bending scale ``bending_scale`` (``hold_phase_table_<knot>.json`` for the solid rod,
-    kappa = 1; ``hold_phase_table_<knot>_kappa<kappa>.json`` otherwise)."""
-    k = float(bending_scale)
-    return f"hold_phase_table_{knot}" + ("" if k == 1.0 else f"_kappa{k:g}") + ".json"
+    kappa = 1; ``hold_phase_table_<knot>_kappa<kappa>.json`` otherwise), and with
+    ``_tlow<fraction>`` before ``.json`` for a table whose runs load the other end with
+    ``t_low_fraction`` x T_high (the cow hitch on both legs)."""
+    k, f = float(bending_scale), float(t_low_fraction)
+    return (f"hold_phase_table_{knot}" + ("" if k == 1.0 else f"_kappa{k:g}")
+            + ("" if f == 0.0 else f"_tlow{f:g}") + ".json")  # fmt: skip

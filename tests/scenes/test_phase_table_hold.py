@@ -274,6 +274,26 @@ def test_lookup_refuses_non_finite_queries(table):
         table.lookup(0.1, 1e-2, mu=0.3, creep_limit=0)
 
 
+def test_both_legs_tables_are_named_and_keyed_by_the_other_legs_fraction():
+    """A cow-hitch table whose runs load the second leg (T_low = f T_high) has its own file
+    name and sweep keys; the free-end tables' keys do not change; a fraction outside [0, 1]
+    or on a knot with a free end is refused in one line before any run."""
+    assert (pt.hold_table_resource("cow-hitch", 0.01, 0.5)
+            == "hold_phase_table_cow-hitch_kappa0.01_tlow0.5.json")  # fmt: skip
+    assert pt.hold_table_resource("cow-hitch", 1.0, 0.0) == "hold_phase_table_cow-hitch.json"
+    free = pt.hold_table_params(knot="cow-hitch", bending_scale=0.01)
+    legs = pt.hold_table_params(knot="cow-hitch", bending_scale=0.01, t_low_fraction=0.5)
+    assert "t_low_fraction" not in free[3] and legs[3]["t_low_fraction"] == 0.5
+    assert {k: v for k, v in legs[3].items() if k != "t_low_fraction"} == free[3]
+    grid = {"d_over_2R": (0.1,), "t_over_EA": (1e-2,), "mu": (0.3,)}
+    with pytest.raises(InputError, match="clove-hitch has a free end"):
+        pt.build_hold_table("clove-hitch", grid=grid, t_low_fraction=0.5)
+    with pytest.raises(InputError, match="at most 1"):
+        pt.build_hold_table("cow-hitch", grid=grid, t_low_fraction=1.5)
+    with pytest.raises(InputError, match="t_low_fraction"):
+        pt.build_hold_table("cow-hitch", grid=grid, t_low_fraction=-0.1)
+
+
 def test_rope_tables_are_named_keyed_and_checked_by_their_bending_scale():
     """A table built at kappa != 1 has its own file name and sweep keys (the solid rod's
     cached points keep theirs) and must carry a kappa in (0, 1] in its meta."""
