@@ -600,9 +600,10 @@ def write_table(
 
 def write_hold_table(path=None, *, knot="clove-hitch", cache_dir=None, processes=2,
                      progress=True, note=None, bending_scale=1.0, loads=None,
-                     t_low_fraction=0.0):  # fmt: skip
+                     t_low_fraction=0.0, columns=None):  # fmt: skip
     """Run the anchor-law hold-table grid of ``knot`` (:data:`knotmech.scenes.phase_table.
-    HOLD_GRID`; ``loads``, a sequence of T_high/EA, replaces its loads) through the sweep,
+    HOLD_GRID`; ``loads``, a sequence of T_high/EA, replaces its loads, ``columns``, a
+    sequence of d/2R, its columns) through the sweep,
     with the rods' bending scale ``bending_scale`` and the other end at ``t_low_fraction`` x
     T_high (0: a free end; the cow hitch on both legs otherwise), and write the shipped table
     (default ``knotmech/data/`` + :func:`~knotmech.scenes.phase_table.hold_table_resource`)."""
@@ -622,6 +623,12 @@ def write_hold_table(path=None, *, knot="clove-hitch", cache_dir=None, processes
             raise InputError(f"loads must be T_high/EA values in (0, 1), got {list(loads)!r}")
         grid = {**pt.HOLD_GRID, "t_over_EA": tuple(ys)}
         gen += " --loads " + ",".join(f"{y:g}" for y in ys)
+    if columns is not None:
+        xs = sorted({float(x) for x in columns})
+        if not xs or not all(math.isfinite(x) and 0 < x < 0.5 for x in xs):
+            raise InputError(f"columns must be d/2R values in (0, 0.5), got {list(columns)!r}")
+        grid = {**(grid or pt.HOLD_GRID), "d_over_2R": tuple(xs)}
+        gen += " --columns " + ",".join(f"{x:g}" for x in xs)
     meta = {"generator": gen}
     if note:
         meta["note"] = note
@@ -675,6 +682,10 @@ def _main(argv=None) -> int:
         help="--write-hold-table: the T_high/EA values (default the grid's 1e-4,1e-3,1e-2,0.1,0.3)",
     )  # fmt: skip
     parser.add_argument(
+        "--columns", default=None, metavar="X1,X2,...",
+        help="--write-hold-table: the d/2R values (default the grid's 0.0196,0.0476,0.1176,0.2308)",
+    )  # fmt: skip
+    parser.add_argument(
         "--t-low-fraction", type=float, default=0.0, metavar="F",
         help="--write-hold-table: load the cow hitch's other leg with F x T_high in every run "
         "(default 0, a free end)",
@@ -687,11 +698,18 @@ def _main(argv=None) -> int:
                 loads = [float(v) for v in args.loads.split(",")]
             except ValueError:
                 parser.error(f"--loads: comma-separated numbers, got {args.loads!r}")
+        columns = None
+        if args.columns is not None:
+            try:
+                columns = [float(v) for v in args.columns.split(",")]
+            except ValueError:
+                parser.error(f"--columns: comma-separated numbers, got {args.columns!r}")
         try:
             table = write_hold_table(args.write_hold_table or None, knot=args.knot,
                                      cache_dir=args.cache, processes=args.processes,
                                      note=args.note, bending_scale=args.bending_scale,
-                                     loads=loads, t_low_fraction=args.t_low_fraction)  # fmt: skip
+                                     loads=loads, t_low_fraction=args.t_low_fraction,
+                                     columns=columns)  # fmt: skip
         except InputError as e:
             parser.exit(2, f"error: {e}\n")
         print(f"wrote the {table.knot} hold table (kappa = {table.bending_scale:g}): "

@@ -613,8 +613,22 @@ def _capacity(c: _Case, answers: list, der):
                                "up to its validity's strain")  # fmt: skip
     slip = _cap.better_slip(slip, closed)
     dec = next((a for a in answers if a.decides), None)
+    if slip is None and c.free > 0 and dec is not None and dec.model == "DER-table":
+        slip = _legs_band(dec.holds, c.load)
     slip = _cap.agree_with_verdict(slip, None if dec is None else dec.holds, c.load)
     return _cap.capacity_of(knot=c.key, slip=slip, material=c.mat, d=c.d, D=c.D, load=c.load)
+
+
+def _legs_band(holds: bool, load: float):
+    """The slip load of the cow hitch on both legs as far as the DER tables decide it: at or
+    above ``load`` [N] when it holds, at or below it when it slips (the tables run at fixed
+    T_low / T_high, so no band along the load at the user's ratio)."""
+    from knotmech.verdict.capacity import LoadBand
+
+    src = "the DER tables of the cow hitch on both legs"
+    if holds:
+        return LoadBand(math.inf, float(load), math.inf, src)
+    return LoadBand(float(load), 0.0, float(load), src)
 
 
 def _bisected(c: _Case, slip, EA: float, der: dict):
@@ -718,12 +732,11 @@ def _der_part(c: _Case, answers: list, assumptions: list, cmd: str):
     """The DER answer of a hitch with one (appended to ``answers``): (details, creep, shape)."""
     if not has_der_answer(c.key):
         return None, None, None
-    if c.free > 0 and not (c.simulate and c.key in BOTH_LEGS_KNOTS):
+    if c.free > 0 and c.key not in BOTH_LEGS_KNOTS:
         return {
             "source": "none",
             "holds": None,
-            "message": "the DER phase diagram covers the free end only (T_low = 0)"
-            + (f"; {c.command()} simulates both legs" if c.key in BOTH_LEGS_KNOTS else ""),
+            "message": "the DER phase diagram covers the free end only (T_low = 0)",
         }, None, None  # fmt: skip
     if c.E is None:
         assumptions.append(

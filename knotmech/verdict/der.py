@@ -33,6 +33,7 @@ from knotmech.verdict.tables import (
     HoldTable,
     PhaseTableSet,
     load_hold_table_sets,
+    load_legs_table_sets,
     load_table,
     load_tables,
     meta_bending_scale,
@@ -46,6 +47,7 @@ __all__ = [
     "load_user_table",
     "shipped_hold_table",
     "shipped_hold_tables",
+    "shipped_legs_tables",
     "simulate_holds",
 ]
 
@@ -154,6 +156,27 @@ def shipped_hold_table(knot, kappa=1.0):
         return None
     best = min(by_kappa, key=lambda k: abs(math.log(k / float(kappa))))
     return by_kappa[best]
+
+
+@functools.lru_cache(maxsize=1)
+def _shipped_legs_table_sets():
+    """The shipped tables of the cow hitch on both legs {knot: {kappa: {f: HoldTable}}}."""
+    return load_legs_table_sets()
+
+
+def shipped_legs_tables(knot, kappa=1.0) -> dict:
+    """The shipped tables that answer ``knot`` loaded on both legs, {T_low/T_high f: table}:
+    the free-end table (f = 0) and those whose runs load the other leg, each of the bending
+    scale nearest ``kappa`` (by ratio); empty when none is shipped."""
+    out = {}
+    free = shipped_hold_table(knot, kappa)
+    if free is not None:
+        out[0.0] = free
+    by_kappa = _shipped_legs_table_sets().get(knot)
+    if by_kappa:
+        best = min(by_kappa, key=lambda k: abs(math.log(k / float(kappa))))
+        out.update(by_kappa[best])
+    return out
 
 
 def _criterion_text(limit: float, window: float | None = None, time_scale: float = 1.0) -> str:
@@ -476,8 +499,110 @@ def _from_tables(q: _Query, phase_table) -> _Found:
     hold table of the knot nearest the rope's kappa."""
     user = None if phase_table is None else load_user_table(phase_table)
     if user is not None and not isinstance(user, HoldTable):
+        if q.free > 0:
+            q.out["message"] = (
+                f"not decided by the phase table {str(phase_table)!r}: a smooth-law phase "
+                "table covers a free end only (T_low = 0)"
+            )
+            return _Found(law="imc")
         return _from_phase_table(q, user, str(phase_table))
+    if q.free > 0:
+        return _from_legs_tables(q, user, phase_table)
+    if user is not None and user.t_low_fraction > 0:
+        q.out.update(source="table", table=str(phase_table), refused="loading", message=(
+            f"not decided by the table {str(phase_table)!r}: its runs load the other leg "
+            f"(T_low = {user.t_low_fraction:g} T_high); this hitch has a free end"))  # fmt: skip
+        return _Found(law=user.law)
     return _from_hold_table(q, user, phase_table)
+
+
+#: within this, a question's T_low / T_high is a table's
+LEGS_TOL = 1e-6
+
+
+def _from_legs_tables(q: _Query, user, phase_table) -> _Found:
+    """The cow hitch loaded on both legs, T_low = ``q.free`` on the other leg, from the tables
+    at fixed T_low / T_high = f (the free-end table, f = 0, and those whose runs load the
+    other leg). Reading: more load on the lighter leg never turns a hold into a slip (the
+    capstan's T_high / T_low <= K, K = exp(4 pi mu) for the ideal rope), so a table that
+    holds at f <= r, r the question's T_low / T_high, says it holds, and one that slips at
+    f >= r says it slips; both, neither, or only tables on the wrong side: undecided
+    (``--load`` is T_high: the API refuses a larger ``free_end_load``)."""
+    r, y = q.free / q.load, q.y
+    tables = {user.t_low_fraction: user} if user is not None else shipped_legs_tables(
+        q.knot, q.kappa)  # fmt: skip
+    where = "shipped" if user is None else str(phase_table)
+    q.out.update(t_low_fraction=r, table=where, legs_tables=[])
+    if not tables:
+        q.out["message"] = f"no DER hold table for {q.knot} is shipped"
+        return _Found()
+    asked = []
+    for f in sorted(tables):
+        t = tables[f]
+        name = f"the {q.knot} table at T_low = {f:g} T_high"
+        why = _refusal(q, t, name if user is None else f"phase table {where!r}")
+        a = None if why else t.lookup(q.x, y, mu=q.mu, mu_rr=q.mu_rr, creep_limit=q.lim)
+        q.out["legs_tables"].append(
+            {"t_low_fraction": f, "holds": None if a is None else a.holds,
+             "message": why or a.message})  # fmt: skip
+        if a is not None:
+            asked.append((f, t, a))
+    q.out.pop("refused", None)  # one refused table does not refuse the others
+    return _legs_reading(q, r, asked)
+
+
+def _legs_reading(q: _Query, r: float, asked: list) -> _Found:
+    """The both-legs verdict from the tables' answers ``asked`` [(f, table, answer)]."""
+    held = [(f, t, a) for f, t, a in asked if a.holds is True and f <= r + LEGS_TOL]
+    slipped = [(f, t, a) for f, t, a in asked if a.holds is False and f >= r - LEGS_TOL]
+    said = "; ".join(f"{_legs_name(f)}: {_say_holds(a.holds)}" for f, _, a in asked)
+    head = f"both legs loaded, T_low/T_high = {r:.3g} ({said or 'no table applies'})"
+    against = [(f1, f2) for f1, _, a1 in asked for f2, _, a2 in asked
+               if f1 < f2 and a1.holds is True and a2.holds is False]  # fmt: skip
+    if against:
+        f1, f2 = against[0]
+        q.out.update(source="table", holds=None, message=(
+            f"{head}: undecided: the tables contradict more load on the lighter leg never "
+            f"turning a hold into a slip ({_legs_name(f1)} holds, {_legs_name(f2)} "
+            "slips)"))  # fmt: skip
+        return _Found()
+    pick = held[-1] if held else (slipped[0] if slipped else None)
+    if pick is None:
+        q.out.update(source="table", holds=None, message=(
+            f"{head}: undecided: no table holds at T_low/T_high <= {r:.3g} or slips at "
+            f">= {r:.3g}"))  # fmt: skip
+        return _Found()
+    f, table, a = pick
+    side = "or more" if held else "or less"
+    q.out.update(
+        source="table", holds=bool(a.holds), inside_table=bool(a.inside), rule=a.rule,
+        message=f"{head}: {_say_holds(a.holds)} at T_low/T_high = {r:.3g} "
+        f"({_legs_name(f)} {_say_holds(a.holds)}, so any T_low/T_high of {f:g} {side} "
+        f"{'does' if a.holds else 'slips'}); {a.message}",
+        mu_tables=[float(m) for m in a.mu_tables], mu_tables_available=table.mus,
+        law=table.law, t_low_fraction_table=f,
+    )  # fmt: skip
+    creep = _table_creep(q, table, a)
+    # the table's own slip load only at its own T_low/T_high
+    same = abs(f - r) <= LEGS_TOL and a.holds and math.isfinite(a.capacity_t_over_EA)
+    ax = table.axes
+    validity = (
+        f"{q.knot} tables at T_low/T_high = {', '.join(f'{g:g}' for g, _, _ in asked)}, grid "
+        f"d/2R {ax['d_over_2R'][0]:.3g}-{ax['d_over_2R'][-1]:.3g}, T_high/EA "
+        f"{ax['t_over_EA'][0]:.3g}-{ax['t_over_EA'][-1]:.3g}, mu = mu_rr {ax['mu'][0]:g}-"
+        f"{ax['mu'][-1]:g} ({table.law} rod-rod law); decided by {_legs_name(f)} (rule "
+        f"{a.rule!r}) and more load on the lighter leg never turning a hold into a slip"
+    )
+    capacity = a.capacity_t_over_EA * q.EA if same else math.nan
+    return _Found(validity=validity, capacity=capacity, law=table.law, creep=creep)
+
+
+def _legs_name(f: float) -> str:
+    return "the free-end table (T_low = 0)" if f == 0 else f"the table at T_low = {f:g} T_high"
+
+
+def _say_holds(h) -> str:
+    return "holds" if h is True else ("slips" if h is False else "undecided")
 
 
 def _from_phase_table(q: _Query, user, path: str) -> _Found:
@@ -610,6 +735,10 @@ def _assumptions(q: _Query, law: str, simulate: bool) -> tuple:
         else "free end: held if the end creeps less than d over the last half of the hold"
     )
     loading = knots.get(q.knot).loading
+    if q.free > 0:  # the cow hitch on both legs: not the record's one-ended loading
+        r = q.free / q.load
+        loading = (f"{q.knot} loaded on both legs: T_high on one, T_low = {r:.3g} T_high on "
+                   "the other (the girth hitch of a sling)")  # fmt: skip
     return (
         "discrete elastic rod (centreline, circular cross-section, no flattening in "
         "the nips), rigid post, Coulomb-type friction at the rod surface"

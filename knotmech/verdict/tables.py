@@ -49,7 +49,9 @@ __all__ = [
     "hold_table_resource",
     "load_hold_tables",
     "load_hold_table_sets",
+    "load_legs_table_sets",
     "meta_bending_scale",
+    "meta_t_low_fraction",
     "read_hold_table",
 ]
 
@@ -937,6 +939,7 @@ class HoldTable:
                 )
             meta = dict(data.get("meta", {}))
             meta_bending_scale(meta, "its meta")  # an InputError is a ValueError: wrapped below
+            meta_t_low_fraction(meta, "its meta")
             return cls(str(data["knot"]), pts, meta, str(data["law"]),
                        dict(data["criterion"]))  # fmt: skip
         except (KeyError, TypeError, ValueError, AttributeError) as exc:
@@ -946,6 +949,12 @@ class HoldTable:
     def bending_scale(self) -> float:
         """The rods' bending scale kappa the table was built with (meta, 1 when absent)."""
         return meta_bending_scale(self.meta)
+
+    @property
+    def t_low_fraction(self) -> float:
+        """T_low / T_high on the other end in every run (meta, 0 when absent: a free end;
+        above 0: the cow hitch loaded on both legs)."""
+        return meta_t_low_fraction(self.meta)
 
     def write(self, path) -> None:
         """Compact JSON (one point per line)."""
@@ -983,6 +992,20 @@ def meta_bending_scale(meta, name: str = "the DER table") -> float:
     return float(k)
 
 
+def meta_t_low_fraction(meta, name: str = "the DER table") -> float:
+    """A table's T_low / T_high from its meta (``t_low_fraction``, 0 when absent: a free end).
+
+    Raises
+    ------
+    InputError
+        It is not a number in [0, 1] (one line naming ``name``).
+    """
+    f = (meta or {}).get("t_low_fraction", 0.0)
+    if isinstance(f, bool) or not isinstance(f, (int, float)) or not 0 <= f <= 1:
+        raise InputError(f"{name}: meta t_low_fraction must be a number in [0, 1], got {f!r}")
+    return float(f)
+
+
 def _num(v):
     v = float(v)
     return float(f"{v:.4g}") if math.isfinite(v) else None
@@ -1011,8 +1034,29 @@ def load_hold_tables() -> dict:
 
 
 def load_hold_table_sets() -> dict:
-    """Every shipped hold table (``knotmech/data/hold_phase_table_*.json``):
-    {knot: {bending scale kappa: table}}."""
+    """Every shipped hold table with a free end (``knotmech/data/hold_phase_table_*.json``):
+    {knot: {bending scale kappa: table}} (:func:`load_legs_table_sets` has those whose runs
+    load the other end too)."""
+    out = {}
+    for t in _shipped_hold_tables():
+        if t.t_low_fraction == 0.0:
+            out.setdefault(t.knot, {})[t.bending_scale] = t
+    return out
+
+
+def load_legs_table_sets() -> dict:
+    """The shipped hold tables whose runs load the other end with T_low = f T_high (the cow
+    hitch loaded on both legs): {knot: {kappa: {f: table}}}."""
+    out = {}
+    for t in _shipped_hold_tables():
+        if t.t_low_fraction > 0.0:
+            out.setdefault(t.knot, {}).setdefault(t.bending_scale, {})[t.t_low_fraction] = t
+    return out
+
+
+def _shipped_hold_tables() -> list:
+    """Every ``knotmech/data/hold_phase_table_*.json``, read (a one-line InputError when one
+    is missing or not a hold table)."""
     try:
         folder = resources.files("knotmech").joinpath("data")
         names = sorted(
@@ -1020,14 +1064,13 @@ def load_hold_table_sets() -> dict:
         )
     except (FileNotFoundError, OSError) as exc:
         raise InputError(f"the shipped hold tables are missing: {exc}") from None
-    out = {}
+    out = []
     for n in names:
         try:
             data = json.loads(folder.joinpath(n).read_text())
         except json.JSONDecodeError as exc:
             raise InputError(f"hold table {n} is not JSON: {exc}") from None
-        t = HoldTable.from_dict(data, name=f"hold table {n}")
-        out.setdefault(t.knot, {})[t.bending_scale] = t
+        out.append(HoldTable.from_dict(data, name=f"hold table {n}"))
     return out
 
 
