@@ -1,6 +1,6 @@
 """Print the checks of a shipped hold table as markdown: verdict maps, mu and light loads, CPU.
 
-``python -m validation._hold_table_maps KNOT [--cache DIR]`` reads
+``python -m validation._hold_table_maps KNOT|PATH.json [--cache DIR]`` reads
 ``knotmech/data/hold_phase_table_<KNOT>.json`` and prints
 
 - one verdict map per mu (rows d/2R, columns T_high/EA): ``H`` hold / ``S`` slip with the
@@ -124,10 +124,14 @@ def cache_cpu(cache, knot) -> str:
 
 def _main(argv=None) -> int:
     p = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    p.add_argument("knot")
+    p.add_argument("knot", help="a knot (its shipped solid-rod table) or a table's path")
     p.add_argument("--cache", default=None, help="the build's sweep cache, for CPU per run")
     a = p.parse_args(argv)
-    table = pt.load_hold_tables()[a.knot]
+    if a.knot.endswith(".json"):
+        table = pt.read_hold_table(a.knot)
+        a.knot = table.knot
+    else:
+        table = pt.load_hold_tables()[a.knot]
     print(maps(table))
     print(checks(table))
     if a.cache:
