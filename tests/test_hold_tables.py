@@ -9,6 +9,7 @@ d/2R = 0.01961, 0.04762, 0.1176, 0.2308 (d/D = 0.02, 0.05, 0.133, 0.3), T_high/E
 
 import json
 import math
+from pathlib import Path
 
 import pytest
 
@@ -246,3 +247,23 @@ def test_cow_hitch_from_its_table(capsys):
     data = json.loads(capsys.readouterr().out)
     assert data["holds"] is True and data["decided_by"] == "DER-table"
     assert data["creep"]["window_s"] == pytest.approx(0.75 * (1160 / 1150) ** 0.5, rel=1e-9)
+
+
+def test_critical_load_figure_reads_the_tables_bands():
+    """docs/figures/hold_tables_critical_load.py: every shipped table, and the bands the
+    docs' table describes for the solid clove hitch (mu 0.1-0.2 slip at the lightest load
+    on every column; mu 0.3 holds the paper's column, d/D 0.133, up to 0.3 EA)."""
+    import importlib.util
+
+    path = Path(__file__).resolve().parents[1] / "docs" / "figures" / "hold_tables_critical_load.py"
+    spec = importlib.util.spec_from_file_location("hold_tables_critical_load", path)
+    fig = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(fig)
+    tabs = fig.tables()
+    assert "clove-hitch (solid rod)" in tabs and "clove-hitch (fibre rope, kappa 0.01)" in tabs
+    b = fig.bands(tabs["clove-hitch (solid rod)"])
+    for m in (0.1, 0.2):
+        assert all((lo, hi) == (0.0, 1e-4) for _, lo, hi in b[m])
+    dD, lo, hi = b[0.3][2]
+    assert dD == pytest.approx(0.1176 / (1 - 0.1176), rel=1e-12)
+    assert (lo, hi) == (0.3, math.inf)
