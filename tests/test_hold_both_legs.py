@@ -117,3 +117,15 @@ def test_a_tables_t_low_fraction_must_be_a_number_in_0_1(tmp_path, bad):
     p.write_text(json.dumps(d))
     with pytest.raises(InputError, match="t_low_fraction must be a number in"):
         knotmech.hold("cow-hitch", load=0.05, free_end_load=0.02, phase_table=str(p), **Q)
+
+
+def test_tables_of_another_bending_scale_say_why_they_do_not_answer(shipped):
+    """A nylon rope (kappa 0.01) against solid-rod tables only: each is refused for its
+    kappa, and the answer says so (undecided, with the --simulate command)."""
+    shipped({0.0: _table(True)})
+    v = knotmech.hold("cow-hitch", rod_diameter=0.01, post_diameter=0.05, mu=0.5, load=1000,
+                      free_end_load=500, material="nylon")  # fmt: skip
+    assert v.der["holds"] is None and v.der["refused"] == "bending_scale"
+    assert "the tables are for solid rods (kappa = 1); this rope's kappa = 0.01" in (
+        v.der["message"])  # fmt: skip
+    assert "--free-end-load 500N --material nylon --simulate" in v.der["message"]

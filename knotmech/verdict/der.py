@@ -547,6 +547,9 @@ def _from_legs_tables(q: _Query, user, phase_table) -> _Found:
              "message": why or a.message})  # fmt: skip
         if a is not None:
             asked.append((f, t, a))
+    if not asked:  # every table refused: say why (kappa, rod), keep ``refused``
+        q.out.update(source="table", message="; ".join(e["message"] for e in q.out["legs_tables"]))
+        return _Found()
     q.out.pop("refused", None)  # one refused table does not refuse the others
     return _legs_reading(q, r, asked)
 
