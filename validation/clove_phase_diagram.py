@@ -643,6 +643,16 @@ def write_hold_table(path=None, *, knot="clove-hitch", cache_dir=None, processes
     return table
 
 
+def _numbers(parser, flag: str, text):
+    """``text`` ("1e-4,0.3") as floats, None when not given; a usage error otherwise."""
+    if text is None:
+        return None
+    try:
+        return [float(v) for v in text.split(",")]
+    except ValueError:
+        parser.error(f"{flag}: comma-separated numbers, got {text!r}")
+
+
 def _main(argv=None) -> int:
     parser = argparse.ArgumentParser(description=f"{NAME}: run case 3 or write the phase table")
     parser.add_argument("--full", action="store_true", help="full grid (default quick)")
@@ -692,18 +702,8 @@ def _main(argv=None) -> int:
     )  # fmt: skip
     args = parser.parse_args(argv)
     if args.write_hold_table is not None:
-        loads = None
-        if args.loads is not None:
-            try:
-                loads = [float(v) for v in args.loads.split(",")]
-            except ValueError:
-                parser.error(f"--loads: comma-separated numbers, got {args.loads!r}")
-        columns = None
-        if args.columns is not None:
-            try:
-                columns = [float(v) for v in args.columns.split(",")]
-            except ValueError:
-                parser.error(f"--columns: comma-separated numbers, got {args.columns!r}")
+        loads = _numbers(parser, "--loads", args.loads)
+        columns = _numbers(parser, "--columns", args.columns)
         try:
             table = write_hold_table(args.write_hold_table or None, knot=args.knot,
                                      cache_dir=args.cache, processes=args.processes,

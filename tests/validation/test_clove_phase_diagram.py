@@ -163,16 +163,22 @@ def test_figure_shows_every_mu_line_clear_of_the_legend(tmp_path, monkeypatch):
     assert any(lab.startswith("mu = 0.5:") for lab in labels)
 
 
-@pytest.mark.parametrize("loads, what", [("0.1,abc", "comma-separated numbers"),
-                                         ("0,0.1", "T_high/EA values in (0, 1)"),
-                                         ("nan", "T_high/EA values in (0, 1)")])  # fmt: skip
-def test_write_hold_table_loads_bad_input_is_one_line(loads, what, tmp_path, capsys):
-    """``--loads`` (the T_high/EA values of a hold table's grid) refuses bad values with one
-    line and exit 2 before any run."""
+@pytest.mark.parametrize("flags, what", [
+    (["--loads", "0.1,abc"], "--loads: comma-separated numbers"),
+    (["--loads", "0,0.1"], "T_high/EA values in (0, 1)"),
+    (["--loads", "nan"], "T_high/EA values in (0, 1)"),
+    (["--columns", "0.1,x"], "--columns: comma-separated numbers"),
+    (["--columns", "0.5"], "d/2R values in (0, 0.5)"),
+    (["--knot", "cow-hitch", "--t-low-fraction", "2"], "t_low_fraction must be at most 1"),
+    (["--t-low-fraction", "0.5"], "clove-hitch has a free end"),
+])  # fmt: skip
+def test_write_hold_table_bad_grid_input_is_one_line(flags, what, tmp_path, capsys):
+    """``--loads`` and ``--columns`` (the T_high/EA and d/2R values of a hold table's grid)
+    and ``--t-low-fraction`` refuse bad values with one line and exit 2 before any run."""
     from validation.clove_phase_diagram import _main
 
     with pytest.raises(SystemExit) as e:
-        _main(["--write-hold-table", str(tmp_path / "t.json"), "--loads", loads])
+        _main(["--write-hold-table", str(tmp_path / "t.json"), *flags])
     assert e.value.code == 2
     err = capsys.readouterr().err.strip().splitlines()
     assert what in err[-1] and not (tmp_path / "t.json").exists()
