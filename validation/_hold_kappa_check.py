@@ -27,10 +27,6 @@ GRID = {"d_over_2R": (0.04762, 0.1176), "t_over_EA": (1e-4, 1e-3, 1e-2, 0.1, 0.3
 KAPPAS = (0.003, 0.03)
 
 
-def _verdict(p):
-    return p.holds() if p.solved else None
-
-
 def check(knot: str, cache_root, kappas=KAPPAS, processes: int = 2) -> dict:
     """{kappa: {"rows": [[d/2R, T/EA, mu, holds at kappa, holds at 0.01]], "same", "n",
     "cpu_s", "wall_s"}} against the shipped kappa-0.01 table of ``knot``."""
@@ -41,8 +37,8 @@ def check(knot: str, cache_root, kappas=KAPPAS, processes: int = 2) -> dict:
         cache = None if cache_root is None else Path(cache_root) / f"{knot}_kappa{k:g}"
         t = build_hold_table(knot, GRID, processes=processes, cache_dir=cache, bending_scale=k)
         rows = [
-            [p.d_over_2R, p.t_over_EA, p.mu, _verdict(p),
-             _verdict(ref.point(p.d_over_2R, p.t_over_EA, p.mu))]
+            [p.d_over_2R, p.t_over_EA, p.mu, p.holds(),
+             ref.point(p.d_over_2R, p.t_over_EA, p.mu).holds()]
             for p in t.points
         ]  # fmt: skip
         out[f"{k:g}"] = {

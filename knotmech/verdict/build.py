@@ -30,6 +30,7 @@ from knotmech.verdict.criterion import (
     needs_recheck,
     protocol_time_scale,
 )
+from knotmech.verdict.scope import BOTH_LEGS_KNOTS
 from knotmech.verdict.tables import _AXES, ANCHOR_LAW, HoldTable, _num
 
 __all__ = [
@@ -458,12 +459,12 @@ def build_hold_table(
 
 
 def _check_t_low_fraction(knot: str, t_low_fraction) -> float:
-    """T_low / T_high of a hold table's runs: in [0, 1]; above 0 only for the cow hitch (the
-    one hitch of the tables whose other end is a second standing part)."""
+    """T_low / T_high of a hold table's runs: in [0, 1]; above 0 only for a knot whose other
+    end is a second standing part (:data:`~knotmech.verdict.scope.BOTH_LEGS_KNOTS`)."""
     frac = float(check_nonnegative("t_low_fraction", t_low_fraction, scalar=True))
     if frac > 1.0:
         raise InputError(f"t_low_fraction must be at most 1 (T_low <= T_high), got {frac:g}")
-    if frac > 0 and knot != "cow-hitch":
+    if frac > 0 and knot not in BOTH_LEGS_KNOTS:
         raise InputError(
             f"t_low_fraction > 0 loads the cow hitch's second leg; {knot} has a free end "
             f"(got t_low_fraction = {frac:g})"

@@ -38,6 +38,7 @@ from knotmech.verdict.tables import (
     load_tables,
     meta_bending_scale,
     read_hold_table,
+    read_shipped_hold_tables,
 )
 
 __all__ = [
@@ -143,9 +144,15 @@ def shipped_hold_tables():
 
 
 @functools.lru_cache(maxsize=1)
+def _shipped_tables() -> tuple:
+    """Every shipped hold table, its file read once per process."""
+    return tuple(read_shipped_hold_tables())
+
+
+@functools.lru_cache(maxsize=1)
 def _shipped_hold_table_sets():
-    """The shipped anchor-law hold tables {knot: {kappa: HoldTable}}, read once per process."""
-    return load_hold_table_sets()
+    """The shipped anchor-law hold tables with a free end {knot: {kappa: HoldTable}}."""
+    return load_hold_table_sets(_shipped_tables())
 
 
 def shipped_hold_table(knot, kappa=1.0):
@@ -161,7 +168,7 @@ def shipped_hold_table(knot, kappa=1.0):
 @functools.lru_cache(maxsize=1)
 def _shipped_legs_table_sets():
     """The shipped tables of the cow hitch on both legs {knot: {kappa: {f: HoldTable}}}."""
-    return load_legs_table_sets()
+    return load_legs_table_sets(_shipped_tables())
 
 
 def shipped_legs_tables(knot, kappa=1.0) -> dict:

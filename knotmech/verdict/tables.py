@@ -50,6 +50,7 @@ __all__ = [
     "load_hold_tables",
     "load_hold_table_sets",
     "load_legs_table_sets",
+    "read_shipped_hold_tables",
     "meta_bending_scale",
     "meta_t_low_fraction",
     "read_hold_table",
@@ -1033,28 +1034,30 @@ def load_hold_tables() -> dict:
     return out
 
 
-def load_hold_table_sets() -> dict:
+def load_hold_table_sets(tables=None) -> dict:
     """Every shipped hold table with a free end (``knotmech/data/hold_phase_table_*.json``):
     {knot: {bending scale kappa: table}} (:func:`load_legs_table_sets` has those whose runs
-    load the other end too)."""
+    load the other end too). ``tables``: the list :func:`read_shipped_hold_tables` returned,
+    to sort instead of reading the files again."""
     out = {}
-    for t in _shipped_hold_tables():
+    for t in read_shipped_hold_tables() if tables is None else tables:
         if t.t_low_fraction == 0.0:
             out.setdefault(t.knot, {})[t.bending_scale] = t
     return out
 
 
-def load_legs_table_sets() -> dict:
+def load_legs_table_sets(tables=None) -> dict:
     """The shipped hold tables whose runs load the other end with T_low = f T_high (the cow
-    hitch loaded on both legs): {knot: {kappa: {f: table}}}."""
+    hitch loaded on both legs): {knot: {kappa: {f: table}}}; ``tables`` as for
+    :func:`load_hold_table_sets`."""
     out = {}
-    for t in _shipped_hold_tables():
+    for t in read_shipped_hold_tables() if tables is None else tables:
         if t.t_low_fraction > 0.0:
             out.setdefault(t.knot, {}).setdefault(t.bending_scale, {})[t.t_low_fraction] = t
     return out
 
 
-def _shipped_hold_tables() -> list:
+def read_shipped_hold_tables() -> list:
     """Every ``knotmech/data/hold_phase_table_*.json``, read (a one-line InputError when one
     is missing or not a hold table)."""
     try:
