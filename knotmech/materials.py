@@ -132,7 +132,13 @@ __all__ = [
     "COATED_DENSITY",
     "DEMO_ROD_YOUNGS_MODULUS",
     "DEMO_ROD_DENSITY",
+    "STRAIN_LIMIT",
 ]
+
+#: the largest strain T/EA the models here take a rope to [-]: above it a load is implausible
+#: for rope (the hold verdict warns), the thick-nip model (inextensible rope) is outside its
+#: validity, and a DER pull of a bend or a loop stops (the rod model has a linear axial law)
+STRAIN_LIMIT = 0.10
 
 # --- the reference rods of the source papers (one home for each number) ----------------
 # Every rod the scenes, validations, benchmarks and tests simulate with a paper's numbers

@@ -50,7 +50,7 @@ import numpy as np
 
 from knotmech import knots, rod
 from knotmech.errors import InputError, check_count, check_nonnegative, check_positive
-from knotmech.materials import DEMO_ROD_DENSITY
+from knotmech.materials import DEMO_ROD_DENSITY, STRAIN_LIMIT
 from knotmech.rod.constraints import Clamp, MovingNodes
 from knotmech.scenes._common import check_memory, check_run_size, frames_bytes, pair_check_bytes
 from knotmech.scenes._scene import RunControl, Scene, SceneRun, grip_path, rod_contact
@@ -65,7 +65,6 @@ from knotmech.scenes.tied.pulled import (
     tail_nodes,
     tails_drawn,
 )
-from knotmech.verdict.inputs import STRAIN_LIMIT
 
 __all__ = [
     "BendResult",

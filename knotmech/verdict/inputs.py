@@ -6,11 +6,11 @@ from __future__ import annotations
 import math
 
 from knotmech.errors import InputError, check_positive
+from knotmech.materials import STRAIN_LIMIT
 from knotmech.verdict.answer import InputWarning
 
 __all__ = ["STRAIN_LIMIT", "MU_PLAUSIBLE", "WRAP_TURNS_PLAUSIBLE"]
 
-STRAIN_LIMIT = 0.10  #: T_high/EA above this is implausible and outside the thick-nip model
 MU_PLAUSIBLE = 2.0  #: a friction coefficient above this is implausible for rope
 WRAP_TURNS_PLAUSIBLE = 20.0  #: a capstan wrap beyond this many turns is implausible
 
