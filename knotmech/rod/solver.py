@@ -232,6 +232,7 @@ class Stepper:
         self.diag = np.zeros(n)
         self.f = np.zeros(n)
         self._mass = system.mass
+        self._mass_dt = (None, None)
         self._is_theta = system.is_theta
         self._rest_length = system.rest_length
         self.length_scale = float(np.mean(system.rest_length))
@@ -308,7 +309,9 @@ class Stepper:
         self.rnorm = _asm.masked_norm(self.f, self.free)  # |f| on the free dofs
         self._eval_dt = dt
         if jacobian:  # the matrix itself is built lazily, by solve()
-            np.subtract(self._mass / (dt * dt), jd, out=self.diag)
+            if self._mass_dt[0] != dt:  # M / dt^2, computed once per step size
+                self._mass_dt = (dt, self._mass / (dt * dt))
+            np.subtract(self._mass_dt[1], jd, out=self.diag)
             self._jac_pending = True
             self._hess_missing = lazy
             self._eval_args = (q, st, dt, t_new) if lazy else None
@@ -576,9 +579,8 @@ class Stepper:
                 if info != 0:
                     raise _StepFailed("singular Jacobian")
             return x
-        gm = self._gmap[self.free_idx]
         b = np.empty(self.free_idx.size)
-        b[gm] = rhs[self.free_idx]
+        _asm.permute_in(rhs, self.free_idx, self._gmap, b)
         if self._mode == "sparse-band":
             y = self._solve_band(b)
         else:
@@ -588,8 +590,8 @@ class Stepper:
                 y = lu.solve(b)
             except RuntimeError as exc:  # singular factor
                 raise _StepFailed(f"sparse solve failed: {exc}") from None
-        x = np.zeros_like(rhs)
-        x[self.free_idx] = y[gm]
+        x = np.empty_like(rhs)
+        _asm.permute_out(y, self.free_idx, self._gmap, x)
         return x
 
     def _check(self, q, st: State, dt: float) -> None:

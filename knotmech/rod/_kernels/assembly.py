@@ -314,3 +314,22 @@ def worst_strain(q, node_dofs, edge_nodes, rest_length):
     if not finite:
         k_best = 0
     return k_best, strain[k_best] if n else 0.0
+
+
+@njit(cache=True)
+def permute_in(rhs, free_idx, gmap, b):
+    """b[gmap[i]] = rhs[i] for the free dofs i = ``free_idx`` (the right-hand side in the
+    order of the reordered free system; numpy's two fancy-indexed copies in one pass)."""
+    for k in range(free_idx.shape[0]):
+        i = free_idx[k]
+        b[gmap[i]] = rhs[i]
+
+
+@njit(cache=True)
+def permute_out(y, free_idx, gmap, x):
+    """x = 0, then x[i] = y[gmap[i]] for the free dofs i = ``free_idx`` (the solution back
+    in dof order, zero on the constrained dofs)."""
+    x[:] = 0.0
+    for k in range(free_idx.shape[0]):
+        i = free_idx[k]
+        x[i] = y[gmap[i]]

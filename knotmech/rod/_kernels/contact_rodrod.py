@@ -1195,3 +1195,15 @@ def pair_path_min_gap(pairs, edge_nodes, node_dofs, radius_edge, q_new, q_old, n
             if ratio < worst:
                 worst = ratio
     return worst
+
+
+@njit(cache=True)
+def gather_positions(q, node_dofs):
+    """The node positions ``q[node_dofs]`` (n_nodes, 3) as a new array (numpy's fancy
+    indexing of the (n_nodes, 3) index array, in one pass)."""
+    n = node_dofs.shape[0]
+    pos = np.empty((n, 3))
+    for i in range(n):
+        for m in range(3):
+            pos[i, m] = q[node_dofs[i, m]]
+    return pos
