@@ -126,3 +126,23 @@ def sort_pairs(pairs, n_edges):
         for k in range(start[e], start[e + 1]):
             out[k, 0] = e
     return out
+
+
+@njit(cache=True)
+def candidate_pairs(pos, edge_nodes, edge_radius, margin, edge_rod, exclusion):
+    """The sorted candidate pairs of :func:`knotmech.rod.broadphase.candidate_edge_pairs`
+    (checked arguments) in one call: boxes grown by ``edge_radius + margin / 2``, the
+    sweep, the lexicographic sort (the per-step call of the contact interaction, whose
+    Python glue around the three kernels cost half as much as the kernels)."""
+    n = edge_nodes.shape[0]
+    inflate = np.empty(n)
+    half = 0.5 * margin
+    for e in range(n):
+        inflate[e] = edge_radius[e] + half
+    lo = np.empty((n, 3))
+    hi = np.empty((n, 3))
+    edge_boxes(pos, edge_nodes, inflate, lo, hi)
+    pairs = sweep_pairs(lo, hi, edge_nodes, edge_rod, exclusion)
+    if pairs.shape[0] > 1:
+        pairs = sort_pairs(pairs, n)
+    return pairs
