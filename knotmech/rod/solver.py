@@ -45,6 +45,7 @@ from scipy.sparse.linalg import splu
 from ..errors import InputError, SolverError, check_positive, check_range
 from ._kernels import assembly as _asm
 from ._kernels import envelope as _env
+from ._kernels import frames as _fr
 from .elastic import ElasticWorkspace
 from .interactions import interaction_state, restore_interaction_state
 from .jacobian import Triplets
@@ -233,6 +234,7 @@ class Stepper:
         self.f = np.zeros(n)
         self._mass = system.mass
         self._mass_dt = (None, None)
+        self._trig = (None, None, None)
         self._is_theta = system.is_theta
         self._rest_length = system.rest_length
         self.length_scale = float(np.mean(system.rest_length))
@@ -283,7 +285,10 @@ class Stepper:
         self.n_evals += 1
         # while chord iterations may follow, the Hessians wait until solve() needs them
         lazy = jacobian and self._hessian_may_wait()
-        ws.frames(q, st.tangents, st.d1, st.ref_twist)
+        trig = self._trig  # cos, sin of the step start's reference twist (see step())
+        ws.frames(
+            q, st.tangents, st.d1, st.ref_twist, trig[1:] if trig[0] is st.ref_twist else None
+        )
         ws.grad_hess(q, hessian=jacobian and not lazy)
         fext, jd = self.fext, self.jdiag
         fext[:] = 0.0
@@ -623,6 +628,10 @@ class Stepper:
         dt (``SolverOptions.predictor = "linear"`` always uses the latter)."""
         t_new = st.t + dt
         q_lin = st.q + dt * st.v
+        if self._trig[0] is not st.ref_twist:  # once per step, for every evaluation of it
+            rt = st.ref_twist
+            self._trig = (rt, np.empty(rt.shape), np.empty(rt.shape))
+            _fr.cos_sin(rt, self._trig[1], self._trig[2])
         for it in self.interactions:  # once per attempt: it depends on the step start only
             it.begin_step(self.system, st.q, st.v, dt)
         if self.opt.predictor == "quadratic" and st.accel is not None and np.isfinite(st.h_last):

@@ -5,7 +5,7 @@ import numpy as np
 from knotmech import rod
 from knotmech.rod._kernels import frames as fr
 from knotmech.rod._kernels.contact_broadphase import sort_pairs
-from knotmech.rod._kernels.elastic_eval import elastic_frames
+from knotmech.rod._kernels.elastic_eval import elastic_frames, elastic_frames_cs
 from knotmech.rod._kernels.envelope import env_factor, env_last, env_solve, pattern_first
 
 
@@ -39,6 +39,28 @@ def test_elastic_frames_is_the_four_frame_kernels_bit_for_bit():
     for x, y in zip(a, b, strict=True):
         assert np.array_equal(x, y)
     assert np.max(np.abs(rt)) > 0.0  # the perturbation twisted the frames
+
+
+def test_elastic_frames_with_the_step_cosines_is_elastic_frames_bit_for_bit():
+    """The cosines and sines of the step start's reference twist computed once per step
+    (:func:`cos_sin`) give the frames of :func:`elastic_frames`, bit for bit."""
+    r = rod.Rod.straight(length=0.1, n_nodes=30, radius=1e-3, youngs_modulus=1e6, density=1e3)
+    s = rod.RodSystem([r])
+    st = s.initial_state()
+    rng = np.random.default_rng(7)
+    q = st.q + 1e-3 * rng.standard_normal(st.q.size)
+    rt_old = 2.0 * rng.standard_normal(s.n_stencils)  # beyond +-pi too
+    ne, ns = s.n_edges, s.n_stencils
+    a = [np.empty((ne, 3)), np.empty(ne), np.empty((ne, 3)), np.empty((ne, 3)), np.empty(ns),
+         np.empty((ne, 3)), np.empty((ne, 3))]  # fmt: skip
+    b = [x.copy() for x in a]
+    elastic_frames(q, s.edge_dof0, s.stencil_edge, st.tangents, st.d1, rt_old, *a)
+    c, sn = np.empty(ns), np.empty(ns)
+    fr.cos_sin(rt_old, c, sn)
+    elastic_frames_cs(q, s.edge_dof0, s.stencil_edge, st.tangents, st.d1, rt_old, c, sn, *b)
+    for x, y in zip(a, b, strict=True):
+        assert np.array_equal(x, y)
+    assert np.max(np.abs(a[4] - rt_old)) > 1e-6  # the perturbation moved the twist
 
 
 def test_envelope_lu_solves_a_band_system():
