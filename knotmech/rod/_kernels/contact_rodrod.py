@@ -415,6 +415,13 @@ def rodrod_assemble(
     on every pair (``floor_mode`` 0) or only on the pairs that slid at the last accepted
     step (``floor_mode`` 1, ``anchor_slip``; see :func:`rodrod_anchor_commit`).
     """
+    if not want_jacobian:  # forces only: the compact loop of _assemble_forces
+        return _assemble_forces(
+            pos, pos_old, dt, pairs, near, n_near, edge_nodes, node_dofs, radius_edge,
+            sharpness, stiffness, mu, fric_k, fric_c, vel_eps, force, rows, cols, vals,
+            contact_force, normal_derivative, law, mu_k, k_t, anchor, anchor_slip,
+            anchor_known, out_slip, cap_floor, floor_mode,
+        )  # fmt: skip
     x = np.empty(12)
     grad = np.empty(12)
     hess = np.empty((12, 12))
@@ -422,6 +429,8 @@ def rodrod_assemble(
     fn = np.empty(3)
     n = np.empty(3)
     vrel = np.empty(3)
+    vt = np.empty(3)
+    ffr = np.empty(3)
     Dm = np.empty((3, 3))
     Dp = np.empty((3, 3))
     coef = np.empty(4)
@@ -496,7 +505,93 @@ def rodrod_assemble(
             continue
         cnt = _smooth_friction(
             pos, pos_old, nodes, dofs, dt, n, fnorm, mu, fric_k, fric_c, vel_eps, jac,
-            normal_derivative, de, d2e, grad, force, rows, cols, vals, cnt, vrel, Dm, Dp,
+            normal_derivative, de, d2e, grad, force, rows, cols, vals, cnt, vrel, Dm, Dp, vt,
+            ffr,
+        )  # fmt: skip
+    return energy, cnt
+
+
+@njit(cache=True)
+def _assemble_forces(
+    pos, pos_old, dt, pairs, near, n_near, edge_nodes, node_dofs, radius_edge, sharpness,
+    stiffness, mu, fric_k, fric_c, vel_eps, force, rows, cols, vals, contact_force,
+    normal_derivative, law, mu_k, k_t, anchor, anchor_slip, anchor_known, out_slip,
+    cap_floor, floor_mode,
+):  # fmt: skip
+    """:func:`rodrod_assemble` with ``want_jacobian`` False (most Newton evaluations: chord
+    iterations need no Jacobian): the same statements in the same order without the
+    Jacobian's, in a loop compact enough to be compiled well (the loop of
+    rodrod_assemble, with the Hessian and Jacobian code inlined in it, ran this case
+    about half as fast). The same forces, energy and flags, bit for bit."""
+    x = np.empty(12)
+    grad = np.empty(12)
+    dofs = np.empty(12, dtype=np.int64)
+    fn = np.empty(3)
+    n = np.empty(3)
+    vrel = np.empty(3)
+    vt = np.empty(3)
+    ffr = np.empty(3)
+    Dm = np.empty((3, 3))
+    Dp = np.empty((3, 3))
+    coef = np.empty(4)
+    w = np.empty(3)
+    B = np.empty((12, 2))
+    U = np.empty((2, 2))
+    cw = np.empty(4)
+    u = np.empty(3)
+    ft = np.empty(3)
+    nf = np.empty(3)
+    dndx = np.empty((3, 12))
+    G3 = np.empty((3, 12))
+    xo = np.empty(12)
+    coef_o = np.empty(4)
+    w_o = np.empty(3)
+    n_o = np.empty(3)
+    energy = 0.0
+    contact_force[:] = 0.0
+    if law == 1:
+        out_slip[:] = False
+    cnt = 0
+    for kp in range(n_near):
+        p = near[kp]
+        ei = pairs[p, 0]
+        ej = pairs[p, 1]
+        nodes = (edge_nodes[ei, 0], edge_nodes[ei, 1], edge_nodes[ej, 0], edge_nodes[ej, 1])
+        for k in range(4):
+            for m in range(3):
+                x[3 * k + m] = pos[nodes[k], m]
+                dofs[3 * k + m] = node_dofs[nodes[k], m]
+        two_h = radius_edge[ei] + radius_edge[ej]
+        dist = _edge_distance_grad_ws(x, grad, coef, w)
+        e, de, d2e = penalty_derivs(two_h - dist, sharpness, stiffness)
+        energy += e
+        for a in range(12):
+            force[dofs[a]] -= de * grad[a]
+        for m in range(3):
+            fn[m] = -de * (grad[m] + grad[3 + m])
+        fnorm = np.sqrt(fn[0] * fn[0] + fn[1] * fn[1] + fn[2] * fn[2])
+        contact_force[p] = fnorm
+        if mu <= 0.0 or fnorm <= 0.0:
+            continue
+        for m in range(3):
+            n[m] = fn[m] / fnorm
+        if law == 1:
+            if not anchor_known[p]:  # a new pair: its anchor from the step start
+                _pair_nodes(pos_old, pairs, p, edge_nodes, xo)
+                _fresh_anchor(xo, anchor[p], coef_o, w_o, n_o, nf, cw, u)
+                anchor_known[p] = True
+            e_f, slip, cnt = _anchor_friction(
+                x, anchor[p], anchor_slip[p], n, fnorm, mu, mu_k, k_t, 0.0, grad, dofs, False,
+                force, rows, cols, vals, cnt, cw, u, ft, nf, coef, dist, B, U, dndx, G3,
+                _cap_min(cap_floor, floor_mode, two_h, sharpness, anchor_slip[p]),
+            )  # fmt: skip
+            energy += e_f
+            out_slip[p] = slip
+            continue
+        cnt = _smooth_friction(
+            pos, pos_old, nodes, dofs, dt, n, fnorm, mu, fric_k, fric_c, vel_eps, False,
+            normal_derivative, de, d2e, grad, force, rows, cols, vals, cnt, vrel, Dm, Dp, vt,
+            ffr,
         )  # fmt: skip
     return energy, cnt
 
@@ -504,12 +599,14 @@ def rodrod_assemble(
 @njit(cache=True, inline="always")
 def _smooth_friction(
     pos, pos_old, nodes, dofs, dt, n, fnorm, mu, fric_k, fric_c, vel_eps, jac,
-    normal_derivative, de, d2e, grad, force, rows, cols, vals, cnt, vrel, Dm, Dp,
+    normal_derivative, de, d2e, grad, force, rows, cols, vals, cnt, vrel, Dm, Dp, vt, ffr,
 ):  # fmt: skip
     """Regularised friction of one pair (coated-rod eqs. 11-12; see
     :func:`rodrod_assemble`): adds the force of the pair's ``nodes`` (4,) to ``force`` and,
-    if ``jac``, its Jacobian triplets from ``cnt`` on; ``vrel`` (3,), ``Dm`` and ``Dp``
-    (3, 3) are work arrays. Returns the new entry count."""
+    if ``jac``, its Jacobian triplets from ``cnt`` on; ``vrel``, ``vt``, ``ffr`` (3,),
+    ``Dm`` and ``Dp`` (3, 3) are work arrays (the tangential velocity and the friction
+    force written entry by entry, with the operations of the array expressions they
+    replace: no temporary arrays per pair). Returns the new entry count."""
     for m in range(3):
         vi = 0.5 * (pos[nodes[0], m] - pos_old[nodes[0], m])
         vi += 0.5 * (pos[nodes[1], m] - pos_old[nodes[1], m])
@@ -517,12 +614,15 @@ def _smooth_friction(
         vj += 0.5 * (pos[nodes[3], m] - pos_old[nodes[3], m])
         vrel[m] = (vi - vj) / dt
     vn = vrel[0] * n[0] + vrel[1] * n[1] + vrel[2] * n[2]
-    vt = vrel - vn * n
+    for m in range(3):
+        vt[m] = vrel[m] - vn * n[m]
     vtn_raw = np.sqrt(vt @ vt)
     vtn = np.sqrt(vtn_raw * vtn_raw + vel_eps * vel_eps)
     gam = _sigmoid(fric_k * (vtn_raw - fric_c))
     dgam = fric_k * gam * (1.0 - gam)
-    ffr = -gam * mu * fnorm * vt / vtn
+    c_fr = -gam * mu * fnorm
+    for m in range(3):
+        ffr[m] = c_fr * vt[m] / vtn
     sgn = (0.5, 0.5, -0.5, -0.5)
     for k in range(4):
         for m in range(3):
