@@ -363,13 +363,13 @@ class Stepper:
         narrow band. Redone when new contacts widen the band by more than 25 %, when the
         LU work of the envelope has grown by 25 % (see :meth:`_factor_band`), and after
         _REORDER_EVERY Jacobians."""
-        fm = self._fmap
-        rows = fm[np.concatenate([er, self.trip.rows])]
-        cols = fm[np.concatenate([ec, self.trip.cols])]
-        keep = (rows >= 0) & (cols >= 0)
         nf = self.free_idx.size
-        pat = sp.csr_matrix((np.ones(int(keep.sum())), (rows[keep], cols[keep])), shape=(nf, nf))
-        perm = reverse_cuthill_mckee(pat, symmetric_mode=False)
+        # the structure of P + P^T (P: the elastic and interaction entries on the free
+        # dofs), as the canonical CSR matrix scipy builds from them (sorted, no
+        # duplicates): RCM of it in symmetric mode is RCM of P in non-symmetric mode
+        indptr, ind = _asm.pattern_csr(er, ec, self.trip.rows, self.trip.cols, self._fmap, nf)
+        pat = sp.csr_matrix((np.ones(ind.size), ind, indptr), shape=(nf, nf))
+        perm = reverse_cuthill_mckee(pat, symmetric_mode=True)
         iperm = np.empty(nf, dtype=np.int64)
         iperm[perm] = np.arange(nf)
         gm = -np.ones(self.system.n_dof, dtype=np.int64)

@@ -87,3 +87,36 @@ def test_envelope_lu_solves_a_band_system():
     env_solve(ab, kd, first, last, x)
     want = np.linalg.solve(a, b)
     assert np.max(np.abs(x - want)) <= 1e-12 * np.max(np.abs(want))
+
+
+def test_pattern_csr_is_scipys_canonical_structure_of_a_plus_a_transpose():
+    """pattern_csr gives the indptr and indices of scipy's canonical CSR A + A.T (A: the
+    mapped entries of two lists, constrained dofs mapped to -1 dropped), so RCM of it in
+    symmetric mode is the RCM of A the solver used before, permutation for permutation."""
+    import scipy.sparse as sp
+    from scipy.sparse.csgraph import reverse_cuthill_mckee
+
+    from knotmech.rod._kernels.assembly import pattern_csr
+
+    rng = np.random.default_rng(13)
+    for _ in range(20):
+        n_dof = int(rng.integers(5, 80))
+        fmap = -np.ones(n_dof, dtype=np.int64)
+        free = np.flatnonzero(rng.random(n_dof) < 0.8)
+        fmap[free] = rng.permutation(free.size)
+        lists = [rng.integers(0, n_dof, (2, int(rng.integers(0, 300)))) for _ in range(2)]
+        indptr, ind = pattern_csr(lists[0][0], lists[0][1], lists[1][0], lists[1][1], fmap,
+                                  free.size)  # fmt: skip
+        rows = fmap[np.concatenate([lists[0][0], lists[1][0]])]
+        cols = fmap[np.concatenate([lists[0][1], lists[1][1]])]
+        keep = (rows >= 0) & (cols >= 0)
+        a = sp.csr_matrix((np.ones(int(keep.sum())), (rows[keep], cols[keep])),
+                          shape=(free.size, free.size))  # fmt: skip
+        want = a + a.T
+        np.testing.assert_array_equal(indptr, want.indptr)
+        np.testing.assert_array_equal(ind, want.indices)
+        pat = sp.csr_matrix((np.ones(ind.size), ind, indptr), shape=a.shape)
+        np.testing.assert_array_equal(
+            reverse_cuthill_mckee(pat, symmetric_mode=True),
+            reverse_cuthill_mckee(a, symmetric_mode=False),
+        )
