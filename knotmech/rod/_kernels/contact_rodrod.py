@@ -330,6 +330,28 @@ Z_JACOBIAN = -10.0
 ENTRIES_PER_PAIR = 288
 
 
+@njit(cache=True, inline="always")
+def _beyond(x, reach):
+    """True when the two edges in ``x`` (12,) are certainly farther apart than ``reach``
+    [m]: the distance of their midpoints less their half lengths, a lower bound of the
+    edge distance ((l_i + l_j)/2 <= sqrt((l_i^2 + l_j^2)/2)), exceeds reach (1 + 1e-6)
+    (a margin far above the round-off of either side). A cheap test before
+    :func:`edge_distance` that skips only pairs whose exact test fails by far, so the
+    pairs kept are the same."""
+    d2 = 0.0
+    la2 = 0.0
+    lb2 = 0.0
+    for m in range(3):
+        d = 0.5 * (x[m] + x[3 + m]) - 0.5 * (x[6 + m] + x[9 + m])
+        ea = x[3 + m] - x[m]
+        eb = x[9 + m] - x[6 + m]
+        d2 += d * d
+        la2 += ea * ea
+        lb2 += eb * eb
+    bound = np.sqrt(0.5 * (la2 + lb2)) + reach * (1.0 + 1e-6)
+    return d2 > bound * bound
+
+
 @njit(cache=True)
 def rodrod_near(pos, pairs, edge_nodes, radius_edge, sharpness, z_cutoff, near):
     """Indices of the candidate pairs with k (2h - Delta) >= ``z_cutoff`` into ``near``;
@@ -344,6 +366,8 @@ def rodrod_near(pos, pairs, edge_nodes, radius_edge, sharpness, z_cutoff, near):
             for m in range(3):
                 x[3 * k + m] = pos[nodes[k], m]
         two_h = radius_edge[ei] + radius_edge[ej]
+        if _beyond(x, two_h - z_cutoff / sharpness):  # z far below z_cutoff
+            continue
         if sharpness * (two_h - edge_distance(x)) >= z_cutoff:
             near[cnt] = p
             cnt += 1
@@ -1031,6 +1055,8 @@ def rodrod_anchor_commit(
     energy = 0.0
     for p in range(pairs.shape[0]):
         ei, ej = _pair_nodes(pos, pairs, p, edge_nodes, x)
+        if _beyond(x, radius_edge[ei] + radius_edge[ej] - z_cutoff / sharpness):
+            continue  # out of the penalty's reach by far (as rodrod_near)
         if sharpness * (radius_edge[ei] + radius_edge[ej] - edge_distance(x)) < z_cutoff:
             continue
         if not known[p]:
