@@ -59,8 +59,8 @@ the library's choice. Session 17 (note section 14): cpu_s medians of 3 imc 12.63
 started from (9a101fa) took 15.73 / 16.03 s against main's 12.81 / 12.78 s in the same
 session (main/old 0.80): the machine was ~1.5x faster than in sessions 14-16, so the target
 is not claimed (about 19.6 s on the earlier machine). Session 19 (branch speed19, note
-section 15; kernels that numba compiled badly, same bits): cpu_s 0.74x main's for imc and
-0.73x for anchor (medians of 3 alternated pairs: 9.70 / 9.81 s against 13.11 / 13.35 s),
+section 15; kernels that numba compiled badly, same bits): cpu_s 0.73x main's for imc and
+0.74x for anchor (medians of 4 alternated pairs; 9.56 / 9.72 s against 13.11 / 13.34 s),
 the same counts and forces: about 14.5 s on the earlier machine.
 """
 
