@@ -61,7 +61,7 @@ session (main/old 0.80): the machine was ~1.5x faster than in sessions 14-16, so
 is not claimed (about 19.6 s on the earlier machine). Session 19 (branch speed19, note
 section 15; kernels that numba compiled badly, same bits): cpu_s 0.73x main's for imc and
 0.74x for anchor (medians of 4 alternated pairs; 9.56 / 9.72 s against 13.11 / 13.34 s),
-the same counts and forces: about 14.5 s on the earlier machine.
+the same counts and forces: about 14.3 / 14.7 s on the earlier machine.
 """
 
 from __future__ import annotations
