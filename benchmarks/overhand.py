@@ -51,14 +51,17 @@ docs/notes/contact-and-friction/sticking-law-cap-width.md. ``--tunnel-check path
 the scene with ``RodContact(tunnel_check="path")`` (the guard tests the path for
 crossings instead of bounding the displacement; the same note, section 8). Each law's
 entry reports cpu_s (median) and cpu_s_runs, steps, newton_iterations and rejected_steps;
-target_cpu_s 15 (not met). Since issue 24 (section 9 of that note) ``anchor`` is the
+target_cpu_s 15 (not met then). Since issue 24 (section 9 of that note) ``anchor`` is the
 library's default anchor law (cap_floor 1e-2, path guard) and ``shipped`` the law as it was
 before (the numbers above marked "anchor" are of that law); ``--tunnel-check`` defaults to
 the library's choice. Session 17 (note section 14): cpu_s medians of 3 imc 12.63 s, anchor
 12.86 s on main, other core idle, under the 15 s target, but the commit the speed work
 started from (9a101fa) took 15.73 / 16.03 s against main's 12.81 / 12.78 s in the same
 session (main/old 0.80): the machine was ~1.5x faster than in sessions 14-16, so the target
-is not claimed (about 19.6 s on the earlier machine).
+is not claimed (about 19.6 s on the earlier machine). Session 19 (branch speed19, note
+section 15; kernels that numba compiled badly, same bits): cpu_s 0.73x main's for imc and
+0.74x for anchor (medians of 4 alternated pairs; 9.56 / 9.72 s against 13.11 / 13.34 s),
+the same counts and forces: about 14.3 / 14.7 s on the earlier machine.
 """
 
 from __future__ import annotations

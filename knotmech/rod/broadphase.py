@@ -13,8 +13,8 @@ import numpy as np
 from knotmech.errors import InputError, check_nonnegative
 from knotmech.rod._kernels.contact_broadphase import (
     brute_pairs,
+    candidate_pairs,
     edge_boxes,
-    sort_pairs,
     sweep_pairs,
 )
 
@@ -62,16 +62,9 @@ def candidate_edge_pairs(
     pairs : (n_pairs, 2) int64 array
         Sorted rows (i < j), sorted lexicographically.
     """
-    if not validate:
-        inflate = edge_radius + 0.5 * margin
-        n_edges = edge_nodes.shape[0]
-        lo = np.empty((n_edges, 3))
-        hi = np.empty((n_edges, 3))
-        edge_boxes(positions, edge_nodes, inflate, lo, hi)
-        pairs = sweep_pairs(lo, hi, edge_nodes, edge_rod, int(exclusion))
-        if pairs.shape[0] > 1:
-            pairs = sort_pairs(pairs, n_edges)  # the order of the lexsort below
-        return pairs
+    if not validate:  # boxes, sweep and the lexsort's order in one kernel call
+        return candidate_pairs(positions, edge_nodes, edge_radius, float(margin), edge_rod,
+                               int(exclusion))  # fmt: skip
     pos = np.ascontiguousarray(positions, dtype=float)
     en = np.ascontiguousarray(edge_nodes, dtype=np.int64)
     if pos.ndim != 2 or pos.shape[1] != 3:

@@ -29,6 +29,7 @@ from knotmech.rod._kernels.contact_rodrod import (
     Z_CUTOFF,
     Z_JACOBIAN,
     align_anchors,
+    gather_positions,
     max_node_speed,
     max_pair_displacement,
     pair_path_min_gap,
@@ -60,7 +61,11 @@ def _emit(rows, cols, vals, r, c, v):
 
 
 def _positions(system, q):
-    return np.ascontiguousarray(np.asarray(q, dtype=float)[system.node_dofs])
+    q = np.asarray(q, dtype=float)
+    nd = system.node_dofs
+    if q.ndim == 1 and nd.ndim == 2 and nd.dtype == np.int64:
+        return gather_positions(q, nd)  # per Newton iterate: one kernel pass
+    return np.ascontiguousarray(q[nd])
 
 
 @dataclass(frozen=True)
@@ -315,7 +320,7 @@ class RodContact:
         cached = self._pos_old
         if cached is not None and cached[0] is q_old:
             return cached[1]
-        return np.asarray(q_old, dtype=float)[nd]
+        return _positions(system, q_old)
 
     def _ensure_pairs(self, system, q):
         if self.pairs is None:
@@ -349,7 +354,7 @@ class RodContact:
             mu_k = k_t = 0.0
             anc, slip_prev, slip_now, known = self._no_anchor
             law = 0
-        pos = np.asarray(q, dtype=float)[nd]
+        pos = _positions(system, q)
         near = self._near_buffer(npair)
         n_near = rodrod_near(pos, pairs, en, rad, self.sharpness, Z_CUTOFF, near)
         # the solver says when it needs no Jacobian (a chord iteration): forces only

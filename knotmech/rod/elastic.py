@@ -50,11 +50,18 @@ class ElasticWorkspace:
         self._twist_bar = s.twist_bar
         self._gj = s.gj
 
-    def frames(self, q, tangents_old, d1_old, ref_twist_old) -> None:
-        """Reference frames at ``q`` transported from the step-start frames; material frames."""
-        _ev.elastic_frames(q, self._edge_dof0, self._stencil_edge, tangents_old, d1_old,
-                           ref_twist_old, self.tangents, self.lengths, self.d1, self.d2,
-                           self.ref_twist, self.m1, self.m2)  # fmt: skip
+    def frames(self, q, tangents_old, d1_old, ref_twist_old, trig=None) -> None:
+        """Reference frames at ``q`` transported from the step-start frames; material frames.
+        ``trig``: (cos, sin) of ``ref_twist_old`` if at hand (:func:`._kernels.frames.cos_sin`;
+        the same result)."""
+        if trig is None:
+            _ev.elastic_frames(q, self._edge_dof0, self._stencil_edge, tangents_old, d1_old,
+                               ref_twist_old, self.tangents, self.lengths, self.d1, self.d2,
+                               self.ref_twist, self.m1, self.m2)  # fmt: skip
+            return
+        _ev.elastic_frames_cs(q, self._edge_dof0, self._stencil_edge, tangents_old, d1_old,
+                              ref_twist_old, trig[0], trig[1], self.tangents, self.lengths,
+                              self.d1, self.d2, self.ref_twist, self.m1, self.m2)  # fmt: skip
 
     def grad_hess(self, q, hessian: bool = True) -> None:
         """Gradient of the elastic energy into ``grad``; local Hessians into hess_s, hess8

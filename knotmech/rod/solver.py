@@ -45,6 +45,7 @@ from scipy.sparse.linalg import splu
 from ..errors import InputError, SolverError, check_positive, check_range
 from ._kernels import assembly as _asm
 from ._kernels import envelope as _env
+from ._kernels import frames as _fr
 from .elastic import ElasticWorkspace
 from .interactions import interaction_state, restore_interaction_state
 from .jacobian import Triplets
@@ -232,6 +233,8 @@ class Stepper:
         self.diag = np.zeros(n)
         self.f = np.zeros(n)
         self._mass = system.mass
+        self._mass_dt = (None, None)
+        self._trig = (None, None, None)
         self._is_theta = system.is_theta
         self._rest_length = system.rest_length
         self.length_scale = float(np.mean(system.rest_length))
@@ -282,7 +285,10 @@ class Stepper:
         self.n_evals += 1
         # while chord iterations may follow, the Hessians wait until solve() needs them
         lazy = jacobian and self._hessian_may_wait()
-        ws.frames(q, st.tangents, st.d1, st.ref_twist)
+        trig = self._trig  # cos, sin of the step start's reference twist (see step())
+        ws.frames(
+            q, st.tangents, st.d1, st.ref_twist, trig[1:] if trig[0] is st.ref_twist else None
+        )
         ws.grad_hess(q, hessian=jacobian and not lazy)
         fext, jd = self.fext, self.jdiag
         fext[:] = 0.0
@@ -308,7 +314,9 @@ class Stepper:
         self.rnorm = _asm.masked_norm(self.f, self.free)  # |f| on the free dofs
         self._eval_dt = dt
         if jacobian:  # the matrix itself is built lazily, by solve()
-            np.subtract(self._mass / (dt * dt), jd, out=self.diag)
+            if self._mass_dt[0] != dt:  # M / dt^2, computed once per step size
+                self._mass_dt = (dt, self._mass / (dt * dt))
+            np.subtract(self._mass_dt[1], jd, out=self.diag)
             self._jac_pending = True
             self._hess_missing = lazy
             self._eval_args = (q, st, dt, t_new) if lazy else None
@@ -355,13 +363,13 @@ class Stepper:
         narrow band. Redone when new contacts widen the band by more than 25 %, when the
         LU work of the envelope has grown by 25 % (see :meth:`_factor_band`), and after
         _REORDER_EVERY Jacobians."""
-        fm = self._fmap
-        rows = fm[np.concatenate([er, self.trip.rows])]
-        cols = fm[np.concatenate([ec, self.trip.cols])]
-        keep = (rows >= 0) & (cols >= 0)
         nf = self.free_idx.size
-        pat = sp.csr_matrix((np.ones(int(keep.sum())), (rows[keep], cols[keep])), shape=(nf, nf))
-        perm = reverse_cuthill_mckee(pat, symmetric_mode=False)
+        # the structure of P + P^T (P: the elastic and interaction entries on the free
+        # dofs), as the canonical CSR matrix scipy builds from them (sorted, no
+        # duplicates): RCM of it in symmetric mode is RCM of P in non-symmetric mode
+        indptr, ind = _asm.pattern_csr(er, ec, self.trip.rows, self.trip.cols, self._fmap, nf)
+        pat = sp.csr_matrix((np.ones(ind.size), ind, indptr), shape=(nf, nf))
+        perm = reverse_cuthill_mckee(pat, symmetric_mode=True)
         iperm = np.empty(nf, dtype=np.int64)
         iperm[perm] = np.arange(nf)
         gm = -np.ones(self.system.n_dof, dtype=np.int64)
@@ -576,9 +584,8 @@ class Stepper:
                 if info != 0:
                     raise _StepFailed("singular Jacobian")
             return x
-        gm = self._gmap[self.free_idx]
         b = np.empty(self.free_idx.size)
-        b[gm] = rhs[self.free_idx]
+        _asm.permute_in(rhs, self.free_idx, self._gmap, b)
         if self._mode == "sparse-band":
             y = self._solve_band(b)
         else:
@@ -588,8 +595,8 @@ class Stepper:
                 y = lu.solve(b)
             except RuntimeError as exc:  # singular factor
                 raise _StepFailed(f"sparse solve failed: {exc}") from None
-        x = np.zeros_like(rhs)
-        x[self.free_idx] = y[gm]
+        x = np.empty_like(rhs)
+        _asm.permute_out(y, self.free_idx, self._gmap, x)
         return x
 
     def _check(self, q, st: State, dt: float) -> None:
@@ -621,6 +628,10 @@ class Stepper:
         dt (``SolverOptions.predictor = "linear"`` always uses the latter)."""
         t_new = st.t + dt
         q_lin = st.q + dt * st.v
+        if self._trig[0] is not st.ref_twist:  # once per step, for every evaluation of it
+            rt = st.ref_twist
+            self._trig = (rt, np.empty(rt.shape), np.empty(rt.shape))
+            _fr.cos_sin(rt, self._trig[1], self._trig[2])
         for it in self.interactions:  # once per attempt: it depends on the step start only
             it.begin_step(self.system, st.q, st.v, dt)
         if self.opt.predictor == "quadratic" and st.accel is not None and np.isfinite(st.h_last):

@@ -314,3 +314,82 @@ def worst_strain(q, node_dofs, edge_nodes, rest_length):
     if not finite:
         k_best = 0
     return k_best, strain[k_best] if n else 0.0
+
+
+@njit(cache=True)
+def permute_in(rhs, free_idx, gmap, b):
+    """b[gmap[i]] = rhs[i] for the free dofs i = ``free_idx`` (the right-hand side in the
+    order of the reordered free system; numpy's two fancy-indexed copies in one pass)."""
+    for k in range(free_idx.shape[0]):
+        i = free_idx[k]
+        b[gmap[i]] = rhs[i]
+
+
+@njit(cache=True)
+def permute_out(y, free_idx, gmap, x):
+    """x = 0, then x[i] = y[gmap[i]] for the free dofs i = ``free_idx`` (the solution back
+    in dof order, zero on the constrained dofs)."""
+    x[:] = 0.0
+    for k in range(free_idx.shape[0]):
+        i = free_idx[k]
+        x[i] = y[gmap[i]]
+
+
+@njit(cache=True)
+def _count_mapped(rows, cols, fmap, count):
+    for k in range(rows.shape[0]):
+        i = fmap[rows[k]]
+        j = fmap[cols[k]]
+        if i >= 0 and j >= 0:
+            count[i + 1] += 1
+            count[j + 1] += 1
+
+
+@njit(cache=True)
+def _fill_mapped(rows, cols, fmap, fill, idx):
+    for k in range(rows.shape[0]):
+        i = fmap[rows[k]]
+        j = fmap[cols[k]]
+        if i >= 0 and j >= 0:
+            idx[fill[i]] = j
+            fill[i] += 1
+            idx[fill[j]] = i
+            fill[j] += 1
+
+
+@njit(cache=True)
+def pattern_csr(rows_a, cols_a, rows_b, cols_b, fmap, n):
+    """Sparsity pattern of A + A^T, A the matrix of the entries (fmap[r], fmap[c]) of two
+    (rows, cols) lists (those with both mapped indices >= 0), as CSR arrays (indptr
+    (n + 1,), indices): column indices sorted and unique within each row, i.e. the
+    structure of scipy's canonical CSR matrix ``A + A.T`` (which
+    ``reverse_cuthill_mckee(A, symmetric_mode=False)`` orders). Returns (indptr, indices)."""
+    count = np.zeros(n + 1, dtype=np.int64)
+    _count_mapped(rows_a, cols_a, fmap, count)
+    _count_mapped(rows_b, cols_b, fmap, count)
+    for i in range(n):
+        count[i + 1] += count[i]
+    fill = count[:n].copy()
+    idx = np.empty(count[n], dtype=np.int64)
+    _fill_mapped(rows_a, cols_a, fmap, fill, idx)
+    _fill_mapped(rows_b, cols_b, fmap, fill, idx)
+    indptr = np.zeros(n + 1, dtype=np.int64)
+    out = np.empty(count[n], dtype=np.int64)
+    seen = np.full(n, -1, dtype=np.int64)  # seen[j] == i: j already in row i
+    m = 0
+    for i in range(n):
+        start = m
+        for k in range(count[i], count[i + 1]):
+            j = idx[k]
+            if seen[j] == i:
+                continue
+            seen[j] = i
+            # insertion into the sorted run out[start:m] (a few tens of entries per row)
+            pos = m
+            while pos > start and out[pos - 1] > j:
+                out[pos] = out[pos - 1]
+                pos -= 1
+            out[pos] = j
+            m += 1
+        indptr[i + 1] = m
+    return indptr, out[:m]

@@ -17,13 +17,19 @@ from __future__ import annotations
 import numpy as np
 from numba import njit
 
+# The helpers below are inlined into the kernels at numba's IR level (inline="always"):
+# called across function boundaries, with their many array arguments, they cost about a
+# third of rodrod_assemble's time and half of rodrod_near's (measured on the overhand
+# benchmark's pairs). No kernel here is fastmath, so the arithmetic, and the bits, are the
+# same either way.
+
 # weight of the regularisation of the closest-point problem, relative to |e1|^2 (see
 # _closest_params): below an angle of about sqrt(_REG) = 1e-5 rad the contact point on edge
 # i is drawn toward its middle (the former parallel tolerance)
 _REG = 1e-10
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _clamp01(x):
     if x < 0.0:
         return 0.0
@@ -32,7 +38,7 @@ def _clamp01(x):
     return x
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _closest_params(a, b, c, d, e):
     """Clamped closest-point parameters from the dot products a = e1.e1, b = e1.e2,
     c = e2.e2, d = e1.w0, e = e2.w0 (w0 = x1 - x3); see :func:`segment_params`.
@@ -87,7 +93,7 @@ def segment_params(x1, x2, x3, x4):
     return _closest_params(a, b, c, d, e)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _segment_params_flat(x):
     """:func:`segment_params` of the two edges packed in ``x`` (12,) = (x_i, x_i+1, x_j,
     x_j+1), in scalar arithmetic (no temporary arrays: the broad-phase filter calls it for
@@ -109,7 +115,7 @@ def _segment_params_flat(x):
     return _closest_params(a, b, c, d, e)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def edge_distance(x):
     """Distance Delta between two edges, ``x`` (12,) = (x_i, x_i+1, x_j, x_j+1) (Lumelsky
     1985); the cheap value-only version of :func:`edge_distance_hessian`."""
@@ -146,7 +152,7 @@ def edge_distance_hessian(x, grad, hess):
     return _edge_distance_hessian_ws(x, grad, hess, coef, w, gphi, H, B, U)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _gap(x, coef, w):
     """Closest points of the two edges in ``x`` (12,): writes the weights ``coef`` (4,) of
     the four nodes in the gap vector w = A x = (1-s) x1 + s x2 - (1-t) x3 - t x4 and ``w``
@@ -164,7 +170,7 @@ def _gap(x, coef, w):
     return dist, free_s, free_t
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _edge_distance_hessian_ws(x, grad, hess, coef, w, gphi, H, B, U):
     """:func:`edge_distance_hessian` with caller-provided work arrays coef (4,), w (3,),
     gphi (12,), H (12, 12), B (12, 2), U (2, 2) (no allocation per pair)."""
@@ -192,7 +198,7 @@ def _edge_distance_hessian_ws(x, grad, hess, coef, w, gphi, H, B, U):
     return dist
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _coupling_columns(x, coef, w, free_s, free_t, B, U):
     """The columns phi_xu (``B`` (12, 2)) and the matrix phi_uu (``U`` (2, 2)) of the free
     closest-point parameters (s first if free, then t) of the two edges in ``x`` (12,),
@@ -242,7 +248,7 @@ def _coupling_columns(x, coef, w, free_s, free_t, B, U):
         U[1, 0] = U[0, 1]
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _subtract_coupling(nfree, H, B, U):
     """H -= B U^-1 B^T for the ``nfree`` (1 or 2) free parameters (the implicit
     differentiation term of :func:`_edge_distance_hessian_ws`)."""
@@ -265,7 +271,7 @@ def _subtract_coupling(nfree, H, B, U):
                 )
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _edge_distance_grad_ws(x, grad, coef, w):
     """Distance and its gradient only (the arithmetic of :func:`_edge_distance_hessian_ws`,
     so both give bitwise the same values): for pairs that need no Jacobian block."""
@@ -277,7 +283,7 @@ def _edge_distance_grad_ws(x, grad, coef, w):
     return dist
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _softplus(z):
     if z > 30.0:
         return z
@@ -286,7 +292,7 @@ def _softplus(z):
     return np.log1p(np.exp(z))
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _sigmoid(z):
     if z >= 0.0:
         return 1.0 / (1.0 + np.exp(-z))
@@ -294,7 +300,7 @@ def _sigmoid(z):
     return ez / (1.0 + ez)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def penalty_derivs(gap_arg, sharpness, stiffness):
     """Squared-softplus penalty of IMC on z = k (2h - Delta) (coated-rod eq. 10 inside).
 
@@ -324,6 +330,28 @@ Z_JACOBIAN = -10.0
 ENTRIES_PER_PAIR = 288
 
 
+@njit(cache=True, inline="always")
+def _beyond(x, reach):
+    """True when the two edges in ``x`` (12,) are certainly farther apart than ``reach``
+    [m]: the distance of their midpoints less their half lengths, a lower bound of the
+    edge distance ((l_i + l_j)/2 <= sqrt((l_i^2 + l_j^2)/2)), exceeds reach (1 + 1e-6)
+    (a margin far above the round-off of either side). A cheap test before
+    :func:`edge_distance` that skips only pairs whose exact test fails by far, so the
+    pairs kept are the same."""
+    d2 = 0.0
+    la2 = 0.0
+    lb2 = 0.0
+    for m in range(3):
+        d = 0.5 * (x[m] + x[3 + m]) - 0.5 * (x[6 + m] + x[9 + m])
+        ea = x[3 + m] - x[m]
+        eb = x[9 + m] - x[6 + m]
+        d2 += d * d
+        la2 += ea * ea
+        lb2 += eb * eb
+    bound = np.sqrt(0.5 * (la2 + lb2)) + reach * (1.0 + 1e-6)
+    return d2 > bound * bound
+
+
 @njit(cache=True)
 def rodrod_near(pos, pairs, edge_nodes, radius_edge, sharpness, z_cutoff, near):
     """Indices of the candidate pairs with k (2h - Delta) >= ``z_cutoff`` into ``near``;
@@ -338,6 +366,8 @@ def rodrod_near(pos, pairs, edge_nodes, radius_edge, sharpness, z_cutoff, near):
             for m in range(3):
                 x[3 * k + m] = pos[nodes[k], m]
         two_h = radius_edge[ei] + radius_edge[ej]
+        if _beyond(x, two_h - z_cutoff / sharpness):  # z far below z_cutoff
+            continue
         if sharpness * (two_h - edge_distance(x)) >= z_cutoff:
             near[cnt] = p
             cnt += 1
@@ -409,6 +439,13 @@ def rodrod_assemble(
     on every pair (``floor_mode`` 0) or only on the pairs that slid at the last accepted
     step (``floor_mode`` 1, ``anchor_slip``; see :func:`rodrod_anchor_commit`).
     """
+    if not want_jacobian:  # forces only: the compact loop of _assemble_forces
+        return _assemble_forces(
+            pos, pos_old, dt, pairs, near, n_near, edge_nodes, node_dofs, radius_edge,
+            sharpness, stiffness, mu, fric_k, fric_c, vel_eps, force, rows, cols, vals,
+            contact_force, normal_derivative, law, mu_k, k_t, anchor, anchor_slip,
+            anchor_known, out_slip, cap_floor, floor_mode,
+        )  # fmt: skip
     x = np.empty(12)
     grad = np.empty(12)
     hess = np.empty((12, 12))
@@ -416,6 +453,8 @@ def rodrod_assemble(
     fn = np.empty(3)
     n = np.empty(3)
     vrel = np.empty(3)
+    vt = np.empty(3)
+    ffr = np.empty(3)
     Dm = np.empty((3, 3))
     Dp = np.empty((3, 3))
     coef = np.empty(4)
@@ -490,20 +529,108 @@ def rodrod_assemble(
             continue
         cnt = _smooth_friction(
             pos, pos_old, nodes, dofs, dt, n, fnorm, mu, fric_k, fric_c, vel_eps, jac,
-            normal_derivative, de, d2e, grad, force, rows, cols, vals, cnt, vrel, Dm, Dp,
+            normal_derivative, de, d2e, grad, force, rows, cols, vals, cnt, vrel, Dm, Dp, vt,
+            ffr,
         )  # fmt: skip
     return energy, cnt
 
 
 @njit(cache=True)
+def _assemble_forces(
+    pos, pos_old, dt, pairs, near, n_near, edge_nodes, node_dofs, radius_edge, sharpness,
+    stiffness, mu, fric_k, fric_c, vel_eps, force, rows, cols, vals, contact_force,
+    normal_derivative, law, mu_k, k_t, anchor, anchor_slip, anchor_known, out_slip,
+    cap_floor, floor_mode,
+):  # fmt: skip
+    """:func:`rodrod_assemble` with ``want_jacobian`` False (most Newton evaluations: chord
+    iterations need no Jacobian): the same statements in the same order without the
+    Jacobian's, in a loop compact enough to be compiled well (the loop of
+    rodrod_assemble, with the Hessian and Jacobian code inlined in it, ran this case
+    about half as fast). The same forces, energy and flags, bit for bit."""
+    x = np.empty(12)
+    grad = np.empty(12)
+    dofs = np.empty(12, dtype=np.int64)
+    fn = np.empty(3)
+    n = np.empty(3)
+    vrel = np.empty(3)
+    vt = np.empty(3)
+    ffr = np.empty(3)
+    Dm = np.empty((3, 3))
+    Dp = np.empty((3, 3))
+    coef = np.empty(4)
+    w = np.empty(3)
+    B = np.empty((12, 2))
+    U = np.empty((2, 2))
+    cw = np.empty(4)
+    u = np.empty(3)
+    ft = np.empty(3)
+    nf = np.empty(3)
+    dndx = np.empty((3, 12))
+    G3 = np.empty((3, 12))
+    xo = np.empty(12)
+    coef_o = np.empty(4)
+    w_o = np.empty(3)
+    n_o = np.empty(3)
+    energy = 0.0
+    contact_force[:] = 0.0
+    if law == 1:
+        out_slip[:] = False
+    cnt = 0
+    for kp in range(n_near):
+        p = near[kp]
+        ei = pairs[p, 0]
+        ej = pairs[p, 1]
+        nodes = (edge_nodes[ei, 0], edge_nodes[ei, 1], edge_nodes[ej, 0], edge_nodes[ej, 1])
+        for k in range(4):
+            for m in range(3):
+                x[3 * k + m] = pos[nodes[k], m]
+                dofs[3 * k + m] = node_dofs[nodes[k], m]
+        two_h = radius_edge[ei] + radius_edge[ej]
+        dist = _edge_distance_grad_ws(x, grad, coef, w)
+        e, de, d2e = penalty_derivs(two_h - dist, sharpness, stiffness)
+        energy += e
+        for a in range(12):
+            force[dofs[a]] -= de * grad[a]
+        for m in range(3):
+            fn[m] = -de * (grad[m] + grad[3 + m])
+        fnorm = np.sqrt(fn[0] * fn[0] + fn[1] * fn[1] + fn[2] * fn[2])
+        contact_force[p] = fnorm
+        if mu <= 0.0 or fnorm <= 0.0:
+            continue
+        for m in range(3):
+            n[m] = fn[m] / fnorm
+        if law == 1:
+            if not anchor_known[p]:  # a new pair: its anchor from the step start
+                _pair_nodes(pos_old, pairs, p, edge_nodes, xo)
+                _fresh_anchor(xo, anchor[p], coef_o, w_o, n_o, nf, cw, u)
+                anchor_known[p] = True
+            e_f, slip, cnt = _anchor_friction(
+                x, anchor[p], anchor_slip[p], n, fnorm, mu, mu_k, k_t, 0.0, grad, dofs, False,
+                force, rows, cols, vals, cnt, cw, u, ft, nf, coef, dist, B, U, dndx, G3,
+                _cap_min(cap_floor, floor_mode, two_h, sharpness, anchor_slip[p]),
+            )  # fmt: skip
+            energy += e_f
+            out_slip[p] = slip
+            continue
+        cnt = _smooth_friction(
+            pos, pos_old, nodes, dofs, dt, n, fnorm, mu, fric_k, fric_c, vel_eps, False,
+            normal_derivative, de, d2e, grad, force, rows, cols, vals, cnt, vrel, Dm, Dp, vt,
+            ffr,
+        )  # fmt: skip
+    return energy, cnt
+
+
+@njit(cache=True, inline="always")
 def _smooth_friction(
     pos, pos_old, nodes, dofs, dt, n, fnorm, mu, fric_k, fric_c, vel_eps, jac,
-    normal_derivative, de, d2e, grad, force, rows, cols, vals, cnt, vrel, Dm, Dp,
+    normal_derivative, de, d2e, grad, force, rows, cols, vals, cnt, vrel, Dm, Dp, vt, ffr,
 ):  # fmt: skip
     """Regularised friction of one pair (coated-rod eqs. 11-12; see
     :func:`rodrod_assemble`): adds the force of the pair's ``nodes`` (4,) to ``force`` and,
-    if ``jac``, its Jacobian triplets from ``cnt`` on; ``vrel`` (3,), ``Dm`` and ``Dp``
-    (3, 3) are work arrays. Returns the new entry count."""
+    if ``jac``, its Jacobian triplets from ``cnt`` on; ``vrel``, ``vt``, ``ffr`` (3,),
+    ``Dm`` and ``Dp`` (3, 3) are work arrays (the tangential velocity and the friction
+    force written entry by entry, with the operations of the array expressions they
+    replace: no temporary arrays per pair). Returns the new entry count."""
     for m in range(3):
         vi = 0.5 * (pos[nodes[0], m] - pos_old[nodes[0], m])
         vi += 0.5 * (pos[nodes[1], m] - pos_old[nodes[1], m])
@@ -511,12 +638,15 @@ def _smooth_friction(
         vj += 0.5 * (pos[nodes[3], m] - pos_old[nodes[3], m])
         vrel[m] = (vi - vj) / dt
     vn = vrel[0] * n[0] + vrel[1] * n[1] + vrel[2] * n[2]
-    vt = vrel - vn * n
+    for m in range(3):
+        vt[m] = vrel[m] - vn * n[m]
     vtn_raw = np.sqrt(vt @ vt)
     vtn = np.sqrt(vtn_raw * vtn_raw + vel_eps * vel_eps)
     gam = _sigmoid(fric_k * (vtn_raw - fric_c))
     dgam = fric_k * gam * (1.0 - gam)
-    ffr = -gam * mu * fnorm * vt / vtn
+    c_fr = -gam * mu * fnorm
+    for m in range(3):
+        ffr[m] = c_fr * vt[m] / vtn
     sgn = (0.5, 0.5, -0.5, -0.5)
     for k in range(4):
         for m in range(3):
@@ -566,7 +696,7 @@ SLIP_GAP = 10.0
 _SIN2_PLANE = 0.0076
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _friction_normal(x, n, nf):
     """Normal ``nf`` (3,) of the friction's tangent plane: the normal m = e1 x e2/|e1 x e2|
     of the plane of the two edges (the contact normal of the two lines, also when the
@@ -600,7 +730,7 @@ def _friction_normal(x, n, nf):
     return cn
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _anchor_gap(x, anc, n, cw, u):
     """Tangential gap of an anchor: u = P_n (X_a - X_b) with the anchor's material points
     X_a = (1 - s_a) x1 + s_a x2 and X_b = (1 - s_b) x3 + s_b x4 (``anc`` = (s_a, s_b),
@@ -621,7 +751,7 @@ def _anchor_gap(x, anc, n, cw, u):
     return np.sqrt(un), dn
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _shift_anchor(x, anc, dd):
     """Move the anchor's parameters so that X_a - X_b changes by ``dd`` (3,) as nearly as
     the two edge directions allow: least squares ds_a e1 - ds_b e2 = dd with a tiny
@@ -654,7 +784,7 @@ def _shift_anchor(x, anc, dd):
     anc[1] = sb
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _normal_jacobian(x, coef, n, dist, B, U, dndx):
     """dn/dx (3, 12) of the pair's normal n = w/|w| (w = A x the gap vector of the
     closest points, ``coef`` its node weights): dw/dx = A - W U^-1 B^T, the closest-point
@@ -698,7 +828,7 @@ def _normal_jacobian(x, coef, n, dist, B, U, dndx):
             dndx[m, j] = (dndx[m, j] - proj * n[m]) / dist
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _plane_normal_jacobian(x, nf, cnorm, dndx):
     """dm/dx (3, 12) of m = c/|c|, c = e1 x e2 (see :func:`_friction_normal`):
     dc/dx1 = [e2]x, dc/dx2 = -[e2]x, dc/dx3 = -[e1]x, dc/dx4 = [e1]x ([a]x b = a x b),
@@ -732,7 +862,7 @@ def _plane_normal_jacobian(x, nf, cnorm, dndx):
             dndx[2, j] = sg * (col2 - proj * nf[2]) / cnorm
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _anchor_friction(
     x, anc, slipped, n, fnorm, mu_s, mu_k, k_t, cn, grad, dofs, jac,
     force, rows, cols, vals, cnt, cw, u, ft, nf, coef, dist, B, U, dndx, G, a_min,
@@ -821,7 +951,7 @@ def _anchor_friction(
     return e_f, slip, cnt
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _pair_normal(x, edge_i, edge_j, radius_edge, sharpness, stiffness, grad, coef, w, n):
     """|F_n| of the pair at ``x`` and its normal into ``n`` (the penalty force on edge i,
     as in :func:`rodrod_assemble`)."""
@@ -839,7 +969,7 @@ def _pair_normal(x, edge_i, edge_j, radius_edge, sharpness, stiffness, grad, coe
     return fnorm
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _fresh_anchor(x, anc, coef, w, n, nf, cw, u):
     """Anchor of a new pair from its nodes ``x`` (12,) at the step start: the material
     points where the two edges touch, i.e. the closest points of the segments moved along
@@ -859,7 +989,7 @@ def _fresh_anchor(x, anc, coef, w, n, nf, cw, u):
     _shift_anchor(x, anc, u)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _pair_nodes(pos, pairs, p, edge_nodes, x):
     """The 12 coordinates of pair p's nodes into ``x``; returns (e_i, e_j)."""
     ei = pairs[p, 0]
@@ -925,6 +1055,8 @@ def rodrod_anchor_commit(
     energy = 0.0
     for p in range(pairs.shape[0]):
         ei, ej = _pair_nodes(pos, pairs, p, edge_nodes, x)
+        if _beyond(x, radius_edge[ei] + radius_edge[ej] - z_cutoff / sharpness):
+            continue  # out of the penalty's reach by far (as rodrod_near)
         if sharpness * (radius_edge[ei] + radius_edge[ej] - edge_distance(x)) < z_cutoff:
             continue
         if not known[p]:
@@ -968,7 +1100,7 @@ def rodrod_anchor_commit(
 FLOOR_REF = 1e-2
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _cap_min(cap_floor, floor_mode, two_h, sharpness, slipped):
     """Floor a_min [m] of a pair's cap width: ``cap_floor`` (r_i + r_j) on every pair
     (``floor_mode`` 0) or on the pairs that slid at the last step (1); (``cap_floor`` /
@@ -983,7 +1115,7 @@ def _cap_min(cap_floor, floor_mode, two_h, sharpness, slipped):
     return penalty if floor_mode == 2 else min(radii, penalty)
 
 
-@njit(cache=True)
+@njit(cache=True, inline="always")
 def _next_gap(unorm, a, limit, slip, fnorm, mu_s, mu_k, k_t, a_full):
     """Anchor gap [m] after the commit under ``floor_mode`` 1 (the cap floored only on
     pairs that slid at the last step): a sliding pair at SLIP_GAP times the next step's
@@ -1189,3 +1321,15 @@ def pair_path_min_gap(pairs, edge_nodes, node_dofs, radius_edge, q_new, q_old, n
             if ratio < worst:
                 worst = ratio
     return worst
+
+
+@njit(cache=True)
+def gather_positions(q, node_dofs):
+    """The node positions ``q[node_dofs]`` (n_nodes, 3) as a new array (numpy's fancy
+    indexing of the (n_nodes, 3) index array, in one pass)."""
+    n = node_dofs.shape[0]
+    pos = np.empty((n, 3))
+    for i in range(n):
+        for m in range(3):
+            pos[i, m] = q[node_dofs[i, m]]
+    return pos

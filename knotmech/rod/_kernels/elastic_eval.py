@@ -30,3 +30,17 @@ def elastic_frames(
     _fr.transport_frames(t_old, d1_old, tangents, d1, d2)
     _fr.reference_twist(stencil_edge, tangents, d1, rt_old, ref_twist)
     _fr.material_frames(q, edge_dof0, d1, d2, m1, m2)
+
+
+@njit(cache=True)
+def elastic_frames_cs(
+    q, edge_dof0, stencil_edge, t_old, d1_old, rt_old, cos_old, sin_old, tangents, lengths, d1,
+    d2, ref_twist, m1, m2,
+):  # fmt: skip
+    """:func:`elastic_frames` with ``cos_old``, ``sin_old`` = cos, sin of ``rt_old``
+    (:func:`.frames.cos_sin`, once per step instead of once per Newton evaluation):
+    the same bits."""
+    _fr.edge_tangents(q, edge_dof0, tangents, lengths)
+    _fr.transport_frames(t_old, d1_old, tangents, d1, d2)
+    _fr.reference_twist_cs(stencil_edge, tangents, d1, rt_old, cos_old, sin_old, ref_twist)
+    _fr.material_frames(q, edge_dof0, d1, d2, m1, m2)

@@ -155,6 +155,43 @@ def reference_twist(stencil_edge, tangents, d1, ref_twist_old, ref_twist):
 
 
 @njit(cache=True)
+def cos_sin(a, c, s):
+    """c = cos(a), s = sin(a) entry by entry (the same libm calls as inside
+    :func:`reference_twist`)."""
+    for k in range(a.shape[0]):
+        c[k] = np.cos(a[k])
+        s[k] = np.sin(a[k])
+
+
+@njit(cache=True)
+def reference_twist_cs(stencil_edge, tangents, d1, ref_twist_old, cos_old, sin_old, ref_twist):
+    """:func:`reference_twist` with the cosines and sines of ``ref_twist_old`` given
+    (:func:`cos_sin`; they are the same for every Newton iterate of a step): the same
+    arithmetic, the same bits."""
+    for s in range(stencil_edge.shape[0]):
+        f = stencil_edge[s]
+        e = f - 1
+        tf0, tf1, tf2 = tangents[f, 0], tangents[f, 1], tangents[f, 2]
+        u0, u1, u2 = _transport(
+            d1[e, 0], d1[e, 1], d1[e, 2],
+            tangents[e, 0], tangents[e, 1], tangents[e, 2],
+            tf0, tf1, tf2,
+        )  # fmt: skip
+        a = ref_twist_old[s]
+        ca = cos_old[s]
+        sa = sin_old[s]
+        w0, w1, w2 = _cross(tf0, tf1, tf2, u0, u1, u2)
+        r0 = ca * u0 + sa * w0
+        r1 = ca * u1 + sa * w1
+        r2 = ca * u2 + sa * w2
+        v0, v1, v2 = d1[f, 0], d1[f, 1], d1[f, 2]
+        c0, c1, c2 = _cross(r0, r1, r2, v0, v1, v2)
+        sin_ = c0 * tf0 + c1 * tf1 + c2 * tf2
+        cos_ = r0 * v0 + r1 * v1 + r2 * v2
+        ref_twist[s] = a + np.arctan2(sin_, cos_)
+
+
+@njit(cache=True)
 def material_frames(q, edge_dof0, d1, d2, m1, m2):
     """Material directors m1 = cos(theta) d1 + sin(theta) d2, m2 = -sin d1 + cos d2 (B08 eq. 2)."""
     for k in range(edge_dof0.shape[0]):
