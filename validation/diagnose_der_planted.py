@@ -34,6 +34,10 @@ the engine models only ``static_friction``, :data:`knotmech.diagnose.der.DER_EFF
                   -> ``unexplained``: ``rate_dependent_friction`` is not modelled under the
                   DER baseline (one curve at the median speed)
 
+Measured (and which expectations were wrong: soft_contact is ``unexplained``, rate
+mostly ``undetermined``): ``docs/notes/diagnose-noise-and-statistics/issue26-campaign.md``
+section 13.
+
 Seeds start at :data:`SEED0` = 110000 (the campaign used 7000+ and 90000+, the oracle sets
 97000-102999, effect_recovery 0-5167 and 50000-70119).
 
