@@ -1,4 +1,4 @@
-"""The third generator of issue 26 (:mod:`validation.diagnose_der_planted`): DER capstan
+"""The third generator of issue 26 (:mod:`validation._diagnose_der_planted`): DER capstan
 runs with physics planted inside the simulation. Checks that it plants what it claims and
 that its seeds are fresh. Each DER run takes ~0.2 s (plus the numba compilation once).
 """
@@ -11,8 +11,8 @@ import pytest
 from knotmech.analytic.capstan import mu_eff
 from knotmech.diagnose.der import DERCurves
 from knotmech.errors import InputError
+from validation import _diagnose_der_planted as g
 from validation import diagnose_campaign as camp
-from validation import diagnose_der_planted as g
 from validation.diagnose_oracle_power import HELDOUT_SETS
 
 T_LOW = g.META["T_low_N"]

@@ -41,7 +41,7 @@ section 13.
 Seeds start at :data:`SEED0` = 110000 (the campaign used 7000+ and 90000+, the oracle sets
 97000-102999, effect_recovery 0-5167 and 50000-70119).
 
-    python -m validation.diagnose_der_planted [--full] [--reps N] [--null-reps N]
+    python -m validation._diagnose_der_planted [--full] [--reps N] [--null-reps N]
         [--out DIR] [--fresh]
 """
 
