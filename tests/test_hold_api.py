@@ -306,8 +306,9 @@ def test_a_table_with_a_bad_bending_scale_is_refused_in_one_line(tmp_path, bad):
 
 def test_the_shipped_table_nearest_the_ropes_kappa_answers(monkeypatch):
     """With tables shipped at several bending scales, hold takes the one nearest the rope's
-    kappa by ratio (nylon 0.01 -> the 0.01 table; kappa 0.2 -> the solid rod's, a factor 5
-    from 1 but 20 from 0.01, which is then refused as beyond the factor 3)."""
+    kappa by ratio (kappa 0.01 -> the 0.01 table; kappa 0.2 -> the solid rod's, a factor 5
+    from 1 but 20 from 0.01, which is then refused as beyond the factor 3); nylon's preset
+    kappa is read over its range (knotmech.verdict.kappa)."""
     import knotmech.verdict.der as h
 
     solid = h.shipped_hold_tables()["clove-hitch"]
@@ -323,8 +324,14 @@ def test_the_shipped_table_nearest_the_ropes_kappa_answers(monkeypatch):
     assert h.shipped_hold_table("clove-hitch", 0.2) is solid
     assert h.shipped_hold_table("cow-hitch", 0.01) is None
     kw = dict(rod_diameter=6e-3, post_diameter=40e-3, mu=0.5, load=200.0, material="nylon")
-    v = knotmech.hold("clove-hitch", **kw)
+    v = knotmech.hold("clove-hitch", bending_scale=0.01, **kw)
     assert v.decided_by == "DER-table" and v.der["table_bending_scale"] == 0.01
+    # the preset's kappa is read over its range 0.003-0.03: 0.003 is a factor 3.3 from the
+    # 0.01 table, so no table answers there and the tables do not decide
+    p = knotmech.hold("clove-hitch", **kw)
+    assert p.der["holds"] is None and p.der["refused"] == "bending_scale_range"
+    assert [r["table_bending_scale"] for r in p.der["kappa_range"]["readings"]] == [
+        0.01, 0.01, 0.01]  # fmt: skip
     w = knotmech.hold("clove-hitch", bending_scale=0.2, **kw)
     assert w.der["holds"] is None and w.der["table_bending_scale"] == 1.0
     assert w.der["refused"] == "bending_scale"  # a factor 5 from kappa 1

@@ -138,18 +138,30 @@ def test_shipped_both_legs_table_decides_a_nylon_girth_hitch():
     """knotmech/data/hold_phase_table_cow-hitch_kappa0.01_tlow0.5.json (75 runs, fibre rope,
     T_low = 0.5 T_high; every run that did not fail held): a 10 mm nylon girth hitch on a
     50 mm post (d/2R 0.1667, between the columns 0.1176 and 0.2308), mu 0.3, 1 kN on each
-    leg (0.051 EA, between 0.01 and 0.1 EA) holds by that table; at 5 kN (0.255 EA) the
-    runs at 0.3 EA failed in the solver (they stall in the settle), so it is undecided."""
+    leg (0.051 EA, between 0.01 and 0.1 EA), at kappa 0.01, holds by that table; at 5 kN
+    (0.255 EA) the runs at 0.3 EA failed in the solver (they stall in the settle), so it is
+    undecided. The preset's kappa range 0.003-0.03 also reads the kappa-0.03 table
+    (``_tlow0.5``, shipped in session 19), undecided here."""
     from knotmech.verdict.tables import load_hold_table_sets, load_legs_table_sets
 
     legs = load_legs_table_sets()["cow-hitch"][0.01][0.5]
     assert legs.t_low_fraction == 0.5 and len(legs.points) == 75
     assert 0.5 not in {t.t_low_fraction for t in load_hold_table_sets()["cow-hitch"].values()}
-    kw = dict(rod_diameter=0.01, post_diameter=0.05, mu=0.3, material="nylon")
+    kw = dict(rod_diameter=0.01, post_diameter=0.05, mu=0.3, material="nylon",
+              bending_scale=0.01)  # fmt: skip
     v = knotmech.hold("cow-hitch", load=1000, free_end_load=1000, **kw)
     assert v.holds is True and v.der["t_low_fraction_table"] == 0.5
     assert v.der["t_over_EA"] == pytest.approx(1000 / (0.25e9 * math.pi * 0.01**2 / 4), rel=1e-9)
     assert "(0.1176, 0.01, mu 0.3) held" in v.der["message"]
     assert v.capacity.slip.low == 1000 and math.isinf(v.capacity.slip.high)
+    p = knotmech.hold("cow-hitch", load=1000, free_end_load=1000,
+                      **{k: a for k, a in kw.items() if k != "bending_scale"})  # fmt: skip
+    r = {x["kappa"]: x for x in p.der["kappa_range"]["readings"]}
+    # kappa 0.03: the run at (0.2308, 0.1 EA, mu 0.3) failed, so undecided; kappa 0.003: no
+    # both-legs table within a factor 3 (the 0.003 one is not shipped): over the range, the
+    # tables do not decide
+    assert r[0.03]["table_bending_scale"] == 0.03 and r[0.03]["holds"] is None
+    assert r[0.003]["refused"] == "bending_scale" and r[0.01]["holds"] is True
+    assert p.der["refused"] == "bending_scale_range" and p.der["holds"] is None
     v = knotmech.hold("cow-hitch", load=5000, free_end_load=5000, **kw)
     assert v.holds is None and v.der["holds"] is None

@@ -236,10 +236,11 @@ def test_mu_from_the_material_and_post():
     is at 0.19. Two half hitches of 10 mm on 80 mm at 1 kN (d/2R 0.111, 0.0064 EA): the
     fibre-rope (kappa 0.01) table slips at mu 0.1 and 0.2 in every neighbouring column, so
     it slips at 0.19; from mu just above 0.2 the table's columns disagree and the thick nip
-    (locked above 0.169 at d/D 1/8) decides: it holds only above mu* = 0.205. The clove
-    hitch on the same post holds over the whole range."""
+    (locked above 0.169 at d/D 1/8) decides: it holds only above mu* = 0.205 (at kappa 0.01
+    given; over the preset's kappa range, undecided). The clove hitch on the same post holds
+    over the whole range."""
     v = knotmech.hold("two-half-hitches", rod_diameter=10e-3, post_diameter=80e-3, load=1000,
-                      material="polyester")  # fmt: skip
+                      material="polyester", bending_scale=0.01)  # fmt: skip
     f = v.friction
     assert f["range"] == [0.19, 0.25] and f["post_material"] == "steel"
     assert f["default_post_material"] is True and "Delaney" in f["source"]
@@ -248,6 +249,13 @@ def test_mu_from_the_material_and_post():
     assert f["words"] == "holds only for mu above mu* = 0.205 (range 0.19-0.25)"
     nip = next(a for a in v.answers if a.model == "thick-nip")
     assert 0.16 < nip.critical_mu < 0.19 < f["critical_mu"] < 0.21
+    # over the preset's kappa range 0.003-0.03 no two-half-hitches table answers at 0.003:
+    # the kappa-0.01 table's slip at 0.19 still keeps the thick nip from deciding
+    r = knotmech.hold("two-half-hitches", rod_diameter=10e-3, post_diameter=80e-3, load=1000,
+                      material="polyester")  # fmt: skip
+    assert r.holds is None and r.der["refused"] == "bending_scale_range"
+    nip = next(a for a in r.answers if a.model == "thick-nip")
+    assert not nip.inside_validity and "say it slips" in nip.validity[-1]
     c = knotmech.hold("clove-hitch", rod_diameter=10e-3, post_diameter=80e-3, load=1000,
                       material="polyester")  # fmt: skip
     assert c.holds is True and c.friction["words"] == "holds for any mu in [0.19, 0.25]"

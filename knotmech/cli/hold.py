@@ -377,7 +377,7 @@ def format_verdict(verdict, *, verbose: bool = False) -> str:
     if verdict.creep is not None:
         lines.append(format_creep(verdict.creep))
     der = verdict.der or {}
-    if not verbose and der.get("refused") in ("bending_scale", "rod"):
+    if not verbose and der.get("refused") in ("bending_scale", "rod", "bending_scale_range"):
         lines.append(f"DER: undecided, {der['message']}")
     if verdict.next_step and verdict.holds is not None:
         lines.append(verdict.next_step)

@@ -135,12 +135,22 @@ class Verdict:
 
     def _undecided_why(self) -> str:
         """Why no model decides, for the first line: the DER table's neighbouring runs that
-        contradict each other in mu are named (:meth:`HoldTable.against_mu`)."""
+        contradict each other in mu are named (:meth:`HoldTable.against_mu`), and the tables'
+        answer at each kappa of the rope's range when it depends on kappa
+        (:mod:`knotmech.verdict.kappa`)."""
+        from knotmech.verdict.kappa import RANGE_REFUSAL
         from knotmech.verdict.tables import AGAINST_MU
 
+        der = self.der or {}
         why = "no model inside its validity decides"
-        if AGAINST_MU in str((self.der or {}).get("message", "")):
+        if AGAINST_MU in str(der.get("message", "")):
             why += f"; the DER table's neighbouring runs {AGAINST_MU}"
+        if der.get("refused") == RANGE_REFUSAL:
+            rng = der["kappa_range"]
+            what = ("' answer depends on the rope's bending stiffness over its" if rng["depends"]
+                    else " do not answer at every kappa of the rope's")  # fmt: skip
+            why += (f"; the DER tables{what} estimated range kappa "
+                    f"{rng['range'][0]:g}-{rng['range'][1]:g} ({rng['words']})")  # fmt: skip
         return why
 
     def _unknown_friction_summary(self, f: dict) -> str:

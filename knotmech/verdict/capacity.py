@@ -33,6 +33,8 @@ __all__ = [
     "bisect_slip",
     "capacity_of",
     "column_bracket",
+    "legs_band",
+    "merge_bands",
     "slip_from_answers",
     "slip_from_table",
 ]
@@ -373,6 +375,32 @@ def band_newtons(row, EA: float) -> LoadBand | None:
 def _clamped(value: float, low: float, high: float, source: str) -> LoadBand:
     """A band with its value inside it (interpolation in logarithms may step an ulp out)."""
     return LoadBand(min(max(value, low), high), low, high, source)
+
+
+def merge_bands(bands: list, kappas: list):
+    """One slip band over the kappa range from each table's
+    :class:`~knotmech.verdict.capacity.LoadBand` (None if any is None): the lowest value,
+    from the lowest low to the highest high."""
+    if not bands or any(b is None for b in bands):
+        return None
+    if len(bands) == 1:
+        return bands[0]
+    value = min(b.value for b in bands)
+    low, high = min(b.low for b in bands), max(b.high for b in bands)
+    ks = ", ".join(f"{k:g}" for k in kappas)
+    src = f"{bands[0].source}; over the rope's kappa range: tables at kappa {ks}"
+    value = min(max(value, low), high) if math.isfinite(value) else value
+    return LoadBand(value, low, high, src)
+
+
+def legs_band(holds: bool, load: float):
+    """The slip load of the cow hitch on both legs as far as the DER tables decide it: at or
+    above ``load`` [N] when it holds, at or below it when it slips (the tables run at fixed
+    T_low / T_high, so no band along the load at the user's ratio)."""
+    src = "the DER tables of the cow hitch on both legs"
+    if holds:
+        return LoadBand(math.inf, float(load), math.inf, src)
+    return LoadBand(float(load), 0.0, float(load), src)
 
 
 def agree_with_verdict(slip: LoadBand | None, holds, load: float) -> LoadBand | None:

@@ -23,6 +23,7 @@ from knotmech.verdict.friction import (
     unknown_friction_verdict,
 )
 from knotmech.verdict.inputs import STRAIN_LIMIT, _bending_scale, _warnings, _youngs_modulus
+from knotmech.verdict.kappa import RANGE_REFUSAL, against_readings, over_range
 from knotmech.verdict.rule import decide, with_validity
 from knotmech.verdict.scope import BENDS, can_simulate, has_der_answer, knot_key
 
@@ -361,17 +362,20 @@ def _critical_mu(c, v: Verdict) -> tuple:
     if dec is None:
         return math.nan, "no model inside its validity gives one"
     if dec.model == "DER-table":
-        table = _slip_table(c, v.der)
-        if table is not None:
+        tables = _slip_tables(c, v.der)
+        if tables:
             x, y = c.d / (c.D + c.d), c.load / (c.E * math.pi * c.d * c.d / 4)
             lim = CREEP_LIMIT if c.creep_limit is None else c.creep_limit
             mr = None if c.mu_rr is None else float(c.mu_rr)
 
-            def ask(m):
-                return table.lookup(x, y, mu=m, mu_rr=mr if mr is not None else m,
-                                    creep_limit=lim)  # fmt: skip
+            def ask(m):  # over a kappa range: holds where every table holds
+                return _Said.every([t.lookup(x, y, mu=m, mu_rr=mr if mr is not None else m,
+                                             creep_limit=lim).holds for t in tables])  # fmt: skip
 
-            return critical_mu(ask, {c.mu: ask(c.mu)}, what="the DER table's verdict")
+            what = "the DER table's verdict" + (
+                "" if len(tables) == 1 else " at every kappa of the rope's range"
+            )
+            return critical_mu(ask, {c.mu: ask(c.mu)}, what=what)
     if dec.model.startswith("DER"):
         return math.nan, f"not searched for the {dec.model} answer"
     m = float(dec.critical_mu)
@@ -379,6 +383,20 @@ def _critical_mu(c, v: Verdict) -> tuple:
     if math.isinf(m):
         return m, f"the {dec.model} model's: no friction coefficient holds it{tag}"
     return m, f"the {dec.model} model's{tag}"
+
+
+@dataclass(frozen=True)
+class _Said:
+    """A table's holds (True, False or None) as the critical-mu search reads a verdict."""
+
+    holds: bool | None
+
+    @classmethod
+    def every(cls, said: list) -> _Said:
+        """Holds where every answer holds, slips where one slips, else undecided."""
+        if all(h is True for h in said):
+            return cls(True)
+        return cls(False if any(h is False for h in said) else None)
 
 
 @dataclass
@@ -585,6 +603,19 @@ def _slip_table(c: _Case, der):
     return t
 
 
+def _slip_tables(c: _Case, der) -> list:
+    """The DER hold tables that give this case's slip load: :func:`_slip_table`'s, and over
+    the preset's kappa range (``der["kappa_range"]``) every table read there, ascending."""
+    from knotmech.verdict.der import shipped_hold_table
+
+    t = _slip_table(c, der)
+    rng = (der or {}).get("kappa_range")
+    if t is None or not rng:
+        return [] if t is None else [t]
+    ks = sorted({r["table_bending_scale"] for r in rng["readings"]})
+    return [shipped_hold_table(c.key, k) for k in ks]
+
+
 def _capacity(c: _Case, answers: list, der):
     """The load the knot takes (:func:`knotmech.verdict.capacity.capacity_of`): the slip load
     from the DER hold table at the user's d/2R and friction, else from the deciding closed
@@ -594,13 +625,14 @@ def _capacity(c: _Case, answers: list, der):
 
     EA = math.nan if c.E is None else c.E * math.pi * c.d * c.d / 4
     slip = None
-    table = _slip_table(c, der)
-    if table is not None:
+    tables = _slip_tables(c, der)
+    if tables:
         lim = CREEP_LIMIT if c.creep_limit is None else c.creep_limit
-        row = _cap.slip_from_table(table, x=c.d / (c.D + c.d), mu=c.mu,
-                                   mu_rr=None if c.mu_rr is None else float(c.mu_rr),
-                                   creep_limit=lim)  # fmt: skip
-        slip = _cap.band_newtons(row, EA)
+        rows = [_cap.slip_from_table(t, x=c.d / (c.D + c.d), mu=c.mu,
+                                     mu_rr=None if c.mu_rr is None else float(c.mu_rr),
+                                     creep_limit=lim) for t in tables]  # fmt: skip
+        slip = _cap.merge_bands([_cap.band_newtons(r, EA) for r in rows],
+                           [t.bending_scale for t in tables])  # fmt: skip
     if c.bisect and c.free == 0 and math.isfinite(EA) and (der or {}).get("holds") is not None:
         # the DER's own evidence only (the table and the runs), not a closed form's bound
         slip = _cap.agree_with_verdict(slip, bool(der["holds"]), c.load)
@@ -614,21 +646,9 @@ def _capacity(c: _Case, answers: list, der):
     slip = _cap.better_slip(slip, closed)
     dec = next((a for a in answers if a.decides), None)
     if slip is None and c.free > 0 and dec is not None and dec.model == "DER-table":
-        slip = _legs_band(dec.holds, c.load)
+        slip = _cap.legs_band(dec.holds, c.load)
     slip = _cap.agree_with_verdict(slip, None if dec is None else dec.holds, c.load)
     return _cap.capacity_of(knot=c.key, slip=slip, material=c.mat, d=c.d, D=c.D, load=c.load)
-
-
-def _legs_band(holds: bool, load: float):
-    """The slip load of the cow hitch on both legs as far as the DER tables decide it: at or
-    above ``load`` [N] when it holds, at or below it when it slips (the tables run at fixed
-    T_low / T_high, so no band along the load at the user's ratio)."""
-    from knotmech.verdict.capacity import LoadBand
-
-    src = "the DER tables of the cow hitch on both legs"
-    if holds:
-        return LoadBand(math.inf, float(load), math.inf, src)
-    return LoadBand(float(load), 0.0, float(load), src)
 
 
 def _bisected(c: _Case, slip, EA: float, der: dict):
@@ -748,25 +768,50 @@ def _der_part(c: _Case, answers: list, assumptions: list, cmd: str):
             "holds": None,
             "message": "not consulted: the DER tables are in T_high/EA and E was not given",
         }, None, None  # fmt: skip
-    from knotmech.verdict.der import der_answer
-
     ideal = next((a.holds for a in answers if a.model == "ideal-rope"), None)
-    der, answer, creep, shape = der_answer(
-        knot=c.key, d=c.d, D=c.D, mu=c.mu, mu_rr=c.mu if c.mu_rr is None else float(c.mu_rr),
-        load=c.load, E=c.E, simulate=c.simulate, phase_table=c.phase_table,
-        progress=c.progress, ideal_holds=ideal, creep_limit=c.creep_limit,
-        bending_scale=c.kappa, command=cmd, density=None if c.mat is None else c.mat.density,
-        free_end_load=c.free,
-    )  # fmt: skip
+    der, answer, creep, shape = _ask_der(c, ideal, cmd, c.kappa)
+    rng = _kappa_range(c)
+    if rng is not None:
+        der, answer = over_range(lambda k: _ask_der(c, ideal, cmd, k)[:2], der, answer,
+                                 nominal=c.kappa, low=rng[0], high=rng[1])  # fmt: skip
+        answers[:] = against_readings(answers, der)
     if answer is not None:
         answers.append(answer)
     return der, creep, shape
+
+
+def _ask_der(c: _Case, ideal, cmd: str, kappa: float):
+    """The DER answer of ``c`` at bending scale ``kappa``: (details, answer, creep, shape)."""
+    from knotmech.verdict.der import der_answer
+
+    return der_answer(
+        knot=c.key, d=c.d, D=c.D, mu=c.mu, mu_rr=c.mu if c.mu_rr is None else float(c.mu_rr),
+        load=c.load, E=c.E, simulate=c.simulate, phase_table=c.phase_table,
+        progress=c.progress, ideal_holds=ideal, creep_limit=c.creep_limit,
+        bending_scale=kappa, command=cmd, density=None if c.mat is None else c.mat.density,
+        free_end_load=c.free,
+    )  # fmt: skip
+
+
+def _kappa_range(c: _Case):
+    """(low, high) of the preset's estimated kappa when the shipped tables answer at the
+    preset's kappa (:mod:`knotmech.verdict.kappa`), else None: a kappa the user gives, a
+    simulation (it runs at one kappa), a table the user names, or a preset without a range."""
+    if c.bending_scale is not None or c.mat is None or c.simulate or c.phase_table is not None:
+        return None
+    lo, hi = (float(v) for v in c.mat.bending_scale_range)
+    return None if lo == hi else (lo, hi)
 
 
 def _next_step(c: _Case, dec, der, cmd: str, cap=None) -> str:
     """What to do next: the command that decides an undecided case, the input that lets the
     DER answer, the runs that find an unbounded slip load, or the run that checks a case the
     DER did not decide."""
+    if dec is None and (der or {}).get("refused") == RANGE_REFUSAL:
+        return (
+            "next: give --bending-scale (bending_scale=) for a measured rope; "
+            + (f"{cmd} runs at the preset's kappa {c.kappa:g}" if c.simulable else "")
+        ).removesuffix("; ")
     if dec is None:
         return _undecided_step(c, cmd, cap)
     if has_der_answer(c.key) and c.free == 0 and c.E is None:

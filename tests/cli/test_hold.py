@@ -452,7 +452,8 @@ def test_nylon_rope_is_answered_by_the_kappa_001_table(capsys):
     neighbours disagree (the 0.1 EA points at d/2R 0.2308 change topology): the DER is
     undecided with --simulate and thick-nip decides (inside its validity). 50 N (0.0071 EA)
     lies inside: the table's eight neighbours (d/2R 0.1176, 0.2308 x 1e-3, 1e-2 EA x mu 0.3,
-    0.5) held, and it decides."""
+    0.5) held, and it decides at kappa 0.01 given; over the preset's kappa range the
+    kappa-0.03 table is undecided there and the thick nip decides."""
     assert main(ISSUE + ["--material", "nylon"]) == 0
     out = capsys.readouterr().out
     # the thick nip holds up to its validity's 0.1 EA = 707 N; the 3-strand nylon MBS 5.95 kN
@@ -470,10 +471,17 @@ def test_nylon_rope_is_answered_by_the_kappa_001_table(capsys):
     assert "(0.2308, 0.1, mu 0.3) slipped, topology changed" in data["der"]["message"]
     assert data["der"]["holds"] is None and "refused" not in data["der"]
     assert data["der"]["table_bending_scale"] == 0.01 and data["inputs"]["bending_scale"] == 0.01
-    light = _json([a if a != "200N" else "50N" for a in ISSUE] + ["--material", "nylon"], capsys)
+    light = _json([a if a != "200N" else "50N" for a in ISSUE]
+                  + ["--material", "nylon", "--bending-scale", "0.01"], capsys)  # fmt: skip
     assert light["holds"] is True and light["decided_by"] == "DER-table"
     assert light["der"]["table_bending_scale"] == 0.01 and light["der"]["rule"] == "grid"
     assert light["creep"]["time_scale"] == pytest.approx(0.888, rel=1e-3)
+    # over the preset's range (kappa 0.003-0.03) the kappa-0.03 table is undecided at 50 N
+    # (its neighbours disagree) and none says otherwise: the thick nip decides, holds
+    rng = _json([a if a != "200N" else "50N" for a in ISSUE] + ["--material", "nylon"], capsys)
+    assert rng["holds"] is True and rng["decided_by"] == "thick-nip"
+    said = [r["holds"] for r in rng["der"]["kappa_range"]["readings"]]
+    assert said == [True, True, None] and rng["der"]["refused"] == "bending_scale_range"
     # --bending-scale 0.5 is within a factor 3 of the table's 1: the table answers
     half = _json(ISSUE05 + ["--material", "nylon", "--bending-scale", "0.5"], capsys)
     assert "refused" not in half["der"] and half["inputs"]["bending_scale"] == 0.5

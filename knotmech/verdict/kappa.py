@@ -1,0 +1,121 @@
+"""The DER table answer over a rope's estimated bending scale (issue 23).
+
+A material preset's bending scale kappa (:mod:`knotmech.materials`) is an estimate with a
+range (nylon and polyester 0.01, range 0.003-0.03; HMPE 0.005-0.05), and the hold tables'
+answers depend on kappa inside such a range: of 20 clove-hitch points at mu 0.3 and 0.5,
+d/2R 0.048 and 0.118, T_high/EA 1e-4 to 0.3, the runs at kappa 0.003 agree with the
+kappa-0.01 table on 15 and those at 0.03 on 17 (``python -m validation._hold_kappa_check
+clove-hitch``; the softer rope slips at 0.1-0.3 EA where 0.01 held).
+
+So when kappa comes from a preset, not from ``--bending-scale``, the table answer stands
+only if the tables read at the range's ends and at its nominal value all give it (each
+table nearest its kappa, within :data:`~knotmech.verdict.der.BENDING_SCALE_FACTOR`);
+otherwise the DER does not decide, the details list each kappa's answer, and a closed form
+that one of those tables contradicts does not decide either (:func:`against_readings`:
+none of them knows the rope's bending stiffness). The slip load is then the band over
+those tables (:func:`knotmech.verdict.capacity.merge_bands`): its lowest value, from the
+lowest low to the highest high.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+
+__all__ = ["RANGE_REFUSAL", "against_readings", "over_range", "range_points"]
+
+#: ``der["refused"]`` when the tables disagree over the rope's kappa range
+RANGE_REFUSAL = "bending_scale_range"
+
+
+def range_points(nominal: float, low: float, high: float) -> tuple:
+    """The kappas the table answer is read at: the range's ends and its nominal value,
+    ascending, each once."""
+    return tuple(sorted({float(low), float(nominal), float(high)}))
+
+
+def _word(holds) -> str:
+    return "holds" if holds is True else ("slips" if holds is False else "undecided")
+
+
+def _reading(k: float, der: dict, answer) -> dict:
+    """One kappa's table answer as the details list it."""
+    return {
+        "kappa": k,
+        "table_bending_scale": der.get("table_bending_scale"),
+        "holds": None if answer is None else bool(answer.holds),
+        "refused": der.get("refused"),
+        "message": der.get("message", ""),
+    }
+
+
+def _say(r: dict) -> str:
+    tk = r["table_bending_scale"]
+    if r["refused"] == "bending_scale":
+        return f"kappa {r['kappa']:g}: no table within a factor 3"
+    table = "" if tk is None or tk == r["kappa"] else f" (table at {tk:g})"
+    return f"kappa {r['kappa']:g}{table}: {_word(r['holds'])}"
+
+
+def over_range(ask, der: dict, answer, *, nominal: float, low: float, high: float):
+    """The table answer ``(der, answer)`` at the ``nominal`` kappa, checked over
+    [``low``, ``high``]: ``ask(kappa)`` gives ``(der, answer)`` at another kappa.
+
+    Returns ``(der, answer)``: unchanged but for ``der["kappa_range"]`` and one more validity
+    line when every kappa gives the same answer; else ``answer`` None and ``der`` undecided
+    (``refused`` :data:`RANGE_REFUSAL`, ``message`` naming each kappa's answer). A nominal
+    answer that does not decide, or that is not a table's, is returned as it is.
+    """
+    if answer is None or der.get("source") != "table":
+        return der, answer
+    readings = []
+    for k in range_points(nominal, low, high):
+        d, a = (der, answer) if k == float(nominal) else ask(k)
+        readings.append(_reading(k, d, a))
+    der = dict(der)
+    agree = all(r["holds"] is bool(answer.holds) for r in readings)
+    der["kappa_range"] = {"range": [float(low), float(high)], "nominal": float(nominal),
+                          "readings": readings, "agree": agree}  # fmt: skip
+    said = "; ".join(_say(r) for r in readings)
+    der["kappa_range"]["words"] = said
+    if agree:
+        text = (f"the same at every kappa of the rope's estimated range {low:g}-{high:g} "
+                f"({said})")  # fmt: skip
+        return der, replace(answer, validity=tuple(answer.validity) + (text,))
+    said_both = {True, False} <= {r["holds"] for r in readings}
+    der["kappa_range"]["depends"] = said_both
+    why = (
+        "the answer depends on the rope's bending stiffness inside its estimated range"
+        if said_both
+        else "no answer at every kappa of the rope's estimated range"
+    )
+    der.update(
+        holds=None,
+        refused=RANGE_REFUSAL,
+        message=(
+            f"not decided by the tables: {why} kappa {low:g}-{high:g} ({said}); give "
+            "--bending-scale (bending_scale=) for a measured rope"
+        ),
+    )
+    return der, None
+
+
+def against_readings(answers: list, der: dict) -> list:
+    """The closed forms' ``answers``, each taken outside its validity where a DER table read
+    over the rope's kappa range says otherwise (when the tables do not decide over the range:
+    :data:`RANGE_REFUSAL`). A closed form knows no bending stiffness; where the DER shows
+    the answer changing with it, or answers the other way at a kappa of the range, the
+    closed form does not decide instead."""
+    from knotmech.verdict.rule import with_validity
+
+    if (der or {}).get("refused") != RANGE_REFUSAL:
+        return list(answers)
+    said = [r for r in der["kappa_range"]["readings"] if r["holds"] is not None]
+    out = []
+    for a in answers:
+        against = [r for r in said if a.holds is not None and r["holds"] is not bool(a.holds)]
+        if a.inside_validity and against:
+            ks = ", ".join(f"{r['kappa']:g}" for r in against)
+            a = with_validity(a, False, f"the DER tables at kappa {ks} of the rope's range say "
+                              f"it {_word(against[0]['holds'])}")  # fmt: skip
+        out.append(a)
+    return out
