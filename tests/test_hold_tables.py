@@ -267,3 +267,8 @@ def test_critical_load_figure_reads_the_tables_bands():
     dD, lo, hi = b[0.3][2]
     assert dD == pytest.approx(0.1176 / (1 - 0.1176), rel=1e-12)
     assert (lo, hi) == (0.3, math.inf)
+    # the fibre clove hitch on the paper's column at mu 0.3, by kappa (session 19 tables):
+    # held to 0.3 EA at kappa 0.03 and 0.01, slipped between 0.01 and 0.1 EA at 0.003
+    for kappa, band in ((0.03, (0.3, math.inf)), (0.01, (0.3, math.inf)), (0.003, (0.01, 0.1))):
+        rows = fig.bands(tabs[f"clove-hitch (fibre rope, kappa {kappa:g})"])[0.3]
+        assert rows[2][1:] == band, kappa

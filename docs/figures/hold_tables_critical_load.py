@@ -1,5 +1,5 @@
 """The critical load of every shipped hold table over (d/D, mu): the clove-hitch paper's Fig. 4
-for each hitch, solid rod and fibre rope (issue 23, item 4).
+for each hitch, solid rod and fibre rope at each shipped kappa (issue 23, item 4).
 
 For each table, each friction mu = mu_rr and each d/2R column, the slip band is the
 bracket :func:`knotmech.verdict.capacity.column_bracket` reads (the slip load's band of
@@ -52,18 +52,20 @@ def bands(table) -> dict:
 
 
 def tables() -> dict:
-    """{title: table} of every shipped hold table, solid rods first."""
+    """{title: table} of every shipped hold table: solid rods first, then the fibre-rope
+    tables of each knot from the stiffest kappa to the softest."""
     out = {}
     sets = load_hold_table_sets()
-    for kappa in (1.0, 0.01):
-        for knot in sorted(sets):
-            if kappa in sets[knot]:
-                rope = "solid rod" if kappa == 1.0 else f"fibre rope, kappa {kappa:g}"
-                out[f"{knot} ({rope})"] = sets[knot][kappa]
+    for knot in sorted(sets):
+        if 1.0 in sets[knot]:
+            out[f"{knot} (solid rod)"] = sets[knot][1.0]
+    for knot in sorted(sets):
+        for kappa in sorted((k for k in sets[knot] if k != 1.0), reverse=True):
+            out[f"{knot} (fibre rope, kappa {kappa:g})"] = sets[knot][kappa]
     for knot, by_kappa in sorted(load_legs_table_sets().items()):
         for kappa, by_f in sorted(by_kappa.items()):
             for f, t in sorted(by_f.items()):
-                out[f"{knot}, both legs, T_low = {f:g} T_high (kappa {kappa:g})"] = t
+                out[f"{knot}, both legs, T_low {f:g} T_high (kappa {kappa:g})"] = t
     return out
 
 
