@@ -140,8 +140,8 @@ def test_shipped_both_legs_table_decides_a_nylon_girth_hitch():
     50 mm post (d/2R 0.1667, between the columns 0.1176 and 0.2308), mu 0.3, 1 kN on each
     leg (0.051 EA, between 0.01 and 0.1 EA), at kappa 0.01, holds by that table; at 5 kN
     (0.255 EA) the runs at 0.3 EA failed in the solver (they stall in the settle), so it is
-    undecided. The preset's kappa range 0.003-0.03 also reads the kappa-0.03 table
-    (``_tlow0.5``, shipped in session 19), undecided here."""
+    undecided. The preset's kappa range 0.003-0.03 also reads the kappa-0.003 and 0.03
+    tables (``_tlow0.5``, shipped in session 19): 0.003 holds, 0.03 is undecided here."""
     from knotmech.verdict.tables import load_hold_table_sets, load_legs_table_sets
 
     legs = load_legs_table_sets()["cow-hitch"][0.01][0.5]
@@ -157,11 +157,12 @@ def test_shipped_both_legs_table_decides_a_nylon_girth_hitch():
     p = knotmech.hold("cow-hitch", load=1000, free_end_load=1000,
                       **{k: a for k, a in kw.items() if k != "bending_scale"})  # fmt: skip
     r = {x["kappa"]: x for x in p.der["kappa_range"]["readings"]}
-    # kappa 0.03: the run at (0.2308, 0.1 EA, mu 0.3) failed, so undecided; kappa 0.003: no
-    # both-legs table within a factor 3 (the 0.003 one is not shipped): over the range, the
-    # tables do not decide
+    # kappa 0.03: the run at (0.2308, 0.1 EA, mu 0.3) failed, so undecided; kappa 0.003 and
+    # 0.01 hold: over the range, the tables do not decide (and nothing else does)
     assert r[0.03]["table_bending_scale"] == 0.03 and r[0.03]["holds"] is None
-    assert r[0.003]["refused"] == "bending_scale" and r[0.01]["holds"] is True
+    assert r[0.003]["table_bending_scale"] == 0.003 and r[0.003]["holds"] is True
+    assert r[0.01]["holds"] is True
     assert p.der["refused"] == "bending_scale_range" and p.der["holds"] is None
+    assert p.holds is None
     v = knotmech.hold("cow-hitch", load=5000, free_end_load=5000, **kw)
     assert v.holds is None and v.der["holds"] is None
