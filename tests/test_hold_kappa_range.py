@@ -164,3 +164,16 @@ def test_the_tables_critical_mu_holds_at_every_kappa_of_the_range(shipped):
     assert "at every kappa of the rope's range" in v.friction["model_critical_mu_text"]
     one = knotmech.hold("clove-hitch", load=3e-3 * EA, bending_scale=0.01, **{**Q, "mu": 0.5})
     assert one.decided_by == "DER-table" and one.friction["model_critical_mu"] < 0.2
+
+
+def test_no_table_band_when_a_range_end_has_no_table(shipped):
+    """The kappa-0.01 table alone (nylon's 0.003 a factor 3.3 from it): even where the
+    tables' answer is undecided anyway, the slip band does not come from that table (it
+    would hold at one kappa only); with --bending-scale 0.01 it does."""
+    shipped(_table(0.01, 1e-2))
+    v, d = _der(3e-4 * EA)
+    assert d["refused"] == RANGE_REFUSAL
+    assert v.capacity.slip is None or "DER clove-hitch hold table" not in v.capacity.slip.source
+    one = knotmech.hold("clove-hitch", load=3e-4 * EA, bending_scale=0.01, **Q).capacity.slip
+    assert "DER clove-hitch hold table" in one.source
+    assert (one.low, one.high) == pytest.approx((1e-2 * EA, 0.1 * EA), rel=1e-12)

@@ -604,16 +604,25 @@ def _slip_table(c: _Case, der):
 
 
 def _slip_tables(c: _Case, der) -> list:
-    """The DER hold tables that give this case's slip load: :func:`_slip_table`'s, and over
-    the preset's kappa range (``der["kappa_range"]``) every table read there, ascending."""
-    from knotmech.verdict.der import shipped_hold_table
+    """The DER hold tables that give this case's slip load: :func:`_slip_table`'s and, over
+    the preset's kappa range (:func:`_kappa_range`), the table nearest each of its ends and
+    its nominal kappa, ascending; none when a range end has no table within
+    :data:`~knotmech.verdict.der.BENDING_SCALE_FACTOR` (the band would hold at one kappa
+    only)."""
+    from knotmech.verdict.der import BENDING_SCALE_FACTOR, shipped_hold_table
+    from knotmech.verdict.kappa import range_points
 
     t = _slip_table(c, der)
-    rng = (der or {}).get("kappa_range")
-    if t is None or not rng:
+    rng = _kappa_range(c)
+    if t is None or rng is None:
         return [] if t is None else [t]
-    ks = sorted({r["table_bending_scale"] for r in rng["readings"]})
-    return [shipped_hold_table(c.key, k) for k in ks]
+    out = {}
+    for k in range_points(c.kappa, *rng):
+        tk = shipped_hold_table(c.key, k)
+        if tk is None or max(tk.bending_scale / k, k / tk.bending_scale) > BENDING_SCALE_FACTOR:
+            return []
+        out[tk.bending_scale] = tk
+    return [out[k] for k in sorted(out)]
 
 
 def _capacity(c: _Case, answers: list, der):
