@@ -120,26 +120,27 @@ def test_a_range_end_without_a_table_within_a_factor_3_is_undecided(shipped):
 def test_the_slip_load_is_the_band_over_the_range_tables(shipped):
     """At 3e-4 EA every table held (1e-4 and 1e-3 EA). The kappa-0.003 table slipped above
     1e-3 EA, the 0.01 and 0.03 tables above 1e-2 EA: the slip band runs from the softest's
-    1e-3 EA to the others' 0.1 EA, at the softest's value (the geometric mid-point of 1e-3
-    and 1e-2 EA); with --bending-scale 0.01 the 0.01 table's own band."""
+    1e-3 EA to the others' 0.1 EA, at the nominal kappa-0.01 table's value (the geometric
+    mid-point of 1e-2 and 0.1 EA); with --bending-scale 0.01 the 0.01 table's own band."""
     shipped(_table(0.003, 1e-3), _table(0.01, 1e-2), _table(0.03, 1e-2))
     v, d = _der(3e-4 * EA)
     assert d["kappa_range"]["agree"] is True and d["holds"] is True
     slip = v.capacity.slip
     assert (slip.low, slip.high) == pytest.approx((1e-3 * EA, 0.1 * EA), rel=1e-12)
-    assert slip.value == pytest.approx(math.sqrt(1e-5) * EA, rel=1e-12)
+    assert slip.value == pytest.approx(math.sqrt(1e-3) * EA, rel=1e-12)
     assert "over the rope's kappa range: tables at kappa 0.003, 0.01, 0.03" in slip.source
     one = knotmech.hold("clove-hitch", load=3e-4 * EA, bending_scale=0.01, **Q).capacity.slip
     assert (one.low, one.high) == pytest.approx((1e-2 * EA, 0.1 * EA), rel=1e-12)
     assert "kappa range" not in one.source
 
 
-def test_merge_bands_takes_the_lowest_value_and_the_widest_band():
+def test_merge_bands_takes_the_nominal_value_and_the_widest_band():
     from knotmech.verdict.capacity import LoadBand
 
     a, b = LoadBand(10.0, 5.0, 20.0, "soft"), LoadBand(40.0, 20.0, 80.0, "stiff")
-    m = merge_bands([a, b], [0.003, 0.03])
-    assert (m.value, m.low, m.high) == (10.0, 5.0, 80.0)
+    m = merge_bands([a, b], [0.003, 0.03], nominal=0.03)
+    assert (m.value, m.low, m.high) == (40.0, 5.0, 80.0)
+    assert merge_bands([a, b], [0.003, 0.03]).value == 10.0  # no nominal: the lowest
     assert merge_bands([a, None], [0.003, 0.03]) is None
     assert merge_bands([b], [0.01]) is b
 

@@ -138,15 +138,14 @@ class Verdict:
         contradict each other in mu are named (:meth:`HoldTable.against_mu`), and the tables'
         answer at each kappa of the rope's range when it depends on kappa
         (:mod:`knotmech.verdict.kappa`)."""
-        from knotmech.verdict.kappa import RANGE_REFUSAL
         from knotmech.verdict.tables import AGAINST_MU
 
         der = self.der or {}
         why = "no model inside its validity decides"
         if AGAINST_MU in str(der.get("message", "")):
             why += f"; the DER table's neighbouring runs {AGAINST_MU}"
-        if der.get("refused") == RANGE_REFUSAL:
-            rng = der["kappa_range"]
+        rng = der.get("kappa_range")
+        if rng and not rng["agree"] and any(r["holds"] is not None for r in rng["readings"]):
             what = ("' answer depends on the rope's bending stiffness over its" if rng["depends"]
                     else " do not answer at every kappa of the rope's")  # fmt: skip
             why += (f"; the DER tables{what} estimated range kappa "

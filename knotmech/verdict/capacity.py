@@ -377,15 +377,17 @@ def _clamped(value: float, low: float, high: float, source: str) -> LoadBand:
     return LoadBand(min(max(value, low), high), low, high, source)
 
 
-def merge_bands(bands: list, kappas: list):
-    """One slip band over the kappa range from each table's
-    :class:`~knotmech.verdict.capacity.LoadBand` (None if any is None): the lowest value,
-    from the lowest low to the highest high."""
+def merge_bands(bands: list, kappas: list, nominal: float | None = None):
+    """One slip band over a rope's kappa range from each table's :class:`LoadBand` (None if
+    any is None), ``kappas`` the tables' bending scales: from the lowest low to the highest
+    high, at the value of the table at ``nominal`` (the preset's kappa; without it, or when
+    no table is at it, the lowest value)."""
     if not bands or any(b is None for b in bands):
         return None
     if len(bands) == 1:
         return bands[0]
-    value = min(b.value for b in bands)
+    at = [b.value for b, k in zip(bands, kappas, strict=True) if k == nominal]
+    value = at[0] if at else min(b.value for b in bands)
     low, high = min(b.low for b in bands), max(b.high for b in bands)
     ks = ", ".join(f"{k:g}" for k in kappas)
     src = f"{bands[0].source}; over the rope's kappa range: tables at kappa {ks}"

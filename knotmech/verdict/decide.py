@@ -640,8 +640,10 @@ def _capacity(c: _Case, answers: list, der):
         rows = [_cap.slip_from_table(t, x=c.d / (c.D + c.d), mu=c.mu,
                                      mu_rr=None if c.mu_rr is None else float(c.mu_rr),
                                      creep_limit=lim) for t in tables]  # fmt: skip
+        nominal = _slip_table(c, der)  # the table at the preset's kappa gives the value
         slip = _cap.merge_bands([_cap.band_newtons(r, EA) for r in rows],
-                           [t.bending_scale for t in tables])  # fmt: skip
+                                [t.bending_scale for t in tables],
+                                nominal=nominal.bending_scale)  # fmt: skip
     if c.bisect and c.free == 0 and math.isfinite(EA) and (der or {}).get("holds") is not None:
         # the DER's own evidence only (the table and the runs), not a closed form's bound
         slip = _cap.agree_with_verdict(slip, bool(der["holds"]), c.load)

@@ -60,32 +60,37 @@ def over_range(ask, der: dict, answer, *, nominal: float, low: float, high: floa
     """The table answer ``(der, answer)`` at the ``nominal`` kappa, checked over
     [``low``, ``high``]: ``ask(kappa)`` gives ``(der, answer)`` at another kappa.
 
-    Returns ``(der, answer)``: unchanged but for ``der["kappa_range"]`` and one more validity
-    line when every kappa gives the same answer; else ``answer`` None and ``der`` undecided
-    (``refused`` :data:`RANGE_REFUSAL`, ``message`` naming each kappa's answer). A nominal
-    answer that does not decide, or that is not a table's, is returned as it is.
+    Returns ``(der, answer)`` with ``der["kappa_range"]`` (each kappa's answer, ``agree``,
+    ``depends``, ``words``): when every kappa gives the nominal answer, that answer with one
+    more validity line; when the nominal answer decides and another kappa does not give
+    it, ``answer`` None and ``der`` undecided (``refused`` :data:`RANGE_REFUSAL`,
+    ``message`` naming each kappa's answer); when the nominal answer does not decide, it as
+    it is (the other kappas' answers still keep a closed form they contradict from deciding,
+    :func:`against_readings`). A source other than the tables is returned as it is.
     """
-    if answer is None or der.get("source") != "table":
+    if der.get("source") != "table":
         return der, answer
     readings = []
     for k in range_points(nominal, low, high):
         d, a = (der, answer) if k == float(nominal) else ask(k)
         readings.append(_reading(k, d, a))
     der = dict(der)
-    agree = all(r["holds"] is bool(answer.holds) for r in readings)
-    der["kappa_range"] = {"range": [float(low), float(high)], "nominal": float(nominal),
-                          "readings": readings, "agree": agree}  # fmt: skip
     said = "; ".join(_say(r) for r in readings)
-    der["kappa_range"]["words"] = said
+    agree = answer is not None and all(r["holds"] is bool(answer.holds) for r in readings)
+    der["kappa_range"] = {
+        "range": [float(low), float(high)], "nominal": float(nominal), "readings": readings,
+        "agree": agree, "depends": {True, False} <= {r["holds"] for r in readings},
+        "words": said,
+    }  # fmt: skip
     if agree:
         text = (f"the same at every kappa of the rope's estimated range {low:g}-{high:g} "
                 f"({said})")  # fmt: skip
         return der, replace(answer, validity=tuple(answer.validity) + (text,))
-    said_both = {True, False} <= {r["holds"] for r in readings}
-    der["kappa_range"]["depends"] = said_both
+    if answer is None:
+        return der, None
     why = (
         "the answer depends on the rope's bending stiffness inside its estimated range"
-        if said_both
+        if der["kappa_range"]["depends"]
         else "no answer at every kappa of the rope's estimated range"
     )
     der.update(
@@ -101,15 +106,16 @@ def over_range(ask, der: dict, answer, *, nominal: float, low: float, high: floa
 
 def against_readings(answers: list, der: dict) -> list:
     """The closed forms' ``answers``, each taken outside its validity where a DER table read
-    over the rope's kappa range says otherwise (when the tables do not decide over the range:
-    :data:`RANGE_REFUSAL`). A closed form knows no bending stiffness; where the DER shows
-    the answer changing with it, or answers the other way at a kappa of the range, the
+    over the rope's kappa range says otherwise (when the tables do not decide over the
+    range, whether the nominal kappa's table decided or not). A closed form knows no
+    bending stiffness; where a table at a kappa of the range answers the other way, the
     closed form does not decide instead."""
     from knotmech.verdict.rule import with_validity
 
-    if (der or {}).get("refused") != RANGE_REFUSAL:
+    rng = (der or {}).get("kappa_range")
+    if not rng or rng["agree"]:
         return list(answers)
-    said = [r for r in der["kappa_range"]["readings"] if r["holds"] is not None]
+    said = [r for r in rng["readings"] if r["holds"] is not None]
     out = []
     for a in answers:
         against = [r for r in said if a.holds is not None and r["holds"] is not bool(a.holds)]
