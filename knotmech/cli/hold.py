@@ -368,6 +368,8 @@ def format_verdict(verdict, *, verbose: bool = False) -> str:
     ``verbose`` adds the inputs, every model's answer (assumptions, validity,
     references), the DER details and the measured creep.
     """
+    from knotmech.verdict.kappa import RANGE_REFUSAL
+
     lines = [verdict.summary()]
     if verdict.friction_line():
         lines.append(verdict.friction_line(verbose))
@@ -377,7 +379,7 @@ def format_verdict(verdict, *, verbose: bool = False) -> str:
     if verdict.creep is not None:
         lines.append(format_creep(verdict.creep))
     der = verdict.der or {}
-    if not verbose and der.get("refused") in ("bending_scale", "rod", "bending_scale_range"):
+    if not verbose and der.get("refused") in ("bending_scale", "rod", RANGE_REFUSAL):
         lines.append(f"DER: undecided, {der['message']}")
     if verdict.next_step and verdict.holds is not None:
         lines.append(verdict.next_step)

@@ -362,7 +362,7 @@ def _critical_mu(c, v: Verdict) -> tuple:
     if dec is None:
         return math.nan, "no model inside its validity gives one"
     if dec.model == "DER-table":
-        tables = _slip_tables(c, v.der)
+        tables = _slip_tables(c, v.der, _slip_table(c, v.der))
         if tables:
             x, y = c.d / (c.D + c.d), c.load / (c.E * math.pi * c.d * c.d / 4)
             lim = CREEP_LIMIT if c.creep_limit is None else c.creep_limit
@@ -603,26 +603,20 @@ def _slip_table(c: _Case, der):
     return t
 
 
-def _slip_tables(c: _Case, der) -> list:
-    """The DER hold tables that give this case's slip load: :func:`_slip_table`'s and, over
-    the preset's kappa range (:func:`_kappa_range`), the table nearest each of its ends and
-    its nominal kappa, ascending; none when a range end has no table within
-    :data:`~knotmech.verdict.der.BENDING_SCALE_FACTOR` (the band would hold at one kappa
-    only)."""
-    from knotmech.verdict.der import BENDING_SCALE_FACTOR, shipped_hold_table
-    from knotmech.verdict.kappa import range_points
+def _slip_tables(c: _Case, der, nominal) -> list:
+    """The DER hold tables that give this case's slip load: ``nominal`` (:func:`_slip_table`'s)
+    and, over the preset's kappa range, the tables read at its ends and its nominal kappa
+    (``der["kappa_range"]``, :func:`knotmech.verdict.kappa.over_range`), ascending; none when
+    a range end has no table near enough (the band would hold at one kappa only)."""
+    from knotmech.verdict.der import shipped_hold_table
 
-    t = _slip_table(c, der)
-    rng = _kappa_range(c)
-    if t is None or rng is None:
-        return [] if t is None else [t]
-    out = {}
-    for k in range_points(c.kappa, *rng):
-        tk = shipped_hold_table(c.key, k)
-        if tk is None or max(tk.bending_scale / k, k / tk.bending_scale) > BENDING_SCALE_FACTOR:
-            return []
-        out[tk.bending_scale] = tk
-    return [out[k] for k in sorted(out)]
+    rng = (der or {}).get("kappa_range")
+    if nominal is None or not rng:
+        return [] if nominal is None else [nominal]
+    if any(r["refused"] for r in rng["readings"]):
+        return []
+    return [shipped_hold_table(c.key, k)
+            for k in sorted({r["table_bending_scale"] for r in rng["readings"]})]  # fmt: skip
 
 
 def _capacity(c: _Case, answers: list, der):
@@ -634,13 +628,13 @@ def _capacity(c: _Case, answers: list, der):
 
     EA = math.nan if c.E is None else c.E * math.pi * c.d * c.d / 4
     slip = None
-    tables = _slip_tables(c, der)
+    nominal = _slip_table(c, der)  # the table at the preset's kappa gives the value
+    tables = _slip_tables(c, der, nominal)
     if tables:
         lim = CREEP_LIMIT if c.creep_limit is None else c.creep_limit
         rows = [_cap.slip_from_table(t, x=c.d / (c.D + c.d), mu=c.mu,
                                      mu_rr=None if c.mu_rr is None else float(c.mu_rr),
                                      creep_limit=lim) for t in tables]  # fmt: skip
-        nominal = _slip_table(c, der)  # the table at the preset's kappa gives the value
         slip = _cap.merge_bands([_cap.band_newtons(r, EA) for r in rows],
                                 [t.bending_scale for t in tables],
                                 nominal=nominal.bending_scale)  # fmt: skip

@@ -13,13 +13,15 @@ table nearest its kappa, within :data:`~knotmech.verdict.der.BENDING_SCALE_FACTO
 otherwise the DER does not decide, the details list each kappa's answer, and a closed form
 that one of those tables contradicts does not decide either (:func:`against_readings`:
 none of them knows the rope's bending stiffness). The slip load is then the band over
-those tables (:func:`knotmech.verdict.capacity.merge_bands`): its lowest value, from the
-lowest low to the highest high.
+those tables (:func:`knotmech.verdict.capacity.merge_bands`): the nominal kappa's value,
+from the lowest low to the highest high.
 """
 
 from __future__ import annotations
 
 from dataclasses import replace
+
+from knotmech.verdict.der import BENDING_SCALE_FACTOR
 
 __all__ = ["RANGE_REFUSAL", "against_readings", "over_range", "range_points"]
 
@@ -51,7 +53,7 @@ def _reading(k: float, der: dict, answer) -> dict:
 def _say(r: dict) -> str:
     tk = r["table_bending_scale"]
     if r["refused"] == "bending_scale":
-        return f"kappa {r['kappa']:g}: no table within a factor 3"
+        return f"kappa {r['kappa']:g}: no table within a factor {BENDING_SCALE_FACTOR:g}"
     table = "" if tk is None or tk == r["kappa"] else f" (table at {tk:g})"
     return f"kappa {r['kappa']:g}{table}: {_word(r['holds'])}"
 
