@@ -139,8 +139,10 @@ def register(subparsers) -> None:
         metavar="K",
         help="the rope's bending scale kappa in (0, 1]: bending stiffness kappa E pi d^4/64 "
         "(overrides --material's, of order 0.01 for fibre ropes; default the material's, "
-        "or 1, a solid rod, without one). The shipped DER tables are solid rods (kappa = "
-        "1) and answer only within a factor 3 of it; --simulate runs at it",
+        "or 1, a solid rod, without one). The shipped DER tables are at kappa 1 and, for "
+        "fibre ropes, 0.003-0.03; a table answers only within a factor 3 of its kappa, and "
+        "without this option a material's kappa is read over its range; --simulate runs at "
+        "it",
     )
     p.add_argument(
         "--simulate",
@@ -159,6 +161,14 @@ def register(subparsers) -> None:
         help="with --simulate, a hitch with a free end: N more DER runs (1-8) bisect the slip "
         "load from the band the table and the first run leave (each costs what the first "
         "does); the runs are listed in the JSON's der.bisection",
+    )
+    p.add_argument(
+        "--max-cpu",
+        default=None,
+        metavar="TIME",
+        help="with --simulate, a hitch on a post: the CPU budget of each DER run, e.g. 30min "
+        "(default 900s); a run that spends it stops and the DER does not decide (a soft "
+        "rope's run is long: its protocol is stretched to the rope's flexural clock)",
     )
     p.add_argument(
         "--creep-limit",
@@ -242,6 +252,7 @@ _QUANTITIES = {
     "youngs_modulus": ("youngs_modulus", "pressure"),
     "bending_scale": ("bending_scale", "dimensionless"),
     "creep_limit": ("creep_limit", "dimensionless"),
+    "max_cpu": ("max_cpu_s", "time"),
 }
 
 
@@ -312,6 +323,7 @@ def _flag_names(message: str) -> str:
     names = ("rod_diameter", "post_diameter", "pin_diameter", "mu_rr", "free_end_load",
              "wrap_angle", "post_material", "material", "youngs_modulus", "simulate", "phase_table",
              "creep_limit", "bending_scale", "bisect")  # fmt: skip
+    message = re.sub(r"(?<![\w-])max_cpu_s(?!\w)", "--max-cpu", message)
     pattern = r"(?<![\w-])(" + "|".join(names) + r")(?!\w)"
     message = re.sub(pattern, lambda m: "--" + m.group(1).replace("_", "-"), message)
     # "load" and "mu" are words too: an option only where a message starts with them

@@ -110,6 +110,12 @@ class SolverOptions:
         (``kill -STOP``) or a shared machine does not fail a run that is not crawling;
         the name is kept from when it read the wall clock
     stall_wall_window : float [s]  window of that rate, in CPU seconds (default 60)
+    max_cpu_s : float or None [s]  CPU budget of the run: it stops with status "failed"
+        (last good state kept) once it has spent this many seconds of this process's CPU
+        time (default None: no budget). The rate guard above bounds a crawl per simulated
+        second, so a long simulated span (a soft rope's stretched protocol) can still take
+        hours; a budget bounds the whole run. In a scene (``knotmech.scenes``) it is the
+        budget of all its phases together
     max_strain : float or None  an accepted step whose largest edge strain ``|l/l0 - 1|``
         exceeds this ends the run with status "failed" (last good state kept): a rod
         stretched to many times its length, or crushed to a point, is no longer a result of
@@ -139,6 +145,7 @@ class SolverOptions:
     stall_steps: int | None = 500
     max_wall_per_sim_second: float | None = 3600.0
     stall_wall_window: float = 60.0
+    max_cpu_s: float | None = None
     max_strain: float | None = 1.0
     stagnation: int | str | None = "auto"
 
@@ -169,6 +176,8 @@ class SolverOptions:
         if self.max_wall_per_sim_second is not None:
             check_positive("max_wall_per_sim_second", self.max_wall_per_sim_second)
         check_positive("stall_wall_window", self.stall_wall_window)
+        if self.max_cpu_s is not None:
+            check_positive("max_cpu_s", self.max_cpu_s)
         if self.max_strain is not None:
             check_positive("max_strain", self.max_strain)
         sg = self.stagnation
@@ -786,11 +795,13 @@ def _strain_message(k: int, e: float, t: float, limit: float, how: str) -> str:
 
 class _StallGuard:
     """The stall guards of :func:`simulate` (``SolverOptions.stall_fraction``,
-    ``stall_steps``, ``max_wall_per_sim_second``): :meth:`check` is called before every
-    step attempt and returns the failure message once the run crawls, else ""."""
+    ``stall_steps``, ``max_wall_per_sim_second``) and its CPU budget (``max_cpu_s``):
+    :meth:`check` is called before every step attempt and returns the failure message once
+    the run crawls or has spent its budget, else ""."""
 
     def __init__(self, opt: SolverOptions, dt: float, t0: float, cpu0: float):
         self.opt = opt
+        self.cpu0 = cpu0
         self.dt = dt
         self.small_dt = opt.stall_fraction * dt
         self.n_small = 0
@@ -800,6 +811,14 @@ class _StallGuard:
 
     def check(self, dt_cur: float, t: float) -> str:
         opt = self.opt
+        if opt.max_cpu_s is not None:
+            used = time.process_time() - self.cpu0
+            if used > opt.max_cpu_s:
+                return (
+                    f"stopped at t = {t:.6g} s: the run spent its CPU budget, max_cpu_s = "
+                    f"{opt.max_cpu_s:g} s ({used:.4g} s of CPU time; step now {dt_cur:.3g} s); "
+                    "last good state kept"
+                )
         self.n_small = self.n_small + 1 if dt_cur < self.small_dt else 0
         why = ""
         if opt.stall_steps is not None and self.n_small >= opt.stall_steps:

@@ -1117,7 +1117,7 @@ class HitchScene(Scene):
 
     def _verdict(self, run, times, creep, v_end, kept) -> str:
         """Free-end loading: "slip" or "hold" (see the module docstring); else ""."""
-        if self.load.loading != "free":
+        if self.load.loading != "free" or run.over_budget:  # a run cut short by its budget
             return ""
         stopped_early = times[-1] < self.t_end - 1e-9 and run.status == "success"
         fast = self.climit is not None and not (abs(v_end) <= self.climit * self.d)

@@ -30,6 +30,7 @@ solver runs (see docs/notes/knots.md).
 
 from __future__ import annotations
 
+import time
 from dataclasses import dataclass, field, replace
 
 import numpy as np
@@ -269,6 +270,9 @@ class SceneRun:
         Contacts shared by every phase (their friction state carries over).
     options : knotmech.rod.SolverOptions, optional
         Base options (``throw`` is forced False: a failed phase is reported, not raised).
+        Their ``max_cpu_s`` is the CPU budget of the whole run: each phase gets what the
+        earlier ones left; a run that spends it fails with :attr:`over_budget` set (a scene
+        gives no verdict from it).
     watch : callable(positions) -> str or None, optional
         Called after every accepted step with the (n_nodes, 3) positions; a returned string
         stops the run with status ``"failed"`` and that message (e.g. strands passed
@@ -292,8 +296,11 @@ class SceneRun:
     tensions: list = field(default_factory=list)
     stats: dict = field(default_factory=dict)
     live: rod.State | None = None
+    cpu0: float = field(init=False, default=0.0)  # [s] process CPU time at the start
+    over_budget: bool = False
 
     def __post_init__(self):
+        self.cpu0 = time.process_time()
         self.interactions = tuple(self.interactions)
         base = self.options if self.options is not None else rod.SolverOptions(rtol=1e-6)
         self.options = replace(base, throw=False)
@@ -353,6 +360,12 @@ class SceneRun:
             else float(check_positive("save_every", save_every, scalar=True))
         )
         opts = replace(self.options, save_every=every)
+        budget = self.options.max_cpu_s
+        if budget is not None:
+            left = budget - (time.process_time() - self.cpu0)
+            if left <= 0:
+                return self._out_of_budget(name, budget)
+            opts = replace(opts, max_cpu_s=left)
         verdict = {"msg": None}
 
         def callback(state):
@@ -382,6 +395,9 @@ class SceneRun:
         status, message = res.status, res.message
         if verdict["msg"]:
             status, message = "failed", f"{name}: {verdict['msg']}"
+        elif budget is not None and status != "success" and "max_cpu_s" in message:
+            message = f"{name}: {self._budget_text(budget)}"
+            self.over_budget = True
         elif status != "success":
             message = f"{name}: {message}"
         self.phases.append(Phase(name, t0, self.t, status, message, (k0, len(self.times)), start))
@@ -389,6 +405,20 @@ class SceneRun:
             self.status, self.message = status, message
             return False
         return True
+
+    def _budget_text(self, budget: float) -> str:
+        return (
+            f"stopped at t = {self.t:.6g} s: the run spent its CPU budget of {budget:g} s "
+            "(max_cpu_s, over all its phases); last good state kept"
+        )
+
+    def _out_of_budget(self, name: str, budget: float) -> bool:
+        """Fail ``name`` before it starts: the earlier phases spent the budget."""
+        msg = f"{name}: {self._budget_text(budget)}"
+        self.over_budget = True
+        self.phases.append(Phase(name, self.t, self.t, "failed", msg, (len(self.times),) * 2, {}))
+        self.status, self.message = "failed", msg
+        return False
 
     def _record(self, res) -> dict:
         """Append a phase's frames, reactions, tensions and statistics to the run's, and

@@ -70,7 +70,7 @@ models, from the registry :mod:`knotmech.knots`), :mod:`~knotmech.verdict.plot` 
 from __future__ import annotations
 
 from knotmech.verdict.answer import InputWarning, Verdict, format_margin
-from knotmech.verdict.command import SIMULATE_COST, simulate_command
+from knotmech.verdict.command import SIMULATE_COST, SIMULATE_MAX_CPU_S, simulate_command
 from knotmech.verdict.criterion import CREEP_CRITERION, CREEP_LIMIT, CREEP_WINDOW
 from knotmech.verdict.decide import hold, hold_verdict
 from knotmech.verdict.der import BENDING_SCALE_FACTOR, ROD_RATE_FACTOR
@@ -103,6 +103,7 @@ __all__ = [
     "format_margin",
     "simulate_command",
     "SIMULATE_COST",
+    "SIMULATE_MAX_CPU_S",
     "PLOT_FORMATS",
     "STRAIN_LIMIT",
     "MU_PLAUSIBLE",

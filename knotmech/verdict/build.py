@@ -98,6 +98,17 @@ def hold_scene(knot: str):
     return hitch_function(knot)
 
 
+def _budget_options(max_cpu_s) -> dict:
+    """The scene's ``options`` with a CPU budget: the hitch scenes' own default solver
+    options (``throw=False, rtol=1e-6``) plus ``max_cpu_s``; {} without a budget."""
+    if max_cpu_s is None:
+        return {}
+    from knotmech.rod import SolverOptions
+
+    cpu = check_positive("max_cpu_s", max_cpu_s, scalar=True)
+    return {"options": SolverOptions(throw=False, rtol=1e-6, max_cpu_s=float(cpu))}
+
+
 def has_hold_scene(knot: str) -> bool:
     """Whether ``knot`` has a DER scene (its registry record; nothing is imported)."""
     return knot in HOLD_SCENE_NAMES
@@ -123,6 +134,7 @@ def simulate_point(
     progress: bool = False,
     keep_result: bool = False,
     t_low_fraction: float = 0.0,
+    max_cpu_s: float | None = None,
 ) -> dict:
     r"""One DER run of a clove hitch with a free end: does it hold :math:`T_\mathrm{high}`?
 
@@ -154,6 +166,10 @@ def simulate_point(
     ``t_low_fraction`` > 0 loads the other end too, with :math:`T_\mathrm{low}` = that
     fraction of :math:`T_\mathrm{high}` (the scene's ``"asymmetric"`` loading: the cow hitch
     loaded on both legs, issue 25); the verdict is the same creep criterion on end 0.
+
+    ``max_cpu_s`` [s]: the run's CPU budget (:class:`knotmech.rod.SolverOptions`; None, the
+    default and the tables': none). A run that spends it stops with ``holds = None`` and
+    the solver's message; a recheck gets its own budget.
 
     ``hold_time`` [protocol s] replaces the protocol's hold. With ``recheck`` (what ``hold
     --simulate`` uses), a run whose creep speed lies in :data:`RECHECK_BAND` around the
@@ -207,6 +223,7 @@ def simulate_point(
         mu_rod_rod=float(mu if mu_rr is None else mu_rr),
         friction=friction,
         progress=progress,
+        **_budget_options(max_cpu_s),
         **run_proto,
     )
     cpu = time.process_time() - c0
@@ -258,6 +275,7 @@ def simulate_point(
             bending_scale=kappa, creep_limit=lim,
             hold_time=RECHECK_HOLD_FACTOR * proto["hold_time"], time_scale=time_scale,
             knot=knot, progress=progress, keep_result=keep_result, t_low_fraction=frac,
+            max_cpu_s=max_cpu_s,
         )  # fmt: skip
         again["first_creep_speed"] = speed
         again["first_hold_time"] = proto["hold_time"]

@@ -14,7 +14,7 @@ from knotmech import knots
 from knotmech.errors import InputError, check_nonnegative, check_positive
 from knotmech.verdict.answer import Verdict
 from knotmech.verdict.axial import AXIAL_HOLD_KNOTS, BOTH_LEGS_KNOTS
-from knotmech.verdict.command import SIMULATE_COST, simulate_command
+from knotmech.verdict.command import SIMULATE_COST, SIMULATE_MAX_CPU_S, simulate_command
 from knotmech.verdict.friction import (
     MU_SEARCH_MAX,
     critical_mu,
@@ -60,6 +60,7 @@ def hold(
     post_material=None,
     pin_diameter=None,
     bisect=0,
+    max_cpu_s=None,
 ) -> Verdict:
     r"""Does a rope tied to a post hold a load? The verdict, every model's answer and why.
 
@@ -140,6 +141,11 @@ def hold(
         :data:`~knotmech.verdict.capacity.BISECT_CEILING` EA, the top of the DER tables).
         Each run costs what the first does; the runs are listed in ``der["bisection"]``.
         0 (default): no bisection.
+    max_cpu_s : float, optional
+        [s] With ``simulate``, a hitch on a post: the CPU budget of each DER run (default
+        :data:`knotmech.verdict.SIMULATE_MAX_CPU_S`, 900 s). A run that spends it stops and
+        the DER does not decide (the verdict says so): a soft rope's run is stretched in
+        simulated time, and one heavy kappa-0.003 point took 1829 s.
     progress : bool
         Progress bar on stderr for ``simulate``.
     creep_limit : float, optional
@@ -175,6 +181,7 @@ def hold(
     key = knot_key(knot)
     _check_sizes(rod_diameter, post_diameter, load)
     bisect = _check_bisect(key, bisect, simulate)
+    budget = _check_budget(key, max_cpu_s, simulate)
     kw = dict(
         rod_diameter=rod_diameter, post_diameter=post_diameter, load=load,
         free_end_load=free_end_load, mu_rr=mu_rr, wrap_angle=wrap_angle, material=material,
@@ -188,7 +195,8 @@ def hold(
             return _unknown_friction(preset, key, simulate=simulate, **kw)
         mu = preset.low
         friction = preset.as_dict()
-    v = _verdict_at(key, mu, simulate=simulate, progress=progress, bisect=bisect, top=True, **kw)
+    v = _verdict_at(key, mu, simulate=simulate, progress=progress, bisect=bisect, top=True,
+                    max_cpu_s=budget, **kw)  # fmt: skip
     part = _friction_part(key, mu, v, friction, simulate, lambda m: _verdict_at(key, m, **kw))
     if part.get("holds_at_low") is True and part.get("holds_at_high") is False:
         # holds at the range's low end, slips at its high end: no monotone reading decides
@@ -200,7 +208,7 @@ def hold(
 def _verdict_at(
     key, mu, *, rod_diameter, post_diameter, load, free_end_load, mu_rr, wrap_angle, material,
     youngs_modulus, phase_table, creep_limit, bending_scale, pin_diameter, simulate=False,
-    progress=False, bisect=0, top=False, mu_unknown=False,
+    progress=False, bisect=0, top=False, mu_unknown=False, max_cpu_s=SIMULATE_MAX_CPU_S,
 ) -> Verdict:  # fmt: skip
     """The verdict at friction ``mu`` (keywords of :func:`hold`), without the critical-mu
     search: what the search asks at each mu. ``top``: the question itself (a hitch's
@@ -244,7 +252,7 @@ def _verdict_at(
         youngs_modulus=youngs_modulus, simulate=simulate, phase_table=phase_table,
         progress=progress, creep_limit=creep_limit, bending_scale=bending_scale,
     )  # fmt: skip
-    c.bisect, c.mu_unknown = bisect, mu_unknown
+    c.bisect, c.mu_unknown, c.max_cpu_s = bisect, mu_unknown, max_cpu_s
     v = _verdict(c, wrap_angle)
     if not top:
         return v
@@ -290,6 +298,23 @@ def _check_bisect(key: str, bisect, simulate) -> int:
             "(a bend's, a loop's or the Prusik's run gives its slip load directly)"
         )
     return bisect
+
+
+def _check_budget(key: str, max_cpu_s, simulate) -> float:
+    """The CPU budget of each DER run [s], checked: positive, only with ``simulate`` and only
+    for a hitch on a post (a bend's or a loop's pull has its rate bound); default
+    :data:`SIMULATE_MAX_CPU_S`."""
+    if max_cpu_s is None:
+        return SIMULATE_MAX_CPU_S
+    cpu = check_positive("max_cpu_s", max_cpu_s, scalar=True)
+    if not simulate:
+        raise InputError("max_cpu_s is the CPU budget of a DER run: give simulate as well")
+    if not has_der_answer(key):
+        raise InputError(
+            f"max_cpu_s applies to the DER run of a hitch on a post, not to {key} (a bend's, "
+            "a loop's or the Prusik's pull stops when it crawls)"
+        )
+    return float(cpu)
 
 
 def _check_sizes(rod_diameter, post_diameter, load) -> None:
@@ -432,6 +457,8 @@ class _Case:
     #: no friction coefficient is published (mu is one the search assumed): the DER
     #: command asks for a measured one (:data:`MU_PLACEHOLDER`)
     mu_unknown: bool = False
+    #: [s] CPU budget of each DER run (``simulate``, ``bisect``)
+    max_cpu_s: float = SIMULATE_MAX_CPU_S
 
     @property
     def simulable(self) -> bool:
@@ -677,6 +704,7 @@ def _bisected(c: _Case, slip, EA: float, der: dict):
             knot=c.key, d=c.d, D=c.D, mu=c.mu, mu_rr=c.mu if c.mu_rr is None else float(c.mu_rr),
             load=load, E=c.E, bending_scale=c.kappa, creep_limit=c.creep_limit,
             density=None if c.mat is None else c.mat.density, progress=c.progress,
+            max_cpu_s=c.max_cpu_s,
         )  # fmt: skip
 
     top = _cap.BISECT_CEILING * EA
@@ -794,7 +822,7 @@ def _ask_der(c: _Case, ideal, cmd: str, kappa: float):
         load=c.load, E=c.E, simulate=c.simulate, phase_table=c.phase_table,
         progress=c.progress, ideal_holds=ideal, creep_limit=c.creep_limit,
         bending_scale=kappa, command=cmd, density=None if c.mat is None else c.mat.density,
-        free_end_load=c.free,
+        free_end_load=c.free, max_cpu_s=c.max_cpu_s,
     )  # fmt: skip
 
 

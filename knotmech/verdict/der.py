@@ -17,6 +17,7 @@ from pathlib import Path
 from knotmech import knots
 from knotmech.errors import InputError
 from knotmech.verdict import build as _build
+from knotmech.verdict.command import SIMULATE_MAX_CPU_S
 from knotmech.verdict.criterion import (
     CREEP_CRITERION,
     CREEP_LIMIT,
@@ -264,6 +265,8 @@ class _Query:
     out: dict = field(default_factory=dict)
     #: [N] T_low on the other end (the cow hitch loaded on both legs; 0: a free end)
     free: float = 0.0
+    #: [s] the CPU budget of a simulation (:data:`SIMULATE_MAX_CPU_S`)
+    max_cpu_s: float = SIMULATE_MAX_CPU_S
 
 
 @dataclass
@@ -312,7 +315,7 @@ def _start(q: _Query) -> _Query:
 def der_answer(
     *, knot="clove-hitch", d, D, mu, mu_rr, load, E, simulate, phase_table, progress,
     ideal_holds, creep_limit=None, bending_scale=1.0, command="", density=None,
-    free_end_load=0.0,
+    free_end_load=0.0, max_cpu_s=SIMULATE_MAX_CPU_S,
 ):  # fmt: skip
     """The DER answer for a hitch with a free end (or, simulated, the cow hitch on both legs).
 
@@ -348,6 +351,9 @@ def der_answer(
     free_end_load : float
         T_low [N] on the other end: 0 (a free end) or, with ``simulate``, the cow hitch's
         other leg (the scene's asymmetric loading).
+    max_cpu_s : float
+        [s] The simulation's CPU budget (default :data:`SIMULATE_MAX_CPU_S`): a run that
+        spends it stops, and the DER does not decide.
 
     Returns
     -------
@@ -363,7 +369,7 @@ def der_answer(
     q = _start(_Query(
         knot=knot, d=d, D=D, mu=mu, mu_rr=mu_rr, load=load, E=E, kappa=float(bending_scale),
         lim=CREEP_LIMIT if creep_limit is None else float(creep_limit), command=command,
-        density=density, free=float(free_end_load),
+        density=density, free=float(free_end_load), max_cpu_s=float(max_cpu_s),
     ))  # fmt: skip
     found = _from_simulation(q, progress) if simulate else _from_tables(q, phase_table)
     if found.validity is None:
@@ -455,7 +461,7 @@ def _run(q: _Query, y: float, progress, keep_result=False) -> dict:
     return _build.simulate_point(
         d_over_2R=q.x, t_over_EA=y, mu=q.mu, mu_rr=q.mu_rr, rod_diameter=q.d,
         youngs_modulus=q.E, bending_scale=q.kappa, creep_limit=q.lim, recheck=True,
-        progress=progress, keep_result=keep_result,
+        progress=progress, keep_result=keep_result, max_cpu_s=q.max_cpu_s,
         **({} if q.knot == "clove-hitch" else {"knot": q.knot}),
         **({"t_low_fraction": q.free / q.load} if q.free > 0 else {}),
         **({} if q.density is None else {"density": float(q.density)}),
@@ -464,19 +470,20 @@ def _run(q: _Query, y: float, progress, keep_result=False) -> dict:
 
 def simulate_holds(
     *, knot, d, D, mu, mu_rr, load, E, bending_scale=1.0, creep_limit=None, density=None,
-    progress=False,
+    progress=False, max_cpu_s=SIMULATE_MAX_CPU_S,
 ):  # fmt: skip
     """Does one DER run of this hitch (free end) hold ``load`` [N]? True, False, or None when
     the run failed or stopped before the load was on (the bisection of ``hold --bisect``).
 
     Same geometry, law, protocol and criterion as ``hold --simulate``
     (:func:`der_answer` with ``simulate``); ``d``, ``D`` [m], ``E`` [Pa], ``density``
-    [kg/m^3] (None: the reference rod's), ``creep_limit`` [d per protocol s].
+    [kg/m^3] (None: the reference rod's), ``creep_limit`` [d per protocol s],
+    ``max_cpu_s`` [s] the run's CPU budget (a run that spends it: None).
     """
     q = _start(_Query(
         knot=knot, d=d, D=D, mu=mu, mu_rr=mu_rr, load=load, E=E, kappa=float(bending_scale),
         lim=CREEP_LIMIT if creep_limit is None else float(creep_limit), command="",
-        density=density,
+        density=density, max_cpu_s=float(max_cpu_s),
     ))  # fmt: skip
     p = _run(q, q.y, progress)
     if p["holds"] is None or p.get("stopped_in") == "settle":

@@ -345,6 +345,10 @@ BAD = [
     (["--bending-scale", "2"], "--bending-scale"),
     (["--bending-scale", "nan"], "--bending-scale"),
     (["--bending-scale", "soft"], "--bending-scale"),
+    (["--max-cpu", "60s"], "--max-cpu is the CPU budget of a DER run: give --simulate"),
+    (["--max-cpu", "60", "--simulate", "--material", "nylon"], "--max-cpu 60: give a unit"),
+    (["--max-cpu=-5s", "--simulate", "--material", "nylon"], "--max-cpu must be > 0"),
+    (["--max-cpu", "5N", "--simulate", "--material", "nylon"], "--max-cpu"),
 ]
 
 

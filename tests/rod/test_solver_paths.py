@@ -391,6 +391,68 @@ def test_wall_time_per_simulated_second_guard():
     assert ok.status == "success"
 
 
+class _FakeCPU:
+    """A process clock that advances ``tick`` seconds at every reading (deterministic)."""
+
+    def __init__(self, tick):
+        self.now, self.tick = 0.0, tick
+
+    def __call__(self):
+        self.now += self.tick
+        return self.now
+
+
+def test_cpu_budget_stops_the_run_with_the_last_good_state(monkeypatch):
+    """max_cpu_s: with a clock that advances 1 ms per reading, a 0.05 s budget stops a
+    falling rod long before its end, status failed, the message naming the budget, the
+    last accepted state finite and at a time the accepted 1 ms steps reach (25-60 of them:
+    one or two clock readings per step). Without a budget the same run ends."""
+    import time
+
+    monkeypatch.setattr(time, "process_time", _FakeCPU(1e-3))
+    system = _falling_rod()
+    opts = rod.SolverOptions(throw=False, max_cpu_s=0.05, max_wall_per_sim_second=None)
+    res = rod.simulate(system, t_end=1.0, dt=1e-3, loads=rod.Gravity(), options=opts)
+    assert res.status == "failed"
+    assert "spent its CPU budget, max_cpu_s = 0.05 s" in res.message
+    assert "last good state kept" in res.message
+    st = res.final_state
+    assert 0.025 <= st.t <= 0.06
+    assert abs(st.t / 1e-3 - round(st.t / 1e-3)) < 1e-6  # whole accepted steps
+    assert np.all(np.isfinite(st.q))
+    plain = rod.SolverOptions(throw=False, max_wall_per_sim_second=None)
+    free = rod.simulate(system, t_end=0.2, dt=1e-3, loads=rod.Gravity(), options=plain)
+    assert free.status == "success"
+    with pytest.raises(InputError, match="max_cpu_s"):
+        rod.SolverOptions(max_cpu_s=0.0)
+
+
+def test_scene_budget_is_shared_by_its_phases(monkeypatch):
+    """A scene's max_cpu_s bounds all its phases together: a first phase that spends 60 %
+    of it leaves the second 40 %, and once spent the next phase fails before it starts;
+    the run is marked over budget."""
+    import time
+
+    from knotmech.scenes._scene import SceneRun
+
+    clock = _FakeCPU(1e-3)
+    monkeypatch.setattr(time, "process_time", clock)
+    run = SceneRun(_falling_rod(), options=rod.SolverOptions(max_cpu_s=0.1,
+                   max_wall_per_sim_second=None))  # fmt: skip
+    assert run.phase("one", 0.02, dt=1e-3, loads=[rod.Gravity()])
+    used = clock.now - run.cpu0
+    assert 0.02 <= used < 0.1
+    assert not run.phase("two", 10.0, dt=1e-3, loads=[rod.Gravity()])
+    assert run.over_budget
+    assert "two: stopped at" in run.message and "CPU budget of 0.1 s" in run.message
+    assert clock.now - run.cpu0 == pytest.approx(0.1, abs=0.005)
+    assert not run.phase("three", 1.0, dt=1e-3)  # a failed run runs nothing more
+    fresh = SceneRun(_falling_rod(), options=rod.SolverOptions(max_cpu_s=1e-4))
+    clock.now += 1.0
+    assert not fresh.phase("late", 0.01, dt=1e-3)
+    assert fresh.over_budget and fresh.phases[-1].status == "failed"
+
+
 def test_stall_guard_reads_cpu_time_so_a_paused_run_is_not_failed():
     """The rate guard reads the process's CPU time: a run whose wall clock runs on while it
     does no work (a paused build, here 20 ms of sleep after every 1 ms step: 20 s of wall
