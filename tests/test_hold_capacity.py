@@ -24,7 +24,11 @@ from knotmech.verdict.tables import HoldPoint, HoldTable
         ("sHHHs", (0.1, 0.3)),  # a light-load slip below (the rod does not seat) is skipped
         ("ssHHH", (0.3, math.inf)),  # nothing slipped above the holds
         ("sssss", (0.0, 1e-4)),  # slipped at the lightest load
-        ("HH?HH", (1e-3, 1e-2)),  # a failed run counts as a slip
+        ("HH?HH", (0.3, math.inf)),  # a failed run is no evidence: passed over
+        ("HH?sH", (1e-3, 0.1)),  # the bracket spans a failed run up to the first slip
+        ("H?H?s", (1e-2, 0.3)),  # from the last load held below that slip
+        ("?H???", (1e-3, math.inf)),  # nothing slipped: open above the last hold
+        ("??s??", (0.0, 1e-4)),  # nothing held
     ],
 )
 def test_column_bracket(votes, expected):

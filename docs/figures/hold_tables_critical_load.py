@@ -8,8 +8,8 @@ slipped, in T_high/EA. Drawn as a bar from the one to the other at d/D = x / (1 
 (x = d/2R, R = (D + d)/2), with a marker at the geometric mid-point; an arrow up where
 nothing slipped above the holds (the slip load lies above 0.3 EA, the top of the tables);
 a cross at the bottom where nothing held (slips at the lightest load, 1e-4 EA). A run that
-failed in the solver counts as a slip, as in ``hold``'s band (so a band that ends at a
-failed run is an upper bound of what the table knows, not a measured slip).
+failed in the solver is passed over, as in ``hold``'s band (it is no evidence of a slip:
+the bar runs to the next load that slipped, or is open above).
 
     python docs/figures/hold_tables_critical_load.py [OUT.png]   # default: next to this file
 
@@ -65,7 +65,7 @@ def tables() -> dict:
     for knot, by_kappa in sorted(load_legs_table_sets().items()):
         for kappa, by_f in sorted(by_kappa.items()):
             for f, t in sorted(by_f.items()):
-                out[f"{knot}, both legs, T_low {f:g} T_high (kappa {kappa:g})"] = t
+                out[f"{knot}, T_low {f:g} T_high (kappa {kappa:g})"] = t
     return out
 
 
@@ -118,7 +118,7 @@ def main(out=None) -> dict:
     flat[0].legend(fontsize=6, loc="lower left")
     fig.suptitle(
         "Slip band of each shipped hold table (bar: last load held to first slip; ^: nothing "
-        "slipped up to 0.3 EA; x: slips at 1e-4 EA; a failed run counts as a slip)",
+        "slipped up to 0.3 EA; x: slips at 1e-4 EA; a failed run is passed over)",
         fontsize=8.5,
     )
     fig.tight_layout()

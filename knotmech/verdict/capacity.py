@@ -123,17 +123,22 @@ class Capacity:
 def column_bracket(loads, votes) -> tuple:
     """(last load held, first load slipped) above the lightest load held in one column.
 
-    ``loads`` ascending [T/EA], ``votes`` True/False/None (a failed run counts as a slip).
-    (0, lightest) when nothing held; (heaviest, inf) when nothing slipped above the first
-    hold.
+    ``loads`` ascending [T/EA], ``votes`` True/False/None. A failed run (None) is no
+    evidence either way and is passed over: the bracket runs from the last load held below
+    the first slip to that slip (until session 20 a failed run counted as a slip, which put
+    a slip load below loads nobody saw slip). (0, lightest) when nothing held; (last load
+    held, inf) when nothing slipped above the first hold.
     """
     held = [i for i, v in enumerate(votes) if v]
     if not held:
         return 0.0, float(loads[0])
+    last = held[0]
     for j in range(held[0] + 1, len(loads)):
-        if not votes[j]:
-            return float(loads[j - 1]), float(loads[j])
-    return float(loads[-1]), math.inf
+        if votes[j] is False:
+            return float(loads[last]), float(loads[j])
+        if votes[j]:
+            last = j
+    return float(loads[last]), math.inf
 
 
 def _mid(lo: float, hi: float) -> float:

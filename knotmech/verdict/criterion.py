@@ -21,6 +21,7 @@ from knotmech.errors import check_positive
 from knotmech.scenes._common import CREEP_LIMIT
 
 __all__ = [
+    "solver_gave_verdict",
     "CREEP_CRITERION",
     "CREEP_LIMIT",
     "CREEP_WINDOW",
@@ -110,6 +111,21 @@ def creep_speed(times, end_displacement, *, rod_diameter, window=CREEP_WINDOW) -
         return float("nan")
     i = int(sel[0])
     return float((u[-1] - u[i]) / (t[-1] - t[i]) / d)
+
+
+def solver_gave_verdict(status: str, topology_preserved: bool) -> bool:
+    """Whether a hitch run's outcome is a verdict (the anchor tables and ``hold --simulate``).
+
+    A run that ended with status ``"success"`` is judged by :func:`creep_verdict` (a loaded
+    end that ran off stops the run early, successfully: a slip). A run whose solver failed
+    (the step stalled or fell below ``dt_min``, an edge passed its strain limit, the CPU
+    budget ran out) is a verdict only when the knot's topology had already changed (it came
+    apart: a slip, whatever the solver did next). Otherwise the creep over the hold's last
+    window was never measured, and the failure says nothing about whether the knot would
+    have held: no verdict. (Until session 20 such runs counted as slips: a NaN creep read
+    as "too fast".)
+    """
+    return status == "success" or not bool(topology_preserved)
 
 
 def creep_verdict(

@@ -29,6 +29,7 @@ from knotmech.verdict.criterion import (
     CREEP_WINDOW,
     MU,
     creep_verdict,
+    solver_gave_verdict,
 )
 
 __all__ = [
@@ -518,7 +519,9 @@ class HoldPoint:
     def describe(self, limit: float = CREEP_LIMIT) -> str:
         h = self.holds(limit)
         state = {True: "held", False: "slipped", None: "failed"}[h]
-        if not self.ran_to_end:
+        if not self.solved:
+            why = "the solver stopped it, topology kept"
+        elif not self.ran_to_end:
             why = "ran off"
         elif not self.topology:
             why = "topology changed"
@@ -973,7 +976,8 @@ class HoldTable:
             pts.append(HoldPoint(
                 float(r["d_over_2R"]), float(r["t_over_EA"]), float(r["mu"]),
                 float(r["creep_speed"]), bool(r["ran_to_end"]), bool(r["topology_preserved"]),
-                r["holds"] is not None,
+                r["holds"] is not None
+                and solver_gave_verdict(r.get("status", "success"), r["topology_preserved"]),
             ))  # fmt: skip
         pts.sort(key=lambda p: (p.mu, p.d_over_2R, p.t_over_EA))
         return cls(knot, pts, dict(meta or {}))
