@@ -272,3 +272,45 @@ def test_critical_load_figure_reads_the_tables_bands():
     for kappa, band in ((0.03, (0.3, math.inf)), (0.01, (0.3, math.inf)), (0.003, (0.01, 0.1))):
         rows = fig.bands(tabs[f"clove-hitch (fibre rope, kappa {kappa:g})"])[0.3]
         assert rows[2][1:] == band, kappa
+
+
+def _result(status, topology, ran, speed=math.nan):
+    """A simulate_point-like result of an anchor run whose point verdict it judged slip."""
+    return {"d_over_2R": 0.1176, "t_over_EA": 0.3, "mu": 0.5, "creep_speed": speed,
+            "ran_to_end": ran, "topology_preserved": topology, "holds": False,
+            "status": status}  # fmt: skip
+
+
+@pytest.mark.parametrize(
+    ("status", "topology", "ran", "expected"),
+    [
+        ("failed", True, False, None),  # stalled, knot intact: creep never measured
+        ("failed", False, False, False),  # the knot came apart before the solver failed
+        ("success", True, False, False),  # the loaded end ran off (a run stopped early)
+    ],
+)
+def test_a_failed_run_with_its_topology_kept_is_no_verdict(status, topology, ran, expected):
+    from knotmech.verdict.criterion import solver_gave_verdict
+    from knotmech.verdict.tables import HoldTable
+
+    t = HoldTable.from_results("clove-hitch", [_result(status, topology, ran)])
+    assert t.points[0].holds() is expected
+    assert solver_gave_verdict(status, topology) is (expected is not None)
+
+
+def test_the_rejudged_kappa_0003_table():
+    """Session 20 re-judged the clove hitch's kappa-0.003 table from its sweep cache: the
+    ten runs that failed in the solver with the knot intact (7 stalled, 3 below dt_min; all
+    at 0.1-0.3 EA) are no verdict; the paper's column at mu 0.3 still slips at 0.1 EA (its
+    topology changed) and 0.3 EA (ran off), where kappa 0.01 held."""
+    from knotmech.verdict.der import shipped_hold_table
+
+    t = shipped_hold_table("clove-hitch", 0.003)
+    failed = sorted(tuple(p) for p in t.meta["rejudged"]["points"])
+    assert len(failed) == 10
+    assert all(y in (0.1, 0.3) and m >= 0.3 for _, y, m in failed)
+    assert all(t.point(*p).holds() is None for p in failed)
+    assert t.point(0.1176, 0.1, 0.3).holds() is False
+    assert not t.point(0.1176, 0.1, 0.3).topology
+    assert t.point(0.1176, 0.3, 0.3).holds() is False
+    assert shipped_hold_table("clove-hitch", 0.01).point(0.1176, 0.1, 0.3).holds() is True
