@@ -346,15 +346,15 @@ def _point_speed(r, knot: str, *, ran: bool, d: float, window: float):
 def _point_judgement(r, friction: str, speed_protocol: float, *, ran: bool, limit: float):
     """(holds, reason, criterion name) of one run: the creep-speed criterion (anchor law;
     ``speed_protocol`` [d per protocol s]) or the smooth-law tables' distance rule."""
+    slip_or_ok = r.status == "success" or r.verdict == "slip"  # "": it never got its load
     if friction == "anchor":
-        solver_ok = solver_gave_verdict(r.status, r.topology_preserved)
+        solver_ok = slip_or_ok and solver_gave_verdict(r.status, r.topology_preserved)
         holds, reason = creep_verdict(
             speed_protocol, ran_to_end=ran, topology_preserved=bool(r.topology_preserved),
             solver_ok=solver_ok, limit=limit,
         )  # fmt: skip
         return holds, reason, CREEP_CRITERION
-    solver_ok = r.status == "success" or r.verdict == "slip"  # the imc tables' rule, kept
-    holds = (r.verdict == "hold") if solver_ok else None
+    holds = (r.verdict == "hold") if slip_or_ok else None  # the imc tables' rule, kept
     reason = "end 0 moved less than d over the last half of the hold" if holds else (
         "end 0 moved d or more over the last half of the hold (or ran off)")  # fmt: skip
     return holds, reason, "distance"
