@@ -36,10 +36,12 @@ the engine models only ``static_friction``, :data:`knotmech.diagnose.der.DER_EFF
 
 Measured (and which expectations were wrong: soft_contact is ``unexplained``, rate
 mostly ``undetermined``): ``docs/notes/diagnose-noise-and-statistics/issue26-campaign.md``
-section 13.
+section 13; with the baseline's grid refined at the fit and its step over the recorded
+stretch (nulls 0/20 flagged on the tuning and the fresh seeds 111000+), section 14.
 
 Seeds start at :data:`SEED0` = 110000 (the campaign used 7000+ and 90000+, the oracle sets
-97000-102999, effect_recovery 0-5167 and 50000-70119).
+97000-102999, effect_recovery 0-5167 and 50000-70119); the fresh set of section 14 is
+``--seed0 111000``.
 
     python -m validation._diagnose_der_planted [--full] [--reps N] [--null-reps N]
         [--out DIR] [--fresh] [--seed0 SEED]
