@@ -148,3 +148,20 @@ def test_null_with_knee_between_grid_runs_diagnosed_none():
     row = g.diagnose_one("null", g.SEED0 + 2)
     assert row["verdict"] == "none"
     assert row["fit"]["mu"] == pytest.approx(row["truth"]["mu_k"], abs=0.001)
+
+
+@pytest.mark.slow
+def test_quick_run_passes(tmp_path):
+    # the generator's quick run (13 diagnoses, ~37 s of CPU): its null check failed on the
+    # coarse grid (110002 `unexplained`, section 13); with the grid refined at the fit
+    # the nulls and the displacement offsets are `none` and static friction is named
+    res = g.run(quick=True, out_dir=tmp_path)
+    summ = res["numbers"]["summary"]
+    assert res["verdict"] == "pass"
+    assert summ["null"]["verdicts"] == {"none": 3}
+    assert summ["disp_offset"]["verdicts"] == {"none": 2}
+    assert summ["static"]["verdicts"] == {"static_friction": 2}
+    for r in res["numbers"]["rows"]:
+        if r["case"] == "static":  # measured 0.113, 0.120
+            dmu = r["fit"]["mu_static"] - r["fit"]["mu_kinetic"]
+            assert dmu == pytest.approx(g.DMU_STATIC, abs=0.03)
