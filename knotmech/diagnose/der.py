@@ -355,6 +355,11 @@ _DER_P_METHOD = (
 def fit_der_baseline(rec, data, starts, gs):
     """Kinetic-only DER baseline: grid scan, then GLS on (mu, delta0_m, u_scale).
 
+    The GLS starts under white noise (without a ``sigma`` column), then under the AR(1)
+    noise of its residuals; it is then refitted on the ``mu`` grid refined at the fit
+    (:func:`_polished`). Measured in ``docs/notes/diagnose-noise-and-statistics/
+    issue26-campaign.md`` section 14.
+
     Returns
     -------
     der : (DERCurves, mu grid)
