@@ -3,9 +3,9 @@ r"""The DER capstan as the baseline of ``capstan_pull`` (``--baseline der``).
 :class:`DERCurves` runs :func:`knotmech.scenes.capstan.capstan` with the recording's
 geometry and loads, kinetic friction only; :class:`DERModel` is a
 :class:`~knotmech.diagnose.baselines.Model` whose mean is that curve: free parameters
-``mu`` (interpolated between simulations on a small grid), a signed displacement
-shift ``delta0_m`` and a displacement scale ``u_scale`` (compliance ratio; neither
-needs a new simulation). ``static_friction`` re-runs the scene with
+``mu`` (interpolated between simulations on a small grid, refined around the fit), a
+signed displacement shift ``delta0_m`` and a displacement scale ``u_scale``
+(compliance ratio; neither needs a new simulation). ``static_friction`` re-runs the scene with
 ``mu_s = mu + dmu_static > mu_k``.
 """
 
@@ -21,7 +21,7 @@ from knotmech.diagnose.experiments import get_experiment
 from knotmech.diagnose.fitting import fit_model, heldout_rms
 from knotmech.diagnose.model import Model
 from knotmech.diagnose.recording import Recording
-from knotmech.diagnose.stats import estimate_noise
+from knotmech.diagnose.stats import NoiseModel, estimate_noise
 from knotmech.errors import InputError, SolverError
 
 __all__ = [
@@ -34,7 +34,10 @@ __all__ = [
     "DER_EFFECTS",
     "DER_MAX_STEPS",
     "DER_MAX_WRAP",
+    "DER_MU_FINE",
     "check_der_recording",
+    "refine_grid",
+    "step_span",
 ]
 
 #: the effects modelled under the DER baseline (the scene re-run with mu_s > mu_k)
@@ -62,7 +65,7 @@ def check_der_recording(rec: Recording) -> None:
     loops), displacements below the range of the model's shift (``-0.3`` of the
     largest), and a pull so short that one run would need more than
     :data:`DER_MAX_STEPS` implicit steps (the 0.1 s load ramp at the step
-    ``u_max / (60 v)``).
+    ``s / (60 v)``, ``s`` of :func:`step_span`).
 
     Raises
     ------
@@ -115,12 +118,16 @@ class DERCurves:
       a solid rod at a small ``T_low`` needs tiny steps;
     - ``n_elements`` = 40 elements over the wrap, the leads and the pulled length;
     - pull speed from the recording's ``speed`` (median) or 0.01 m/s; the step is
-      :math:`dt = u_\mathrm{max} / (60\,v)` (60 implicit steps over the pull, every step saved);
+      :math:`dt = s / (60\,v)` with :math:`s` the span the recording samples
+      (:func:`step_span`; :math:`u_\mathrm{max}` when it starts at or below 0), so 60
+      implicit steps over the recorded stretch, every step saved;
     - pull distance 1.05 :math:`u_\mathrm{max}`, loads ramped over 0.1 s, density 1000 kg/m^3.
 
     Curves of other ``mu`` are interpolated linearly in ``mu`` on :math:`\ln T` between
     runs on a grid (the sliding plateau :math:`T_\mathrm{low} e^{\mu_\mathrm{eff}\theta}`
-    is then exact where :math:`\mu_\mathrm{eff}` is linear in ``mu``).
+    is then exact where :math:`\mu_\mathrm{eff}` is linear in ``mu``); the baseline's
+    grid is refined around its fitted ``mu`` (:func:`refine_grid`), where the knee of
+    the rise is not linear in ``mu``.
     """
 
     def __init__(self, rec, *, n_elements=None, bending_stiffness=None, pull_speed=None):
@@ -137,7 +144,7 @@ class DERCurves:
             pull_speed = float(np.median(rec.speed)) if rec.speed is not None else DER_SPEED
         self.v = float(pull_speed)
         self.u_max = max(float(np.max(rec.x)), 1e-6)
-        self.dt = self.u_max / (DER_STEPS * self.v)
+        self.dt = step_span(rec.x, self.u_max) / (DER_STEPS * self.v)
         self._cache = {}
         self.seconds = 0.0
 
@@ -207,6 +214,48 @@ class DERCurves:
         lo = max(0.4 * mu_guess, 0.01)
         hi = max(1.8 * mu_guess, lo + 0.2)
         return np.linspace(lo, hi, n)
+
+
+#: spacing of the runs added around the fitted mu (:func:`refine_grid`): the knee of the
+#: rise interpolated between runs 0.064 apart missed the run at mu by up to 5.9 noise sd
+#: (1 % T_low), 0.032 apart by 2.0 sd, 0.016 apart by 0.01 sd (issue26-campaign.md s. 14)
+DER_MU_FINE = 0.005
+#: most refinements of the baseline's grid (:func:`fit_der_baseline`)
+DER_POLISH_ROUNDS = 3
+
+
+def step_span(x, u_max: float) -> float:
+    """Displacement span [m] the DER baseline's 60 steps cover: the recording's own.
+
+    ``u_max`` for a recording that starts at or below 0; for one that starts above 0
+    (a zero offset) ``u_max - min(x)`` rounded to two significant figures, at least
+    ``u_max / 4`` (a recording of only the plateau would otherwise ask for tiny steps).
+    The curve's knee moves with the step (40 elements, 1 % T_low noise: by 6.9 sd from
+    60 steps over 8 mm to 60 over 10 mm, by 1.5 sd for a step 0.5 % shorter), so a
+    recording shifted by an offset is simulated with the step of the same recording
+    unshifted, and the rounding keeps the step when the outlier screen drops its first
+    row.
+    """
+    lo = float(np.min(x))
+    if lo <= 0.0:
+        return u_max
+    span = float(f"{u_max - lo:.2g}")
+    return min(u_max, max(span, 0.25 * u_max))
+
+
+def refine_grid(grid: np.ndarray, mu: float, h: float = DER_MU_FINE) -> np.ndarray:
+    """``grid`` with runs at ``mu - h``, ``mu``, ``mu + h`` added (those inside it and
+    not on it already).
+
+    The run at ``mu`` makes the baseline exact at its fitted value; its neighbours make
+    the interpolation in ``mu`` near it accurate for the fit's own steps.
+    """
+    grid = np.asarray(grid, float)
+    fine = np.round(mu + h * np.array([-1.0, 0.0, 1.0]), 10)
+    fine = fine[(fine > grid[0]) & (fine < grid[-1])]
+    # a run already on the grid (to 1e-9) is not run twice
+    fine = fine[np.min(np.abs(fine[:, None] - grid[None, :]), axis=1) > 1e-9]
+    return np.union1d(grid, fine)
 
 
 def _interp_log(grid, values, at, curves_fn, x):
@@ -306,6 +355,11 @@ _DER_P_METHOD = (
 def fit_der_baseline(rec, data, starts, gs):
     """Kinetic-only DER baseline: grid scan, then GLS on (mu, delta0_m, u_scale).
 
+    The GLS starts under white noise (without a ``sigma`` column), then under the AR(1)
+    noise of its residuals; it is then refitted on the ``mu`` grid refined at the fit
+    (:func:`_polished`). Measured in ``docs/notes/diagnose-noise-and-statistics/
+    issue26-campaign.md`` section 14.
+
     Returns
     -------
     der : (DERCurves, mu grid)
@@ -326,8 +380,32 @@ def fit_der_baseline(rec, data, starts, gs):
                     best = (ss, mu, d0, sc)
     p0 = np.array(best[1:])
     f0 = model.mean(p0)
+    if gs is None:
+        # first under white noise: the scan's start leaves the plateau level off, and an
+        # AR(1) noise estimated there (rho ~0.985) lets the fit keep a wrong mu
+        white = NoiseModel(float(np.std(data.y - f0)), 0.0, 0.0, float(np.max(np.abs(f0))))
+        p0 = fit_model(model, data, [p0], white, starts, rounds=0).p
+        f0 = model.mean(p0)
     noise = estimate_noise(data.y - f0, f0, starts, given_sigma=gs)
     fit = fit_model(model, data, [p0], noise, starts, given_sigma=gs)
+    return _polished(rec, curves, grid, fit, data, starts, gs)
+
+
+def _polished(rec, curves, grid, fit, data, starts, gs):
+    """``fit`` refitted on the grid refined at its ``mu`` (:func:`refine_grid`), again
+    while the refit's ``mu`` leaves the runs added last (at most
+    :data:`DER_POLISH_ROUNDS` times): between coarse runs the knee is off by up to
+    5.9 noise sd, which can also pull the coarse fit's ``mu`` away from the truth.
+    """
+    for _ in range(DER_POLISH_ROUNDS):
+        centre = float(fit.params["mu"])
+        grid = refine_grid(grid, centre)
+        model = build_der_model(rec, curves, grid)
+        f0 = model.mean(fit.p)
+        noise = estimate_noise(data.y - f0, f0, starts, given_sigma=gs)
+        fit = fit_model(model, data, [fit.p], noise, starts, given_sigma=gs)
+        if abs(float(fit.params["mu"]) - centre) <= 0.5 * DER_MU_FINE:
+            break
     return (curves, grid), fit
 
 

@@ -17,7 +17,7 @@ import pytest
 from knotmech.analytic.capstan import mu_eff
 from knotmech.cli.main import main
 from knotmech.diagnose import diagnose
-from knotmech.diagnose.der import DERCurves
+from knotmech.diagnose.der import DERCurves, refine_grid, step_span
 from knotmech.diagnose.recording import recording_from_arrays
 from knotmech.errors import InputError
 
@@ -106,3 +106,22 @@ def test_cli_baseline_der(static_case, tmp_path, capsys):
     assert "(asymptotic LR, no bootstrap)" in text
     d = json.loads(out.read_text())
     assert d["verdict"] == "static_friction"
+
+
+def test_step_span_is_the_recorded_stretch():
+    # 60 steps over what the recording samples: from 0 (or below) the largest x, from a
+    # zero offset the stretch above it, at least a quarter of the largest x
+    assert step_span(np.array([0.0, 8e-3]), 8e-3) == pytest.approx(8e-3)
+    assert step_span(np.array([-1e-3, 8e-3]), 8e-3) == pytest.approx(8e-3)
+    assert step_span(np.array([2e-3, 10e-3]), 10e-3) == pytest.approx(8e-3)
+    assert step_span(np.array([2.04e-3, 10e-3]), 10e-3) == 8e-3  # first row dropped
+    assert step_span(np.array([9.9e-3, 10e-3]), 10e-3) == pytest.approx(2.5e-3)
+
+
+def test_refine_grid_adds_runs_inside_the_grid():
+    grid = np.linspace(0.2, 0.6, 5)
+    np.testing.assert_allclose(
+        refine_grid(grid, 0.33), [0.2, 0.3, 0.325, 0.33, 0.335, 0.4, 0.5, 0.6]
+    )
+    np.testing.assert_allclose(refine_grid(grid, 0.598), [0.2, 0.3, 0.4, 0.5, 0.593, 0.598, 0.6])
+    assert refine_grid(grid, 0.3).size == 7  # the run at 0.3 exists already
