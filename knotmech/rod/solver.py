@@ -1150,6 +1150,7 @@ class _Run:
         ):
             return False
         stepper.rescue = True
+        self.stats["rescues"] = 1  # a count: a scene sums its phases' stats
         self.stats["rescue_t"] = float(self.st.t)
         self.dt_cur = self.dt
         self.n_good = 0
