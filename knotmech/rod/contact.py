@@ -29,6 +29,7 @@ from knotmech.rod._kernels.contact_rodrod import (
     Z_CUTOFF,
     Z_JACOBIAN,
     align_anchors,
+    freeze_parallel_pairs,
     gather_positions,
     max_node_speed,
     max_pair_displacement,
@@ -233,8 +234,39 @@ class RodContact:
         the law's CPU time from 1.42x to 1.18x the regularised law's. None otherwise."""
         return 4 if self._anchored else None
 
+    def hold_switches(self, system, q_old) -> int:
+        """Stagnation fallback (:class:`knotmech.rod.SolverOptions` ``rescue``): hold the
+        closest-point parameters of the nearly parallel pairs in reach (edges within about
+        5 degrees) at their values at the step start ``q_old`` until :meth:`release_switches`.
+        Their closest points otherwise jump between the two ends of the edges' overlap
+        between Newton iterates (the edge distance is the smaller of two smooth functions
+        there), moving the pair's whole penalty force from one node to another, and Newton
+        cycles (docs/notes/contact-and-friction/parallel-edge-stall.md). Call after
+        ``begin_step`` (the pairs of this attempt); returns the number of pairs held."""
+        self._ensure_pairs(system, q_old)
+        rad, en, nd = self._arrays(system)[:3]
+        held = np.empty((self.pairs.shape[0], 2))
+        n = freeze_parallel_pairs(
+            _positions(system, q_old), self.pairs, en, rad, self.sharpness, Z_CUTOFF, held
+        )
+        self._held = held if n else None
+        self._energy_cache = None
+        return int(n)
+
+    def _held_kwargs(self, npair: int) -> dict:
+        """The kernel's ``frozen`` argument while :meth:`hold_switches` holds pairs (else
+        none: the call, and its compiled kernel, of a normal step)."""
+        held = self._held
+        return {} if held is None or held.shape[0] != npair else {"frozen": held}
+
+    def release_switches(self) -> None:
+        """End :meth:`hold_switches` (the exact closest points again)."""
+        self._held = None
+        self._energy_cache = None
+
     def reset(self):
         """Forget the friction state (the anchors of the pairs in contact)."""
+        self._held = None
         self._store = (np.zeros(0, dtype=np.int64), np.zeros((0, 2)), np.zeros(0, dtype=bool))
         self._anc = None
         self.pairs = None
@@ -400,6 +432,9 @@ class RodContact:
             slip_now,
             float(self.friction.cap_floor) if law == 1 else 0.0,
             _floor_mode(self.friction) if law == 1 else 0,
+            **(
+                {} if self._held is None or self._held.shape[0] != npair else {"frozen": self._held}
+            ),
         )
         self.last_normal_force = fn
         self._energy_cache = (pairs, pos, float(e))  # energy() at the same q is free

@@ -126,6 +126,17 @@ class SolverOptions:
         ``max_newton`` iterations, each with a fresh LU, on a Newton cycle; "auto"
         (default): the smallest ``newton_stagnation`` hint of the interactions (rod-rod
         anchor friction: 4, see :class:`knotmech.rod.RodContact`), else off; None: off
+    rescue : bool  stagnation fallback (default True). It engages only where the run
+        would otherwise fail: when the stall guard (``stall_steps`` or
+        ``max_wall_per_sim_second``, not ``max_cpu_s``) or ``dt_min`` would stop the run
+        and the last rejected attempt stagnated. The run then goes on from its last good
+        state at the nominal dt, and from there on a step whose Newton attempts
+        stagnate is tried once more (from the linear predictor) with the interactions'
+        discontinuous switches held for that attempt (``hold_switches``: the closest
+        points of nearly parallel rod-rod edge pairs, at the step start; see
+        docs/notes/contact-and-friction/parallel-edge-stall.md) before dt is halved. A
+        run that succeeds without it never engages it (bit-identical); a second stall
+        fails the run as before (its message says the fallback was on)
     """
 
     dt_min: float = 1e-9
@@ -148,6 +159,7 @@ class SolverOptions:
     max_cpu_s: float | None = None
     max_strain: float | None = 1.0
     stagnation: int | str | None = "auto"
+    rescue: bool = True
 
     def __post_init__(self):
         check_positive("dt_min", self.dt_min)
@@ -167,6 +179,8 @@ class SolverOptions:
     def _check_guards(self) -> None:
         """The stall, strain and stagnation guards' options."""
         check_range("stall_fraction", self.stall_fraction, 0.0, 1.0)
+        if not isinstance(self.rescue, bool):
+            raise InputError(f"rescue must be True or False, got {self.rescue!r}")
         if self.stall_steps is not None and (
             int(self.stall_steps) != self.stall_steps or self.stall_steps < 1
         ):
@@ -281,6 +295,8 @@ class Stepper:
             hints = [int(h) for h in hints if h is not None]
             sg = min(hints) if hints else None
         self._stagnation = sg
+        self.rescue = False  # the stagnation fallback is on (set by the time loop)
+        self.n_held_steps = 0  # steps converged with switches held
         self._fmap = -np.ones(n, dtype=np.int64)
         self._fmap[self.free_idx] = np.arange(nf)
         self._gmap = None  # dof -> row of the reordered free system (-1: constrained)
@@ -643,6 +659,15 @@ class Stepper:
             _fr.cos_sin(rt, self._trig[1], self._trig[2])
         for it in self.interactions:  # once per attempt: it depends on the step start only
             it.begin_step(self.system, st.q, st.v, dt)
+        try:
+            return self._predicted(st, dt, t_new, q_lin)
+        except _StepFailed as exc:
+            if not (self.rescue and exc.stalled):
+                raise
+            return self._held_attempt(st, dt, t_new, exc)
+
+    def _predicted(self, st: State, dt: float, t_new: float, q_lin):
+        """Newton from the quadratic predictor, then from the linear one (see :meth:`step`)."""
         if self.opt.predictor == "quadratic" and st.accel is not None and np.isfinite(st.h_last):
             q0 = q_lin + (0.5 * dt * (dt + st.h_last)) * st.accel
             try:
@@ -654,6 +679,22 @@ class Stepper:
             q, k = self._newton(q_lin, st, dt, t_new)
             return q, k + wasted
         return self._newton(q_lin, st, dt, t_new)
+
+    def _held_attempt(self, st: State, dt: float, t_new: float, exc: _StepFailed):
+        """Stagnation fallback (``SolverOptions.rescue``): Newton once more from the linear
+        predictor with the interactions' switches held at the step start
+        (``hold_switches``); re-raises ``exc`` when no interaction holds anything."""
+        held = [it for it in self.interactions if getattr(it, "hold_switches", None)]
+        n = sum(it.hold_switches(self.system, st.q) for it in held)
+        try:
+            if n == 0:
+                raise exc
+            q, k = self._newton(st.q + dt * st.v, st, dt, t_new)
+        finally:
+            for it in held:
+                it.release_switches()
+        self.n_held_steps += 1
+        return q, k + exc.iterations
 
     def _newton(self, q, st: State, dt: float, t_new: float):
         opt = self.opt
@@ -808,12 +849,14 @@ class _StallGuard:
         self.win_cpu = cpu0  # [s of process CPU time]
         self.win_t = t0
         self.last_reason = ""
+        self.budget_spent = False
 
     def check(self, dt_cur: float, t: float) -> str:
         opt = self.opt
         if opt.max_cpu_s is not None:
             used = time.process_time() - self.cpu0
             if used > opt.max_cpu_s:
+                self.budget_spent = True
                 return (
                     f"stopped at t = {t:.6g} s: the run spent its CPU budget, max_cpu_s = "
                     f"{opt.max_cpu_s:g} s ({used:.4g} s of CPU time; step now {dt_cur:.3g} s); "
@@ -915,6 +958,8 @@ def simulate(
         if bar is not None:
             bar.close()
     run.stats["wall_s"] = time.perf_counter() - wall0
+    if stepper.rescue:  # only a run the stagnation fallback rescued has these
+        run.stats["held_steps"] = stepper.n_held_steps
     res = recorder.result(run.status, run.message, run.stats, run.st)
     if run.status != "success" and (opt.throw if throw is None else throw):
         err = SolverError(run.message, state=run.st)
@@ -1034,6 +1079,7 @@ class _Run:
         # largest edge strain of the failed attempts since the last step
         self.worst = (0, 0.0, st.t)
         stepper.last_iterate = None
+        self.last_stalled = False  # the last rejected attempt stagnated
         self.stall = _StallGuard(opt, dt, st.t, time.process_time())
 
     def _fail(self, message: str) -> bool:
@@ -1050,7 +1096,7 @@ class _Run:
             hit = gap <= self.dt_cur * (1.0 + 1e-6)
             h = gap if hit else self.dt_cur
             why = self.stall.check(self.dt_cur, st.t)
-            if why and self._fail(why):
+            if why and not self._rescue() and self._fail(self._rescued_text(why)):
                 break
             try:
                 q_new, iters = self.stepper.step(st, h)
@@ -1075,7 +1121,8 @@ class _Run:
                 self.worst = (k, e, st.t + h)
         self.dt_cur = 0.5 * min(self.dt_cur, h)
         self.n_good = 0
-        if self.dt_cur >= opt.dt_min:
+        self.last_stalled = exc.stalled
+        if self.dt_cur >= opt.dt_min or self._rescue():
             return False
         if opt.max_strain is not None and not abs(self.worst[1]) <= opt.max_strain:
             # every attempt down to dt_min failed and Newton's iterates went beyond the
@@ -1084,8 +1131,39 @@ class _Run:
             # evaluation error on the way there)
             return self._fail(_strain_message(*self.worst, opt.max_strain, " (on the way)"))
         return self._fail(
-            f"step failed at t = {st.t:.6g} s with dt = {2 * self.dt_cur:.3g} s < "
-            f"2 dt_min ({exc}); last good state kept"
+            self._rescued_text(
+                f"step failed at t = {st.t:.6g} s with dt = {2 * self.dt_cur:.3g} s < "
+                f"2 dt_min ({exc}); last good state kept"
+            )
+        )
+
+    def _rescue(self) -> bool:
+        """Engage the stagnation fallback (``SolverOptions.rescue``) where the run would
+        fail: the last rejected attempt stagnated, the fallback is not on yet, an
+        interaction can hold its switches, and the stop is not the CPU budget. The run
+        goes on from the last good state at the nominal dt; True when engaged."""
+        stepper = self.stepper
+        if not (self.opt.rescue and self.last_stalled and not stepper.rescue):
+            return False
+        if self.stall.budget_spent or not any(
+            getattr(it, "hold_switches", None) for it in stepper.interactions
+        ):
+            return False
+        stepper.rescue = True
+        self.stats["rescues"] = 1  # a count: a scene sums its phases' stats
+        self.stats["rescue_t"] = float(self.st.t)
+        self.dt_cur = self.dt
+        self.n_good = 0
+        self.stall.n_small = 0
+        return True
+
+    def _rescued_text(self, message: str) -> str:
+        """``message`` of a failure, noting the stagnation fallback when it was on."""
+        if not self.stepper.rescue:
+            return message
+        return (
+            f"{message} (the stagnation fallback, engaged at t = {self.stats['rescue_t']:.6g} s, "
+            f"did not recover the run)"
         )
 
     def _strain_exceeded(self, q_new, h: float) -> bool:

@@ -284,6 +284,86 @@ def _edge_distance_grad_ws(x, grad, coef, w):
 
 
 @njit(cache=True, inline="always")
+def _held_gap_grad(x, s, t, grad, coef, w):
+    """Gap |w| of two edges at fixed parameters (s, t), w = (1-s) x1 + s x2 - (1-t) x3
+    - t x4, and its gradient (12,) (:func:`_edge_distance_grad_ws` with the closest-point
+    parameters held, not minimised); writes ``coef`` (4,) and ``w`` (3,)."""
+    coef[0] = 1.0 - s
+    coef[1] = s
+    coef[2] = -(1.0 - t)
+    coef[3] = -t
+    d2 = 0.0
+    for m in range(3):
+        w[m] = coef[0] * x[m] + coef[1] * x[3 + m] + coef[2] * x[6 + m] + coef[3] * x[9 + m]
+        d2 += w[m] * w[m]
+    dist = np.sqrt(d2)
+    inv_d = 1.0 / dist
+    for k in range(4):
+        for m in range(3):
+            grad[3 * k + m] = (coef[k] * w[m]) * inv_d
+    return dist
+
+
+@njit(cache=True, inline="always")
+def _held_gap_hessian(dist, grad, hess, coef, w, B, U):
+    """Hessian (12, 12) of the held gap of :func:`_held_gap_grad`: (coef coef^T) kron
+    (I - n n^T) / |w| with n = w/|w| (no parameter-coupling term); ``B`` = 0 and ``U`` = I,
+    so that :func:`_normal_jacobian` adds no closest-point motion either."""
+    inv_d = 1.0 / dist
+    for k in range(4):
+        for l in range(4):
+            c = coef[k] * coef[l] * inv_d
+            for a in range(3):
+                for b in range(3):
+                    na = w[a] * inv_d
+                    nb = w[b] * inv_d
+                    hess[3 * k + a, 3 * l + b] = c * ((1.0 if a == b else 0.0) - na * nb)
+    B[:, :] = 0.0
+    U[:, :] = 0.0
+    U[0, 0] = 1.0
+    U[1, 1] = 1.0
+
+
+@njit(cache=True)
+def freeze_parallel_pairs(pos, pairs, edge_nodes, radius_edge, sharpness, z_cutoff, out):
+    """Closest-point parameters (s, t) at ``pos`` of the candidate pairs within the
+    penalty's reach whose edges are nearly parallel (sin^2 of their angle below
+    ``_SIN2_PLANE``, about 5 degrees) into ``out`` (n_pairs, 2); -1 for the other pairs.
+    Returns the number of pairs held. For (nearly) parallel edges the closest points jump
+    between the two ends of the overlap as the tiny angle between them changes sign (the
+    distance is the smaller of two smooth functions there), which moves the whole penalty
+    force from one node to another between two Newton iterates: the stagnation fallback
+    holds these parameters for one step (docs/notes/contact-and-friction/parallel-edge-stall.md)."""
+    x = np.empty(12)
+    held = 0
+    for p in range(pairs.shape[0]):
+        out[p, 0] = -1.0
+        out[p, 1] = -1.0
+        ei, ej = _pair_nodes(pos, pairs, p, edge_nodes, x)
+        two_h = radius_edge[ei] + radius_edge[ej]
+        if _beyond(x, two_h - z_cutoff / sharpness):
+            continue
+        if sharpness * (two_h - edge_distance(x)) < z_cutoff:
+            continue
+        a11 = 0.0
+        a22 = 0.0
+        a12 = 0.0
+        for m in range(3):
+            e1 = x[3 + m] - x[m]
+            e2 = x[9 + m] - x[6 + m]
+            a11 += e1 * e1
+            a22 += e2 * e2
+            a12 += e1 * e2
+        if a11 * a22 - a12 * a12 > _SIN2_PLANE * a11 * a22:
+            continue
+        s, t, _, _ = _segment_params_flat(x)
+        out[p, 0] = s
+        out[p, 1] = t
+        held += 1
+    return held
+
+
+@njit(cache=True, inline="always")
 def _softplus(z):
     if z > 30.0:
         return z
@@ -408,6 +488,7 @@ def rodrod_assemble(
     out_slip,
     cap_floor=0.0,
     floor_mode=0,
+    frozen=None,
 ):
     """Contact + friction forces and Jacobian blocks of the near candidate pairs.
 
@@ -438,13 +519,18 @@ def rodrod_assemble(
     floors the cap's width at ``cap_floor`` (r_i + r_j) (see :func:`_anchor_friction`):
     on every pair (``floor_mode`` 0) or only on the pairs that slid at the last accepted
     step (``floor_mode`` 1, ``anchor_slip``; see :func:`rodrod_anchor_commit`).
+
+    ``frozen`` (n_pairs, 2) or None (default): closest-point parameters (s, t) held fixed
+    for the pairs with s >= 0 (the solver's stagnation fallback, see
+    :func:`freeze_parallel_pairs`): their gap is w = (1-s) x1 + s x2 - (1-t) x3 - t x4
+    at those parameters, a smooth function of x, instead of the segments' closest points.
     """
     if not want_jacobian:  # forces only: the compact loop of _assemble_forces
         return _assemble_forces(
             pos, pos_old, dt, pairs, near, n_near, edge_nodes, node_dofs, radius_edge,
             sharpness, stiffness, mu, fric_k, fric_c, vel_eps, force, rows, cols, vals,
             contact_force, normal_derivative, law, mu_k, k_t, anchor, anchor_slip,
-            anchor_known, out_slip, cap_floor, floor_mode,
+            anchor_known, out_slip, cap_floor, floor_mode, frozen,
         )  # fmt: skip
     x = np.empty(12)
     grad = np.empty(12)
@@ -489,9 +575,14 @@ def rodrod_assemble(
                 dofs[3 * k + m] = node_dofs[nodes[k], m]
         two_h = radius_edge[ei] + radius_edge[ej]
         dist = _edge_distance_grad_ws(x, grad, coef, w)
+        held = frozen is not None and frozen[p, 0] >= 0.0
+        if held:
+            dist = _held_gap_grad(x, frozen[p, 0], frozen[p, 1], grad, coef, w)
         # pairs beyond z_jacobian add their force but no Jacobian entries
         jac = want_jacobian and sharpness * (two_h - dist) >= z_jacobian
-        if jac:
+        if jac and held:
+            _held_gap_hessian(dist, grad, hess, coef, w, B, U)
+        elif jac:
             dist = _edge_distance_hessian_ws(x, grad, hess, coef, w, gphi, H, B, U)
         e, de, d2e = penalty_derivs(two_h - dist, sharpness, stiffness)
         energy += e
@@ -540,7 +631,7 @@ def _assemble_forces(
     pos, pos_old, dt, pairs, near, n_near, edge_nodes, node_dofs, radius_edge, sharpness,
     stiffness, mu, fric_k, fric_c, vel_eps, force, rows, cols, vals, contact_force,
     normal_derivative, law, mu_k, k_t, anchor, anchor_slip, anchor_known, out_slip,
-    cap_floor, floor_mode,
+    cap_floor, floor_mode, frozen=None,
 ):  # fmt: skip
     """:func:`rodrod_assemble` with ``want_jacobian`` False (most Newton evaluations: chord
     iterations need no Jacobian): the same statements in the same order without the
@@ -587,6 +678,8 @@ def _assemble_forces(
                 dofs[3 * k + m] = node_dofs[nodes[k], m]
         two_h = radius_edge[ei] + radius_edge[ej]
         dist = _edge_distance_grad_ws(x, grad, coef, w)
+        if frozen is not None and frozen[p, 0] >= 0.0:
+            dist = _held_gap_grad(x, frozen[p, 0], frozen[p, 1], grad, coef, w)
         e, de, d2e = penalty_derivs(two_h - dist, sharpness, stiffness)
         energy += e
         for a in range(12):
