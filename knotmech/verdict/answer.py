@@ -267,7 +267,7 @@ def _slip_words(slip) -> str:
             return "slips at any load at this friction"
         if slip.low == slip.high:
             return f"slips near {format_force(slip.value)} ({slip.source.split(' (')[0]})"
-        if slip.low == 0:
+        if slip.low == 0 and slip.value >= slip.high:  # slipped at the lightest load run
             return f"slips at or below {format_force(slip.high)}"
         return f"slips near {format_force(slip.value)} ({_band(slip.low, slip.high)})"
     if "self-locking" in slip.source:
