@@ -24,10 +24,11 @@ from knotmech.verdict.tables import HoldPoint, HoldTable
         ("sHHHs", (0.1, 0.3)),  # a light-load slip below (the rod does not seat) is skipped
         ("ssHHH", (0.3, math.inf)),  # nothing slipped above the holds
         ("sssss", (0.0, 1e-4)),  # slipped at the lightest load
-        ("HH?HH", (0.3, math.inf)),  # a failed run is no evidence: passed over
+        ("HH?HH", (0.3, math.inf)),  # a failed run below a hold is no evidence: passed over
         ("HH?sH", (1e-3, 0.1)),  # the bracket spans a failed run up to the first slip
         ("H?H?s", (1e-2, 0.3)),  # from the last load held below that slip
-        ("?H???", (1e-3, math.inf)),  # nothing slipped: open above the last hold
+        ("?H???", (1e-3, 1e-2)),  # nothing slipped, runs above failed: ends at the first
+        ("HHH?H", (0.3, math.inf)),  # a failed run below the last hold: open above
         ("??s??", (0.0, 1e-4)),  # nothing held
     ],
 )
@@ -35,6 +36,22 @@ def test_column_bracket(votes, expected):
     loads = [1e-4, 1e-3, 1e-2, 0.1, 0.3]
     v = [{"H": True, "s": False, "?": None}[c] for c in votes]
     assert cap.column_bracket(loads, v) == expected
+    ends_failed = cap.failed_above(v) is not None
+    top = expected[1]
+    assert ends_failed == (expected[0] > 0 and math.isfinite(top) and v[loads.index(top)] is None)
+
+
+def test_a_band_that_ends_at_failed_runs_says_so():
+    """The nylon clove hitch at kappa 0.003, 4 mm on 30 mm, mu 0.8: its column held up to
+    0.01 EA and the runs at 0.1 and 0.3 EA failed (no verdict), so the band ends at 0.1 EA
+    (31.4-314 N), named as where the runs failed, not as a slip."""
+    v = knotmech.hold("clove-hitch", rod_diameter=4e-3, post_diameter=30e-3, mu=0.8, load=20.0,
+                      material="nylon", bending_scale=0.003)  # fmt: skip
+    s = v.capacity.slip
+    assert s.low == pytest.approx(0.01 * 0.25e9 * math.pi * 4e-6, rel=1e-9)
+    assert s.high == pytest.approx(10 * s.low, rel=1e-9)
+    assert "ends where its runs failed (T/EA 0.1" in s.source
+    assert v.holds is True
 
 
 def _table(pattern: dict) -> HoldTable:

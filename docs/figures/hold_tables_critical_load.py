@@ -8,8 +8,8 @@ slipped, in T_high/EA. Drawn as a bar from the one to the other at d/D = x / (1 
 (x = d/2R, R = (D + d)/2), with a marker at the geometric mid-point; an arrow up where
 nothing slipped above the holds (the slip load lies above 0.3 EA, the top of the tables);
 a cross at the bottom where nothing held (slips at the lightest load, 1e-4 EA). A run that
-failed in the solver is passed over, as in ``hold``'s band (it is no evidence of a slip:
-the bar runs to the next load that slipped, or is open above).
+failed in the solver is no evidence of a slip, as in ``hold``'s band: passed over below a
+real slip; where only failed runs lie above the last hold, the bar ends at the first of them.
 
     python docs/figures/hold_tables_critical_load.py [OUT.png]   # default: next to this file
 
@@ -118,7 +118,7 @@ def main(out=None) -> dict:
     flat[0].legend(fontsize=6, loc="lower left")
     fig.suptitle(
         "Slip band of each shipped hold table (bar: last load held to first slip; ^: nothing "
-        "slipped up to 0.3 EA; x: slips at 1e-4 EA; a failed run is passed over)",
+        "slipped up to 0.3 EA; x: slips at 1e-4 EA; a bar may end at a failed run)",
         fontsize=8.5,
     )
     fig.tight_layout()

@@ -1158,8 +1158,9 @@ class _Run:
         return True
 
     def _rescued_text(self, message: str) -> str:
-        """``message`` of a failure, noting the stagnation fallback when it was on."""
-        if not self.stepper.rescue:
+        """``message`` of a failure, noting the stagnation fallback when it was on (not when
+        the CPU budget stopped the run)."""
+        if not self.stepper.rescue or self.stall.budget_spent:
             return message
         return (
             f"{message} (the stagnation fallback, engaged at t = {self.stats['rescue_t']:.6g} s, "

@@ -101,13 +101,16 @@ def hold_scene(knot: str):
 
 def _budget_options(max_cpu_s) -> dict:
     """The scene's ``options`` with a CPU budget: the hitch scenes' own default solver
-    options (``throw=False, rtol=1e-6``) plus ``max_cpu_s``; {} without a budget."""
+    options (:data:`knotmech.scenes._hitch.DEFAULT_OPTIONS`) plus ``max_cpu_s``; {}
+    without a budget."""
     if max_cpu_s is None:
         return {}
-    from knotmech.rod import SolverOptions
+    from dataclasses import replace
+
+    from knotmech.scenes._hitch import DEFAULT_OPTIONS
 
     cpu = check_positive("max_cpu_s", max_cpu_s, scalar=True)
-    return {"options": SolverOptions(throw=False, rtol=1e-6, max_cpu_s=float(cpu))}
+    return {"options": replace(DEFAULT_OPTIONS, max_cpu_s=float(cpu))}
 
 
 def has_hold_scene(knot: str) -> bool:

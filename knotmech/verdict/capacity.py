@@ -33,6 +33,7 @@ __all__ = [
     "bisect_slip",
     "capacity_of",
     "column_bracket",
+    "failed_above",
     "legs_band",
     "merge_bands",
     "slip_from_answers",
@@ -124,10 +125,12 @@ def column_bracket(loads, votes) -> tuple:
     """(last load held, first load slipped) above the lightest load held in one column.
 
     ``loads`` ascending [T/EA], ``votes`` True/False/None. A failed run (None) is no
-    evidence either way and is passed over: the bracket runs from the last load held below
-    the first slip to that slip (until session 20 a failed run counted as a slip, which put
-    a slip load below loads nobody saw slip). (0, lightest) when nothing held; (last load
-    held, inf) when nothing slipped above the first hold.
+    evidence of a slip: one that lies between a hold and a slip is passed over (the bracket
+    runs from the last load held below the slip to the slip). Where nothing slipped above
+    the last hold but a run there failed, the bracket ends at the first failed load above
+    it (:func:`failed_above`): the top of what the table knows, not an observed slip (until
+    session 20 every failed run counted as a slip). (0, lightest) when nothing held; (last
+    load held, inf) when nothing above the first hold slipped or failed.
     """
     held = [i for i, v in enumerate(votes) if v]
     if not held:
@@ -138,7 +141,17 @@ def column_bracket(loads, votes) -> tuple:
             return float(loads[last]), float(loads[j])
         if votes[j]:
             last = j
-    return float(loads[last]), math.inf
+    failed = failed_above(votes)
+    return float(loads[last]), (float(loads[failed]) if failed is not None else math.inf)
+
+
+def failed_above(votes):
+    """Index of the first failed run (None) above a column's last hold when nothing above
+    that hold slipped, else None: where :func:`column_bracket` ends at a failed run."""
+    held = [i for i, v in enumerate(votes) if v]
+    if not held or any(v is False for v in votes[held[0] + 1 :]):
+        return None
+    return next((j for j in range(held[-1] + 1, len(votes)) if votes[j] is None), None)
 
 
 def _mid(lo: float, hi: float) -> float:
@@ -177,11 +190,13 @@ def slip_from_table(table, *, x, mu, mu_rr=None, creep_limit=CREEP_LIMIT):
     ys = ax["t_over_EA"]
     wx = _weights(ax["d_over_2R"], xi, x)
     wm = _weights(ax["mu"], mi, 0.5 * (lo_m + hi_m))
-    logv, lows, highs = 0.0, [], []
+    logv, lows, highs, tops = 0.0, [], [], []
     for i, a in zip(xi, wx, strict=True):
         for k, b in zip(mi, wm, strict=True):
             votes = [table.point(ax["d_over_2R"][i], y, ax["mu"][k]).holds(creep_limit) for y in ys]
             lo, hi = column_bracket(ys, votes)
+            if failed_above(votes) is not None:
+                tops.append(f"{hi:g}")
             lows.append(lo)
             highs.append(hi)
             logv += a * b * math.log(_mid(lo, hi)) if math.isfinite(hi) else math.inf
@@ -194,6 +209,9 @@ def slip_from_table(table, *, x, mu, mu_rr=None, creep_limit=CREEP_LIMIT):
     mus = ", ".join(f"{float(ax['mu'][k]):g}" for k in mi)
     xs = ", ".join(f"{float(ax['d_over_2R'][i]):.4g}" for i in xi)
     text = f"DER {table.knot} hold table, columns d/2R = {xs}, mu = mu_rr = {mus}"
+    if tops:
+        text += (f"; a column's band ends where its runs failed (T/EA {', '.join(tops)}: "
+                 "no verdict there), not at an observed slip")  # fmt: skip
     return value, low, high, text
 
 

@@ -124,6 +124,18 @@ def solver_gave_verdict(status: str, topology_preserved: bool) -> bool:
     window was never measured, and the failure says nothing about whether the knot would
     have held: no verdict. (Until session 20 such runs counted as slips: a NaN creep read
     as "too fast".)
+
+    Parameters
+    ----------
+    status : str
+        The run's status (``"success"`` or ``"failed"``).
+    topology_preserved : bool
+        Whether the knot kept its topology up to the last good state.
+
+    Returns
+    -------
+    bool
+        True when the run's outcome is judged (:func:`creep_verdict`), False for no verdict.
     """
     return status == "success" or not bool(topology_preserved)
 
