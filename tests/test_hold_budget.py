@@ -22,14 +22,18 @@ def _scene(**kw):
 
 
 def test_a_run_cut_by_its_budget_gives_no_verdict():
-    """A free-end run that stopped short with the solver failed reads as a slip (its creep
-    over the hold's last half is not measured, as when a slipping end breaks the solver),
-    unless the budget stopped it: then no verdict."""
+    """The scene's own verdict of a free-end run that stopped short with the solver failed
+    is "slip" (its creep is not measured; ``build`` then gives no verdict unless the knot
+    came apart, ``criterion.solver_gave_verdict``), unless the budget stopped it with the
+    knot intact: then none."""
     cut = SimpleNamespace(over_budget=True, status="failed")
     failed = SimpleNamespace(over_budget=False, status="failed")
     args = ([0.0, 0.5], math.nan, math.nan, True)
     assert HitchScene._verdict(_scene(), cut, *args) == ""
     assert HitchScene._verdict(_scene(), failed, *args) == "slip"
+    # a knot that had come apart before its budget ran out slipped, budget or not
+    apart = ([0.0, 0.5], math.nan, math.nan, False)
+    assert HitchScene._verdict(_scene(), cut, *apart) == "slip"
 
 
 def test_simulate_point_stops_at_its_budget_undecided():
