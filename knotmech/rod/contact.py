@@ -432,9 +432,7 @@ class RodContact:
             slip_now,
             float(self.friction.cap_floor) if law == 1 else 0.0,
             _floor_mode(self.friction) if law == 1 else 0,
-            **(
-                {} if self._held is None or self._held.shape[0] != npair else {"frozen": self._held}
-            ),
+            **self._held_kwargs(npair),
         )
         self.last_normal_force = fn
         self._energy_cache = (pairs, pos, float(e))  # energy() at the same q is free

@@ -684,7 +684,7 @@ class Stepper:
         """Stagnation fallback (``SolverOptions.rescue``): Newton once more from the linear
         predictor with the interactions' switches held at the step start
         (``hold_switches``); re-raises ``exc`` when no interaction holds anything."""
-        held = [it for it in self.interactions if getattr(it, "hold_switches", None)]
+        held = self.holders()
         n = sum(it.hold_switches(self.system, st.q) for it in held)
         try:
             if n == 0:
@@ -695,6 +695,10 @@ class Stepper:
                 it.release_switches()
         self.n_held_steps += 1
         return q, k + exc.iterations
+
+    def holders(self) -> list:
+        """The interactions that can hold their switches (the stagnation fallback)."""
+        return [it for it in self.interactions if getattr(it, "hold_switches", None)]
 
     def _newton(self, q, st: State, dt: float, t_new: float):
         opt = self.opt
@@ -960,6 +964,8 @@ def simulate(
     run.stats["wall_s"] = time.perf_counter() - wall0
     if stepper.rescue:  # only a run the stagnation fallback rescued has these
         run.stats["held_steps"] = stepper.n_held_steps
+    if run.stall.budget_spent:  # only a run its CPU budget stopped has this
+        run.stats["budget_spent"] = 1
     res = recorder.result(run.status, run.message, run.stats, run.st)
     if run.status != "success" and (opt.throw if throw is None else throw):
         err = SolverError(run.message, state=run.st)
@@ -1145,9 +1151,7 @@ class _Run:
         stepper = self.stepper
         if not (self.opt.rescue and self.last_stalled and not stepper.rescue):
             return False
-        if self.stall.budget_spent or not any(
-            getattr(it, "hold_switches", None) for it in stepper.interactions
-        ):
+        if self.stall.budget_spent or not stepper.holders():
             return False
         stepper.rescue = True
         self.stats["rescues"] = 1  # a count: a scene sums its phases' stats

@@ -395,7 +395,7 @@ class SceneRun:
         status, message = res.status, res.message
         if verdict["msg"]:
             status, message = "failed", f"{name}: {verdict['msg']}"
-        elif budget is not None and status != "success" and "max_cpu_s" in message:
+        elif res.stats.get("budget_spent"):
             message = f"{name}: {self._budget_text(budget)}"
             self.over_budget = True
         elif status != "success":

@@ -132,26 +132,36 @@ def column_bracket(loads, votes) -> tuple:
     session 20 every failed run counted as a slip). (0, lightest) when nothing held; (last
     load held, inf) when nothing above the first hold slipped or failed.
     """
-    held = [i for i, v in enumerate(votes) if v]
-    if not held:
+    b = _bracket(votes)
+    if b is None:
         return 0.0, float(loads[0])
-    last = held[0]
-    for j in range(held[0] + 1, len(loads)):
-        if votes[j] is False:
-            return float(loads[last]), float(loads[j])
-        if votes[j]:
-            last = j
-    failed = failed_above(votes)
-    return float(loads[last]), (float(loads[failed]) if failed is not None else math.inf)
+    last, top, _ = b
+    return float(loads[last]), (float(loads[top]) if top is not None else math.inf)
 
 
 def failed_above(votes):
     """Index of the first failed run (None) above a column's last hold when nothing above
     that hold slipped, else None: where :func:`column_bracket` ends at a failed run."""
+    b = _bracket(votes)
+    return b[1] if b is not None and b[2] else None
+
+
+def _bracket(votes):
+    """(index of the last run held below the band's top, index of that top or None: open
+    above, whether the top is a failed run) of one column's votes; None when nothing held
+    (:func:`column_bracket`)."""
     held = [i for i, v in enumerate(votes) if v]
-    if not held or any(v is False for v in votes[held[0] + 1 :]):
+    if not held:
         return None
-    return next((j for j in range(held[-1] + 1, len(votes)) if votes[j] is None), None)
+    last, failed = held[0], None
+    for j in range(held[0] + 1, len(votes)):
+        if votes[j] is False:
+            return last, j, False
+        if votes[j]:
+            last, failed = j, None
+        elif failed is None:
+            failed = j
+    return last, failed, failed is not None
 
 
 def _mid(lo: float, hi: float) -> float:

@@ -5,6 +5,13 @@ from __future__ import annotations
 
 __all__ = ["SIMULATE_COST", "SIMULATE_MAX_CPU_S", "simulate_command"]
 
+#: [s] the CPU budget of one ``simulate=True`` run of a hitch (each run of a recheck or a
+#: bisection has its own): a soft rope's run is stretched in simulated time with its slower
+#: flexural clock (kappa 0.003: 18x the reference rod's span), and the solver's rate guard
+#: bounds a crawl per simulated second only, so one heavy kappa-0.003 point of the shipped
+#: tables took 1829 s of CPU; a run that spends the budget stops undecided and says so
+SIMULATE_MAX_CPU_S = 900.0
+
 #: what one ``simulate=True`` run of a hitch costs, as the answers quote it (measured: the
 #: clove hitch at the paper's size 7.3 s wall on an idle machine; the hold-table runs of the
 #: hitches 3-30 s of CPU per point, up to ~2 min on large posts, d/D ~ 0.02, where the rod
@@ -12,15 +19,8 @@ __all__ = ["SIMULATE_COST", "SIMULATE_MAX_CPU_S", "simulate_command"]
 SIMULATE_COST = (
     "typically 10-30 s of CPU, up to ~2 min on a large post (d/D ~ 0.02); a second run "
     "with a 3 s hold when the creep lies near the limit; each stops undecided after "
-    "900 s of CPU (--max-cpu)"
+    f"{SIMULATE_MAX_CPU_S:g} s of CPU (--max-cpu)"
 )
-
-#: [s] the CPU budget of one ``simulate=True`` run of a hitch (each run of a recheck or a
-#: bisection has its own): a soft rope's run is stretched in simulated time with its slower
-#: flexural clock (kappa 0.003: 18x the reference rod's span), and the solver's rate guard
-#: bounds a crawl per simulated second only, so one heavy kappa-0.003 point of the shipped
-#: tables took 1829 s of CPU; a run that spends the budget stops undecided and says so
-SIMULATE_MAX_CPU_S = 900.0
 
 
 def _q(value: float, unit: str) -> str:
