@@ -78,3 +78,37 @@ def test_budget_inputs_are_checked(kw, words):
         args.pop("post_diameter")
     with pytest.raises(InputError, match=words):
         hold(knot, **args)
+
+
+def test_a_recheck_gets_the_recheck_factor_times_the_budget(monkeypatch):
+    """A recheck holds :data:`RECHECK_HOLD_FACTOR` times as long, so its budget is that many
+    budgets: a first run that ended inside its 100 s is not undone by a recheck cut at 100 s
+    (the review of session 20 found the recheck on the first run's budget)."""
+    import knotmech.verdict.build as build
+    from knotmech.verdict.criterion import RECHECK_HOLD_FACTOR
+
+    budgets, holds = [], []
+
+    def scene(**kw):
+        if "options" in kw:
+            budgets.append(kw["options"].max_cpu_s)
+        holds.append(kw["hold_time"])
+        t_end = kw["settle_time"] + kw["load_time"] + kw["hold_time"]
+        return SimpleNamespace(times=[0.0, t_end], status="success", verdict="hold",
+                               message="", topology_preserved=True, creep_speed_d=0.0,
+                               creep_window=0.5, stats={}, positions=[[0.0] * 3],
+                               creep=0.0)  # fmt: skip
+
+    monkeypatch.setattr(build, "hold_scene", lambda knot: scene)
+    calls = iter([True, False])
+    monkeypatch.setattr(build, "needs_recheck", lambda *a, **k: next(calls))
+    p = simulate_point(d_over_2R=0.1, t_over_EA=1e-3, knot="two-half-hitches",
+                       recheck=True, max_cpu_s=100.0)  # fmt: skip
+    assert budgets == [100.0, RECHECK_HOLD_FACTOR * 100.0] == [100.0, 200.0]
+    assert holds[1] == pytest.approx(RECHECK_HOLD_FACTOR * holds[0])
+    assert p["holds"] is True and p["first_hold_time"] == pytest.approx(holds[0])
+    # without a budget (the tables) neither run has one
+    budgets.clear()
+    calls = iter([True, False])
+    simulate_point(d_over_2R=0.1, t_over_EA=1e-3, knot="two-half-hitches", recheck=True)
+    assert budgets == []

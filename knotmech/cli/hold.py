@@ -51,6 +51,8 @@ _FLAGS = {
 def register(subparsers) -> None:
     from knotmech.materials import material_names
     from knotmech.verdict import KNOT_NAMES
+    from knotmech.verdict.command import SIMULATE_MAX_CPU_S
+    from knotmech.verdict.criterion import RECHECK_HOLD_FACTOR
 
     p = subparsers.add_parser(
         "hold",
@@ -167,8 +169,9 @@ def register(subparsers) -> None:
         default=None,
         metavar="TIME",
         help="with --simulate, a hitch on a post: the CPU budget of each DER run, e.g. 30min "
-        "(default 900s); a run that spends it stops and the DER does not decide (a soft "
-        "rope's run is long: its protocol is stretched to the rope's flexural clock)",
+        f"(default {SIMULATE_MAX_CPU_S:g}s; a recheck gets {RECHECK_HOLD_FACTOR:g}x); a run "
+        "that spends it stops and the DER does not decide (a soft rope's run is long: its "
+        "protocol is stretched to the rope's flexural clock)",
     )
     p.add_argument(
         "--creep-limit",

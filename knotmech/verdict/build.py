@@ -173,7 +173,10 @@ def simulate_point(
 
     ``max_cpu_s`` [s]: the run's CPU budget (:class:`knotmech.rod.SolverOptions`; None, the
     default and the tables': none). A run that spends it stops with ``holds = None`` and
-    the solver's message; a recheck gets its own budget.
+    the solver's message. A recheck gets its own budget, :data:`RECHECK_HOLD_FACTOR` times
+    ``max_cpu_s`` (its hold is that many times longer), so a first run that ended inside
+    its budget is not undone by a recheck cut short; a point then costs up to
+    1 + :data:`RECHECK_HOLD_FACTOR` budgets.
 
     ``hold_time`` [protocol s] replaces the protocol's hold. With ``recheck`` (what ``hold
     --simulate`` uses), a run whose creep speed lies in :data:`RECHECK_BAND` around the
@@ -279,7 +282,7 @@ def simulate_point(
             bending_scale=kappa, creep_limit=lim,
             hold_time=RECHECK_HOLD_FACTOR * proto["hold_time"], time_scale=time_scale,
             knot=knot, progress=progress, keep_result=keep_result, t_low_fraction=frac,
-            max_cpu_s=max_cpu_s,
+            max_cpu_s=None if max_cpu_s is None else RECHECK_HOLD_FACTOR * max_cpu_s,
         )  # fmt: skip
         again["first_creep_speed"] = speed
         again["first_hold_time"] = proto["hold_time"]

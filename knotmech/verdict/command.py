@@ -3,13 +3,16 @@ such run costs."""
 
 from __future__ import annotations
 
+from knotmech.verdict.criterion import RECHECK_HOLD_FACTOR
+
 __all__ = ["SIMULATE_COST", "SIMULATE_MAX_CPU_S", "simulate_command"]
 
-#: [s] the CPU budget of one ``simulate=True`` run of a hitch (each run of a recheck or a
-#: bisection has its own): a soft rope's run is stretched in simulated time with its slower
-#: flexural clock (kappa 0.003: 18x the reference rod's span), and the solver's rate guard
-#: bounds a crawl per simulated second only, so one heavy kappa-0.003 point of the shipped
-#: tables took 1829 s of CPU; a run that spends the budget stops undecided and says so
+#: [s] the CPU budget of one ``simulate=True`` run of a hitch (each bisection run has its
+#: own; a recheck, whose hold is :data:`RECHECK_HOLD_FACTOR` times longer, that many): a
+#: soft rope's run is stretched in simulated time with its slower flexural clock (kappa
+#: 0.003: 18x the reference rod's span), and the solver's rate guard bounds a crawl per
+#: simulated second only, so one heavy kappa-0.003 point of the shipped tables took 1829 s
+#: of CPU; a run that spends the budget stops undecided and says so
 SIMULATE_MAX_CPU_S = 900.0
 
 #: what one ``simulate=True`` run of a hitch costs, as the answers quote it (measured: the
@@ -18,8 +21,9 @@ SIMULATE_MAX_CPU_S = 900.0
 #: is long)
 SIMULATE_COST = (
     "typically 10-30 s of CPU, up to ~2 min on a large post (d/D ~ 0.02); a second run "
-    "with a 3 s hold when the creep lies near the limit; each stops undecided after "
-    f"{SIMULATE_MAX_CPU_S:g} s of CPU (--max-cpu)"
+    "with a 3 s hold when the creep lies near the limit; the first stops undecided after "
+    f"{SIMULATE_MAX_CPU_S:g} s of CPU (--max-cpu), the second after "
+    f"{RECHECK_HOLD_FACTOR:g} x that"
 )
 
 
