@@ -149,3 +149,54 @@ def test_cow_hitch_heavy_load_reaches_a_verdict():
     assert stats["held_steps"] >= 1
     assert r["status"] == "success" and r["topology_preserved"]
     assert r["verdict"] == "slip" and r["stopped_in"] == "load"
+
+
+def _stagnating_after(monkeypatch, t_fail):
+    """Every Newton attempt of a step ending after ``t_fail`` [s] stagnates (the predicted
+    attempts only: the fallback's held attempt still runs Newton)."""
+    from knotmech.rod.solver import Stepper, _StepFailed
+
+    predicted = Stepper._predicted
+
+    def stagnating(self, st, dt, t_new, q_lin):
+        if t_new > t_fail:
+            raise _StepFailed("Newton stagnated: forced by the test", 4, stalled=True)
+        return predicted(self, st, dt, t_new, q_lin)
+
+    monkeypatch.setattr(Stepper, "_predicted", stagnating)
+
+
+def test_rescue_needs_a_parallel_pair_in_reach(monkeypatch):
+    """A run with rod-rod contact (two rods crossing at 90 degrees, pressed together) whose
+    steps stagnate from t = 0.1 s fails exactly as without the fallback: no nearly
+    parallel pair is in reach, so holding could change nothing. The same message, no
+    ``rescues`` in the stats, and no second crawl down to dt_min (the same number of
+    rejected attempts: 0.01 s halved 24 times is below dt_min = 1e-9 s)."""
+    _stagnating_after(monkeypatch, 0.1)
+    on, off = _crossing_push(True), _crossing_push(False)
+    assert on.status == off.status == "failed"
+    assert on.message == off.message
+    assert "did not recover" not in on.message and "dt_min" in on.message
+    assert on.stats["rejected_steps"] == off.stats["rejected_steps"] == 24
+    assert on.stats["steps"] == off.stats["steps"] == 10
+    assert not {"rescues", "rescue_t", "held_steps"} & set(on.stats)
+    np.testing.assert_array_equal(on.positions, off.positions)
+
+
+def test_rescue_engages_with_a_parallel_pair_in_reach(monkeypatch):
+    """The same forced stagnation on two parallel rods pressed together (one pair within
+    5 degrees, in reach): the fallback engages at the failing state and its held attempts
+    converge."""
+    from knotmech.rod.solver import simulate
+    from knotmech.rod.system import Rod, RodSystem
+
+    _stagnating_after(monkeypatch, 0.0)
+    s = np.linspace(0.0, 0.2, 4)
+    a = np.stack([s, 0 * s, 0 * s], 1)
+    b = np.stack([s + 0.2 / 9, 0 * s, 0 * s + 2 * R * OVERLAP], 1)
+    rods = [Rod(positions=p, radius=R, youngs_modulus=1e6, density=1000.0) for p in (a, b)]
+    res = simulate(RodSystem(rods), t_end=2e-3, dt=1e-3, interactions=[contact()],
+                   options=SolverOptions(throw=False))  # fmt: skip
+    assert res.stats["rescues"] == 1
+    assert res.stats["rescue_t"] == 0.0
+    assert res.stats["held_steps"] >= 1
