@@ -200,3 +200,43 @@ def test_rescue_engages_with_a_parallel_pair_in_reach(monkeypatch):
     assert res.stats["rescues"] == 1
     assert res.stats["rescue_t"] == 0.0
     assert res.stats["held_steps"] >= 1
+
+
+def test_held_gap_at_zero_fails_like_the_exact_gap():
+    """At a zero gap the direction w/|w| of the penalty force is undefined. Neither the
+    exact gap gradient nor the held one floors |w| (a floor would give a finite but
+    arbitrary force, none for a pair that has met): both raise ZeroDivisionError (numba's
+    Python error model), never NaN, and ``Stepper._newton`` turns that, as any
+    ArithmeticError of an evaluation, into a rejected attempt (dt halved). Away from zero
+    the held gap at the exact closest points is the exact gap, bit for bit."""
+    from knotmech.rod._kernels.contact_rodrod import (
+        _edge_distance_grad_ws,
+        _held_gap_grad,
+        segment_params,
+    )
+
+    # two collinear edges overlapping on [0.5, 1]: they meet, |w| = 0 at any common point
+    x = np.array([0.0, 0, 0, 1, 0, 0, 0.5, 0, 0, 1.5, 0, 0])
+    grad, coef, w = np.empty(12), np.empty(4), np.empty(3)
+    with pytest.raises(ZeroDivisionError):
+        _held_gap_grad(x, 0.75, 0.25, grad, coef, w)
+    with pytest.raises(ZeroDivisionError):
+        _edge_distance_grad_ws(x, grad, coef, w)
+    # a held pair whose held points coincide, through RodContact.assemble
+    sysm, q = parallel_rods(0.0)
+    c = contact()
+    c.begin_step(sysm, q, None, 1e-3)
+    assert c.hold_switches(sysm, q) >= 1
+    q_met = q.copy()
+    q_met[sysm.node_dofs[3:, 2]] = 0.0  # rod 1 lowered onto rod 0's line
+    with pytest.raises(ZeroDivisionError):
+        upper_force(c, sysm, q_met, q)
+    # 3-4-5 triangle: the edges 1 m apart at s = t = 1/2
+    x = np.array([0.0, 0, 0, 1, 0, 0, 0.5, -0.6, 1, 0.5, 0.6, 1])
+    s, t, _, _ = segment_params(x[:3], x[3:6], x[6:9], x[9:])
+    g_held = np.empty(12)
+    d_held = _held_gap_grad(x, s, t, g_held, coef, w)
+    d_exact = _edge_distance_grad_ws(x, grad, coef, w)
+    assert d_held == d_exact == pytest.approx(1.0, rel=1e-12)
+    np.testing.assert_array_equal(g_held, grad)
+    np.testing.assert_allclose(g_held[[2, 5, 8, 11]], [-0.5, -0.5, 0.5, 0.5], rtol=1e-9)

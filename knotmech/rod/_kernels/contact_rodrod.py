@@ -287,7 +287,9 @@ def _edge_distance_grad_ws(x, grad, coef, w):
 def _held_gap_grad(x, s, t, grad, coef, w):
     """Gap |w| of two edges at fixed parameters (s, t), w = (1-s) x1 + s x2 - (1-t) x3
     - t x4, and its gradient (12,) (:func:`_edge_distance_grad_ws` with the closest-point
-    parameters held, not minimised); writes ``coef`` (4,) and ``w`` (3,)."""
+    parameters held, not minimised); writes ``coef`` (4,) and ``w`` (3,). At |w| = 0 (the
+    held points meet; the force's direction is undefined) it raises ZeroDivisionError, as
+    the exact gap does: the solver rejects the attempt (``Stepper._newton``)."""
     coef[0] = 1.0 - s
     coef[1] = s
     coef[2] = -(1.0 - t)
