@@ -211,7 +211,7 @@ def test_held_gap_at_zero_fails_like_the_exact_gap():
     the held gap at the exact closest points is the exact gap, bit for bit."""
     from knotmech.rod._kernels.contact_rodrod import (
         _edge_distance_grad_ws,
-        _held_gap_grad,
+        _gap_grad_at,
         segment_params,
     )
 
@@ -219,7 +219,7 @@ def test_held_gap_at_zero_fails_like_the_exact_gap():
     x = np.array([0.0, 0, 0, 1, 0, 0, 0.5, 0, 0, 1.5, 0, 0])
     grad, coef, w = np.empty(12), np.empty(4), np.empty(3)
     with pytest.raises(ZeroDivisionError):
-        _held_gap_grad(x, 0.75, 0.25, grad, coef, w)
+        _gap_grad_at(x, 0.75, 0.25, grad, coef, w)
     with pytest.raises(ZeroDivisionError):
         _edge_distance_grad_ws(x, grad, coef, w)
     # a held pair whose held points coincide, through RodContact.assemble
@@ -235,7 +235,7 @@ def test_held_gap_at_zero_fails_like_the_exact_gap():
     x = np.array([0.0, 0, 0, 1, 0, 0, 0.5, -0.6, 1, 0.5, 0.6, 1])
     s, t, _, _ = segment_params(x[:3], x[3:6], x[6:9], x[9:])
     g_held = np.empty(12)
-    d_held = _held_gap_grad(x, s, t, g_held, coef, w)
+    d_held = _gap_grad_at(x, s, t, g_held, coef, w)
     d_exact = _edge_distance_grad_ws(x, grad, coef, w)
     assert d_held == d_exact == pytest.approx(1.0, rel=1e-12)
     np.testing.assert_array_equal(g_held, grad)

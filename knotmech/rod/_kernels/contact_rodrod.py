@@ -153,11 +153,12 @@ def edge_distance_hessian(x, grad, hess):
 
 
 @njit(cache=True, inline="always")
-def _gap(x, coef, w):
-    """Closest points of the two edges in ``x`` (12,): writes the weights ``coef`` (4,) of
-    the four nodes in the gap vector w = A x = (1-s) x1 + s x2 - (1-t) x3 - t x4 and ``w``
-    (3,); returns (|w|, free_s, free_t) (see :func:`segment_params`)."""
-    s, t, free_s, free_t = _segment_params_flat(x)
+def _gap_at(x, s, t, coef, w):
+    """Gap of the two edges in ``x`` (12,) at the parameters (s, t): writes the weights
+    ``coef`` (4,) of the four nodes in the gap vector w = A x = (1-s) x1 + s x2 - (1-t) x3
+    - t x4 and ``w`` (3,); returns |w|. The one place of this arithmetic: the exact gap
+    (:func:`_gap`, (s, t) the closest points) and the held one of the stagnation fallback
+    (:func:`_gap_grad_at`, (s, t) held) are the same function of (s, t), bit for bit."""
     coef[0] = 1.0 - s
     coef[1] = s
     coef[2] = -(1.0 - t)
@@ -166,8 +167,32 @@ def _gap(x, coef, w):
     for m in range(3):
         w[m] = coef[0] * x[m] + coef[1] * x[3 + m] + coef[2] * x[6 + m] + coef[3] * x[9 + m]
         d2 += w[m] * w[m]
-    dist = np.sqrt(d2)
-    return dist, free_s, free_t
+    return np.sqrt(d2)
+
+
+@njit(cache=True, inline="always")
+def _gap_grad_at(x, s, t, grad, coef, w):
+    """Gap |w| of two edges at the parameters (s, t) (:func:`_gap_at`) and its gradient
+    (12,) with (s, t) fixed, grad_k = coef_k w / |w|: the gradient of the exact distance
+    at the closest points (envelope theorem, :func:`_edge_distance_grad_ws`), and of the
+    held gap of the stagnation fallback. At |w| = 0 (the points meet; the force's
+    direction is undefined) it raises ZeroDivisionError: the solver rejects the attempt
+    (``Stepper._newton``)."""
+    dist = _gap_at(x, s, t, coef, w)
+    inv_d = 1.0 / dist
+    for k in range(4):
+        for m in range(3):
+            grad[3 * k + m] = (coef[k] * w[m]) * inv_d
+    return dist
+
+
+@njit(cache=True, inline="always")
+def _gap(x, coef, w):
+    """Closest points of the two edges in ``x`` (12,): writes the weights ``coef`` (4,) of
+    the four nodes in the gap vector w = A x = (1-s) x1 + s x2 - (1-t) x3 - t x4 and ``w``
+    (3,); returns (|w|, free_s, free_t) (see :func:`segment_params`, :func:`_gap_at`)."""
+    s, t, free_s, free_t = _segment_params_flat(x)
+    return _gap_at(x, s, t, coef, w), free_s, free_t
 
 
 @njit(cache=True, inline="always")
@@ -275,40 +300,13 @@ def _subtract_coupling(nfree, H, B, U):
 def _edge_distance_grad_ws(x, grad, coef, w):
     """Distance and its gradient only (the arithmetic of :func:`_edge_distance_hessian_ws`,
     so both give bitwise the same values): for pairs that need no Jacobian block."""
-    dist, _, _ = _gap(x, coef, w)
-    inv_d = 1.0 / dist
-    for k in range(4):
-        for m in range(3):
-            grad[3 * k + m] = (coef[k] * w[m]) * inv_d
-    return dist
-
-
-@njit(cache=True, inline="always")
-def _held_gap_grad(x, s, t, grad, coef, w):
-    """Gap |w| of two edges at fixed parameters (s, t), w = (1-s) x1 + s x2 - (1-t) x3
-    - t x4, and its gradient (12,) (:func:`_edge_distance_grad_ws` with the closest-point
-    parameters held, not minimised); writes ``coef`` (4,) and ``w`` (3,). At |w| = 0 (the
-    held points meet; the force's direction is undefined) it raises ZeroDivisionError, as
-    the exact gap does: the solver rejects the attempt (``Stepper._newton``)."""
-    coef[0] = 1.0 - s
-    coef[1] = s
-    coef[2] = -(1.0 - t)
-    coef[3] = -t
-    d2 = 0.0
-    for m in range(3):
-        w[m] = coef[0] * x[m] + coef[1] * x[3 + m] + coef[2] * x[6 + m] + coef[3] * x[9 + m]
-        d2 += w[m] * w[m]
-    dist = np.sqrt(d2)
-    inv_d = 1.0 / dist
-    for k in range(4):
-        for m in range(3):
-            grad[3 * k + m] = (coef[k] * w[m]) * inv_d
-    return dist
+    s, t, _, _ = _segment_params_flat(x)
+    return _gap_grad_at(x, s, t, grad, coef, w)
 
 
 @njit(cache=True, inline="always")
 def _held_gap_hessian(dist, grad, hess, coef, w, B, U):
-    """Hessian (12, 12) of the held gap of :func:`_held_gap_grad`: (coef coef^T) kron
+    """Hessian (12, 12) of the held gap of :func:`_gap_grad_at`: (coef coef^T) kron
     (I - n n^T) / |w| with n = w/|w| (no parameter-coupling term); ``B`` = 0 and ``U`` = I,
     so that :func:`_normal_jacobian` adds no closest-point motion either."""
     inv_d = 1.0 / dist
@@ -576,10 +574,11 @@ def rodrod_assemble(
                 x[3 * k + m] = pos[nodes[k], m]
                 dofs[3 * k + m] = node_dofs[nodes[k], m]
         two_h = radius_edge[ei] + radius_edge[ej]
-        dist = _edge_distance_grad_ws(x, grad, coef, w)
         held = frozen is not None and frozen[p, 0] >= 0.0
         if held:
-            dist = _held_gap_grad(x, frozen[p, 0], frozen[p, 1], grad, coef, w)
+            dist = _gap_grad_at(x, frozen[p, 0], frozen[p, 1], grad, coef, w)
+        else:
+            dist = _edge_distance_grad_ws(x, grad, coef, w)
         # pairs beyond z_jacobian add their force but no Jacobian entries
         jac = want_jacobian and sharpness * (two_h - dist) >= z_jacobian
         if jac and held:
@@ -679,9 +678,10 @@ def _assemble_forces(
                 x[3 * k + m] = pos[nodes[k], m]
                 dofs[3 * k + m] = node_dofs[nodes[k], m]
         two_h = radius_edge[ei] + radius_edge[ej]
-        dist = _edge_distance_grad_ws(x, grad, coef, w)
         if frozen is not None and frozen[p, 0] >= 0.0:
-            dist = _held_gap_grad(x, frozen[p, 0], frozen[p, 1], grad, coef, w)
+            dist = _gap_grad_at(x, frozen[p, 0], frozen[p, 1], grad, coef, w)
+        else:
+            dist = _edge_distance_grad_ws(x, grad, coef, w)
         e, de, d2e = penalty_derivs(two_h - dist, sharpness, stiffness)
         energy += e
         for a in range(12):
