@@ -526,6 +526,7 @@ class RodContact:
             _positions(system, q), _positions(system, q_old), self.pairs, en, rad,
             self.sharpness, self.stiffness, Z_CUTOFF, mu_s, mu_k, k_t, anc, slip, known,
             keep, mode, float(self.friction.cap_floor), _floor_mode(self.friction),
+            **self._held_kwargs(self.pairs.shape[0]),
         )  # fmt: skip
 
     def end_step(self, system, q_new, q_old, dt):
@@ -548,7 +549,9 @@ class RodContact:
 
     def energy(self, system, q):
         """Penalty energy [J] of the current candidate pairs (anchor law: plus the energy
-        stored in the anchors' tangential springs)."""
+        stored in the anchors' tangential springs). While :meth:`hold_switches` holds
+        pairs, theirs is the energy of the held gaps (the potential of the force
+        :meth:`assemble` then gives), at any ``q``."""
         self._ensure_pairs(system, q)
         if self.pairs.shape[0] == 0:
             return 0.0
@@ -566,6 +569,7 @@ class RodContact:
                 np.ascontiguousarray(system.rod_radius_edge, dtype=float),
                 self.sharpness,
                 self.stiffness,
+                **self._held_kwargs(self.pairs.shape[0]),
             )
         )
         if self._anchored:

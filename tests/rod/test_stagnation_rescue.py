@@ -240,3 +240,29 @@ def test_held_gap_at_zero_fails_like_the_exact_gap():
     assert d_held == d_exact == pytest.approx(1.0, rel=1e-12)
     np.testing.assert_array_equal(g_held, grad)
     np.testing.assert_allclose(g_held[[2, 5, 8, 11]], [-0.5, -0.5, 0.5, 0.5], rtol=1e-9)
+
+
+def test_energy_of_held_pairs_is_that_of_the_held_gaps():
+    """While pairs are held, ``RodContact.energy`` is the energy of the held gaps (the
+    potential whose gradient the assembled force is), also at a configuration other than
+    the one assembled last: at a tilt of -eps with the closest points held at +eps it
+    equals the assembled (held) energy there, and differs from the exact-gap energy (the
+    held gap exceeds the exact one by about the overlap times the edges' angle, 3e-6 m
+    here, against a penetration of 1e-4 m)."""
+    eps = 1e-5
+    sp, qp = parallel_rods(+eps)
+    _, qm = parallel_rods(-eps)
+    c = contact()
+    c.begin_step(sp, qp, None, 1e-3)
+    assert c.hold_switches(sp, qp) >= 1
+    upper_force(c, sp, qm, qp)  # assembled at qm, held
+    e_assembled = c.energy(sp, qm)
+    upper_force(c, sp, qp, qp)  # assembled at qp: energy(qm) is computed anew
+    e_held = c.energy(sp, qm)
+    assert e_held == pytest.approx(e_assembled, rel=1e-12)
+    c.release_switches()
+    upper_force(c, sp, qm, qp)
+    e_exact = c.energy(sp, qm)
+    upper_force(c, sp, qp, qp)
+    assert c.energy(sp, qm) == pytest.approx(e_exact, rel=1e-12)
+    assert e_exact - e_held > 1e-3 * e_exact  # the held gaps are wider

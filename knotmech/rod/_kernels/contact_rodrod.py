@@ -305,6 +305,16 @@ def _edge_distance_grad_ws(x, grad, coef, w):
 
 
 @njit(cache=True, inline="always")
+def _pair_gap_grad(x, frozen, p, grad, coef, w):
+    """Gap and gradient of pair ``p`` (nodes ``x`` (12,)): at its held parameters
+    ``frozen[p]`` when held (``frozen`` not None, s >= 0; the stagnation fallback, see
+    :func:`freeze_parallel_pairs`), else at its closest points."""
+    if frozen is not None and frozen[p, 0] >= 0.0:
+        return _gap_grad_at(x, frozen[p, 0], frozen[p, 1], grad, coef, w)
+    return _edge_distance_grad_ws(x, grad, coef, w)
+
+
+@njit(cache=True, inline="always")
 def _held_gap_hessian(dist, grad, hess, coef, w, B, U):
     """Hessian (12, 12) of the held gap of :func:`_gap_grad_at`: (coef coef^T) kron
     (I - n n^T) / |w| with n = w/|w| (no parameter-coupling term); ``B`` = 0 and ``U`` = I,
@@ -575,10 +585,7 @@ def rodrod_assemble(
                 dofs[3 * k + m] = node_dofs[nodes[k], m]
         two_h = radius_edge[ei] + radius_edge[ej]
         held = frozen is not None and frozen[p, 0] >= 0.0
-        if held:
-            dist = _gap_grad_at(x, frozen[p, 0], frozen[p, 1], grad, coef, w)
-        else:
-            dist = _edge_distance_grad_ws(x, grad, coef, w)
+        dist = _pair_gap_grad(x, frozen, p, grad, coef, w)
         # pairs beyond z_jacobian add their force but no Jacobian entries
         jac = want_jacobian and sharpness * (two_h - dist) >= z_jacobian
         if jac and held:
@@ -678,10 +685,7 @@ def _assemble_forces(
                 x[3 * k + m] = pos[nodes[k], m]
                 dofs[3 * k + m] = node_dofs[nodes[k], m]
         two_h = radius_edge[ei] + radius_edge[ej]
-        if frozen is not None and frozen[p, 0] >= 0.0:
-            dist = _gap_grad_at(x, frozen[p, 0], frozen[p, 1], grad, coef, w)
-        else:
-            dist = _edge_distance_grad_ws(x, grad, coef, w)
+        dist = _pair_gap_grad(x, frozen, p, grad, coef, w)
         e, de, d2e = penalty_derivs(two_h - dist, sharpness, stiffness)
         energy += e
         for a in range(12):
@@ -1047,10 +1051,10 @@ def _anchor_friction(
 
 
 @njit(cache=True, inline="always")
-def _pair_normal(x, edge_i, edge_j, radius_edge, sharpness, stiffness, grad, coef, w, n):
-    """|F_n| of the pair at ``x`` and its normal into ``n`` (the penalty force on edge i,
-    as in :func:`rodrod_assemble`)."""
-    dist = _edge_distance_grad_ws(x, grad, coef, w)
+def _pair_normal(x, edge_i, edge_j, radius_edge, sharpness, stiffness, grad, coef, w, n, frozen, p):
+    """|F_n| of pair ``p`` at ``x`` and its normal into ``n`` (the penalty force on edge i,
+    as in :func:`rodrod_assemble`; ``frozen``: its held parameters or None)."""
+    dist = _pair_gap_grad(x, frozen, p, grad, coef, w)
     two_h = radius_edge[edge_i] + radius_edge[edge_j]
     _, de, _ = penalty_derivs(two_h - dist, sharpness, stiffness)
     fnorm = 0.0
@@ -1121,6 +1125,7 @@ def align_anchors(keys_old, anc_old, slip_old, keys, anc, slip, known):
 def rodrod_anchor_commit(
     pos, pos_old, pairs, edge_nodes, radius_edge, sharpness, stiffness, z_cutoff,
     mu_s, mu_k, k_t, anchor, anchor_slip, known, keep, mode, cap_floor=0.0, floor_mode=0,
+    frozen=None,
 ):  # fmt: skip
     """Commit (``mode`` 1) or stored energy (``mode`` 2) of the rod-rod anchors at ``pos``.
 
@@ -1136,6 +1141,8 @@ def rodrod_anchor_commit(
     the commit moves the anchor to the gap of the next step's width: a sliding pair to
     SLIP_GAP max(mu_k |F_n|/k_t, floor), a sticking pair that was floored to the gap that
     keeps its friction force under the unfloored spring (force-preserving transfer).
+    ``frozen``: held closest-point parameters, as in :func:`rodrod_assemble` (the normal
+    force and normal of a held pair are those of its held gap).
     Returns the anchors' stored energy (mode 2).
     """
     x = np.empty(12)
@@ -1161,7 +1168,9 @@ def rodrod_anchor_commit(
             _fresh_anchor(x, anchor[p], coef, w, n, nf, cw, u)
             known[p] = True
             _pair_nodes(pos, pairs, p, edge_nodes, x)
-        fnorm = _pair_normal(x, ei, ej, radius_edge, sharpness, stiffness, grad, coef, w, n)
+        fnorm = _pair_normal(
+            x, ei, ej, radius_edge, sharpness, stiffness, grad, coef, w, n, frozen, p
+        )
         if not fnorm > 0.0:
             continue
         _friction_normal(x, n, nf)
@@ -1227,9 +1236,13 @@ def _next_gap(unorm, a, limit, slip, fnorm, mu_s, mu_k, k_t, a_full):
 
 
 @njit(cache=True)
-def rodrod_energy(pos, pairs, edge_nodes, radius_edge, sharpness, stiffness):
-    """Total penalty energy of the candidate pairs (IMC squared softplus)."""
+def rodrod_energy(pos, pairs, edge_nodes, radius_edge, sharpness, stiffness, frozen=None):
+    """Total penalty energy of the candidate pairs (IMC squared softplus); ``frozen``
+    (n_pairs, 2) or None: the pairs with s >= 0 at their held parameters (the gap of
+    :func:`_gap_at`, as in :func:`rodrod_assemble`)."""
     x = np.empty(12)
+    coef = np.empty(4)
+    w = np.empty(3)
     energy = 0.0
     for p in range(pairs.shape[0]):
         ei = pairs[p, 0]
@@ -1238,7 +1251,10 @@ def rodrod_energy(pos, pairs, edge_nodes, radius_edge, sharpness, stiffness):
         for k in range(4):
             for m in range(3):
                 x[3 * k + m] = pos[nodes[k], m]
-        dist = edge_distance(x)
+        if frozen is not None and frozen[p, 0] >= 0.0:
+            dist = _gap_at(x, frozen[p, 0], frozen[p, 1], coef, w)
+        else:
+            dist = edge_distance(x)
         e, de, d2e = penalty_derivs(radius_edge[ei] + radius_edge[ej] - dist, sharpness, stiffness)
         energy += e
     return energy
@@ -1331,7 +1347,9 @@ def rodrod_friction_census(
         ei, ej = _pair_nodes(pos, pairs, p, edge_nodes, x)
         if sharpness * (radius_edge[ei] + radius_edge[ej] - edge_distance(x)) < z_cutoff:
             continue
-        fnorm = _pair_normal(x, ei, ej, radius_edge, sharpness, stiffness, grad, coef, w, n)
+        fnorm = _pair_normal(
+            x, ei, ej, radius_edge, sharpness, stiffness, grad, coef, w, n, None, p
+        )
         if not fnorm > 0.0:
             continue
         rows += 1
@@ -1357,7 +1375,7 @@ def rodrod_friction_census(
         if not known[p]:
             _fresh_anchor(xo, anc, coef, w, n_o, nf, cw, u)
             out[p, 6] = 1.0
-        _pair_normal(x, ei, ej, radius_edge, sharpness, stiffness, grad, coef, w, n)
+        _pair_normal(x, ei, ej, radius_edge, sharpness, stiffness, grad, coef, w, n, None, p)
         cnorm = _friction_normal(x, n, nf)
         unorm, _ = _anchor_gap(x, anc, nf, cw, u)
         mu = mu_k if anchor_slip[p] else mu_s
