@@ -242,7 +242,21 @@ class RodContact:
         between Newton iterates (the edge distance is the smaller of two smooth functions
         there), moving the pair's whole penalty force from one node to another, and Newton
         cycles (docs/notes/contact-and-friction/parallel-edge-stall.md). Call after
-        ``begin_step`` (the pairs of this attempt); returns the number of pairs held."""
+        ``begin_step`` (the pairs of this attempt). While held, :meth:`assemble` and
+        :meth:`energy` use the held gaps of these pairs.
+
+        Parameters
+        ----------
+        system : RodSystem
+            The system (node and edge layout, edge radii).
+        q_old : (n_dof,) array [m, rad]
+            The configuration at the step start; the parameters are taken there.
+
+        Returns
+        -------
+        int
+            The number of pairs held (0: nothing held, the exact closest points stay).
+        """
         self._ensure_pairs(system, q_old)
         rad, en, nd = self._arrays(system)[:3]
         held = np.empty((self.pairs.shape[0], 2))
@@ -260,7 +274,13 @@ class RodContact:
         return {} if held is None or held.shape[0] != npair else {"frozen": held}
 
     def release_switches(self) -> None:
-        """End :meth:`hold_switches` (the exact closest points again)."""
+        """End :meth:`hold_switches`: the exact closest points again (a no-op when nothing
+        is held).
+
+        Returns
+        -------
+        None
+        """
         self._held = None
         self._energy_cache = None
 

@@ -336,14 +336,37 @@ def _held_gap_hessian(dist, grad, hess, coef, w, B, U):
 
 @njit(cache=True)
 def freeze_parallel_pairs(pos, pairs, edge_nodes, radius_edge, sharpness, z_cutoff, out):
-    """Closest-point parameters (s, t) at ``pos`` of the candidate pairs within the
-    penalty's reach whose edges are nearly parallel (sin^2 of their angle below
-    ``_SIN2_PLANE``, about 5 degrees) into ``out`` (n_pairs, 2); -1 for the other pairs.
-    Returns the number of pairs held. For (nearly) parallel edges the closest points jump
-    between the two ends of the overlap as the tiny angle between them changes sign (the
-    distance is the smaller of two smooth functions there), which moves the whole penalty
-    force from one node to another between two Newton iterates: the stagnation fallback
-    holds these parameters for one step (docs/notes/contact-and-friction/parallel-edge-stall.md)."""
+    """Closest-point parameters (s, t) of the nearly parallel candidate pairs in reach.
+
+    For (nearly) parallel edges the closest points jump between the two ends of the
+    overlap as the tiny angle between them changes sign (the distance is the smaller of
+    two smooth functions there), which moves the whole penalty force from one node to
+    another between two Newton iterates: the stagnation fallback holds these parameters
+    for one step (docs/notes/contact-and-friction/parallel-edge-stall.md).
+
+    Parameters
+    ----------
+    pos : (n_nodes, 3) array [m]
+        Node positions (the step start).
+    pairs : (n_pairs, 2) int array
+        Candidate edge pairs (e_i, e_j).
+    edge_nodes : (n_edges, 2) int array
+        The two nodes of each edge.
+    radius_edge : (n_edges,) array [m]
+        Rod radius of each edge.
+    sharpness : float [1/m]
+        The penalty's k.
+    z_cutoff : float
+        Reach: pairs with k (2h - Delta) below it are not held (``Z_CUTOFF``).
+    out : (n_pairs, 2) array
+        Written: (s, t) of each held pair (edges within reach and with sin^2 of their
+        angle below ``_SIN2_PLANE``, about 5 degrees), -1 for the others.
+
+    Returns
+    -------
+    int
+        The number of pairs held.
+    """
     x = np.empty(12)
     held = 0
     for p in range(pairs.shape[0]):
