@@ -242,7 +242,21 @@ class RodContact:
         between Newton iterates (the edge distance is the smaller of two smooth functions
         there), moving the pair's whole penalty force from one node to another, and Newton
         cycles (docs/notes/contact-and-friction/parallel-edge-stall.md). Call after
-        ``begin_step`` (the pairs of this attempt); returns the number of pairs held."""
+        ``begin_step`` (the pairs of this attempt). While held, :meth:`assemble` and
+        :meth:`energy` use the held gaps of these pairs.
+
+        Parameters
+        ----------
+        system : RodSystem
+            The system (node and edge layout, edge radii).
+        q_old : (n_dof,) array [m, rad]
+            The configuration at the step start; the parameters are taken there.
+
+        Returns
+        -------
+        int
+            The number of pairs held (0: nothing held, the exact closest points stay).
+        """
         self._ensure_pairs(system, q_old)
         rad, en, nd = self._arrays(system)[:3]
         held = np.empty((self.pairs.shape[0], 2))
@@ -260,7 +274,13 @@ class RodContact:
         return {} if held is None or held.shape[0] != npair else {"frozen": held}
 
     def release_switches(self) -> None:
-        """End :meth:`hold_switches` (the exact closest points again)."""
+        """End :meth:`hold_switches`: the exact closest points again (a no-op when nothing
+        is held).
+
+        Returns
+        -------
+        None
+        """
         self._held = None
         self._energy_cache = None
 
@@ -526,6 +546,7 @@ class RodContact:
             _positions(system, q), _positions(system, q_old), self.pairs, en, rad,
             self.sharpness, self.stiffness, Z_CUTOFF, mu_s, mu_k, k_t, anc, slip, known,
             keep, mode, float(self.friction.cap_floor), _floor_mode(self.friction),
+            **self._held_kwargs(self.pairs.shape[0]),
         )  # fmt: skip
 
     def end_step(self, system, q_new, q_old, dt):
@@ -548,7 +569,9 @@ class RodContact:
 
     def energy(self, system, q):
         """Penalty energy [J] of the current candidate pairs (anchor law: plus the energy
-        stored in the anchors' tangential springs)."""
+        stored in the anchors' tangential springs). While :meth:`hold_switches` holds
+        pairs, theirs is the energy of the held gaps (the potential of the force
+        :meth:`assemble` then gives), at any ``q``."""
         self._ensure_pairs(system, q)
         if self.pairs.shape[0] == 0:
             return 0.0
@@ -566,6 +589,7 @@ class RodContact:
                 np.ascontiguousarray(system.rod_radius_edge, dtype=float),
                 self.sharpness,
                 self.stiffness,
+                **self._held_kwargs(self.pairs.shape[0]),
             )
         )
         if self._anchored:

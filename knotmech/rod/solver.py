@@ -129,7 +129,9 @@ class SolverOptions:
     rescue : bool  stagnation fallback (default True). It engages only where the run
         would otherwise fail: when the stall guard (``stall_steps`` or
         ``max_wall_per_sim_second``, not ``max_cpu_s``) or ``dt_min`` would stop the run
-        and the last rejected attempt stagnated. The run then goes on from its last good
+        and the last rejected attempt stagnated, and only if an interaction would hold a
+        switch at the last good state (a nearly parallel rod-rod pair in reach; else the
+        run fails as it would without it). The run then goes on from its last good
         state at the nominal dt, and from there on a step whose Newton attempts
         stagnate is tried once more (from the linear predictor) with the interactions'
         discontinuous switches held for that attempt (``hold_switches``: the closest
@@ -700,6 +702,20 @@ class Stepper:
         """The interactions that can hold their switches (the stagnation fallback)."""
         return [it for it in self.interactions if getattr(it, "hold_switches", None)]
 
+    def would_hold(self, st: State, dt: float) -> bool:
+        """Dry run of the fallback's hold at the step start ``st`` (step ``dt`` [s]): True
+        when an interaction holds any switch there (e.g. a nearly parallel rod-rod pair in
+        reach). The holders begin a step from ``st`` (as the next attempt does again) and
+        are released at once: nothing else changes."""
+        held = self.holders()
+        try:
+            for it in held:
+                it.begin_step(self.system, st.q, st.v, dt)
+            return sum(it.hold_switches(self.system, st.q) for it in held) > 0
+        finally:
+            for it in held:
+                it.release_switches()
+
     def _newton(self, q, st: State, dt: float, t_new: float):
         opt = self.opt
         for c, dofs in zip(self.constraints, self._cdof_list, strict=True):
@@ -1145,13 +1161,15 @@ class _Run:
 
     def _rescue(self) -> bool:
         """Engage the stagnation fallback (``SolverOptions.rescue``) where the run would
-        fail: the last rejected attempt stagnated, the fallback is not on yet, an
-        interaction can hold its switches, and the stop is not the CPU budget. The run
-        goes on from the last good state at the nominal dt; True when engaged."""
+        fail: the last rejected attempt stagnated, the fallback is not on yet, the stop is
+        not the CPU budget, and an interaction holds a switch at the last good state (a
+        dry :meth:`Stepper.would_hold`: with nothing to hold, the fallback's attempts
+        would be the failed ones again). The run goes on from the last good state at the
+        nominal dt; True when engaged."""
         stepper = self.stepper
         if not (self.opt.rescue and self.last_stalled and not stepper.rescue):
             return False
-        if self.stall.budget_spent or not stepper.holders():
+        if self.stall.budget_spent or not stepper.would_hold(self.st, self.dt):
             return False
         stepper.rescue = True
         self.stats["rescues"] = 1  # a count: a scene sums its phases' stats

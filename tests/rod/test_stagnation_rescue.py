@@ -149,3 +149,120 @@ def test_cow_hitch_heavy_load_reaches_a_verdict():
     assert stats["held_steps"] >= 1
     assert r["status"] == "success" and r["topology_preserved"]
     assert r["verdict"] == "slip" and r["stopped_in"] == "load"
+
+
+def _stagnating_after(monkeypatch, t_fail):
+    """Every Newton attempt of a step ending after ``t_fail`` [s] stagnates (the predicted
+    attempts only: the fallback's held attempt still runs Newton)."""
+    from knotmech.rod.solver import Stepper, _StepFailed
+
+    predicted = Stepper._predicted
+
+    def stagnating(self, st, dt, t_new, q_lin):
+        if t_new > t_fail:
+            raise _StepFailed("Newton stagnated: forced by the test", 4, stalled=True)
+        return predicted(self, st, dt, t_new, q_lin)
+
+    monkeypatch.setattr(Stepper, "_predicted", stagnating)
+
+
+def test_rescue_needs_a_parallel_pair_in_reach(monkeypatch):
+    """A run with rod-rod contact (two rods crossing at 90 degrees, pressed together) whose
+    steps stagnate from t = 0.1 s fails exactly as without the fallback: no nearly
+    parallel pair is in reach, so holding could change nothing. The same message, no
+    ``rescues`` in the stats, and no second crawl down to dt_min (the same number of
+    rejected attempts: 0.01 s halved 24 times is below dt_min = 1e-9 s)."""
+    _stagnating_after(monkeypatch, 0.1)
+    on, off = _crossing_push(True), _crossing_push(False)
+    assert on.status == off.status == "failed"
+    assert on.message == off.message
+    assert "did not recover" not in on.message and "dt_min" in on.message
+    assert on.stats["rejected_steps"] == off.stats["rejected_steps"] == 24
+    assert on.stats["steps"] == off.stats["steps"] == 10
+    assert not {"rescues", "rescue_t", "held_steps"} & set(on.stats)
+    np.testing.assert_array_equal(on.positions, off.positions)
+
+
+def test_rescue_engages_with_a_parallel_pair_in_reach(monkeypatch):
+    """The same forced stagnation on two parallel rods pressed together (one pair within
+    5 degrees, in reach): the fallback engages at the failing state and its held attempts
+    converge."""
+    from knotmech.rod.solver import simulate
+    from knotmech.rod.system import Rod, RodSystem
+
+    _stagnating_after(monkeypatch, 0.0)
+    s = np.linspace(0.0, 0.2, 4)
+    a = np.stack([s, 0 * s, 0 * s], 1)
+    b = np.stack([s + 0.2 / 9, 0 * s, 0 * s + 2 * R * OVERLAP], 1)
+    rods = [Rod(positions=p, radius=R, youngs_modulus=1e6, density=1000.0) for p in (a, b)]
+    res = simulate(RodSystem(rods), t_end=2e-3, dt=1e-3, interactions=[contact()],
+                   options=SolverOptions(throw=False))  # fmt: skip
+    assert res.stats["rescues"] == 1
+    assert res.stats["rescue_t"] == 0.0
+    assert res.stats["held_steps"] >= 1
+
+
+def test_held_gap_at_zero_fails_like_the_exact_gap():
+    """At a zero gap the direction w/|w| of the penalty force is undefined. Neither the
+    exact gap gradient nor the held one floors |w| (a floor would give a finite but
+    arbitrary force, none for a pair that has met): both raise ZeroDivisionError (numba's
+    Python error model), never NaN, and ``Stepper._newton`` turns that, as any
+    ArithmeticError of an evaluation, into a rejected attempt (dt halved). Away from zero
+    the held gap at the exact closest points is the exact gap, bit for bit."""
+    from knotmech.rod._kernels.contact_rodrod import (
+        _edge_distance_grad_ws,
+        _gap_grad_at,
+        segment_params,
+    )
+
+    # two collinear edges overlapping on [0.5, 1]: they meet, |w| = 0 at any common point
+    x = np.array([0.0, 0, 0, 1, 0, 0, 0.5, 0, 0, 1.5, 0, 0])
+    grad, coef, w = np.empty(12), np.empty(4), np.empty(3)
+    with pytest.raises(ZeroDivisionError):
+        _gap_grad_at(x, 0.75, 0.25, grad, coef, w)
+    with pytest.raises(ZeroDivisionError):
+        _edge_distance_grad_ws(x, grad, coef, w)
+    # a held pair whose held points coincide, through RodContact.assemble
+    sysm, q = parallel_rods(0.0)
+    c = contact()
+    c.begin_step(sysm, q, None, 1e-3)
+    assert c.hold_switches(sysm, q) >= 1
+    q_met = q.copy()
+    q_met[sysm.node_dofs[3:, 2]] = 0.0  # rod 1 lowered onto rod 0's line
+    with pytest.raises(ZeroDivisionError):
+        upper_force(c, sysm, q_met, q)
+    # 3-4-5 triangle: the edges 1 m apart at s = t = 1/2
+    x = np.array([0.0, 0, 0, 1, 0, 0, 0.5, -0.6, 1, 0.5, 0.6, 1])
+    s, t, _, _ = segment_params(x[:3], x[3:6], x[6:9], x[9:])
+    g_held = np.empty(12)
+    d_held = _gap_grad_at(x, s, t, g_held, coef, w)
+    d_exact = _edge_distance_grad_ws(x, grad, coef, w)
+    assert d_held == d_exact == pytest.approx(1.0, rel=1e-12)
+    np.testing.assert_array_equal(g_held, grad)
+    np.testing.assert_allclose(g_held[[2, 5, 8, 11]], [-0.5, -0.5, 0.5, 0.5], rtol=1e-9)
+
+
+def test_energy_of_held_pairs_is_that_of_the_held_gaps():
+    """While pairs are held, ``RodContact.energy`` is the energy of the held gaps (the
+    potential whose gradient the assembled force is), also at a configuration other than
+    the one assembled last: at a tilt of -eps with the closest points held at +eps it
+    equals the assembled (held) energy there, and differs from the exact-gap energy (the
+    held gap exceeds the exact one by about the overlap times the edges' angle, 3e-6 m
+    here, against a penetration of 1e-4 m)."""
+    eps = 1e-5
+    sp, qp = parallel_rods(+eps)
+    _, qm = parallel_rods(-eps)
+    c = contact()
+    c.begin_step(sp, qp, None, 1e-3)
+    assert c.hold_switches(sp, qp) >= 1
+    upper_force(c, sp, qm, qp)  # assembled at qm, held
+    e_assembled = c.energy(sp, qm)
+    upper_force(c, sp, qp, qp)  # assembled at qp: energy(qm) is computed anew
+    e_held = c.energy(sp, qm)
+    assert e_held == pytest.approx(e_assembled, rel=1e-12)
+    c.release_switches()
+    upper_force(c, sp, qm, qp)
+    e_exact = c.energy(sp, qm)
+    upper_force(c, sp, qp, qp)
+    assert c.energy(sp, qm) == pytest.approx(e_exact, rel=1e-12)
+    assert e_exact - e_held > 1e-3 * e_exact  # the held gaps are wider

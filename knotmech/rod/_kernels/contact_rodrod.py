@@ -153,11 +153,12 @@ def edge_distance_hessian(x, grad, hess):
 
 
 @njit(cache=True, inline="always")
-def _gap(x, coef, w):
-    """Closest points of the two edges in ``x`` (12,): writes the weights ``coef`` (4,) of
-    the four nodes in the gap vector w = A x = (1-s) x1 + s x2 - (1-t) x3 - t x4 and ``w``
-    (3,); returns (|w|, free_s, free_t) (see :func:`segment_params`)."""
-    s, t, free_s, free_t = _segment_params_flat(x)
+def _gap_at(x, s, t, coef, w):
+    """Gap of the two edges in ``x`` (12,) at the parameters (s, t): writes the weights
+    ``coef`` (4,) of the four nodes in the gap vector w = A x = (1-s) x1 + s x2 - (1-t) x3
+    - t x4 and ``w`` (3,); returns |w|. The one place of this arithmetic: the exact gap
+    (:func:`_gap`, (s, t) the closest points) and the held one of the stagnation fallback
+    (:func:`_gap_grad_at`, (s, t) held) are the same function of (s, t), bit for bit."""
     coef[0] = 1.0 - s
     coef[1] = s
     coef[2] = -(1.0 - t)
@@ -166,8 +167,32 @@ def _gap(x, coef, w):
     for m in range(3):
         w[m] = coef[0] * x[m] + coef[1] * x[3 + m] + coef[2] * x[6 + m] + coef[3] * x[9 + m]
         d2 += w[m] * w[m]
-    dist = np.sqrt(d2)
-    return dist, free_s, free_t
+    return np.sqrt(d2)
+
+
+@njit(cache=True, inline="always")
+def _gap_grad_at(x, s, t, grad, coef, w):
+    """Gap |w| of two edges at the parameters (s, t) (:func:`_gap_at`) and its gradient
+    (12,) with (s, t) fixed, grad_k = coef_k w / |w|: the gradient of the exact distance
+    at the closest points (envelope theorem, :func:`_edge_distance_grad_ws`), and of the
+    held gap of the stagnation fallback. At |w| = 0 (the points meet; the force's
+    direction is undefined) it raises ZeroDivisionError: the solver rejects the attempt
+    (``Stepper._newton``)."""
+    dist = _gap_at(x, s, t, coef, w)
+    inv_d = 1.0 / dist
+    for k in range(4):
+        for m in range(3):
+            grad[3 * k + m] = (coef[k] * w[m]) * inv_d
+    return dist
+
+
+@njit(cache=True, inline="always")
+def _gap(x, coef, w):
+    """Closest points of the two edges in ``x`` (12,): writes the weights ``coef`` (4,) of
+    the four nodes in the gap vector w = A x = (1-s) x1 + s x2 - (1-t) x3 - t x4 and ``w``
+    (3,); returns (|w|, free_s, free_t) (see :func:`segment_params`, :func:`_gap_at`)."""
+    s, t, free_s, free_t = _segment_params_flat(x)
+    return _gap_at(x, s, t, coef, w), free_s, free_t
 
 
 @njit(cache=True, inline="always")
@@ -275,38 +300,23 @@ def _subtract_coupling(nfree, H, B, U):
 def _edge_distance_grad_ws(x, grad, coef, w):
     """Distance and its gradient only (the arithmetic of :func:`_edge_distance_hessian_ws`,
     so both give bitwise the same values): for pairs that need no Jacobian block."""
-    dist, _, _ = _gap(x, coef, w)
-    inv_d = 1.0 / dist
-    for k in range(4):
-        for m in range(3):
-            grad[3 * k + m] = (coef[k] * w[m]) * inv_d
-    return dist
+    s, t, _, _ = _segment_params_flat(x)
+    return _gap_grad_at(x, s, t, grad, coef, w)
 
 
 @njit(cache=True, inline="always")
-def _held_gap_grad(x, s, t, grad, coef, w):
-    """Gap |w| of two edges at fixed parameters (s, t), w = (1-s) x1 + s x2 - (1-t) x3
-    - t x4, and its gradient (12,) (:func:`_edge_distance_grad_ws` with the closest-point
-    parameters held, not minimised); writes ``coef`` (4,) and ``w`` (3,)."""
-    coef[0] = 1.0 - s
-    coef[1] = s
-    coef[2] = -(1.0 - t)
-    coef[3] = -t
-    d2 = 0.0
-    for m in range(3):
-        w[m] = coef[0] * x[m] + coef[1] * x[3 + m] + coef[2] * x[6 + m] + coef[3] * x[9 + m]
-        d2 += w[m] * w[m]
-    dist = np.sqrt(d2)
-    inv_d = 1.0 / dist
-    for k in range(4):
-        for m in range(3):
-            grad[3 * k + m] = (coef[k] * w[m]) * inv_d
-    return dist
+def _pair_gap_grad(x, frozen, p, grad, coef, w):
+    """Gap and gradient of pair ``p`` (nodes ``x`` (12,)): at its held parameters
+    ``frozen[p]`` when held (``frozen`` not None, s >= 0; the stagnation fallback, see
+    :func:`freeze_parallel_pairs`), else at its closest points."""
+    if frozen is not None and frozen[p, 0] >= 0.0:
+        return _gap_grad_at(x, frozen[p, 0], frozen[p, 1], grad, coef, w)
+    return _edge_distance_grad_ws(x, grad, coef, w)
 
 
 @njit(cache=True, inline="always")
 def _held_gap_hessian(dist, grad, hess, coef, w, B, U):
-    """Hessian (12, 12) of the held gap of :func:`_held_gap_grad`: (coef coef^T) kron
+    """Hessian (12, 12) of the held gap of :func:`_gap_grad_at`: (coef coef^T) kron
     (I - n n^T) / |w| with n = w/|w| (no parameter-coupling term); ``B`` = 0 and ``U`` = I,
     so that :func:`_normal_jacobian` adds no closest-point motion either."""
     inv_d = 1.0 / dist
@@ -326,14 +336,37 @@ def _held_gap_hessian(dist, grad, hess, coef, w, B, U):
 
 @njit(cache=True)
 def freeze_parallel_pairs(pos, pairs, edge_nodes, radius_edge, sharpness, z_cutoff, out):
-    """Closest-point parameters (s, t) at ``pos`` of the candidate pairs within the
-    penalty's reach whose edges are nearly parallel (sin^2 of their angle below
-    ``_SIN2_PLANE``, about 5 degrees) into ``out`` (n_pairs, 2); -1 for the other pairs.
-    Returns the number of pairs held. For (nearly) parallel edges the closest points jump
-    between the two ends of the overlap as the tiny angle between them changes sign (the
-    distance is the smaller of two smooth functions there), which moves the whole penalty
-    force from one node to another between two Newton iterates: the stagnation fallback
-    holds these parameters for one step (docs/notes/contact-and-friction/parallel-edge-stall.md)."""
+    """Closest-point parameters (s, t) of the nearly parallel candidate pairs in reach.
+
+    For (nearly) parallel edges the closest points jump between the two ends of the
+    overlap as the tiny angle between them changes sign (the distance is the smaller of
+    two smooth functions there), which moves the whole penalty force from one node to
+    another between two Newton iterates: the stagnation fallback holds these parameters
+    for one step (docs/notes/contact-and-friction/parallel-edge-stall.md).
+
+    Parameters
+    ----------
+    pos : (n_nodes, 3) array [m]
+        Node positions (the step start).
+    pairs : (n_pairs, 2) int array
+        Candidate edge pairs (e_i, e_j).
+    edge_nodes : (n_edges, 2) int array
+        The two nodes of each edge.
+    radius_edge : (n_edges,) array [m]
+        Rod radius of each edge.
+    sharpness : float [1/m]
+        The penalty's k.
+    z_cutoff : float
+        Reach: pairs with k (2h - Delta) below it are not held (``Z_CUTOFF``).
+    out : (n_pairs, 2) array
+        Written: (s, t) of each held pair (edges within reach and with sin^2 of their
+        angle below ``_SIN2_PLANE``, about 5 degrees), -1 for the others.
+
+    Returns
+    -------
+    int
+        The number of pairs held.
+    """
     x = np.empty(12)
     held = 0
     for p in range(pairs.shape[0]):
@@ -574,10 +607,8 @@ def rodrod_assemble(
                 x[3 * k + m] = pos[nodes[k], m]
                 dofs[3 * k + m] = node_dofs[nodes[k], m]
         two_h = radius_edge[ei] + radius_edge[ej]
-        dist = _edge_distance_grad_ws(x, grad, coef, w)
         held = frozen is not None and frozen[p, 0] >= 0.0
-        if held:
-            dist = _held_gap_grad(x, frozen[p, 0], frozen[p, 1], grad, coef, w)
+        dist = _pair_gap_grad(x, frozen, p, grad, coef, w)
         # pairs beyond z_jacobian add their force but no Jacobian entries
         jac = want_jacobian and sharpness * (two_h - dist) >= z_jacobian
         if jac and held:
@@ -677,9 +708,7 @@ def _assemble_forces(
                 x[3 * k + m] = pos[nodes[k], m]
                 dofs[3 * k + m] = node_dofs[nodes[k], m]
         two_h = radius_edge[ei] + radius_edge[ej]
-        dist = _edge_distance_grad_ws(x, grad, coef, w)
-        if frozen is not None and frozen[p, 0] >= 0.0:
-            dist = _held_gap_grad(x, frozen[p, 0], frozen[p, 1], grad, coef, w)
+        dist = _pair_gap_grad(x, frozen, p, grad, coef, w)
         e, de, d2e = penalty_derivs(two_h - dist, sharpness, stiffness)
         energy += e
         for a in range(12):
@@ -1045,10 +1074,10 @@ def _anchor_friction(
 
 
 @njit(cache=True, inline="always")
-def _pair_normal(x, edge_i, edge_j, radius_edge, sharpness, stiffness, grad, coef, w, n):
-    """|F_n| of the pair at ``x`` and its normal into ``n`` (the penalty force on edge i,
-    as in :func:`rodrod_assemble`)."""
-    dist = _edge_distance_grad_ws(x, grad, coef, w)
+def _pair_normal(x, edge_i, edge_j, radius_edge, sharpness, stiffness, grad, coef, w, n, frozen, p):
+    """|F_n| of pair ``p`` at ``x`` and its normal into ``n`` (the penalty force on edge i,
+    as in :func:`rodrod_assemble`; ``frozen``: its held parameters or None)."""
+    dist = _pair_gap_grad(x, frozen, p, grad, coef, w)
     two_h = radius_edge[edge_i] + radius_edge[edge_j]
     _, de, _ = penalty_derivs(two_h - dist, sharpness, stiffness)
     fnorm = 0.0
@@ -1119,6 +1148,7 @@ def align_anchors(keys_old, anc_old, slip_old, keys, anc, slip, known):
 def rodrod_anchor_commit(
     pos, pos_old, pairs, edge_nodes, radius_edge, sharpness, stiffness, z_cutoff,
     mu_s, mu_k, k_t, anchor, anchor_slip, known, keep, mode, cap_floor=0.0, floor_mode=0,
+    frozen=None,
 ):  # fmt: skip
     """Commit (``mode`` 1) or stored energy (``mode`` 2) of the rod-rod anchors at ``pos``.
 
@@ -1134,6 +1164,8 @@ def rodrod_anchor_commit(
     the commit moves the anchor to the gap of the next step's width: a sliding pair to
     SLIP_GAP max(mu_k |F_n|/k_t, floor), a sticking pair that was floored to the gap that
     keeps its friction force under the unfloored spring (force-preserving transfer).
+    ``frozen``: held closest-point parameters, as in :func:`rodrod_assemble` (the normal
+    force and normal of a held pair are those of its held gap).
     Returns the anchors' stored energy (mode 2).
     """
     x = np.empty(12)
@@ -1159,7 +1191,9 @@ def rodrod_anchor_commit(
             _fresh_anchor(x, anchor[p], coef, w, n, nf, cw, u)
             known[p] = True
             _pair_nodes(pos, pairs, p, edge_nodes, x)
-        fnorm = _pair_normal(x, ei, ej, radius_edge, sharpness, stiffness, grad, coef, w, n)
+        fnorm = _pair_normal(
+            x, ei, ej, radius_edge, sharpness, stiffness, grad, coef, w, n, frozen, p
+        )
         if not fnorm > 0.0:
             continue
         _friction_normal(x, n, nf)
@@ -1225,9 +1259,13 @@ def _next_gap(unorm, a, limit, slip, fnorm, mu_s, mu_k, k_t, a_full):
 
 
 @njit(cache=True)
-def rodrod_energy(pos, pairs, edge_nodes, radius_edge, sharpness, stiffness):
-    """Total penalty energy of the candidate pairs (IMC squared softplus)."""
+def rodrod_energy(pos, pairs, edge_nodes, radius_edge, sharpness, stiffness, frozen=None):
+    """Total penalty energy of the candidate pairs (IMC squared softplus); ``frozen``
+    (n_pairs, 2) or None: the pairs with s >= 0 at their held parameters (the gap of
+    :func:`_gap_at`, as in :func:`rodrod_assemble`)."""
     x = np.empty(12)
+    coef = np.empty(4)
+    w = np.empty(3)
     energy = 0.0
     for p in range(pairs.shape[0]):
         ei = pairs[p, 0]
@@ -1236,7 +1274,10 @@ def rodrod_energy(pos, pairs, edge_nodes, radius_edge, sharpness, stiffness):
         for k in range(4):
             for m in range(3):
                 x[3 * k + m] = pos[nodes[k], m]
-        dist = edge_distance(x)
+        if frozen is not None and frozen[p, 0] >= 0.0:
+            dist = _gap_at(x, frozen[p, 0], frozen[p, 1], coef, w)
+        else:
+            dist = edge_distance(x)
         e, de, d2e = penalty_derivs(radius_edge[ei] + radius_edge[ej] - dist, sharpness, stiffness)
         energy += e
     return energy
@@ -1329,7 +1370,9 @@ def rodrod_friction_census(
         ei, ej = _pair_nodes(pos, pairs, p, edge_nodes, x)
         if sharpness * (radius_edge[ei] + radius_edge[ej] - edge_distance(x)) < z_cutoff:
             continue
-        fnorm = _pair_normal(x, ei, ej, radius_edge, sharpness, stiffness, grad, coef, w, n)
+        fnorm = _pair_normal(
+            x, ei, ej, radius_edge, sharpness, stiffness, grad, coef, w, n, None, p
+        )
         if not fnorm > 0.0:
             continue
         rows += 1
@@ -1355,7 +1398,7 @@ def rodrod_friction_census(
         if not known[p]:
             _fresh_anchor(xo, anc, coef, w, n_o, nf, cw, u)
             out[p, 6] = 1.0
-        _pair_normal(x, ei, ej, radius_edge, sharpness, stiffness, grad, coef, w, n)
+        _pair_normal(x, ei, ej, radius_edge, sharpness, stiffness, grad, coef, w, n, None, p)
         cnorm = _friction_normal(x, n, nf)
         unorm, _ = _anchor_gap(x, anc, nf, cw, u)
         mu = mu_k if anchor_slip[p] else mu_s
