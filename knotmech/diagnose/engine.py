@@ -776,7 +776,7 @@ def _own_bic(fit, k, n) -> float:
     float
         ``2 loglik - (k + g) log n`` (dimensionless; larger is better).
     """
-    g = 1 if fit.noise.growth > 0 and fit.noise.given_sigma is None else 0
+    g = 1 if fit.noise.growth > 0 else 0
     return 2.0 * fit.loglik - (k + g) * np.log(n)
 
 

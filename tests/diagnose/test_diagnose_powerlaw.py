@@ -212,3 +212,55 @@ def test_whole_spectrum_tells_ar1_from_a_power_law():
     assert whittle_ar1_minus_power_law(long_ar, st) < -20
     assert whittle_ar1_minus_power_law(long_pink, st) > 20
     assert np.isnan(whittle_ar1_minus_power_law(np.zeros(64), _one_trial(64)))
+
+
+def _fit_of(mean, noise):
+    """A stand-in for a Fit: only ``mean`` and ``noise`` are read by the gate."""
+    from types import SimpleNamespace
+
+    return SimpleNamespace(mean=mean, noise=noise)
+
+
+def test_power_law_gate_asks_the_remainder_with_and_without_the_effect():
+    """The gate keeps the power-law null when either remainder's whole spectrum prefers a
+    power law (a spurious effect fitted to 1/f wander leaves an AR(1)-like remainder, the
+    one without it keeps the wander) and drops it only when both prefer an AR(1)."""
+    from types import SimpleNamespace
+
+    from scipy.signal import lfilter
+
+    from knotmech.diagnose.engine import _whole_spectrum_power_law
+
+    rng = np.random.default_rng(7)
+    n = 4096
+    st = _one_trial(n)
+    ar = lfilter([np.sqrt(1 - 0.81)], [1.0, -0.9], rng.standard_normal(n + 300))[300:]
+    pink = power_law_draws(np.zeros(n, int), 1.0, 1, rng)[:, 0]
+    unit = NoiseModel(1.0, 0.0, 0.0, 1.0)
+    rec = SimpleNamespace(y=np.zeros(n))
+    # remainder y - mean = -mean: the series itself up to its sign (same spectrum)
+    with_ar, with_pink = _fit_of(ar, unit), _fit_of(pink, unit)
+    assert not _whole_spectrum_power_law(rec, (with_ar, with_ar), st)
+    assert _whole_spectrum_power_law(rec, (with_ar, with_pink), st)
+    assert _whole_spectrum_power_law(rec, (with_pink, with_ar), st)
+
+
+def test_own_bic_counts_the_noise_growth():
+    """2 loglik - (k + g) log n: g = 1 for a noise that grows with the signal, 0 for a
+    constant one or a given sigma column (held-out 103029: 717.33 with growth and two new
+    parameters ranks below 713.76 without growth and one, on 210 rows)."""
+    from knotmech.diagnose.engine import _own_bic
+
+    n = 210
+    grow = _fit_of(None, NoiseModel(1.0, 1.0, 0.8, 1.0))
+    grow.loglik = 717.33
+    flat = _fit_of(None, NoiseModel(1.0, 0.0, 0.8, 1.0))
+    flat.loglik = 713.76
+    given = _fit_of(None, NoiseModel(1.0, 0.0, 0.8, 1.0, np.ones(n)))
+    given.loglik = 713.76
+    assert _own_bic(grow, 2, n) == pytest.approx(2 * 717.33 - 3 * np.log(210), rel=1e-15)
+    assert _own_bic(flat, 1, n) == pytest.approx(2 * 713.76 - np.log(210), rel=1e-15)
+    assert _own_bic(given, 1, n) == _own_bic(flat, 1, n)
+    assert _own_bic(flat, 1, n) - _own_bic(grow, 2, n) == pytest.approx(
+        2 * np.log(210) - 7.14, rel=1e-12
+    )
