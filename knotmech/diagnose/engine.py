@@ -10,7 +10,8 @@ Procedure (one recording):
    current model; its likelihood ratio compares both means under the noise model
    estimated with the effect in the mean (the current model is refitted under it:
    a noise model estimated without the effect absorbs smooth structure into a lag-one
-   correlation near 1 and hides the effect); rank the candidates by their own BIC;
+   correlation near 1 and hides the effect); rank the candidates by their own BIC
+   (a noise growing with the signal counted as a parameter, :func:`_own_bic`);
    for the best two with a positive BIC change under the common noise compute a
    parametric-bootstrap p-value of that likelihood ratio, simulating recordings
    from the current model under that noise and repeating the whole procedure on
@@ -23,8 +24,10 @@ Procedure (one recording):
    free parameter but reconciles mu with the prior ``mu_nominal``: not rise by more
    than 1 %); the report's ``heldout_rms_*`` are the raw held-out RMS. When the
    candidate's remainder has a 1/f-type high-frequency exponent
-   (:data:`~knotmech.diagnose.powerlaw.BETA_RANGE`), its bootstrap is repeated with
-   power-law draws and must reject too (:func:`_power_law_candidate`, issue 26).
+   (:data:`~knotmech.diagnose.powerlaw.BETA_RANGE`) and a power law fits the whole
+   spectrum of its remainder or of the one without it at least as well as an AR(1)
+   (:func:`_whole_spectrum_power_law`), its bootstrap is repeated with power-law draws
+   and must reject too (:func:`_power_law_candidate`, issue 26).
    Repeat until no candidate passes.
 4. Test the final residuals for structure; a located, significant remainder
    gives the verdict ``unexplained``; otherwise the verdict is the accepted
