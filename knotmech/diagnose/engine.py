@@ -574,7 +574,9 @@ def _power_law_check(rec, base, final, accepted, unexplained, fin_mis, data, sta
     Tried when the remainder is at most :data:`~knotmech.diagnose.noisefloor.NONE_LEVEL_MAX`
     high-frequency sd (a larger one is a mismatch whatever the noise) and the fitted
     exponent lies in :data:`POWER_LAW_BETA_RANGE` (white-like or AR(1)-like high
-    frequencies leave the AR(1) null in charge). For ``unexplained`` the structure test of the final
+    frequencies leave the AR(1) null in charge); for named effects also when a power law
+    fits the whole spectrum of the final or the baseline's remainder at least as well as an
+    AR(1) (:func:`_whole_spectrum_power_law`). For ``unexplained`` the structure test of the final
     remainder is repeated with power-law draws; for named effects each accepted effect's
     bootstrap is repeated, in the order accepted, with the null's draws power-law noise.
     Returns None when not tried, else a dict for the report (``explains``: the
