@@ -12,7 +12,13 @@ import pytest
 
 from knotmech.diagnose import diagnose
 from knotmech.diagnose.fitting import thinned_noise, thinned_rows
-from knotmech.diagnose.powerlaw import MIN_ORDINATES, PowerLawNoise, fit_power_law
+from knotmech.diagnose.powerlaw import (
+    MIN_ORDINATES,
+    PowerLawNoise,
+    fit_power_law,
+    power_law_draws,
+    whittle_ar1_minus_power_law,
+)
 from knotmech.diagnose.stats import NoiseModel
 from validation.noise_robustness import make
 
@@ -185,3 +191,76 @@ def test_large_mismatches_under_white_noise_stay_unexplained(kind):
     assert rep.verdict == "unexplained"
     pl = rep.details.get("power_law")
     assert pl is None or not pl["explains"]
+
+
+def test_whole_spectrum_tells_ar1_from_a_power_law():
+    """200 series of 200 rows: AR(1) noise at rho 0.9 is fitted better by a power law
+    than by an AR(1) in under 30 % of series, 1/f noise (exponent 1) in over 70 %; on
+    4096 rows the answer is clear (Whittle log-likelihoods apart by more than 20)."""
+    from scipy.signal import lfilter
+
+    rng = np.random.default_rng(5)
+    st = _one_trial(200)
+    ar = lfilter([np.sqrt(1 - 0.81)], [1.0, -0.9], rng.standard_normal((200, 500)), axis=1)
+    ar_pl = [whittle_ar1_minus_power_law(u[300:], st) > 0 for u in ar]
+    pink = power_law_draws(np.zeros(200, int), 1.0, 200, rng).T
+    pink_pl = [whittle_ar1_minus_power_law(u, st) > 0 for u in pink]
+    assert np.mean(ar_pl) < 0.3 and np.mean(pink_pl) > 0.7
+    st = _one_trial(4096)
+    long_ar = lfilter([np.sqrt(1 - 0.81)], [1.0, -0.9], rng.standard_normal(4396))[300:]
+    long_pink = power_law_draws(np.zeros(4096, int), 1.0, 1, rng)[:, 0]
+    assert whittle_ar1_minus_power_law(long_ar, st) < -20
+    assert whittle_ar1_minus_power_law(long_pink, st) > 20
+    assert np.isnan(whittle_ar1_minus_power_law(np.zeros(64), _one_trial(64)))
+
+
+def _fit_of(mean, noise):
+    """A stand-in for a Fit: only ``mean`` and ``noise`` are read by the gate."""
+    from types import SimpleNamespace
+
+    return SimpleNamespace(mean=mean, noise=noise)
+
+
+def test_power_law_gate_asks_the_remainder_with_and_without_the_effect():
+    """The gate keeps the power-law null when either remainder's whole spectrum prefers a
+    power law (a spurious effect fitted to 1/f wander leaves an AR(1)-like remainder, the
+    one without it keeps the wander) and drops it only when both prefer an AR(1)."""
+    from types import SimpleNamespace
+
+    from scipy.signal import lfilter
+
+    from knotmech.diagnose.engine import _whole_spectrum_power_law
+
+    rng = np.random.default_rng(7)
+    n = 4096
+    st = _one_trial(n)
+    ar = lfilter([np.sqrt(1 - 0.81)], [1.0, -0.9], rng.standard_normal(n + 300))[300:]
+    pink = power_law_draws(np.zeros(n, int), 1.0, 1, rng)[:, 0]
+    unit = NoiseModel(1.0, 0.0, 0.0, 1.0)
+    rec = SimpleNamespace(y=np.zeros(n))
+    # remainder y - mean = -mean: the series itself up to its sign (same spectrum)
+    with_ar, with_pink = _fit_of(ar, unit), _fit_of(pink, unit)
+    assert not _whole_spectrum_power_law(rec, (with_ar, with_ar), st)
+    assert _whole_spectrum_power_law(rec, (with_ar, with_pink), st)
+    assert _whole_spectrum_power_law(rec, (with_pink, with_ar), st)
+
+
+def test_own_bic_counts_the_noise_growth():
+    """2 loglik - (k + g) log n: g = 1 for a noise that grows with the signal, 0 for a
+    constant one or a given sigma column (held-out 103029: 717.33 with growth and two new
+    parameters ranks below 713.76 without growth and one, on 210 rows)."""
+    from knotmech.diagnose.engine import _own_bic
+
+    n = 210
+    grow = _fit_of(None, NoiseModel(1.0, 1.0, 0.8, 1.0))
+    grow.loglik = 717.33
+    flat = _fit_of(None, NoiseModel(1.0, 0.0, 0.8, 1.0))
+    flat.loglik = 713.76
+    given = _fit_of(None, NoiseModel(1.0, 0.0, 0.8, 1.0, np.ones(n)))
+    given.loglik = 713.76
+    assert _own_bic(grow, 2, n) == pytest.approx(2 * 717.33 - 3 * np.log(210), rel=1e-15)
+    assert _own_bic(flat, 1, n) == pytest.approx(2 * 713.76 - np.log(210), rel=1e-15)
+    assert _own_bic(given, 1, n) == _own_bic(flat, 1, n)
+    assert _own_bic(flat, 1, n) - _own_bic(grow, 2, n) == pytest.approx(
+        2 * np.log(210) - 7.14, rel=1e-12
+    )
