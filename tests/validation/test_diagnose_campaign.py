@@ -19,7 +19,8 @@ def test_seeds_are_fresh_and_the_generators_apart():
     assert min(seeds["tune"]) >= 7000 and max(seeds["tune"]) < 8000
     assert min(seeds["heldout"]) >= 90_000
     # 9 effects x 3 sizes x 2 noises + 5 noises x 3 kinds x 4 nulls + 3 kinds x 2 x 2 x 2
-    assert len(full) == 2 * (54 + 60 + 24)
+    # + the nulls again at 50 rows
+    assert len(full) == 2 * (54 + 60 + 24 + 60)
     assert {c[5] for c in full if c[2] == "out_of_catalogue"} == {None, 50}
 
 
@@ -96,10 +97,35 @@ def test_only_and_seed0_pick_the_same_recordings():
     run); ``--seed0`` moves every seed of the run (a fresh set)."""
     full = case.cases(False, ("tune",))
     nulls = case.cases(False, ("tune",), "nulls")
-    assert len(nulls) == 60 and nulls == [c for c in full if c[2] is None]
+    assert len(nulls) == 120 and nulls == [c for c in full if c[2] is None]
     fresh = case.cases(False, ("heldout",), None, 95_000)
-    assert len(fresh) == 138 and min(c[-1] for c in fresh) == 95_000
-    assert max(c[-1] for c in fresh) == 95_137
+    assert len(fresh) == 198 and min(c[-1] for c in fresh) == 95_000
+    assert max(c[-1] for c in fresh) == 95_197
+
+
+def test_fifty_row_nulls_are_a_cell_of_their_own():
+    """The 50-row nulls: every noise kind x kind x 4 repeats, seeds after the shapes
+    (the earlier parts keep theirs), recordings of exactly 50 rows, reported apart."""
+    full = case.cases(False, ("heldout",), None, 95_000)
+    short = [c for c in full if c[2] is None and c[5] == 50]
+    assert len(short) == 60 and {c[4] for c in short} == set(case.NULL_NOISES)
+    assert [c[-1] for c in short] == list(range(95_138, 95_198))
+    assert [c for c in full if c[2] is None and c[5] is None][0][-1] == 95_054
+    for g in ("tune", "heldout"):
+        for noise in case.NULL_NOISES:
+            rec, truth = case.make(g, "pinch", None, 0.0, noise, 7, 50)
+            assert rec.n == 50 and truth["n"] == 50 and truth["effect"] == "none"
+    fake = [
+        {"case": list(c), "effect": "none", "noise": c[4], "kind": c[1], "rows": 50 if c[5]
+         else 200, "seed": c[-1], "verdict": "unexplained" if c[-1] == 95_138 else "none",
+         "claims": [], "found": False, "cpu_seconds": 0.1}
+        for c in full if c[2] is None
+    ]  # fmt: skip
+    s = case.summarise_generator(fake)
+    assert (s["flagged"]["k"], s["flagged"]["n"]) == (0, 60)
+    assert (s["flagged_50rows"]["k"], s["flagged_50rows"]["n"]) == (1, 60)
+    assert s["flagged_by_noise_50rows"]["white"]["k"] == 1
+    assert "nulls, 50 rows, flagged" in case.markdown({"heldout": s})
 
 
 def test_tune_pink_null_is_rescued_by_power_law_noise():
