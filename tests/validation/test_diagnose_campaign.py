@@ -125,6 +125,7 @@ def test_fifty_row_nulls_are_a_cell_of_their_own():
     assert (s["flagged"]["k"], s["flagged"]["n"]) == (0, 60)
     assert (s["flagged_50rows"]["k"], s["flagged_50rows"]["n"]) == (1, 60)
     assert s["flagged_by_noise_50rows"]["white"]["k"] == 1
+    assert (s["claimed_50rows"]["k"], s["claimed"]["k"]) == (1, 0)
     assert "nulls, 50 rows, flagged" in case.markdown({"heldout": s})
 
 
