@@ -531,9 +531,10 @@ def plot(summary: dict):
 
 
 def _checks(summary: dict, quick: bool) -> dict:
-    """Full run: the targets on the point rates. Quick run (a few recordings): not
-    significantly off target (found and unexplained: Wilson upper bound at or above it;
-    nulls: exact one-sided binomial test against 5 % at the 5 % level)."""
+    """Full run: the targets on the point rates (the 50-row nulls per noise too). Quick
+    run (a few recordings): not significantly off target (found and unexplained: Wilson
+    upper bound at or above it; the own-row nulls: exact one-sided binomial test against
+    5 % at the 5 % level; its five 50-row nulls are reported, not gated)."""
     checks = {}
     for g, s in summary.items():
         checks[f"{g}: every claimed effect shows a held-out improvement"] = not s[
@@ -541,13 +542,13 @@ def _checks(summary: dict, quick: bool) -> dict:
         ]
         if quick:
             checks[f"{g}: found not below 90 %"] = s["found"]["wilson95"][1] >= TARGETS["found"]
-            for tag, what in (("", "nulls"), ("_50rows", "nulls, 50 rows,")):
-                f = s[f"flagged{tag}"]
-                checks[f"{g}: {what} flagged not above 5 %"] = (
-                    not f["n"]
-                    or binomtest(f["k"], f["n"], TARGETS["flagged"], alternative="greater").pvalue
-                    >= 0.05
-                )
+            # the 50-row nulls are reported, not gated, in the quick run: one per noise,
+            # and 50 rows of AR(1) or 1/f noise are often undetermined or unexplained
+            # (issue26-campaign.md section 17); the full run gates them per noise
+            f = s["flagged"]
+            checks[f"{g}: nulls flagged not above 5 %"] = (
+                binomtest(f["k"], f["n"], TARGETS["flagged"], alternative="greater").pvalue >= 0.05
+            )
             u = s["unexplained"]
             checks[f"{g}: unexplained not below 75 %"] = u["wilson95"][1] >= TARGETS["unexplained"]
             continue

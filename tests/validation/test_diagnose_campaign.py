@@ -79,6 +79,9 @@ def test_quick_campaign_rates_on_its_fixed_seeds(tmp_path):
     # 5 nulls, one per noise kind (white, AR(1), AR(2), 1/f, outliers): all none
     assert (s["flagged"]["k"], s["flagged"]["n"]) == (0, 5)
     assert set(s["flagged_by_noise"]) == set(case.NULL_NOISES)
+    # the same 5 at 50 rows (reported, not gated): the AR(1) and the 1/f null flagged
+    assert (s["flagged_50rows"]["k"], s["flagged_50rows"]["n"]) == (2, 5)
+    assert {k for k, v in s["flagged_by_noise_50rows"].items() if v["k"]} == {"ar1", "pink"}
     # 10-sd out-of-catalogue shapes on 50 rows: pinch S-cubic and tension rise
     # unexplained; the capstan plateau sag undetermined (a sag a few rows wide also
     # correlates the differences of consecutive rows, where the floor reads its noise)
