@@ -75,12 +75,18 @@ def test_quick_campaign_rates_on_its_fixed_seeds(tmp_path):
     # 3 effects of 6 sd (capstan static friction, pinch adhesion, tension nip): all found,
     # each with a held-out improvement in its evidence
     assert (s["found"]["k"], s["found"]["n"]) == (3, 3)
-    assert s["claims"] == 3 and s["claims_without_heldout"] == []
+    # (a fourth claim: the 50-row 1/f null 90914 named static_friction, below)
+    assert s["claims"] == 4 and s["claims_without_heldout"] == []
     # 5 nulls, one per noise kind (white, AR(1), AR(2), 1/f, outliers): all none
     assert (s["flagged"]["k"], s["flagged"]["n"]) == (0, 5)
     assert set(s["flagged_by_noise"]) == set(case.NULL_NOISES)
-    # the same 5 at 50 rows (reported, not gated): the AR(1) and the 1/f null flagged
+    # the same 5 at 50 rows (reported, not gated): the AR(1) null unexplained, the 1/f
+    # null named static_friction (issue26-campaign.md section 17)
     assert (s["flagged_50rows"]["k"], s["flagged_50rows"]["n"]) == (2, 5)
+    assert s["null_verdicts_50rows"] == [
+        "pinch ar1 50 rows seed 90912: unexplained",
+        "capstan_pull pink 50 rows seed 90914: static_friction",
+    ]
     assert {k for k, v in s["flagged_by_noise_50rows"].items() if v["k"]} == {"ar1", "pink"}
     # 10-sd out-of-catalogue shapes on 50 rows: pinch S-cubic and tension rise
     # unexplained; the capstan plateau sag undetermined (a sag a few rows wide also
