@@ -32,7 +32,11 @@ Scores (``found``, ``flagged``, ``unexplained``), each with its Wilson 95 % inte
   falls); every accepted effect of every recording is also counted as a *claim*, and a
   claim without such evidence is a failure of its own;
 - a null is *flagged* when the verdict is not ``none`` (named effect, ``unexplained``
-  or ``undetermined``: all three count), per noise kind; target <= 5 %;
+  or ``undetermined``: all three count), per noise kind; target <= 5 %; the nulls are
+  drawn twice, at the generator's own row count and at 50 rows (the same generators,
+  shortened as the 50-row shapes are: ``n=50`` keeps the seed's other draws), and the
+  50-row ones are reported apart (``flagged_50rows``), so a rule acting on short
+  recordings shows its null cost where it acts;
 - an out-of-catalogue shape of 6 or 10 sd is caught when the verdict is
   ``unexplained``, at the generator's own row count and at 50 rows; target >= 75 %.
 
@@ -90,6 +94,7 @@ SETTINGS = {
         ),
         "reps": 1,
         "null_reps": 1,
+        "null_rows": (50,),
         "ooc_sizes": (10.0,),
         "ooc_rows": (50,),
         "ooc_reps": 1,
@@ -101,6 +106,7 @@ SETTINGS = {
         "effects": tuple((k, e) for k, effs in gen.EFFECTS.items() for e in effs),
         "reps": 1,
         "null_reps": 4,
+        "null_rows": (50,),
         "ooc_sizes": (6.0, 10.0),
         "ooc_rows": (None, 50),
         "ooc_reps": 2,
@@ -207,13 +213,23 @@ def _effect_cases(g, s, seed):
     return out
 
 
-def _null_cases(g, s, seed, quick):
+def _null_cases(g, s, seed, quick, rows=None):
+    """Nulls of every noise kind (``rows`` None: the generator's own row count)."""
     out = []
     kinds = tuple(gen.EFFECTS)
     for i, noise in enumerate(NULL_NOISES):
         for kind in (kinds[i % len(kinds)],) if quick else kinds:  # quick: kinds in turn
-            out += [(g, kind, None, 0.0, noise, None, seed + j) for j in range(s["null_reps"])]
+            out += [(g, kind, None, 0.0, noise, rows, seed + j) for j in range(s["null_reps"])]
             seed += s["null_reps"]
+    return out
+
+
+def _short_null_cases(g, s, seed, quick):
+    """The nulls again at each of ``null_rows`` (50): the cell where the out-of-catalogue
+    shapes' 50-row rules act."""
+    out = []
+    for rows in s["null_rows"]:
+        out += _null_cases(g, s, seed + len(out), quick, rows)
     return out
 
 
@@ -236,7 +252,9 @@ PARTS = ("effects", "nulls", "shapes")
 
 def cases(quick: bool, generators=None, only=None, seed0=None) -> list:
     """(generator, kind, effect, size, noise, rows, seed) of every recording of the run
-    (``rows`` None: the generator's own count); seeds consecutive per generator.
+    (``rows`` None: the generator's own count); seeds consecutive per generator, in the
+    order effects, nulls, shapes, 50-row nulls (added last: the earlier parts keep
+    their seeds).
 
     ``only``: one of :data:`PARTS` (the other parts' seeds are still counted, so a
     part's recordings are the same with and without it). ``seed0``: first seed of
@@ -250,7 +268,8 @@ def cases(quick: bool, generators=None, only=None, seed0=None) -> list:
         eff = _effect_cases(g, s, seed)
         nul = _null_cases(g, s, seed + len(eff), bool(quick))
         ooc = _ooc_cases(g, s, seed + len(eff) + len(nul))
-        parts = {"effects": eff, "nulls": nul, "shapes": ooc}
+        short = _short_null_cases(g, s, seed + len(eff) + len(nul) + len(ooc), bool(quick))
+        parts = {"effects": eff, "nulls": nul + short, "shapes": ooc}
         out += [c for k in PARTS if only in (None, k) for c in parts[k]]
     return out
 
@@ -378,13 +397,28 @@ def _effects_summary(eff: list) -> dict:
     }
 
 
-def _nulls_summary(nul: list) -> dict:
+def _is_short_null(r: dict) -> bool:
+    """A null of the 50-row cell (its case asks for 50 rows)."""
+    return r["effect"] == "none" and r["case"][5] == 50
+
+
+def _nulls_summary(nul: list, tag: str = "") -> dict:
+    """Flagged nulls, all and per noise; ``tag`` ends every key ("_50rows")."""
     flagged = [r for r in nul if r["verdict"] != "none"]
     return {
-        "flagged": _rate(len(flagged), len(nul)),
-        "flagged_by_noise": _group(nul, lambda r: r["noise"], lambda r: r["verdict"] != "none"),
-        "null_verdicts": [
-            f"{r['kind']} {r['noise']} seed {r['seed']}: {r['verdict']}" for r in flagged
+        f"flagged{tag}": _rate(len(flagged), len(nul)),
+        # the flagged ones that claim structure (a named effect or unexplained), not
+        # undetermined: 50 rows of AR(1) noise at rho 0.9 leave ~2.6 independent
+        # stretches, too few to tell it from a smooth mismatch, so undetermined is due
+        f"claimed{tag}": _rate(
+            sum(r["verdict"] not in ("none", "undetermined") for r in nul), len(nul)
+        ),
+        f"flagged_by_noise{tag}": _group(
+            nul, lambda r: r["noise"], lambda r: r["verdict"] != "none"
+        ),
+        f"null_verdicts{tag}": [
+            f"{r['kind']} {r['noise']} {r['rows']} rows seed {r['seed']}: {r['verdict']}"
+            for r in flagged
         ],
     }
 
@@ -418,7 +452,8 @@ def summarise_generator(rs: list) -> dict:
             for r, c in claims
             if not c["heldout_shown"]
         ],
-        **_nulls_summary([r for r in rs if r["effect"] == "none"]),
+        **_nulls_summary([r for r in rs if r["effect"] == "none" and not _is_short_null(r)]),
+        **_nulls_summary([r for r in rs if _is_short_null(r)], "_50rows"),
         **_ooc_summary([r for r in rs if r["effect"] == "out_of_catalogue"]),
         "cpu_seconds_median": float(np.median([r["cpu_seconds"] for r in rs])),
         "cpu_seconds_total": round(float(np.sum([r["cpu_seconds"] for r in rs])), 1),
@@ -444,6 +479,12 @@ def markdown(summary: dict) -> str:
     rows.append(("nulls flagged, all (<= 5 %)", lambda s: s["flagged"]))
     for k in first["flagged_by_noise"]:
         rows.append((f"  nulls flagged, {k}", lambda s, k=k: s["flagged_by_noise"].get(k)))
+    rows.append(("nulls, 50 rows, flagged (<= 5 %)", lambda s: s["flagged_50rows"]))
+    rows.append(
+        ("  nulls, 50 rows, unexplained or named (not undetermined)", lambda s: s["claimed_50rows"])
+    )
+    for k in first["flagged_by_noise_50rows"]:
+        rows.append((f"  nulls, 50 rows, {k}", lambda s, k=k: s["flagged_by_noise_50rows"].get(k)))
     rows.append(("out-of-catalogue unexplained, 6-10 sd (>= 75 %)", lambda s: s["unexplained"]))
     for k in first["unexplained_by_rows"]:
         rows.append((f"  unexplained, {k}", lambda s, k=k: s["unexplained_by_rows"].get(k)))
@@ -457,17 +498,19 @@ def markdown(summary: dict) -> str:
 
 
 def plot(summary: dict):
-    """Three panels: found by size, nulls flagged by noise, unexplained by rows."""
+    """Four panels: found by size, nulls flagged by noise (own rows, 50 rows),
+    unexplained by rows."""
     from matplotlib.figure import Figure
 
-    fig = Figure(figsize=(10.0, 3.4))
+    fig = Figure(figsize=(13.0, 3.4))
     panels = (
         ("found_by_size", "catalogue effects found", TARGETS["found"]),
         ("flagged_by_noise", "nulls flagged (not none)", TARGETS["flagged"]),
+        ("flagged_by_noise_50rows", "nulls of 50 rows flagged", TARGETS["flagged"]),
         ("unexplained_by_rows", "out of catalogue: unexplained", TARGETS["unexplained"]),
     )
     for i, (key, title, target) in enumerate(panels):
-        ax = fig.add_subplot(1, 3, i + 1)
+        ax = fig.add_subplot(1, len(panels), i + 1)
         for j, (g, s) in enumerate(summary.items()):
             labels = list(s[key])
             rate = np.array([s[key][k]["rate"] for k in labels])
@@ -488,9 +531,10 @@ def plot(summary: dict):
 
 
 def _checks(summary: dict, quick: bool) -> dict:
-    """Full run: the targets on the point rates. Quick run (a few recordings): not
-    significantly off target (found and unexplained: Wilson upper bound at or above it;
-    nulls: exact one-sided binomial test against 5 % at the 5 % level)."""
+    """Full run: the targets on the point rates (the 50-row nulls per noise too). Quick
+    run (a few recordings): not significantly off target (found and unexplained: Wilson
+    upper bound at or above it; the own-row nulls: exact one-sided binomial test against
+    5 % at the 5 % level; its five 50-row nulls are reported, not gated)."""
     checks = {}
     for g, s in summary.items():
         checks[f"{g}: every claimed effect shows a held-out improvement"] = not s[
@@ -498,6 +542,9 @@ def _checks(summary: dict, quick: bool) -> dict:
         ]
         if quick:
             checks[f"{g}: found not below 90 %"] = s["found"]["wilson95"][1] >= TARGETS["found"]
+            # the 50-row nulls are reported, not gated, in the quick run: one per noise,
+            # and 50 rows of AR(1) or 1/f noise are often undetermined or unexplained
+            # (issue26-campaign.md section 17); the full run gates them per noise
             f = s["flagged"]
             checks[f"{g}: nulls flagged not above 5 %"] = (
                 binomtest(f["k"], f["n"], TARGETS["flagged"], alternative="greater").pvalue >= 0.05
@@ -508,6 +555,8 @@ def _checks(summary: dict, quick: bool) -> dict:
         checks[f"{g}: found >= 90 %"] = (s["found"]["rate"] or 0.0) >= TARGETS["found"]
         for noise, v in s["flagged_by_noise"].items():
             checks[f"{g}: {noise} nulls flagged <= 5 %"] = v["rate"] <= TARGETS["flagged"]
+        for noise, v in s["flagged_by_noise_50rows"].items():
+            checks[f"{g}: {noise} nulls, 50 rows, flagged <= 5 %"] = v["rate"] <= TARGETS["flagged"]
         checks[f"{g}: unexplained >= 75 %"] = (s["unexplained"]["rate"] or 0.0) >= TARGETS[
             "unexplained"
         ]

@@ -19,7 +19,8 @@ def test_seeds_are_fresh_and_the_generators_apart():
     assert min(seeds["tune"]) >= 7000 and max(seeds["tune"]) < 8000
     assert min(seeds["heldout"]) >= 90_000
     # 9 effects x 3 sizes x 2 noises + 5 noises x 3 kinds x 4 nulls + 3 kinds x 2 x 2 x 2
-    assert len(full) == 2 * (54 + 60 + 24)
+    # + the nulls again at 50 rows
+    assert len(full) == 2 * (54 + 60 + 24 + 60)
     assert {c[5] for c in full if c[2] == "out_of_catalogue"} == {None, 50}
 
 
@@ -74,10 +75,19 @@ def test_quick_campaign_rates_on_its_fixed_seeds(tmp_path):
     # 3 effects of 6 sd (capstan static friction, pinch adhesion, tension nip): all found,
     # each with a held-out improvement in its evidence
     assert (s["found"]["k"], s["found"]["n"]) == (3, 3)
-    assert s["claims"] == 3 and s["claims_without_heldout"] == []
+    # (a fourth claim: the 50-row 1/f null 90914 named static_friction, below)
+    assert s["claims"] == 4 and s["claims_without_heldout"] == []
     # 5 nulls, one per noise kind (white, AR(1), AR(2), 1/f, outliers): all none
     assert (s["flagged"]["k"], s["flagged"]["n"]) == (0, 5)
     assert set(s["flagged_by_noise"]) == set(case.NULL_NOISES)
+    # the same 5 at 50 rows (reported, not gated): the AR(1) null unexplained, the 1/f
+    # null named static_friction (issue26-campaign.md section 17)
+    assert (s["flagged_50rows"]["k"], s["flagged_50rows"]["n"]) == (2, 5)
+    assert s["null_verdicts_50rows"] == [
+        "pinch ar1 50 rows seed 90912: unexplained",
+        "capstan_pull pink 50 rows seed 90914: static_friction",
+    ]
+    assert {k for k, v in s["flagged_by_noise_50rows"].items() if v["k"]} == {"ar1", "pink"}
     # 10-sd out-of-catalogue shapes on 50 rows: pinch S-cubic and tension rise
     # unexplained; the capstan plateau sag undetermined (a sag a few rows wide also
     # correlates the differences of consecutive rows, where the floor reads its noise)
@@ -96,10 +106,36 @@ def test_only_and_seed0_pick_the_same_recordings():
     run); ``--seed0`` moves every seed of the run (a fresh set)."""
     full = case.cases(False, ("tune",))
     nulls = case.cases(False, ("tune",), "nulls")
-    assert len(nulls) == 60 and nulls == [c for c in full if c[2] is None]
+    assert len(nulls) == 120 and nulls == [c for c in full if c[2] is None]
     fresh = case.cases(False, ("heldout",), None, 95_000)
-    assert len(fresh) == 138 and min(c[-1] for c in fresh) == 95_000
-    assert max(c[-1] for c in fresh) == 95_137
+    assert len(fresh) == 198 and min(c[-1] for c in fresh) == 95_000
+    assert max(c[-1] for c in fresh) == 95_197
+
+
+def test_fifty_row_nulls_are_a_cell_of_their_own():
+    """The 50-row nulls: every noise kind x kind x 4 repeats, seeds after the shapes
+    (the earlier parts keep theirs), recordings of exactly 50 rows, reported apart."""
+    full = case.cases(False, ("heldout",), None, 95_000)
+    short = [c for c in full if c[2] is None and c[5] == 50]
+    assert len(short) == 60 and {c[4] for c in short} == set(case.NULL_NOISES)
+    assert [c[-1] for c in short] == list(range(95_138, 95_198))
+    assert [c for c in full if c[2] is None and c[5] is None][0][-1] == 95_054
+    for g in ("tune", "heldout"):
+        for noise in case.NULL_NOISES:
+            rec, truth = case.make(g, "pinch", None, 0.0, noise, 7, 50)
+            assert rec.n == 50 and truth["n"] == 50 and truth["effect"] == "none"
+    fake = [
+        {"case": list(c), "effect": "none", "noise": c[4], "kind": c[1], "rows": 50 if c[5]
+         else 200, "seed": c[-1], "verdict": "unexplained" if c[-1] == 95_138 else "none",
+         "claims": [], "found": False, "cpu_seconds": 0.1}
+        for c in full if c[2] is None
+    ]  # fmt: skip
+    s = case.summarise_generator(fake)
+    assert (s["flagged"]["k"], s["flagged"]["n"]) == (0, 60)
+    assert (s["flagged_50rows"]["k"], s["flagged_50rows"]["n"]) == (1, 60)
+    assert s["flagged_by_noise_50rows"]["white"]["k"] == 1
+    assert (s["claimed_50rows"]["k"], s["claimed"]["k"]) == (1, 0)
+    assert "nulls, 50 rows, flagged" in case.markdown({"heldout": s})
 
 
 def test_tune_pink_null_is_rescued_by_power_law_noise():
