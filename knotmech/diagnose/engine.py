@@ -747,87 +747,11 @@ def _select_closed_form(base, rec, data, starts, gs, rng, alpha, effects, max_ef
                 step = (eff, alt, ev, held_alt, err_alt)
                 break
         if step is None:
-            ctx = (rec, data, starts, gs, rng, pl_rng, alpha_each, err_cur, block, held_cur)
-            step = _repeated_lookahead(cands, current, ctx, tested)
-        if step is None:
             break
         eff, alt, ev, held_alt, err_cur = step
         accepted.append((eff, ev, lr_gain(current, alt)))
         current, held_cur = alt, held_alt
     return current, accepted, tested, steps, skipped, held_before, held_cur
-
-
-#: most instances of a repeatable effect the look-ahead adds at once, and the share of the
-#: per-effect level it spends (split evenly over 2..LOOKAHEAD_MAX instances)
-LOOKAHEAD_MAX = 3
-LOOKAHEAD_LEVEL_SHARE = 0.5
-
-
-def _repeated_lookahead(cands, current, ctx, tested):
-    """Several instances of a repeatable effect added at once, when no single addition
-    was accepted.
-
-    Forward selection adds one nip at a time, and each is judged under the noise model
-    estimated with it in the mean: on a recording with two or three nips the steps left
-    out of the one-nip fit make its remainder look like AR(1) noise of rho 0.75-0.93 or
-    1/f noise (exponent 0.7-0.75), and that noise's draws then give one-nip likelihood
-    ratios as large as the observed one (held-out 105049, 105050: white noise, nips of 6
-    and 10 sd, one-nip power-law p 0.01 and 0.08). With every step in the mean the
-    remainder is white (rho -0.03, -0.05). For each repeatable effect whose single
-    addition has a positive delta BIC, ``m`` = 2..:data:`LOOKAHEAD_MAX` instances are fitted
-    greedily and tested jointly against the current model (likelihood ratio, parametric
-    bootstrap refitting ``m`` instances on each draw, held-out and power-law checks), each
-    ``m`` at ``alpha_each`` x :data:`LOOKAHEAD_LEVEL_SHARE` / (LOOKAHEAD_MAX - 1)
-    (Bonferroni within the look-ahead).
-
-    Returns
-    -------
-    tuple or None
-        The accepted step ``(effect, fit, evidence, held-out rms, held-out errors)``, or
-        None; each candidate's evidence is appended to ``tested``.
-    """
-    rec, data, starts, gs, rng, pl_rng, alpha_each, err_cur, block, held_cur = ctx
-    level = alpha_each * LOOKAHEAD_LEVEL_SHARE / (LOOKAHEAD_MAX - 1)
-    for dbic1, eff, alt, _, _, _ in cands:
-        if not eff.repeatable or dbic1 <= 0:
-            continue
-        room = _MAX_REPEATS - current.model.effects.count(eff.name)
-        for m in range(2, min(LOOKAHEAD_MAX, room) + 1):
-            alt = fit_with_effect(alt, eff, data, starts, given_sigma=gs)
-            null_c = _null_under(current, alt, data, starts, gs)
-            lr = 2.0 * (alt.loglik - null_c.loglik)
-            k = _n_new(current, alt, eff) + (m - 1) * eff.extra_dof
-            dbic = lr - k * np.log(rec.n)
-            if dbic <= 0:
-                continue
-            p, b = _bootstrap_p(null_c, eff, lr, data, starts, gs, rng, level, repeats=m)
-            err_alt, _ = heldout_errors(alt, data, rec.trial)
-            held_alt = _rms(err_alt)
-            inn_cur = heldout_innovation_rms(err_cur, block, alt.noise, alt.mean, starts)
-            inn_alt = heldout_innovation_rms(err_alt, block, alt.noise, alt.mean, starts)
-            ev = {
-                "effect": eff.name,
-                "instances": m,
-                "delta_bic": float(f"{dbic:.4g}"),
-                "likelihood_ratio": float(f"{lr:.4g}"),
-                "p_value": float(f"{p:.3g}"),
-                "bootstrap_draws": b,
-                **_p_provenance(p, b, lr),
-                "heldout_rms_before": float(f"{held_cur:.4g}"),
-                "heldout_rms": float(f"{held_alt:.4g}"),
-                "heldout_innovation_rms": [float(f"{inn_cur:.4g}"), float(f"{inn_alt:.4g}")],
-                "accepted": bool(p < level and (inn_alt < inn_cur or held_alt < held_cur)),
-            }
-            if ev["accepted"] and pl_rng is not None:
-                pl = _power_law_candidate(rec, alt, current, null_c, eff, lr, data, starts, gs,
-                                          pl_rng, level, repeats=m)  # fmt: skip
-                if pl is not None:
-                    ev["power_law"] = pl
-                    ev["accepted"] = bool(pl["p_value"] < level)
-            tested.append(ev)
-            if ev["accepted"]:
-                return eff, alt, ev, held_alt, err_alt
-    return None
 
 
 def _own_bic(fit, k, n) -> float:
@@ -931,8 +855,7 @@ def _whole_spectrum_power_law(rec, fits, starts) -> bool:
     return False
 
 
-def _power_law_candidate(rec, alt, current, null_c, eff, lr, data, starts, gs, rng, alpha_each,
-                         repeats=1):  # fmt: skip
+def _power_law_candidate(rec, alt, current, null_c, eff, lr, data, starts, gs, rng, alpha_each):
     """A candidate effect judged against power-law (1/f-type) noise before it is accepted.
 
     The spectrum of the candidate's remainder (``rec.y - alt.mean``, standardised by the
@@ -957,7 +880,7 @@ def _power_law_candidate(rec, alt, current, null_c, eff, lr, data, starts, gs, r
         return None
     fit = gate[0]
     pl_null = replace(null_c, noise=PowerLawNoise.from_noise(null_c.noise, fit))
-    p, b = _bootstrap_p(pl_null, eff, lr, data, starts, gs, rng, alpha_each, repeats)
+    p, b = _bootstrap_p(pl_null, eff, lr, data, starts, gs, rng, alpha_each)
     return {"beta": round(fit.beta, 3), "p_value": float(f"{p:.3g}"), "bootstrap_draws": int(b)}
 
 
@@ -1030,9 +953,8 @@ def _null_under(null, alt, data, starts, gs):
     return fit_model(null.model, data, [null.p], alt.noise, starts, given_sigma=gs, rounds=0)
 
 
-def _bootstrap_p(current, effect, lr, data, starts, gs, rng, decide_at, repeats=1):
-    # long recordings: draws of every k-th row (fitting.thinned_null); ``repeats``
-    # instances of the effect fitted greedily on each draw (:func:`_repeated_lookahead`)
+def _bootstrap_p(current, effect, lr, data, starts, gs, rng, decide_at):
+    # long recordings: draws of every k-th row (fitting.thinned_null)
     current, data, starts, gs = thinned_null(current, data, starts, gs)
     rec = current.model.rec
     mu0 = current.params["mu"]
@@ -1046,9 +968,7 @@ def _bootstrap_p(current, effect, lr, data, starts, gs, rng, decide_at, repeats=
                 mu_nom = mu0 + data.mu_sigma * rng.standard_normal()
             d = Data(ystar, mu_nom, data.mu_sigma)
             null = fit_model(current.model, d, [current.p], current.noise, starts, given_sigma=gs)
-            alt = null
-            for _ in range(repeats):
-                alt = fit_with_effect(alt, effect, d, starts, given_sigma=gs)
+            alt = fit_with_effect(null, effect, d, starts, given_sigma=gs)
             out[i] = 2.0 * (alt.loglik - _null_under(null, alt, d, starts, gs).loglik)
         return out
 
@@ -1098,12 +1018,6 @@ def _verdict_line(report: Report, rec, fin_mis, effect) -> str:
     return effect.sentence(p, rec) + held
 
 
-def _instances_text(ev) -> str:
-    """`` x m at once`` for a look-ahead candidate (:func:`_repeated_lookahead`), else ''."""
-    m = ev.get("instances")
-    return f" x {m} at once" if m else ""
-
-
 def _summary(report: Report, rec, fin_mis, base_mis, effect) -> str:
     lines = [_verdict_line(report, rec, fin_mis, effect)]
     lines.append(
@@ -1113,8 +1027,7 @@ def _summary(report: Report, rec, fin_mis, base_mis, effect) -> str:
     )
     for ev in report.details["candidates"]:
         lines.append(
-            f"  tested {ev['effect']}{_instances_text(ev)}: delta BIC {ev['delta_bic']}, "
-            f"{_p_text(ev)}, "
+            f"  tested {ev['effect']}: delta BIC {ev['delta_bic']}, {_p_text(ev)}, "
             f"held-out rms {ev['heldout_rms']}{_prior_text(ev)} -> "
             f"{'accepted' if ev['accepted'] else 'rejected'}"
         )
