@@ -101,13 +101,20 @@ def fit_power_law(u, starts, *, f_min: float = F_HIGH) -> PowerLawFit | None:
     f, p = _periodogram(np.asarray(u, float), starts, f_min)
     if f.size < MIN_ORDINATES or not np.all(np.isfinite(p)) or np.sum(p) <= 0:
         return None
-    lf = np.log(f)
-    # profiled Whittle: c(beta) = mean(I f^beta); -loglik = sum(log c - beta log f) + const
-    g = p[:, None] * np.exp(BETA_GRID[None, :] * lf[:, None])
-    c = np.mean(g, axis=0)
-    nll = f.size * np.log(c) - BETA_GRID * np.sum(lf)
+    nll, c = _power_law_nll(f, p)
     i = int(np.argmin(nll))
     return PowerLawFit(float(BETA_GRID[i]), float(c[i]), int(f.size))
+
+
+def _power_law_nll(f, p):
+    """(profiled Whittle negative log-likelihood up to a constant, scale c) of
+    :math:`c f^{-\\beta}` at each exponent of :data:`BETA_GRID`, fitted to the periodogram
+    ordinates ``p`` at frequencies ``f`` > 0: c(beta) = mean(I f^beta), -loglik = sum(log c
+    - beta log f)."""
+    lf = np.log(f)
+    g = p[:, None] * np.exp(BETA_GRID[None, :] * lf[:, None])
+    c = np.mean(g, axis=0)
+    return f.size * np.log(c) - BETA_GRID * np.sum(lf), c
 
 
 def _periodogram(u, starts, f_min):
@@ -160,9 +167,7 @@ def whittle_ar1_minus_power_law(u, starts) -> float:
     f, p = f[f > 0], p[f > 0]
     if f.size == 0 or not np.all(np.isfinite(p)) or np.sum(p) <= 0:
         return float("nan")
-    lf = np.log(f)
-    c = np.mean(p[:, None] * np.exp(BETA_GRID[None, :] * lf[:, None]), axis=0)
-    nll_pl = float(np.min(f.size * np.log(c) - BETA_GRID * np.sum(lf)))
+    nll_pl = float(np.min(_power_law_nll(f, p)[0]))
     r = AR1_RHO_GRID[None, :]
     shape = 1.0 + r**2 - 2.0 * r * np.cos(2.0 * np.pi * f[:, None])  # S = c / shape
     c = np.mean(p[:, None] * shape, axis=0)
